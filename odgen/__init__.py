@@ -1,0 +1,3 @@
+"""odgen: CANopen device descriptions (EDS/DCF/XDD/XDC) to lint findings and C."""
+
+__version__ = "0.1.0"

@@ -1,0 +1,181 @@
+"""Literal values as written in descriptions, parsed against a data type.
+
+CiA 306 numbers follow C `strtoul(..., 0)`: decimal, `0x` hex, leading-`0` octal,
+with a sign for signed types. Integer entries may be `$NODEID`-relative; the
+canonical form is `$NODEID+<number>`, but real files also write
+`<number>+$NODEID`, lowercase, and spaces, which are read and noted.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import struct
+from dataclasses import dataclass, field
+
+from .datatypes import DataType
+
+# (rule id, message) pairs a reader turns into located diagnostics.
+Note = tuple[str, str]
+
+_INT_RE = re.compile(r"^([+-]?)(0[xX][0-9a-fA-F]+|[0-9]+)$")
+_NODEID_RE = re.compile(r"\$nodeid", re.IGNORECASE)
+_PREFIX_FORM = re.compile(r"^\$NODEID(\+.+)?$")
+_FLOAT_RE = re.compile(r"^[+-]?(\d+\.?\d*([eE][+-]?\d+)?|\.\d+([eE][+-]?\d+)?|inf|nan)$", re.I)
+
+
+@dataclass
+class Value:
+    """A value as written (`text`) and as understood (`parsed`).
+
+    For a `$NODEID`-relative value `parsed` is the offset added to the node-id.
+    `error` says why the text could not be read as the entry's data type.
+    """
+
+    text: str
+    line: int = field(default=0, compare=False)
+    parsed: int | float | str | bytes | None = None
+    nodeid: bool = False
+    error: str | None = None
+    notes: list[Note] = field(default_factory=list, compare=False, repr=False)
+
+    def resolve(self, node_id: int) -> int | float | str | bytes | None:
+        if self.nodeid and isinstance(self.parsed, int):
+            return self.parsed + node_id
+        return self.parsed
+
+    @property
+    def empty(self) -> bool:
+        return self.text.strip() == ""
+
+
+def parse_int_literal(text: str) -> tuple[int | None, list[Note]]:
+    """Read one integer literal; None when it is not one."""
+    m = _INT_RE.match(text.strip())
+    if not m:
+        return None, []
+    sign, digits = m.groups()
+    notes: list[Note] = []
+    if digits[:2] in ("0x", "0X"):
+        value = int(digits, 16)
+    elif len(digits) > 1 and digits[0] == "0":
+        value, notes = _leading_zero(digits)
+    else:
+        value = int(digits)
+    return (-value if sign == "-" else value), notes
+
+
+def _leading_zero(digits: str) -> tuple[int, list[Note]]:
+    """`001` is octal in CiA 306 (strtoul base 0); say so when it matters."""
+    decimal = int(digits, 10)
+    if any(c in "89" for c in digits):
+        return decimal, [("SYN006", f"'{digits}' has a leading zero but is not octal; read as {decimal}")]
+    octal = int(digits, 8)
+    if octal != decimal:
+        return octal, [("SYN006", f"'{digits}' is octal ({octal}) under CiA 306, not {decimal}")]
+    return octal, []
+
+
+def split_nodeid(text: str) -> tuple[bool, str, list[Note]]:
+    """Remove a `$NODEID` term; returns (relative, remaining number text, notes)."""
+    if not _NODEID_RE.search(text):
+        return False, text, []
+    compact = re.sub(r"\s+", "", text)
+    notes: list[Note] = []
+    if not _PREFIX_FORM.match(compact) or compact != text.strip():
+        notes.append(("SYN007", f"'{text.strip()}' is not the CiA 306 form $NODEID+<number>"))
+    rest = _NODEID_RE.sub("", compact, count=1)
+    rest = rest.strip("+") if rest.count("+") <= 1 else rest
+    return True, rest or "0", notes
+
+
+def parse_value(text: str, dtype: DataType | None, line: int = 0) -> Value:
+    """Parse `text` as a value of `dtype`; never raises."""
+    value = Value(text=text, line=line)
+    stripped = text.strip()
+    if stripped == "" or dtype is None:
+        return value
+    reader = _READERS.get(dtype.kind, _read_text)
+    reader(value, stripped, dtype)
+    return value
+
+
+def _read_integer(value: Value, text: str, dtype: DataType) -> None:
+    relative, rest, notes = split_nodeid(text)
+    value.nodeid = relative
+    value.notes.extend(notes)
+    number, notes = parse_int_literal(rest)
+    value.notes.extend(notes)
+    if number is None:
+        number = _bool_word(rest) if dtype.kind == "bool" else None
+    if number is None:
+        value.error = f"'{text}' is not an integer"
+        return
+    value.parsed = _twos_complement(value, number, rest, dtype)
+
+
+def _bool_word(text: str) -> int | None:
+    return {"true": 1, "false": 0}.get(text.lower())
+
+
+def _twos_complement(value: Value, number: int, text: str, dtype: DataType) -> int:
+    """A signed entry written as unsigned hex (0xFFFF for -1) means its bit pattern."""
+    if dtype.kind != "int" or not text.lower().startswith("0x"):
+        return number
+    top = 1 << dtype.bits
+    if (dtype.max or 0) < number < top:
+        value.notes.append(("SYN008", f"'{text}' read as the {dtype.bits}-bit two's complement {number - top}"))
+        return number - top
+    return number
+
+
+def _read_real(value: Value, text: str, dtype: DataType) -> None:
+    if _FLOAT_RE.match(text):
+        value.parsed = float(text)
+        return
+    number, notes = parse_int_literal(text)
+    if number is None:
+        value.error = f"'{text}' is not a number"
+        return
+    if text.lower().lstrip("+-").startswith("0x"):
+        value.parsed = _bits_to_real(number, dtype.bits)
+        value.notes.append(("SYN009", f"'{text}' read as an IEEE 754 bit pattern = {value.parsed!r}"))
+    else:
+        value.parsed = float(number)
+    value.notes.extend(notes)
+
+
+def _bits_to_real(number: int, bits: int) -> float:
+    fmt, ifmt = ("!f", "!I") if bits == 32 else ("!d", "!Q")
+    try:
+        result = struct.unpack(fmt, struct.pack(ifmt, number))[0]
+    except struct.error:
+        return math.nan
+    return float(result)
+
+
+def _read_octets(value: Value, text: str, dtype: DataType) -> None:
+    digits = re.sub(r"\s+", "", text)
+    if digits[:2].lower() == "0x":
+        digits = digits[2:]
+    if len(digits) % 2 or not re.fullmatch(r"[0-9a-fA-F]*", digits):
+        value.error = f"'{text}' is not a sequence of hex bytes"
+        return
+    value.parsed = bytes.fromhex(digits)
+
+
+def _read_text(value: Value, text: str, dtype: DataType) -> None:
+    value.parsed = value.text
+
+
+_READERS = {
+    "bool": _read_integer,
+    "int": _read_integer,
+    "uint": _read_integer,
+    "time": _read_integer,
+    "real": _read_real,
+    "ostring": _read_octets,
+    "vstring": _read_text,
+    "ustring": _read_text,
+    "domain": _read_text,
+}

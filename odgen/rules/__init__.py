@@ -1,0 +1,40 @@
+"""The lint pass: rule families, each a module of small checks over the model.
+
+A family module defines its rules with `define_rule` (odgen.diagnostics) and its
+checks with the `@check` decorator; readers emit the SYN/XML rules themselves.
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from ..diagnostics import Diagnostics
+from ..model import ObjectDictionary
+
+
+@dataclass(frozen=True)
+class LintOptions:
+    node_id: int | None = None  # check $NODEID values for this node-id only
+    can_fd: bool = False  # PDO payload up to 512 bits instead of 64
+
+
+Check = Callable[[ObjectDictionary, Diagnostics, LintOptions], None]
+CHECKS: list[Check] = []
+
+
+def check(fn: Check) -> Check:
+    CHECKS.append(fn)
+    return fn
+
+
+# Reader-emitted rules first, then the semantic passes in pipeline order.
+FAMILIES = ("syntax", "xml", "header", "lists", "objects", "pdo", "comm")
+for _family in FAMILIES:
+    importlib.import_module(f"{__name__}.{_family}")
+
+
+def run_rules(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    for fn in CHECKS:
+        fn(od, diags, options)

@@ -1,0 +1,1 @@
+"""Rule family comm (to be filled)."""

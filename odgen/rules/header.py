@@ -1,0 +1,1 @@
+"""Rule family header (to be filled)."""

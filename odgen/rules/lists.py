@@ -1,0 +1,1 @@
+"""Rule family lists (to be filled)."""

@@ -1,0 +1,1 @@
+"""Rule family objects (to be filled)."""

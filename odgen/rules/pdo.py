@@ -1,0 +1,1 @@
+"""Rule family pdo (to be filled)."""

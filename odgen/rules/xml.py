@@ -1,0 +1,1 @@
+"""Rule family xml (to be filled)."""
