@@ -141,7 +141,6 @@ class ObjectDictionary:
     objects: dict[int, Obj] = field(default_factory=dict)
     sections: dict[str, Section] = field(default_factory=dict)  # lower-case name
     object_lists: dict[str, ObjectList] = field(default_factory=dict)  # lower-case name
-    comments: list[str] = field(default_factory=list)  # [Comments] Line1..N
     node_id: int | None = None  # DCF [DeviceComissioning] NodeID / XDC
 
     def section(self, name: str) -> Section | None:

@@ -1,0 +1,49 @@
+"""Readers: one per input format, all producing the same model.
+
+`load_path` picks the reader by file suffix (sniffing XML for unknown ones) and
+returns the model, or None when the file could not be understood at all, with
+the diagnostics found while reading.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from .. import rules  # noqa: F401  (defines the rule catalogue readers report against)
+from ..diagnostics import Diagnostics
+from ..errors import OdgenError
+from ..model import ObjectDictionary
+
+FORMATS = {".eds": "eds", ".dcf": "dcf", ".xdd": "xdd", ".xpd": "xdd", ".xdc": "xdc"}
+
+
+def detect_format(path: Path, data: bytes) -> str:
+    fmt = FORMATS.get(path.suffix.lower())
+    if fmt is not None:
+        return fmt
+    head = data[:64].lstrip(b"\xef\xbb\xbf \t\r\n")
+    return "xdd" if head.startswith(b"<") else "eds"
+
+
+def read_bytes(path: Path) -> bytes:
+    try:
+        return path.read_bytes()
+    except OSError as err:
+        raise OdgenError(f"{path}: cannot read: {err.strerror or err}") from None
+
+
+def load_bytes(data: bytes, source: str, fmt: str) -> tuple[ObjectDictionary | None, Diagnostics]:
+    diags = Diagnostics()
+    if fmt in ("xdd", "xdc"):
+        from .xdd import load_xdd
+
+        return load_xdd(data, source, diags), diags
+    from .eds import load_eds
+
+    return load_eds(data, source, diags, fmt), diags
+
+
+def load_path(path: str | Path) -> tuple[ObjectDictionary | None, Diagnostics]:
+    path = Path(path)
+    data = read_bytes(path)
+    return load_bytes(data, str(path), detect_format(path, data))

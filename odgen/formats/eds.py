@@ -1,0 +1,289 @@
+"""CiA 306 semantics over the INI reader: EDS and DCF files to the model.
+
+Keys are matched case-insensitively; keys odgen does not interpret are kept in
+`extra` so the EDS writer gives every value back. Objects listed with
+CompactSubObj are expanded into sub-entries marked `compact`.
+"""
+
+from __future__ import annotations
+
+import re
+
+from ..diagnostics import Diagnostics, Loc
+from ..model import VAR, Field, Obj, ObjectDictionary, ObjectList, Section, Sub
+from ..model.datatypes import BASIC_TYPES
+from ..model.od import SINGLE_VALUE_CODES
+from ..model.values import Value, parse_int_literal, parse_value
+from . import ini
+
+OBJECT_LISTS = ("MandatoryObjects", "OptionalObjects", "ManufacturerObjects")
+HEADER_SECTIONS = ("FileInfo", "DeviceInfo", "DeviceComissioning", "DummyUsage", "Comments",
+                   "Tools", "DynamicChannels", "SupportedModules")
+_CANONICAL_SECTIONS = {name.lower(): name for name in HEADER_SECTIONS + OBJECT_LISTS}
+_MODULE_SECTION = re.compile(r"^m\d+(moduleinfo|fixedobjects|subextends|subext[0-9a-f]{4}|comments)$")
+_OBJECT_SECTION = re.compile(r"^([0-9a-f]{4})(?:(sub)([0-9a-f]+)|(name)|(value))?$", re.IGNORECASE)
+
+# Keywords of object and sub-object sections, in the spelling of CiA 306.
+KEYWORDS = ("ParameterName", "ObjectType", "DataType", "AccessType", "DefaultValue", "LowLimit",
+            "HighLimit", "PDOMapping", "ObjFlags", "SubNumber", "CompactSubObj", "ParameterValue",
+            "Denotation", "UploadFile", "DownloadFile", "StorageLocation", "CountLabel")
+_CANONICAL_KEYS = {k.lower(): k for k in KEYWORDS}
+OBJECT_KEYS = {"parametername", "objecttype", "subnumber", "compactsubobj", "objflags",
+               "storagelocation", "countlabel"}
+VALUE_KEYS = {"datatype", "accesstype", "defaultvalue", "lowlimit", "highlimit", "pdomapping",
+              "objflags", "parametervalue", "denotation", "uploadfile", "downloadfile",
+              "storagelocation", "parametername", "objecttype", "countlabel"}
+TEMPLATE_KEYS = {"datatype", "accesstype", "defaultvalue", "lowlimit", "highlimit", "pdomapping"}
+_STRINGLIKE = ("vstring", "ustring", "domain")
+_HASH_COMMENT = re.compile(r"\s+#.*$")
+
+
+def load_eds(data: bytes, source: str, diags: Diagnostics, fmt: str = "eds") -> ObjectDictionary:
+    text = ini.decode(data, source, diags)
+    parsed = ini.parse(text, source, diags)
+    return _Reader(source, fmt, diags).read(parsed)
+
+
+class _Reader:
+    def __init__(self, source: str, fmt: str, diags: Diagnostics) -> None:
+        self.od = ObjectDictionary(source=source, format=fmt)
+        self.diags = diags
+        self.spellings: set[str] = set()
+
+    def loc(self, line: int) -> Loc:
+        return Loc(self.od.source, line)
+
+    def read(self, parsed: ini.IniFile) -> ObjectDictionary:
+        subs, compact = [], []
+        for key, section in parsed.sections.items():
+            match = _OBJECT_SECTION.match(key)
+            if match is None:
+                self._header_section(key, section)
+            elif match.group(2):
+                subs.append((int(match.group(1), 16), match.group(3), section))
+            elif match.group(4) or match.group(5):
+                compact.append((int(match.group(1), 16), section))
+            else:
+                self._object(int(match.group(1), 16), section)
+        for index, sub_text, section in subs:
+            self._sub_section(index, sub_text, section)
+        for index, section in compact:
+            self._compact_section(index, section)
+        self._node_id()
+        return self.od
+
+    # -- header sections -------------------------------------------------
+
+    def _header_section(self, key: str, section: ini.IniSection) -> None:
+        canonical = _CANONICAL_SECTIONS.get(key)
+        if key == "devicecommissioning" and "devicecomissioning" not in self.od.sections:
+            canonical = "DeviceComissioning"
+            self.diags.add("SYN010", self.loc(section.line),
+                           f"section [{section.name}] is spelled [DeviceComissioning] in CiA 306; read as such")
+            key = "devicecomissioning"
+        elif canonical is None and not _MODULE_SECTION.match(key):
+            self.diags.add("SYN010", self.loc(section.line), f"section [{section.name}] is not defined by CiA 306")
+        self._spelling(section.name, canonical, section.line)
+        if canonical in OBJECT_LISTS:
+            self.od.object_lists[key] = self._object_list(canonical, section)
+            return
+        target = Section(canonical or section.name, section.line)
+        for entry in section.entries.values():
+            target.set(entry.key, entry.value, entry.line)
+        self.od.sections[key] = target
+
+    def _object_list(self, name: str, section: ini.IniSection) -> ObjectList:
+        olist = ObjectList(name, section.line)
+        for entry in section.entries.values():
+            fld = Field(entry.key, entry.value, entry.line)
+            if entry.key.lower() == "supportedobjects":
+                olist.supported = fld
+            else:
+                olist.entries.append(fld)
+        return olist
+
+    def _node_id(self) -> None:
+        section = self.od.section("DeviceComissioning")
+        fld = section.get("NodeID") if section else None
+        if fld is not None:
+            self.od.node_id = self._number(fld.key, fld.text, fld.line)
+
+    # -- objects -----------------------------------------------------------
+
+    def _object(self, index: int, section: ini.IniSection) -> None:
+        obj = Obj(index=index, line=section.line)
+        obj.name = section.value("ParameterName") or ""
+        code_entry = section.get("ObjectType")
+        obj.object_code_written = code_entry is not None
+        obj.object_code = self._int_entry(code_entry) if code_entry is not None else VAR
+        if obj.object_code is None:
+            obj.object_code = VAR
+        obj.sub_number = self._int_entry(section.get("SubNumber"))
+        obj.compact_sub_obj = self._int_entry(section.get("CompactSubObj"))
+        obj.count_label = section.value("CountLabel")
+        for entry in section.entries.values():
+            obj.lines[entry.key.lower()] = entry.line
+            self._spelling(entry.key, _CANONICAL_KEYS.get(entry.key.lower()), entry.line)
+        if obj.is_var:
+            obj.subs[0] = self._sub(index, 0, section, obj.name)
+            obj.storage = obj.subs[0].storage
+        else:
+            self._container(obj, section)
+        self.od.objects[index] = obj
+
+    def _container(self, obj: Obj, section: ini.IniSection) -> None:
+        obj.obj_flags = self._int_entry(section.get("ObjFlags"))
+        storage = section.get("StorageLocation")
+        obj.storage = storage.value if storage is not None else None
+        keep = OBJECT_KEYS | (TEMPLATE_KEYS if obj.compact_sub_obj else set())
+        for key, entry in section.entries.items():
+            if key not in keep:
+                obj.extra[key] = Field(entry.key, entry.value, entry.line)
+        if obj.compact_sub_obj:
+            self._expand_compact(obj, section)
+
+    def _sub(self, index: int, subindex: int, section: ini.IniSection, name: str | None = None) -> Sub:
+        sub = Sub(subindex=subindex, line=section.line)
+        sub.name = name if name is not None else section.value("ParameterName") or ""
+        sub.lines = {key: entry.line for key, entry in section.entries.items()}
+        code = section.get("ObjectType")
+        if name is None and code is not None:  # only real sub-object sections carry their own
+            sub.object_type = self._int_entry(code)
+        sub.data_type = self._int_entry(section.get("DataType"))
+        access = section.value("AccessType")
+        sub.access = access.strip().lower() if access is not None else None
+        sub.pdo_mapping = self._flag(section.get("PDOMapping"))
+        sub.obj_flags = self._int_entry(section.get("ObjFlags"))
+        for key in ("DefaultValue", "LowLimit", "HighLimit", "ParameterValue"):
+            setattr(sub, _VALUE_ATTR[key], self._value(section.get(key), sub))
+        sub.denotation = section.value("Denotation")
+        sub.upload_file = section.value("UploadFile")
+        sub.download_file = section.value("DownloadFile")
+        sub.storage = section.value("StorageLocation")
+        for key, entry in section.entries.items():
+            if key not in VALUE_KEYS:
+                sub.extra[key] = Field(entry.key, entry.value, entry.line)
+        return sub
+
+    def _value(self, entry: ini.IniEntry | None, sub: Sub) -> Value | None:
+        if entry is None:
+            return None
+        dtype = BASIC_TYPES.get(sub.data_type) if sub.data_type is not None else None
+        text = entry.value
+        if dtype is not None and dtype.kind not in _STRINGLIKE:
+            text = self._strip_hash_comment(entry)
+        return parse_value(text, dtype, entry.line)
+
+    def _strip_hash_comment(self, entry: ini.IniEntry) -> str:
+        match = _HASH_COMMENT.search(entry.value)
+        if match is None:
+            return entry.value
+        self.diags.add("SYN014", self.loc(entry.line),
+                       f"inline comment '{match.group(0).strip()}' after the value of '{entry.key}' is dropped")
+        return entry.value[: match.start()]
+
+    # -- sub-objects ---------------------------------------------------------
+
+    def _sub_section(self, index: int, sub_text: str, section: ini.IniSection) -> None:
+        subindex = int(sub_text, 16)
+        parent = self.od.objects.get(index)
+        if subindex > 0xFE:
+            self.diags.add("SYN017", self.loc(section.line), f"[{section.name}]: sub-index 0x{subindex:X} is above 0xFE")
+            return
+        if parent is None or parent.object_code in SINGLE_VALUE_CODES:
+            why = "has no [%04X] section" % index if parent is None else "is not an ARRAY or RECORD"
+            self.diags.add("SYN013", self.loc(section.line), f"[{section.name}]: object 0x{index:04X} {why}")
+            return
+        for key, entry in section.entries.items():
+            self._spelling(entry.key, _CANONICAL_KEYS.get(key), entry.line)
+        self._spelling(section.name[4:7], "sub", section.line)
+        parent.subs[subindex] = self._sub(index, subindex, section)
+
+    # -- CompactSubObj -------------------------------------------------------
+
+    def _expand_compact(self, obj: Obj, section: ini.IniSection) -> None:
+        count = obj.compact_sub_obj or 0
+        if count > 0xFE:
+            self.diags.add("SYN016", self.loc(obj.line_of("compactsubobj")), f"CompactSubObj={count} is above 254", obj.index)
+            count = 0xFE
+        sub0 = Sub(0, "NrOfObjects", line=obj.line, data_type=0x0005, access="ro", compact=True)
+        sub0.default = parse_value(str(count), BASIC_TYPES[0x0005], obj.line_of("compactsubobj"))
+        obj.subs[0] = sub0
+        for subindex in range(1, count + 1):
+            sub = self._sub(obj.index, subindex, section, name=f"{obj.name}{subindex}")
+            sub.compact, sub.extra, sub.storage = True, {}, None
+            obj.subs[subindex] = sub
+
+    def _compact_section(self, index: int, section: ini.IniSection) -> None:
+        obj = self.od.objects.get(index)
+        kind = "names" if section.name.lower().endswith("name") else "values"
+        if obj is None or not obj.compact_sub_obj:
+            self.diags.add("SYN016", self.loc(section.line),
+                           f"[{section.name}] lists {kind} but object 0x{index:04X} has no CompactSubObj", index)
+            return
+        entries = self._compact_entries(obj, section)
+        for subindex, entry in entries.items():
+            sub = obj.subs[subindex]
+            if kind == "names":
+                sub.name = entry.value
+            else:
+                sub.parameter_value = parse_value(entry.value, sub.dtype, entry.line)
+
+    def _compact_entries(self, obj: Obj, section: ini.IniSection) -> dict[int, ini.IniEntry]:
+        result: dict[int, ini.IniEntry] = {}
+        nr = section.get("NrOfEntries")
+        for key, entry in section.entries.items():
+            if key == "nrofentries":
+                continue
+            subindex, _ = parse_int_literal(key)
+            if subindex is None or not 1 <= subindex <= (obj.compact_sub_obj or 0):
+                self.diags.add("SYN016", self.loc(entry.line),
+                               f"[{section.name}] entry '{entry.key}' is not a sub-index 1..{obj.compact_sub_obj}", obj.index)
+                continue
+            result[subindex] = entry
+        declared = self._int_entry(nr) if nr is not None else None
+        if declared != len(result):
+            line = nr.line if nr is not None else section.line
+            self.diags.add("SYN016", self.loc(line),
+                           f"[{section.name}] NrOfEntries={nr.value if nr else '(missing)'} but {len(result)} entries follow", obj.index)
+        return result
+
+    # -- small readers ---------------------------------------------------------
+
+    def _int_entry(self, entry: ini.IniEntry | None) -> int | None:
+        if entry is None:
+            return None
+        return self._number(entry.key, self._strip_hash_comment(entry), entry.line)
+
+    def _number(self, key: str, text: str, line: int) -> int | None:
+        number, notes = parse_int_literal(text)
+        for rule_id, message in notes:
+            self.diags.add(rule_id, self.loc(line), f"{key}: {message}")
+        if number is None:
+            self.diags.add("SYN015", self.loc(line), f"{key}='{text}' is not a number")
+        return number
+
+    def _flag(self, entry: ini.IniEntry | None) -> bool:
+        if entry is None:
+            return False
+        text = self._strip_hash_comment(entry).strip().lower()
+        number, _ = parse_int_literal(text)
+        if number in (0, 1):
+            return number == 1
+        if text in ("true", "false"):
+            return text == "true"
+        self.diags.add("SYN015", self.loc(entry.line), f"{entry.key}='{entry.value}' is not 0 or 1")
+        return False
+
+    def _spelling(self, written: str, canonical: str | None, line: int) -> None:
+        """Report each unusual spelling of a known keyword once per file."""
+        if canonical is None or written == canonical or written.lower() != canonical.lower():
+            return
+        if written in self.spellings:
+            return
+        self.spellings.add(written)
+        self.diags.add("SYN012", self.loc(line), f"'{written}' is spelled '{canonical}' in CiA 306")
+
+
+_VALUE_ATTR = {"DefaultValue": "default", "LowLimit": "low", "HighLimit": "high",
+               "ParameterValue": "parameter_value"}

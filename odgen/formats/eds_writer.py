@@ -1,0 +1,141 @@
+"""The model as a CiA 306 EDS/DCF file: deterministic, every value kept.
+
+Values are written as their source text (so `$NODEID+0x180` stays so); keys
+odgen does not interpret follow the ones it does. Objects go to the object list
+that named them, else to the list their index range implies.
+"""
+
+from __future__ import annotations
+
+from ..model import Obj, ObjectDictionary, Sub
+from ..model.od import VAR
+from .eds import OBJECT_LISTS
+
+MANDATORY = (0x1000, 0x1001, 0x1018)
+_LEADING_SECTIONS = ("FileInfo", "DeviceInfo", "DeviceComissioning", "DummyUsage", "Comments")
+
+
+def list_of(obj: Obj) -> str:
+    if obj.object_list in OBJECT_LISTS:
+        return obj.object_list
+    if obj.index in MANDATORY:
+        return "MandatoryObjects"
+    return "ManufacturerObjects" if 0x2000 <= obj.index <= 0x5FFF else "OptionalObjects"
+
+
+def write_eds(od: ObjectDictionary) -> str:
+    out: list[str] = []
+    for name in _LEADING_SECTIONS:
+        _header(out, od, name)
+    groups: dict[str, list[Obj]] = {name: [] for name in OBJECT_LISTS}
+    for obj in od.sorted_objects():
+        groups[list_of(obj)].append(obj)
+    for name in OBJECT_LISTS:
+        _object_list(out, name, groups[name])
+    for key, section in od.sections.items():
+        if section.name not in _LEADING_SECTIONS:
+            _header(out, od, key)
+    return "\n".join(out).rstrip("\n") + "\n"
+
+
+def _header(out: list[str], od: ObjectDictionary, name: str) -> None:
+    section = od.section(name)
+    if section is None:
+        return
+    out.append(f"[{section.name}]")
+    out.extend(f"{f.key}={f.text}" for f in section.fields.values())
+    out.append("")
+
+
+def _object_list(out: list[str], name: str, objects: list[Obj]) -> None:
+    out.append(f"[{name}]")
+    out.append(f"SupportedObjects={len(objects)}")
+    out.extend(f"{n}=0x{obj.index:04X}" for n, obj in enumerate(objects, start=1))
+    out.append("")
+    for obj in objects:
+        _object(out, obj)
+
+
+def _object(out: list[str], obj: Obj) -> None:
+    out.append(f"[{obj.index:04X}]")
+    out.append(f"ParameterName={obj.name}")
+    if obj.object_code_written or obj.object_code != VAR:
+        out.append(f"ObjectType=0x{obj.object_code:X}")
+    if obj.is_var and 0 in obj.subs:
+        _value_keys(out, obj.subs[0])
+        if obj.count_label is not None:
+            out.append(f";CountLabel={obj.count_label}")
+        out.append("")
+        return
+    _container_keys(out, obj)
+    out.append("")
+    for sub in obj.sorted_subs():
+        if not sub.compact:
+            _sub_section(out, obj, sub)
+    if obj.compact_sub_obj:
+        _compact_sections(out, obj)
+
+
+def _container_keys(out: list[str], obj: Obj) -> None:
+    if obj.sub_number is not None:
+        out.append(f"SubNumber=0x{obj.sub_number:X}")
+    if obj.compact_sub_obj is not None:
+        out.append(f"CompactSubObj={obj.compact_sub_obj}")
+        template = obj.subs.get(1)
+        if template is not None and template.compact:
+            _typed_keys(out, template)
+    if obj.obj_flags is not None:
+        out.append(f"ObjFlags=0x{obj.obj_flags:X}")
+    if obj.count_label is not None:
+        out.append(f";CountLabel={obj.count_label}")
+    if obj.storage is not None:
+        out.append(f";StorageLocation={obj.storage}")
+    out.extend(f"{f.key}={f.text}" for f in obj.extra.values())
+
+
+def _sub_section(out: list[str], obj: Obj, sub: Sub) -> None:
+    out.append(f"[{obj.index:04X}sub{sub.subindex:X}]")
+    out.append(f"ParameterName={sub.name}")
+    if sub.object_type is not None:
+        out.append(f"ObjectType=0x{sub.object_type:X}")
+    _value_keys(out, sub)
+    out.append("")
+
+
+def _typed_keys(out: list[str], sub: Sub) -> None:
+    if sub.data_type is not None:
+        out.append(f"DataType=0x{sub.data_type:04X}")
+    if sub.access is not None:
+        out.append(f"AccessType={sub.access}")
+    for key, value in (("DefaultValue", sub.default), ("LowLimit", sub.low), ("HighLimit", sub.high)):
+        if value is not None:
+            out.append(f"{key}={value.text}")
+    out.append(f"PDOMapping={int(sub.pdo_mapping)}")
+
+
+def _value_keys(out: list[str], sub: Sub) -> None:
+    _typed_keys(out, sub)
+    if sub.obj_flags is not None:
+        out.append(f"ObjFlags=0x{sub.obj_flags:X}")
+    if sub.parameter_value is not None:
+        out.append(f"ParameterValue={sub.parameter_value.text}")
+    for key, text in (("Denotation", sub.denotation), ("UploadFile", sub.upload_file),
+                      ("DownloadFile", sub.download_file)):
+        if text is not None:
+            out.append(f"{key}={text}")
+    if sub.storage is not None:
+        out.append(f";StorageLocation={sub.storage}")
+    out.extend(f"{f.key}={f.text}" for f in sub.extra.values())
+
+
+def _compact_sections(out: list[str], obj: Obj) -> None:
+    compact = [s for s in obj.sorted_subs() if s.compact and s.subindex > 0]
+    names = [s for s in compact if s.name != f"{obj.name}{s.subindex}"]
+    values = [s for s in compact if s.parameter_value is not None]
+    for suffix, subs, text in (("Name", names, lambda s: s.name),
+                               ("Value", values, lambda s: s.parameter_value.text)):
+        if subs:
+            out.append(f"[{obj.index:04X}{suffix}]")
+            out.append(f"NrOfEntries={len(subs)}")
+            out.extend(f"{s.subindex}={text(s)}" for s in subs)
+            out.append("")

@@ -1,0 +1,124 @@
+"""An INI reader that knows nothing of CANopen but keeps what configparser drops.
+
+It keeps line numbers, the spelling of names, duplicates (reported, first wins),
+and `;Key=Value` comment lines (CANopenNode writes `;StorageLocation=RAM`).
+Decoding: UTF-8 with or without BOM, else Windows-1252 (reported).
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+from ..diagnostics import Diagnostics, Loc
+
+_SECTION_RE = re.compile(r"^\[([^\]]*)\]\s*(?:[;#].*)?$")
+_COMMENT_KEY_RE = re.compile(r"^;\s*([A-Za-z_][A-Za-z0-9_]*)\s*=(.*)$")
+_INLINE_COMMENT_RE = re.compile(r"\s+;.*$")
+
+
+@dataclass
+class IniEntry:
+    key: str
+    value: str
+    line: int
+    commented: bool = False  # written as ";Key=Value"
+    comment: str = ""  # an inline "; ..." removed from the value
+
+
+@dataclass
+class IniSection:
+    name: str
+    line: int
+    entries: dict[str, IniEntry] = field(default_factory=dict)  # lower-case key, first wins
+
+    def get(self, key: str) -> IniEntry | None:
+        return self.entries.get(key.lower())
+
+    def value(self, key: str) -> str | None:
+        entry = self.entries.get(key.lower())
+        return entry.value if entry is not None else None
+
+
+@dataclass
+class IniFile:
+    sections: dict[str, IniSection] = field(default_factory=dict)  # lower-case name, in order
+
+
+def decode(data: bytes, source: str, diags: Diagnostics) -> str:
+    if data.startswith(b"\xef\xbb\xbf"):
+        data = data[3:]
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as err:
+        line = data.count(b"\n", 0, err.start) + 1
+        diags.add("SYN004", Loc(source, line), "file is not UTF-8; read as Windows-1252")
+    # cp1252 leaves five bytes undefined; read those as Latin-1 so decoding never fails
+    return "".join(_cp1252_char(b) for b in data)
+
+
+def _cp1252_char(byte: int) -> str:
+    try:
+        return bytes([byte]).decode("cp1252")
+    except UnicodeDecodeError:
+        return chr(byte)
+
+
+def parse(text: str, source: str, diags: Diagnostics) -> IniFile:
+    ini = IniFile()
+    current: IniSection | None = None
+    for number, raw in enumerate(text.splitlines(), start=1):
+        line = raw.strip()
+        if not line:
+            continue
+        match = _SECTION_RE.match(line)
+        if match:
+            current = _open_section(ini, match.group(1).strip(), number, source, diags)
+        elif line[0] in ";#":
+            _comment_line(current, line, number)
+        elif "=" in line:
+            _key_line(current, line, number, source, diags)
+        else:
+            diags.add("SYN001", Loc(source, number), f"'{_clip(line)}' is neither [section] nor key=value")
+    return ini
+
+
+def _open_section(ini: IniFile, name: str, line: int, source: str, diags: Diagnostics) -> IniSection:
+    key = name.lower()
+    first = ini.sections.get(key)
+    section = IniSection(name, line)
+    if first is None:
+        ini.sections[key] = section
+    else:
+        diags.add("SYN002", Loc(source, line), f"section [{name}] repeats line {first.line}; this copy is ignored")
+    return section
+
+
+def _comment_line(section: IniSection | None, line: str, number: int) -> None:
+    match = _COMMENT_KEY_RE.match(line)
+    if match and section is not None:
+        key, value = match.group(1), match.group(2).strip()
+        section.entries.setdefault(key.lower(), IniEntry(key, value, number, commented=True))
+
+
+def _key_line(section: IniSection | None, line: str, number: int, source: str, diags: Diagnostics) -> None:
+    key, _, value = line.partition("=")
+    key, value = key.strip(), value.strip()
+    loc = Loc(source, number)
+    if section is None:
+        diags.add("SYN005", loc, f"'{key}' stands before any [section]")
+        return
+    comment = ""
+    match = _INLINE_COMMENT_RE.search(value)
+    if match:
+        value, comment = value[: match.start()], match.group(0).strip()
+        diags.add("SYN014", loc, f"inline comment '{_clip(comment)}' after the value of '{key}' is dropped")
+    first = section.entries.get(key.lower())
+    if first is not None and not first.commented:
+        diags.add("SYN003", loc, f"key '{key}' repeats line {first.line} in [{section.name}]; this one is ignored")
+        return
+    section.entries[key.lower()] = IniEntry(key, value, number, comment=comment)
+
+
+def _clip(text: str, width: int = 40) -> str:
+    return text if len(text) <= width else text[: width - 3] + "..."
