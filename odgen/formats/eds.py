@@ -28,6 +28,8 @@ KEYWORDS = ("ParameterName", "ObjectType", "DataType", "AccessType", "DefaultVal
             "HighLimit", "PDOMapping", "ObjFlags", "SubNumber", "CompactSubObj", "ParameterValue",
             "Denotation", "UploadFile", "DownloadFile", "StorageLocation", "CountLabel")
 _CANONICAL_KEYS = {k.lower(): k for k in KEYWORDS}
+# CANopenNode's editor writes its extensions as comments: ;StorageLocation=RAM
+COMMENT_KEYS = frozenset({"storagelocation", "countlabel", "tpdodetectcos"})
 OBJECT_KEYS = {"parametername", "objecttype", "subnumber", "compactsubobj", "objflags",
                "storagelocation", "countlabel"}
 VALUE_KEYS = {"datatype", "accesstype", "defaultvalue", "lowlimit", "highlimit", "pdomapping",
@@ -40,7 +42,7 @@ _HASH_COMMENT = re.compile(r"\s+#.*$")
 
 def load_eds(data: bytes, source: str, diags: Diagnostics, fmt: str = "eds") -> ObjectDictionary:
     text = ini.decode(data, source, diags)
-    parsed = ini.parse(text, source, diags)
+    parsed = ini.parse(text, source, diags, COMMENT_KEYS)
     return _Reader(source, fmt, diags).read(parsed)
 
 

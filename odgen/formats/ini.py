@@ -64,7 +64,8 @@ def _cp1252_char(byte: int) -> str:
         return chr(byte)
 
 
-def parse(text: str, source: str, diags: Diagnostics) -> IniFile:
+def parse(text: str, source: str, diags: Diagnostics, comment_keys: frozenset[str] = frozenset()) -> IniFile:
+    """Read INI text; `;Key=Value` lines are kept as entries for the lower-case `comment_keys`."""
     ini = IniFile()
     current: IniSection | None = None
     for number, raw in enumerate(text.splitlines(), start=1):
@@ -75,7 +76,7 @@ def parse(text: str, source: str, diags: Diagnostics) -> IniFile:
         if match:
             current = _open_section(ini, match.group(1).strip(), number, source, diags)
         elif line[0] in ";#":
-            _comment_line(current, line, number)
+            _comment_line(current, line, number, comment_keys)
         elif "=" in line:
             _key_line(current, line, number, source, diags)
         else:
@@ -94,9 +95,9 @@ def _open_section(ini: IniFile, name: str, line: int, source: str, diags: Diagno
     return section
 
 
-def _comment_line(section: IniSection | None, line: str, number: int) -> None:
+def _comment_line(section: IniSection | None, line: str, number: int, keys: frozenset[str]) -> None:
     match = _COMMENT_KEY_RE.match(line)
-    if match and section is not None:
+    if match and section is not None and match.group(1).lower() in keys:
         key, value = match.group(1), match.group(2).strip()
         section.entries.setdefault(key.lower(), IniEntry(key, value, number, commented=True))
 

@@ -1,0 +1,41 @@
+# odgen: `make demo` and `make test` work on a fresh machine; each sets up .venv first.
+PYTHON ?= python3
+VENV   := .venv
+BIN    := $(VENV)/bin
+STAMP  := $(VENV)/.installed
+CORPUS ?= ../shared/corpus/files
+
+.PHONY: setup demo test lint-code docs bench clean
+
+$(STAMP): pyproject.toml
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install -q --upgrade pip
+	$(BIN)/python -m pip install -q -e '.[test]'
+	touch $@
+
+setup: $(STAMP)
+
+# Lint the examples (until the generator exists, this is the main job), then
+# show the same findings as SARIF for a CI upload and convert an example back to EDS.
+demo: setup
+	$(BIN)/odgen lint examples/*/*.eds
+	mkdir -p build/demo
+	$(BIN)/odgen lint --format sarif -o build/demo/examples.sarif examples/*/*.eds
+	$(BIN)/odgen convert examples/io-node/io-node.eds build/demo/io-node.eds
+	@echo "demo: SARIF report in build/demo/examples.sarif, converted EDS in build/demo/io-node.eds"
+
+lint-code: setup
+	$(BIN)/ruff check odgen tests benchmarks
+
+test: setup lint-code
+	$(BIN)/python -m pytest -q
+
+# docs/rules.md is generated from the rule catalogue (a test checks it is current).
+docs: setup
+	$(BIN)/odgen rules --markdown > docs/rules.md
+
+bench: setup
+	$(BIN)/python benchmarks/lint_speed.py
+
+clean:
+	rm -rf build .pytest_cache

@@ -1,0 +1,91 @@
+"""SYN rules: one failing fixture per rule, checked by exact line and message."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from odgen.diagnostics import RULES
+from odgen.formats import load_path
+from odgen.model.values import parse_value, split_nodeid
+from odgen.model.datatypes import BY_NAME
+
+from .conftest import FIXTURES, expectations, lint, rendered
+
+SYNTAX = FIXTURES / "syntax"
+
+
+@pytest.mark.parametrize("fixture", sorted(SYNTAX.glob("SYN*.eds")), ids=lambda p: p.stem)
+def test_fixture_reports_its_rule(fixture: Path) -> None:
+    wanted = expectations(fixture)
+    assert wanted, f"{fixture.name} has no '; expect:' line"
+    got = rendered(lint(fixture))
+    for line in wanted:
+        assert line in got, f"{fixture.name}: expected {line!r}, got {got}"
+    assert all(f"[{fixture.stem}]" in w for w in wanted)
+
+
+def test_every_syn_rule_has_a_fixture() -> None:
+    have = {p.stem for p in SYNTAX.glob("SYN*.eds")}
+    assert {r for r in RULES if r.startswith("SYN")} == have
+
+
+def test_crlf_bom_tabs_and_case_insensitive_names(tmp_path: Path) -> None:
+    text = "\ufeff[fileinfo]\r\nFileName=x.eds\r\n[2000]\r\n\tPARAMETERNAME = Spaced\t\r\n" \
+           "datatype=0x0006\r\naccesstype=RW\r\nDefaultValue=\r\n"
+    path = tmp_path / "x.eds"
+    path.write_bytes(text.encode("utf-8"))
+    od, diags = load_path(path)
+    sub = od.objects[0x2000].var
+    assert (sub.name, sub.data_type, sub.access) == ("Spaced", 6, "rw")
+    assert sub.default is not None and sub.default.empty and sub.default.parsed is None
+    assert od.section("FileInfo").text("FileName") == "x.eds"
+    assert sub.line == 3 and sub.default.line == 7
+
+
+@pytest.mark.parametrize("text,relative,rest", [
+    ("$NODEID+0x180", True, "0x180"),
+    ("0x180+$NODEID", True, "0x180"),
+    ("$nodeid + 0x180", True, "0x180"),
+    ("$NODEID", True, "0"),
+    ("0x180", False, "0x180"),
+])
+def test_nodeid_forms(text: str, relative: bool, rest: str) -> None:
+    assert split_nodeid(text)[:2] == (relative, rest)
+
+
+@pytest.mark.parametrize("text,type_name,parsed", [
+    ("001", "UNSIGNED32", 1),
+    ("-5", "INTEGER8", -5),
+    ("-0x10", "INTEGER16", -16),
+    ("0x80", "INTEGER8", -128),
+    ("1.5", "REAL32", 1.5),
+    ("3", "REAL64", 3.0),
+    ("0x3F800000", "REAL32", 1.0),
+    ("01 02 ff", "OCTET_STRING", b"\x01\x02\xff"),
+    ("hello; world", "VISIBLE_STRING", "hello; world"),
+    ("1", "BOOLEAN", 1),
+])
+def test_value_parsing(text: str, type_name: str, parsed: object) -> None:
+    value = parse_value(text, BY_NAME[type_name])
+    assert value.error is None and value.parsed == parsed
+
+
+def test_nodeid_value_resolves_per_node() -> None:
+    value = parse_value("$NODEID+0x180", BY_NAME["UNSIGNED32"])
+    assert value.nodeid and value.resolve(5) == 0x185
+
+
+def test_compact_sub_obj_is_expanded(tmp_path: Path) -> None:
+    path = tmp_path / "c.dcf"
+    path.write_text("[1003]\nParameterName=Errors\nObjectType=0x8\nCompactSubObj=3\nDataType=0x0007\n"
+                    "AccessType=ro\nDefaultValue=0\n[1003Name]\nNrOfEntries=1\n2=Second\n"
+                    "[1003Value]\nNrOfEntries=1\n3=0x10\n")
+    od, diags = load_path(path)
+    obj = od.objects[0x1003]
+    assert sorted(obj.subs) == [0, 1, 2, 3]
+    assert obj.subs[0].default.parsed == 3 and obj.subs[0].data_type == 5
+    assert obj.subs[2].name == "Second" and obj.subs[1].name == "Errors1"
+    assert obj.subs[3].parameter_value.parsed == 0x10
+    assert all(s.compact for s in obj.subs.values()) and not list(diags)
