@@ -29,6 +29,7 @@ KEYWORDS = ("ParameterName", "ObjectType", "DataType", "AccessType", "DefaultVal
             "Denotation", "UploadFile", "DownloadFile", "StorageLocation", "CountLabel")
 _CANONICAL_KEYS = {k.lower(): k for k in KEYWORDS}
 # CANopenNode's editor writes its extensions as comments: ;StorageLocation=RAM
+_SPELLED_RIGHT = frozenset(KEYWORDS)
 COMMENT_KEYS = frozenset({"storagelocation", "countlabel", "tpdodetectcos"})
 OBJECT_KEYS = {"parametername", "objecttype", "subnumber", "compactsubobj", "objflags",
                "storagelocation", "countlabel"}
@@ -54,6 +55,9 @@ class _Reader:
 
     def loc(self, line: int) -> Loc:
         return Loc(self.od.source, line)
+
+    def report(self, rule_id: str, line: int, message: str, index: int | None = None) -> None:
+        self.diags.add(rule_id, self.loc(line), message, index)
 
     def read(self, parsed: ini.IniFile) -> ObjectDictionary:
         subs, compact = [], []
@@ -123,9 +127,8 @@ class _Reader:
         obj.sub_number = self._int_entry(section.get("SubNumber"))
         obj.compact_sub_obj = self._int_entry(section.get("CompactSubObj"))
         obj.count_label = section.value("CountLabel")
-        for entry in section.entries.values():
-            obj.lines[entry.key.lower()] = entry.line
-            self._spelling(entry.key, _CANONICAL_KEYS.get(entry.key.lower()), entry.line)
+        obj.lines = {key: entry.line for key, entry in section.entries.items()}
+        self._check_spellings(section)
         if obj.is_var:
             obj.subs[0] = self._sub(index, 0, section, obj.name)
             obj.storage = obj.subs[0].storage
@@ -145,24 +148,26 @@ class _Reader:
             self._expand_compact(obj, section)
 
     def _sub(self, index: int, subindex: int, section: ini.IniSection, name: str | None = None) -> Sub:
+        entries = section.entries  # lower-case keys: this runs once per sub-entry, keep it lean
         sub = Sub(subindex=subindex, line=section.line)
-        sub.name = name if name is not None else section.value("ParameterName") or ""
-        sub.lines = {key: entry.line for key, entry in section.entries.items()}
-        code = section.get("ObjectType")
-        if name is None and code is not None:  # only real sub-object sections carry their own
-            sub.object_type = self._int_entry(code)
-        sub.data_type = self._int_entry(section.get("DataType"))
-        access = section.value("AccessType")
+        sub.name = name if name is not None else _text(entries.get("parametername")) or ""
+        sub.lines = {key: entry.line for key, entry in entries.items()}
+        if name is None and "objecttype" in entries:  # only real sub-object sections carry their own
+            sub.object_type = self._int_entry(entries["objecttype"])
+        sub.data_type = self._int_entry(entries.get("datatype"))
+        access = _text(entries.get("accesstype"))
         sub.access = access.strip().lower() if access is not None else None
-        sub.pdo_mapping = self._flag(section.get("PDOMapping"))
-        sub.obj_flags = self._int_entry(section.get("ObjFlags"))
-        for key in ("DefaultValue", "LowLimit", "HighLimit", "ParameterValue"):
-            setattr(sub, _VALUE_ATTR[key], self._value(section.get(key), sub))
-        sub.denotation = section.value("Denotation")
-        sub.upload_file = section.value("UploadFile")
-        sub.download_file = section.value("DownloadFile")
-        sub.storage = section.value("StorageLocation")
-        for key, entry in section.entries.items():
+        sub.pdo_mapping = self._flag(entries.get("pdomapping"))
+        sub.obj_flags = self._int_entry(entries.get("objflags"))
+        sub.default = self._value(entries.get("defaultvalue"), sub)
+        sub.low = self._value(entries.get("lowlimit"), sub)
+        sub.high = self._value(entries.get("highlimit"), sub)
+        sub.parameter_value = self._value(entries.get("parametervalue"), sub)
+        sub.denotation = _text(entries.get("denotation"))
+        sub.upload_file = _text(entries.get("uploadfile"))
+        sub.download_file = _text(entries.get("downloadfile"))
+        sub.storage = _text(entries.get("storagelocation"))
+        for key, entry in entries.items():
             if key not in VALUE_KEYS:
                 sub.extra[key] = Field(entry.key, entry.value, entry.line)
         return sub
@@ -177,7 +182,7 @@ class _Reader:
         return parse_value(text, dtype, entry.line)
 
     def _strip_hash_comment(self, entry: ini.IniEntry) -> str:
-        match = _HASH_COMMENT.search(entry.value)
+        match = _HASH_COMMENT.search(entry.value) if "#" in entry.value else None
         if match is None:
             return entry.value
         self.diags.add("SYN014", self.loc(entry.line),
@@ -190,14 +195,13 @@ class _Reader:
         subindex = int(sub_text, 16)
         parent = self.od.objects.get(index)
         if subindex > 0xFE:
-            self.diags.add("SYN017", self.loc(section.line), f"[{section.name}]: sub-index 0x{subindex:X} is above 0xFE")
+            self.report("SYN017", section.line, f"[{section.name}]: sub-index 0x{subindex:X} is above 0xFE")
             return
         if parent is None or parent.object_code in SINGLE_VALUE_CODES:
-            why = "has no [%04X] section" % index if parent is None else "is not an ARRAY or RECORD"
-            self.diags.add("SYN013", self.loc(section.line), f"[{section.name}]: object 0x{index:04X} {why}")
+            why = f"has no [{index:04X}] section" if parent is None else "is not an ARRAY or RECORD"
+            self.report("SYN013", section.line, f"[{section.name}]: object 0x{index:04X} {why}")
             return
-        for key, entry in section.entries.items():
-            self._spelling(entry.key, _CANONICAL_KEYS.get(key), entry.line)
+        self._check_spellings(section)
         self._spelling(section.name[4:7], "sub", section.line)
         parent.subs[subindex] = self._sub(index, subindex, section)
 
@@ -206,7 +210,7 @@ class _Reader:
     def _expand_compact(self, obj: Obj, section: ini.IniSection) -> None:
         count = obj.compact_sub_obj or 0
         if count > 0xFE:
-            self.diags.add("SYN016", self.loc(obj.line_of("compactsubobj")), f"CompactSubObj={count} is above 254", obj.index)
+            self.report("SYN016", obj.line_of("compactsubobj"), f"CompactSubObj={count} is above 254", obj.index)
             count = 0xFE
         sub0 = Sub(0, "NrOfObjects", line=obj.line, data_type=0x0005, access="ro", compact=True)
         sub0.default = parse_value(str(count), BASIC_TYPES[0x0005], obj.line_of("compactsubobj"))
@@ -220,8 +224,8 @@ class _Reader:
         obj = self.od.objects.get(index)
         kind = "names" if section.name.lower().endswith("name") else "values"
         if obj is None or not obj.compact_sub_obj:
-            self.diags.add("SYN016", self.loc(section.line),
-                           f"[{section.name}] lists {kind} but object 0x{index:04X} has no CompactSubObj", index)
+            self.report("SYN016", section.line,
+                        f"[{section.name}] lists {kind} but object 0x{index:04X} has no CompactSubObj", index)
             return
         entries = self._compact_entries(obj, section)
         for subindex, entry in entries.items():
@@ -239,15 +243,16 @@ class _Reader:
                 continue
             subindex, _ = parse_int_literal(key)
             if subindex is None or not 1 <= subindex <= (obj.compact_sub_obj or 0):
-                self.diags.add("SYN016", self.loc(entry.line),
-                               f"[{section.name}] entry '{entry.key}' is not a sub-index 1..{obj.compact_sub_obj}", obj.index)
+                bad = f"[{section.name}] entry '{entry.key}' is not a sub-index 1..{obj.compact_sub_obj}"
+                self.report("SYN016", entry.line, bad, obj.index)
                 continue
             result[subindex] = entry
         declared = self._int_entry(nr) if nr is not None else None
         if declared != len(result):
             line = nr.line if nr is not None else section.line
-            self.diags.add("SYN016", self.loc(line),
-                           f"[{section.name}] NrOfEntries={nr.value if nr else '(missing)'} but {len(result)} entries follow", obj.index)
+            written = nr.value if nr is not None else "(missing)"
+            mismatch = f"[{section.name}] NrOfEntries={written} but {len(result)} entries follow"
+            self.report("SYN016", line, mismatch, obj.index)
         return result
 
     # -- small readers ---------------------------------------------------------
@@ -277,6 +282,11 @@ class _Reader:
         self.diags.add("SYN015", self.loc(entry.line), f"{entry.key}='{entry.value}' is not 0 or 1")
         return False
 
+    def _check_spellings(self, section: ini.IniSection) -> None:
+        for key, entry in section.entries.items():
+            if entry.key not in _SPELLED_RIGHT:
+                self._spelling(entry.key, _CANONICAL_KEYS.get(key), entry.line)
+
     def _spelling(self, written: str, canonical: str | None, line: int) -> None:
         """Report each unusual spelling of a known keyword once per file."""
         if canonical is None or written == canonical or written.lower() != canonical.lower():
@@ -287,5 +297,5 @@ class _Reader:
         self.diags.add("SYN012", self.loc(line), f"'{written}' is spelled '{canonical}' in CiA 306")
 
 
-_VALUE_ATTR = {"DefaultValue": "default", "LowLimit": "low", "HighLimit": "high",
-               "ParameterValue": "parameter_value"}
+def _text(entry: ini.IniEntry | None) -> str | None:
+    return entry.value if entry is not None else None

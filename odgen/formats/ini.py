@@ -17,7 +17,7 @@ _COMMENT_KEY_RE = re.compile(r"^;\s*([A-Za-z_][A-Za-z0-9_]*)\s*=(.*)$")
 _INLINE_COMMENT_RE = re.compile(r"\s+;.*$")
 
 
-@dataclass
+@dataclass(slots=True)
 class IniEntry:
     key: str
     value: str
@@ -26,7 +26,7 @@ class IniEntry:
     comment: str = ""  # an inline "; ..." removed from the value
 
 
-@dataclass
+@dataclass(slots=True)
 class IniSection:
     name: str
     line: int
@@ -72,10 +72,11 @@ def parse(text: str, source: str, diags: Diagnostics, comment_keys: frozenset[st
         line = raw.strip()
         if not line:
             continue
-        match = _SECTION_RE.match(line)
+        first = line[0]
+        match = _SECTION_RE.match(line) if first == "[" else None
         if match:
             current = _open_section(ini, match.group(1).strip(), number, source, diags)
-        elif line[0] in ";#":
+        elif first in ";#":
             _comment_line(current, line, number, comment_keys)
         elif "=" in line:
             _key_line(current, line, number, source, diags)
@@ -104,21 +105,23 @@ def _comment_line(section: IniSection | None, line: str, number: int, keys: froz
 
 def _key_line(section: IniSection | None, line: str, number: int, source: str, diags: Diagnostics) -> None:
     key, _, value = line.partition("=")
-    key, value = key.strip(), value.strip()
-    loc = Loc(source, number)
+    key, value = key.rstrip(), value.lstrip()
     if section is None:
-        diags.add("SYN005", loc, f"'{key}' stands before any [section]")
+        diags.add("SYN005", Loc(source, number), f"'{key}' stands before any [section]")
         return
     comment = ""
-    match = _INLINE_COMMENT_RE.search(value)
+    match = _INLINE_COMMENT_RE.search(value) if ";" in value else None
     if match:
         value, comment = value[: match.start()], match.group(0).strip()
-        diags.add("SYN014", loc, f"inline comment '{_clip(comment)}' after the value of '{key}' is dropped")
-    first = section.entries.get(key.lower())
+        diags.add("SYN014", Loc(source, number),
+                  f"inline comment '{_clip(comment)}' after the value of '{key}' is dropped")
+    lower = key.lower()
+    first = section.entries.get(lower)
     if first is not None and not first.commented:
-        diags.add("SYN003", loc, f"key '{key}' repeats line {first.line} in [{section.name}]; this one is ignored")
+        diags.add("SYN003", Loc(source, number),
+                  f"key '{key}' repeats line {first.line} in [{section.name}]; this one is ignored")
         return
-    section.entries[key.lower()] = IniEntry(key, value, number, comment=comment)
+    section.entries[lower] = IniEntry(key, value, number, comment=comment)
 
 
 def _clip(text: str, width: int = 40) -> str:

@@ -93,8 +93,8 @@ def parse_value(text: str, dtype: DataType | None, line: int = 0) -> Value:
     """Parse `text` as a value of `dtype`; never raises."""
     value = Value(text=text, line=line)
     stripped = text.strip()
-    if stripped == "" or dtype is None:
-        return value
+    if dtype is None or (stripped == "" and not dtype.is_string):
+        return value  # an empty number is "no value"; an empty string is ""
     reader = _READERS.get(dtype.kind, _read_text)
     reader(value, stripped, dtype)
     return value

@@ -11,7 +11,7 @@ from ..diagnostics import Diagnostics, Loc, Severity, define_rule
 from ..model import ObjectDictionary, Value
 from . import LintOptions, check
 
-E, W, I = Severity.ERROR, Severity.WARNING, Severity.INFO
+E, W, N = Severity.ERROR, Severity.WARNING, Severity.INFO
 
 define_rule(
     "SYN001", E, "line is neither a section header nor key=value", ref="S1",
@@ -54,7 +54,7 @@ define_rule(
     example="DefaultValue=0x180+$NODEID",
     fix="Write `$NODEID+0x180`.")
 define_rule(
-    "SYN008", I, "signed value written as unsigned hex", ref="S3",
+    "SYN008", N, "signed value written as unsigned hex", ref="S3",
     why="A signed entry written as its bit pattern (`0xFFFF` for INTEGER16 -1) is read as two's "
     "complement, as python canopen does; Lely reports it as out of range.",
     example="DataType=0x0003\nDefaultValue=0xFFFF",
@@ -77,7 +77,7 @@ define_rule(
     example="DataType=0x0007\nDefaultValue=Profile-specific",
     fix="Write a number (decimal or 0x hex), a `$NODEID+<number>`, or hex bytes for OCTET_STRING.")
 define_rule(
-    "SYN012", I, "keyword spelled with unusual letter case", ref="S2",
+    "SYN012", N, "keyword spelled with unusual letter case", ref="S2",
     why="Section and key names are case-insensitive for odgen and Lely, but python canopen compares "
     "keys case-sensitively and misses e.g. `Parametername`.",
     example="parametername=Device type",
