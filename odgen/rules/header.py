@@ -1,1 +1,359 @@
-"""Rule family header (to be filled)."""
+"""HDR: the header sections of an EDS/DCF (CiA 306 rule table rows H1-H11).
+
+[FileInfo], [DeviceInfo], [DeviceComissioning], [DummyUsage], [Comments] and
+[DynamicChannels]. NrOfRXPDO/NrOfTXPDO (H6) and mapping offsets against
+Granularity (H5, second half) are checked with the PDOs, in the pdo family.
+"""
+
+from __future__ import annotations
+
+import re
+
+from ..diagnostics import Diagnostics, Loc, Severity, define_rule
+from ..model import Field, ObjectDictionary, Section
+from ..model.values import parse_int_literal
+from . import LintOptions, check
+from .objects import number
+
+E, W, I = Severity.ERROR, Severity.WARNING, Severity.INFO
+
+define_rule(
+    "HDR001", E, "required section missing", ref="CiA 306 table row H1",
+    why="An EDS/DCF starts with [FileInfo] and [DeviceInfo] and lists its objects in "
+    "[MandatoryObjects] (plus Optional/ManufacturerObjects). Without them tools cannot identify "
+    "the device or find its objects; objdictgen refuses the file.",
+    example="(no [DeviceInfo] section)",
+    fix="Add the section with its keys.")
+define_rule(
+    "HDR002", W, "unknown key in a header section", ref="CiA 306 table row H2",
+    why="[FileInfo], [DeviceInfo] and [DeviceComissioning] have a fixed set of keys. Lely's dcfchk "
+    "reports others as invalid entries, and a misspelt key (`BaudRate_100`) is silently ignored.",
+    example="[DeviceInfo]\nBaudRate_100=1",
+    fix="Correct the spelling, or remove the key (vendor notes go into [Comments]).")
+define_rule(
+    "HDR003", W, "header value is not a valid number", ref="CiA 306 table rows H3, H6, H7",
+    why="FileVersion and FileRevision are UNSIGNED8; VendorNumber, ProductNumber and RevisionNumber "
+    "UNSIGNED32; NrOfRXPDO/NrOfTXPDO 0..512; CompactPDO a bit field 0..0x3F; "
+    "DynamicChannelsSupported a count. Tools read other text as 0 or refuse the file.",
+    example="[FileInfo]\nFileVersion=1.0",
+    fix="Write a decimal or 0x-hex number in the key's range (`FileVersion=1`).")
+define_rule(
+    "HDR004", W, "EDSVersion is not 4.0", ref="CiA 306 table row H3 (verify)",
+    why="CiA 306 files of this format declare `EDSVersion=4.0`; values such as 402 or 404 are device "
+    "profile numbers written in the wrong key. (Row marked verify: warning.)",
+    example="EDSVersion=402",
+    fix="Write `EDSVersion=4.0`.")
+define_rule(
+    "HDR005", W, "date or time not in CiA 306 format", ref="CiA 306 table row H3 (verify)",
+    why="CreationDate/ModificationDate are written `mm-dd-yyyy` and CreationTime/ModificationTime "
+    "`hh:mm` followed by AM or PM. Other forms (yyyy-mm-dd, 24-hour with seconds) are misread by "
+    "tools that parse them. (Row marked verify: warning.)",
+    example="CreationDate=2024-03-01\nCreationTime=14:05:00",
+    fix="Write `CreationDate=03-01-2024` and `CreationTime=02:05PM`.")
+define_rule(
+    "HDR006", W, "[DeviceInfo] flag is not 0 or 1", ref="CiA 306 table row H4",
+    why="BaudRate_10 .. BaudRate_1000, SimpleBootUpMaster/Slave, GroupMessaging and LSS_Supported "
+    "are booleans written 0 or 1.",
+    example="BaudRate_250=yes",
+    fix="Write 1 (supported) or 0 (not supported).")
+define_rule(
+    "HDR007", W, "no bit rate supported", ref="CiA 306 table row H4",
+    why="A device supports at least one CiA 301 bit rate; with every BaudRate_xxx 0 or absent, "
+    "configuration tools have no bit rate to offer.",
+    example="BaudRate_125=0\nBaudRate_250=0\n... (all 0)",
+    fix="Set `BaudRate_xxx=1` for each bit rate the device supports.")
+define_rule(
+    "HDR008", W, "DCF Baudrate not supported by the device", ref="CiA 306 table row H4",
+    why="[DeviceComissioning] Baudrate is the configured bit rate in kbit/s; it must be one the "
+    "device declares with BaudRate_xxx=1 in [DeviceInfo], or the node cannot join the network.",
+    example="[DeviceInfo]\nBaudRate_500=0\n[DeviceComissioning]\nBaudrate=500",
+    fix="Configure a supported bit rate, or correct [DeviceInfo].")
+define_rule(
+    "HDR009", E, "Granularity outside 0..64", ref="CiA 306 table row H5",
+    why="Granularity is the mapping granularity in bits, 0..64 (0: mapping not modifiable; 8: "
+    "byte-wise, as CANopenNode needs). PDO mapping checks and generators depend on it. "
+    "(Python canopen reads it as a boolean.)",
+    example="Granularity=128",
+    fix="Write the bit granularity the device supports, typically `Granularity=8`.")
+define_rule(
+    "HDR010", W, "DynamicChannelsSupported and [DynamicChannels] disagree", ref="CiA 306 table row H8 (verify)",
+    why="DynamicChannelsSupported is the number of dynamic channel segments (CiA 302 network "
+    "variables); a count above 0 needs a [DynamicChannels] section describing them, and that "
+    "section means nothing with a count of 0. (Row marked verify: warning.)",
+    example="DynamicChannelsSupported=0\n[DynamicChannels]\nNrOfSeg=1",
+    fix="Make the count and the section agree.")
+define_rule(
+    "HDR011", E, "invalid [DummyUsage] entry", ref="CiA 306 table row H9",
+    why="[DummyUsage] has keys Dummy0001..Dummy001B (the basic data type indices) with value 0 or 1; "
+    "mapping a dummy entry depends on them. Lely refuses other keys and values.",
+    example="[DummyUsage]\nDummy0005=yes",
+    fix="Write `DummyXXXX=1` for each data type usable as a dummy mapping, 0 otherwise.")
+define_rule(
+    "HDR012", W, "[DeviceInfo]/[DeviceComissioning] differs from the identity object", ref="CiA 306 table row H10",
+    why="VendorNumber, ProductNumber and RevisionNumber repeat 0x1018 sub1..sub3 (and a DCF's "
+    "LSS_SerialNumber 0x1018 sub4). Masters compare the device's 0x1018 against the file, so a "
+    "mismatch makes them reject a correct device (Lely warns about it).",
+    example="VendorNumber=0x123\n[1018sub1]\nDefaultValue=0x456",
+    fix="Make both carry the same number.")
+define_rule(
+    "HDR013", W, "[Comments] Lines differs from its LineN keys", ref="CiA 306 table row H11",
+    why="[Comments] declares `Lines=N` followed by Line1..LineN. Readers that loop over 1..N "
+    "lose extra lines or stop at a missing one (python canopen raises).",
+    example="[Comments]\nLines=3\nLine1=a\nLine2=b",
+    fix="Set Lines to the number of LineN keys and number them from 1 without gaps.")
+
+KNOWN_KEYS = {
+    "fileinfo": ("FileName", "FileVersion", "FileRevision", "EDSVersion", "Description", "CreationTime",
+                 "CreationDate", "CreatedBy", "ModificationTime", "ModificationDate", "ModifiedBy"),
+    "deviceinfo": ("VendorName", "VendorNumber", "ProductName", "ProductNumber", "RevisionNumber",
+                   "OrderCode", "BaudRate_10", "BaudRate_20", "BaudRate_50", "BaudRate_125",
+                   "BaudRate_250", "BaudRate_500", "BaudRate_800", "BaudRate_1000",
+                   "SimpleBootUpMaster", "SimpleBootUpSlave", "Granularity", "DynamicChannelsSupported",
+                   "GroupMessaging", "NrOfRXPDO", "NrOfTXPDO", "LSS_Supported", "CompactPDO",
+                   # node guarding and safety keys written by CiA 306 v1.3 tools
+                   "NG_Slave", "NG_Master", "NrOfNG_MonitoredNodes", "CANopenSafetySupported"),
+    "devicecomissioning": ("NodeID", "NodeName", "NodeRefd", "Baudrate", "NetNumber", "NetworkName",
+                           "NetRefd", "CANopenManager", "LSS_SerialNumber"),
+}
+DCF_ONLY_FILEINFO = ("LastEDS",)
+BIT_RATES = (10, 20, 50, 125, 250, 500, 800, 1000)
+FLAGS = tuple(f"BaudRate_{r}" for r in BIT_RATES) + (
+    "SimpleBootUpMaster", "SimpleBootUpSlave", "GroupMessaging", "LSS_Supported", "NG_Slave", "NG_Master")
+# key -> (section, low, high) for numeric header values
+NUMBERS = {
+    "FileVersion": ("FileInfo", 0, 0xFF),
+    "FileRevision": ("FileInfo", 0, 0xFF),
+    "VendorNumber": ("DeviceInfo", 0, 0xFFFFFFFF),
+    "ProductNumber": ("DeviceInfo", 0, 0xFFFFFFFF),
+    "RevisionNumber": ("DeviceInfo", 0, 0xFFFFFFFF),
+    "NrOfRXPDO": ("DeviceInfo", 0, 512),
+    "NrOfTXPDO": ("DeviceInfo", 0, 512),
+    "CompactPDO": ("DeviceInfo", 0, 0x3F),
+    "DynamicChannelsSupported": ("DeviceInfo", 0, 0xFFFF),
+}
+_DATE_RE = re.compile(r"^(\d{1,2})-(\d{1,2})-(\d{4})$")
+_TIME_RE = re.compile(r"^(\d{1,2}):(\d{2})\s?(AM|PM)$", re.IGNORECASE)
+_DUMMY_RE = re.compile(r"^dummy([0-9a-f]{4})$", re.IGNORECASE)
+_LINE_RE = re.compile(r"^line(\d+)$", re.IGNORECASE)
+
+
+def header_int(fld: Field | None) -> int | None:
+    """A header key's value as an integer; None when absent, empty or not a number."""
+    if fld is None:
+        return None
+    value, _ = parse_int_literal(fld.text)
+    return value
+
+
+def _loc(od: ObjectDictionary, fld: Field | Section | None) -> Loc:
+    return Loc(od.source, fld.line if fld is not None else 0)
+
+
+# -- H1, H2 ----------------------------------------------------------------------
+
+@check
+def required_sections(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    if od.format not in ("eds", "dcf"):
+        return
+    for name in ("FileInfo", "DeviceInfo"):
+        if od.section(name) is None:
+            diags.add("HDR001", Loc(od.source), f"[{name}] is missing")
+    if "mandatoryobjects" not in od.object_lists:
+        diags.add("HDR001", Loc(od.source), "[MandatoryObjects] is missing")
+
+
+@check
+def header_keys(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    for name, keys in KNOWN_KEYS.items():
+        section = od.section(name)
+        if section is None:
+            continue
+        known = {k.lower() for k in keys}
+        if name == "fileinfo" and od.is_config:
+            known.update(k.lower() for k in DCF_ONLY_FILEINFO)
+        for key, fld in section.fields.items():
+            if key not in known:
+                extra = " (a DCF-only key)" if key in ("lasteds",) else ""
+                diags.add("HDR002", _loc(od, fld), f"'{fld.key}' is not a [{section.name}] key{extra}")
+
+
+# -- H3 --------------------------------------------------------------------------
+
+@check
+def header_numbers(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    for key, (section_name, low, high) in NUMBERS.items():
+        section = od.section(section_name)
+        fld = section.get(key) if section is not None else None
+        if fld is None or fld.text.strip() == "":
+            continue
+        value = header_int(fld)
+        if value is None or not low <= value <= high:
+            what = "not a number" if value is None else f"outside {low}..{_hex_range(high)}"
+            diags.add("HDR003", _loc(od, fld), f"{fld.key}={fld.text.strip()} is {what}")
+
+
+def _hex_range(high: int) -> str:
+    return f"0x{high:X}" if high > 0xFFFF or high in (0x3F,) else str(high)
+
+
+@check
+def file_info_formats(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    section = od.section("FileInfo")
+    if section is None:
+        return
+    version = section.get("EDSVersion")
+    if version is not None and not re.fullmatch(r"4(\.0+)?", version.text.strip()):
+        diags.add("HDR004", _loc(od, version), f"EDSVersion={version.text.strip()}, expected 4.0")
+    for key in ("CreationDate", "ModificationDate"):
+        fld = section.get(key)
+        if fld is not None and fld.text.strip() and not _valid_date(fld.text.strip()):
+            diags.add("HDR005", _loc(od, fld), f"{fld.key}={fld.text.strip()} is not mm-dd-yyyy")
+    for key in ("CreationTime", "ModificationTime"):
+        fld = section.get(key)
+        if fld is not None and fld.text.strip() and not _valid_time(fld.text.strip()):
+            diags.add("HDR005", _loc(od, fld), f"{fld.key}={fld.text.strip()} is not hh:mm followed by AM or PM")
+
+
+def _valid_date(text: str) -> bool:
+    m = _DATE_RE.match(text)
+    return m is not None and 1 <= int(m.group(1)) <= 12 and 1 <= int(m.group(2)) <= 31
+
+
+def _valid_time(text: str) -> bool:
+    m = _TIME_RE.match(text)
+    return m is not None and int(m.group(1)) <= 12 and int(m.group(2)) <= 59
+
+
+# -- H4 --------------------------------------------------------------------------
+
+@check
+def device_flags(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    section = od.section("DeviceInfo")
+    if section is None:
+        return
+    for key in FLAGS:
+        fld = section.get(key)
+        if fld is not None and header_int(fld) not in (0, 1):
+            diags.add("HDR006", _loc(od, fld), f"{fld.key}={fld.text.strip()} is not 0 or 1")
+    rates = _supported_rates(section)
+    if not rates:
+        diags.add("HDR007", _loc(od, section), "no BaudRate_xxx is 1")
+    _commissioned_rate(od, rates, diags)
+
+
+def _supported_rates(section: Section) -> set[int]:
+    return {r for r in BIT_RATES if header_int(section.get(f"BaudRate_{r}")) == 1}
+
+
+def _commissioned_rate(od: ObjectDictionary, rates: set[int], diags: Diagnostics) -> None:
+    section = od.section("DeviceComissioning")
+    fld = section.get("Baudrate") if section is not None else None
+    if fld is None or not rates or not fld.text.strip():
+        return
+    rate = header_int(fld)
+    if rate not in rates:
+        listed = ", ".join(str(r) for r in sorted(rates))
+        diags.add("HDR008", _loc(od, fld),
+                  f"Baudrate={fld.text.strip()} is not a supported bit rate ({listed} kbit/s)")
+
+
+# -- H5 --------------------------------------------------------------------------
+
+def granularity(od: ObjectDictionary) -> tuple[int | None, Field | None]:
+    section = od.section("DeviceInfo")
+    fld = section.get("Granularity") if section is not None else None
+    return header_int(fld), fld
+
+
+@check
+def granularity_range(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    value, fld = granularity(od)
+    if fld is not None and fld.text.strip() and (value is None or not 0 <= value <= 64):
+        diags.add("HDR009", _loc(od, fld), f"Granularity={fld.text.strip()} is not a number 0..64")
+
+
+# -- H8 --------------------------------------------------------------------------
+
+@check
+def dynamic_channels(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    info = od.section("DeviceInfo")
+    fld = info.get("DynamicChannelsSupported") if info is not None else None
+    count = header_int(fld)
+    channels = od.section("DynamicChannels")
+    if count and count > 0 and channels is None:
+        diags.add("HDR010", _loc(od, fld), f"DynamicChannelsSupported={fld.text.strip()} "
+                  "but there is no [DynamicChannels] section")
+    elif channels is not None and not count:
+        said = f"={fld.text.strip()}" if fld is not None else " is absent"
+        diags.add("HDR010", _loc(od, channels), f"[DynamicChannels] but DynamicChannelsSupported{said}")
+
+
+# -- H9 --------------------------------------------------------------------------
+
+@check
+def dummy_usage(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    section = od.section("DummyUsage")
+    if section is None:
+        return
+    for fld in section.fields.values():
+        m = _DUMMY_RE.match(fld.key)
+        if m is None or not 0x0001 <= int(m.group(1), 16) <= 0x001B:
+            diags.add("HDR011", _loc(od, fld), f"'{fld.key}' is not Dummy0001..Dummy001B")
+        elif header_int(fld) not in (0, 1):
+            diags.add("HDR011", _loc(od, fld), f"{fld.key}={fld.text.strip()} is not 0 or 1")
+
+
+def dummy_enabled(od: ObjectDictionary, index: int) -> bool:
+    section = od.section("DummyUsage")
+    return section is not None and header_int(section.get(f"Dummy{index:04X}")) == 1
+
+
+# -- H10 -------------------------------------------------------------------------
+
+_IDENTITY = (("DeviceInfo", "VendorNumber", 1), ("DeviceInfo", "ProductNumber", 2),
+             ("DeviceInfo", "RevisionNumber", 3), ("DeviceComissioning", "LSS_SerialNumber", 4))
+
+
+@check
+def identity_numbers(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    identity = od.objects.get(0x1018)
+    if identity is None or identity.is_var:
+        return
+    for section_name, key, subindex in _IDENTITY:
+        section = od.section(section_name)
+        fld = section.get(key) if section is not None else None
+        header = header_int(fld)
+        sub = identity.subs.get(subindex)
+        value = sub.parameter_value if sub is not None and od.is_config and sub.parameter_value else None
+        value = value or (sub.default if sub is not None else None)
+        device = number(value)
+        if header is None or device is None or value is None or value.nodeid or header == device:
+            continue
+        diags.add("HDR012", _loc(od, fld),
+                  f"{key}={fld.text.strip()} but 0x1018sub{subindex} is {value.text.strip()}")
+
+
+# -- H11 -------------------------------------------------------------------------
+
+@check
+def comment_lines(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    section = od.section("Comments")
+    if section is None:
+        return
+    lines_fld = section.get("Lines")
+    numbers = {int(m.group(1)): f for f in section.fields.values() if (m := _LINE_RE.match(f.key))}
+    declared = header_int(lines_fld)
+    if declared is None:
+        said = f"Lines={lines_fld.text.strip()} is not a number" if lines_fld else "no Lines key"
+        if numbers or lines_fld is not None:
+            diags.add("HDR013", _loc(od, lines_fld or section), f"{said} ({len(numbers)} LineN keys)")
+        return
+    missing = [n for n in range(1, declared + 1) if n not in numbers]
+    extra = sorted(n for n in numbers if not 1 <= n <= declared)
+    if missing or extra:
+        parts = []
+        if missing:
+            parts.append("no " + ", ".join(f"Line{n}" for n in missing[:3]) + (" ..." if len(missing) > 3 else ""))
+        if extra:
+            parts.append(", ".join(f"Line{n}" for n in extra[:3]) + (" ..." if len(extra) > 3 else "") + " beyond it")
+        diags.add("HDR013", _loc(od, lines_fld), f"Lines={lines_fld.text.strip()} but {'; '.join(parts)}")

@@ -1,1 +1,295 @@
-"""Rule family pdo (to be filled)."""
+"""PDO: mapping objects and their pairing with communication objects.
+
+CiA 306 rule table rows C1-C5, H5 (mapping offsets against Granularity) and H6
+(NrOfRXPDO/NrOfTXPDO). A DCF is checked with the configured ParameterValue of
+a mapping entry where it has one, else with its DefaultValue.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+from ..diagnostics import Diagnostics, Loc, Severity, define_rule, where
+from ..model import ARRAY, RECORD, Obj, ObjectDictionary, Sub, Value
+from ..model.datatypes import BASIC_TYPES
+from . import LintOptions, check
+from .header import dummy_enabled, granularity, header_int
+from .objects import number, value_line
+
+E, W, I = Severity.ERROR, Severity.WARNING, Severity.INFO
+
+define_rule(
+    "PDO001", E, "mapped entry does not exist", ref="CiA 306 table row C1 / CiA 301 §7.5.2.36",
+    why="Each mapping entry 1..sub0 of 0x1600-0x17FF/0x1A00-0x1BFF names index, sub-index and length "
+    "(0xIIIISSLL) of an existing entry, or of a data type index 0x0001-0x001B enabled as a dummy in "
+    "[DummyUsage]. Devices refuse such a mapping at start-up (abort 0x06020000), leaving the PDO dead.",
+    example="[1A00sub1]\nDefaultValue=0x60000108\n(no [6000] section)",
+    fix="Map an existing entry, add the object, or enable the dummy with `DummyXXXX=1`.")
+define_rule(
+    "PDO002", E, "mapped entry is not PDO-mappable", ref="CiA 306 table row C2",
+    why="Only entries with `PDOMapping=1` may be mapped; devices refuse the mapping with SDO abort "
+    "0x06040041 and CANopenEditor reports a \"not mappable OD entry\".",
+    example="[6000sub1]\nPDOMapping=0\n[1A00sub1]\nDefaultValue=0x60000108",
+    fix="Set `PDOMapping=1` on the entry, or map another one.")
+define_rule(
+    "PDO003", E, "mapping length differs from the entry's size", ref="CiA 306 table row C3",
+    why="The low byte of a mapping entry is the length in bits and must equal the mapped entry's "
+    "size (0x08 for UNSIGNED8, 0x20 for UNSIGNED32; BOOLEAN 1 or 8). Otherwise the receiver "
+    "decodes every later field at the wrong offset; CANopenNode refuses it at run time.",
+    example="[6000sub1]\nDataType=0x0005\n[1A00sub1]\nDefaultValue=0x60000110",
+    fix="Write the entry's bit size in the low byte (`0x60000108`).")
+define_rule(
+    "PDO004", E, "mapped entry cannot be accessed in the PDO's direction", ref="CiA 306 table row C2",
+    why="An RPDO writes its entries, so they must be writable (wo, rw, rww); a TPDO reads them, so "
+    "they must be readable (ro, const, rw, rwr). CANopenEditor and Lely's dcfgen refuse the mapping.",
+    example="[6000sub1]\nAccessType=ro\n[1600sub1]\nDefaultValue=0x60000108",
+    fix="Map the entry in the other PDO direction, or correct its AccessType.")
+define_rule(
+    "PDO005", E, "PDO maps more than a frame carries", ref="CiA 306 table row C4",
+    why="A CAN frame carries 64 bits of data (CAN FD: 512, with --can-fd). A longer mapping is "
+    "refused by the device (abort 0x06040042); Lely's dcfgen reports \"mapping exceeds 64 bits\".",
+    example="[1A00sub0]\nDefaultValue=3\n3 entries of 32 bits",
+    fix="Move entries to another PDO.")
+define_rule(
+    "PDO006", E, "more than 64 mapping entries", ref="CiA 301 §7.5.2.36",
+    why="A mapping object has at most 64 entries (sub-index 1..0x40); sub0 cannot count more.",
+    example="[1A00sub0]\nDefaultValue=65",
+    fix="Map at most 64 entries.")
+define_rule(
+    "PDO007", E, "mapping offset not a multiple of Granularity", ref="CiA 306 table row H5",
+    why="[DeviceInfo] Granularity is the bit granularity the device can map at: with 8, every "
+    "entry must start on a byte boundary. A BOOLEAN mapped with length 1 shifts everything "
+    "after it. (Granularity=0 means the mapping is fixed and is not checked.)",
+    example="Granularity=8\n[1A00sub1]\nDefaultValue=0x20000101\n[1A00sub2]\nDefaultValue=0x20010108",
+    fix="Map entries whose lengths keep later entries aligned, or pad with a dummy entry.")
+define_rule(
+    "PDO008", E, "PDO communication and mapping objects not paired", ref="CiA 306 table row C5",
+    why="RPDO n is 0x1400+n with mapping 0x1600+n, TPDO n 0x1800+n with mapping 0x1A00+n; one "
+    "without the other is a PDO that cannot be configured or has no data. (With CompactPDO the "
+    "missing objects up to NrOfRXPDO/NrOfTXPDO are implied.)",
+    example="[1800]\n(no [1A00] section)",
+    fix="Add the missing object, or remove the half PDO.")
+define_rule(
+    "PDO009", W, "NrOfRXPDO/NrOfTXPDO differs from the PDOs present", ref="CiA 306 table row H6",
+    why="NrOfRXPDO and NrOfTXPDO in [DeviceInfo] count the RPDOs (0x1400-0x15FF) and TPDOs "
+    "(0x1800-0x19FF) the file defines. Masters size their configuration by them. With CompactPDO "
+    "the PDOs may be implied, so only more PDOs than declared are reported.",
+    example="NrOfTXPDO=4\n(only [1800] and [1801])",
+    fix="Set the counts to the number of PDOs defined.")
+define_rule(
+    "PDO010", W, "mapped entry declared for the other PDO direction", ref="CiA 306 table row O8",
+    why="`rwr` marks process input (sent by TPDO), `rww` process output (received by RPDO). An "
+    "RPDO mapping an rwr entry, or a TPDO mapping an rww one, works but contradicts the "
+    "declaration; Vector's checker warns.",
+    example="[6000sub1]\nAccessType=rwr\n[1600sub1]\nDefaultValue=0x60000108",
+    fix="Map the entry in the declared direction, or correct its AccessType.")
+
+MAPPINGS = {0x1600: ("RPDO", 0x1400), 0x1A00: ("TPDO", 0x1800)}
+FRAME_BITS, FD_FRAME_BITS = 64, 512
+
+
+@dataclass
+class Entry:
+    """One active mapping entry, decoded."""
+
+    sub: Sub
+    value: Value
+    index: int
+    subindex: int
+    length: int
+    line: int
+
+
+def _kind(index: int) -> tuple[str, int] | None:
+    """("RPDO"|"TPDO", PDO number) for a mapping object index."""
+    for base, (kind, _comm) in MAPPINGS.items():
+        if base <= index < base + 0x200:
+            return kind, index - base
+    return None
+
+
+def mapping_value(od: ObjectDictionary, sub: Sub) -> tuple[Value | None, str]:
+    """The value a mapping entry holds: configured in a DCF, else the default."""
+    if od.is_config and sub.parameter_value is not None and not sub.parameter_value.empty:
+        return sub.parameter_value, "parametervalue"
+    return sub.default, "defaultvalue"
+
+
+def mapping_objects(od: ObjectDictionary) -> Iterator[tuple[Obj, str]]:
+    for index, obj in od.objects.items():
+        kind = _kind(index)
+        if kind is not None and obj.object_code in (ARRAY, RECORD):
+            yield obj, kind[0]
+
+
+@check
+def mappings(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    gran, _ = granularity(od)
+    limit = FD_FRAME_BITS if options.can_fd else FRAME_BITS
+    for obj, kind in mapping_objects(od):
+        entries = list(_entries(od, obj, diags))
+        offset = 0
+        misaligned = False
+        for entry in entries:
+            _target(od, obj, kind, entry, diags)
+            if gran and gran > 0 and offset % gran and not misaligned:
+                misaligned = True
+                diags.add("PDO007", Loc(od.source, entry.line),
+                          f"maps {where(entry.index, entry.subindex)} at bit offset {offset}, "
+                          f"not a multiple of Granularity {gran}", obj.index, entry.sub.subindex)
+            offset += entry.length
+        sub0 = obj.subs.get(0)
+        if offset > limit and sub0 is not None:
+            value, keyword = mapping_value(od, sub0)
+            frame = "CAN FD frame" if options.can_fd else "CAN frame"
+            diags.add("PDO005", Loc(od.source, value_line(sub0, value, keyword)),
+                      f"{kind} maps {offset} bits; a {frame} carries {limit}", obj.index, 0)
+
+
+def _entries(od: ObjectDictionary, obj: Obj, diags: Diagnostics) -> Iterator[Entry]:
+    """The entries sub0 activates, reporting counted entries that are absent or empty."""
+    sub0 = obj.subs.get(0)
+    count_value, keyword = mapping_value(od, sub0) if sub0 is not None else (None, "")
+    count = number(count_value)
+    counted = isinstance(count, int) and not sub0.compact and not count_value.nodeid
+    if counted and count > 64:
+        diags.add("PDO006", Loc(od.source, value_line(sub0, count_value, keyword)),
+                  f"sub0={count_value.text.strip()} counts more than 64 mapping entries", obj.index, 0)
+    last = min(count, 64) if counted else max(obj.subs, default=0)
+    for subindex in range(1, last + 1):
+        sub = obj.subs.get(subindex)
+        if sub is None:
+            if counted:
+                diags.add("PDO001", Loc(od.source, value_line(sub0, count_value, keyword)),
+                          f"sub0={count_value.text.strip()} counts sub{subindex}, which is not defined", obj.index, 0)
+            continue
+        entry = _decode(od, sub)
+        if entry is None:
+            continue
+        if entry.value.parsed == 0:
+            if counted:
+                diags.add("PDO001", Loc(od.source, entry.line),
+                          f"maps nothing (0x00000000) but sub0={count_value.text.strip()} counts it",
+                          obj.index, subindex)
+            continue
+        yield entry
+
+
+def _decode(od: ObjectDictionary, sub: Sub) -> Entry | None:
+    value, keyword = mapping_value(od, sub)
+    raw = number(value)
+    if value is None or not isinstance(raw, int) or value.nodeid or not 0 <= raw <= 0xFFFFFFFF:
+        return None
+    return Entry(sub, value, raw >> 16, (raw >> 8) & 0xFF, raw & 0xFF, value_line(sub, value, keyword))
+
+
+def _target(od: ObjectDictionary, obj: Obj, kind: str, entry: Entry, diags: Diagnostics) -> None:
+    loc = Loc(od.source, entry.line)
+    name = where(entry.index, entry.subindex)
+    if entry.index < 0x0020:
+        _dummy(od, obj, entry, diags)
+        return
+    target = od.find(entry.index, entry.subindex)
+    if target is None:
+        diags.add("PDO001", loc, f"maps {name}, which does not exist", obj.index, entry.sub.subindex)
+        return
+    if not target.pdo_mapping:
+        diags.add("PDO002", loc, f"maps {name}, which has PDOMapping=0", obj.index, entry.sub.subindex)
+    _direction(od, obj, kind, entry, target, diags)
+    _length(od, obj, entry, target, diags)
+
+
+def _dummy(od: ObjectDictionary, obj: Obj, entry: Entry, diags: Diagnostics) -> None:
+    loc = Loc(od.source, entry.line)
+    dtype = BASIC_TYPES.get(entry.index)
+    if dtype is None or dtype.bits == 0:
+        diags.add("PDO001", loc, f"maps 0x{entry.index:04X}, which is not a data type usable as a dummy",
+                  obj.index, entry.sub.subindex)
+        return
+    if not dummy_enabled(od, entry.index):
+        diags.add("PDO001", loc, f"maps dummy 0x{entry.index:04X} ({dtype.name}) but [DummyUsage] "
+                  f"Dummy{entry.index:04X} is not 1", obj.index, entry.sub.subindex)
+        return
+    if not _length_fits(dtype.bits, dtype.kind, entry.length):
+        diags.add("PDO003", loc, f"maps dummy 0x{entry.index:04X} ({dtype.bits} bit) with length "
+                  f"{entry.length}", obj.index, entry.sub.subindex)
+
+
+def _direction(od: ObjectDictionary, obj: Obj, kind: str, entry: Entry, target: Sub,
+               diags: Diagnostics) -> None:
+    access = target.access
+    loc = Loc(od.source, entry.line)
+    name = where(entry.index, entry.subindex)
+    if kind == "RPDO" and access in ("ro", "const"):
+        diags.add("PDO004", loc, f"RPDO maps {name}, which is {access}", obj.index, entry.sub.subindex)
+    elif kind == "TPDO" and access == "wo":
+        diags.add("PDO004", loc, f"TPDO maps {name}, which is wo", obj.index, entry.sub.subindex)
+    elif (kind, access) in (("RPDO", "rwr"), ("TPDO", "rww")):
+        other = "TPDO" if kind == "RPDO" else "RPDO"
+        diags.add("PDO010", loc, f"{kind} maps {name}, which is {access} ({other} data)",
+                  obj.index, entry.sub.subindex)
+
+
+def _length(od: ObjectDictionary, obj: Obj, entry: Entry, target: Sub, diags: Diagnostics) -> None:
+    dtype = target.dtype
+    if dtype is None or dtype.bits == 0:
+        return  # strings and domains: size from the value, not checked here
+    if not _length_fits(dtype.bits, dtype.kind, entry.length):
+        diags.add("PDO003", Loc(od.source, entry.line),
+                  f"maps {where(entry.index, entry.subindex)} ({dtype.bits} bit) with length {entry.length}",
+                  obj.index, entry.sub.subindex)
+
+
+def _length_fits(bits: int, kind: str, length: int) -> bool:
+    # BOOLEAN maps as 1 bit (bit-granular devices) or as a byte (byte-granular ones)
+    return length == bits or (kind == "bool" and length == 8)
+
+
+# -- C5, H6 ----------------------------------------------------------------------
+
+def _compact_pdo(od: ObjectDictionary) -> bool:
+    section = od.section("DeviceInfo")
+    return bool(header_int(section.get("CompactPDO"))) if section is not None else False
+
+
+def _declared(od: ObjectDictionary, key: str) -> tuple[int | None, object]:
+    section = od.section("DeviceInfo")
+    fld = section.get(key) if section is not None else None
+    return header_int(fld), fld
+
+
+@check
+def pairing(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    compact = _compact_pdo(od)
+    for map_base, (kind, comm_base) in MAPPINGS.items():
+        implied, _ = _declared(od, f"NrOf{kind[0]}XPDO")
+        implied = implied if compact and implied else 0
+        for n in range(0x200):
+            comm, mapping = od.objects.get(comm_base + n), od.objects.get(map_base + n)
+            if (comm is None) == (mapping is None) or n < implied:
+                continue
+            present, absent = (comm, map_base + n) if mapping is None else (mapping, comm_base + n)
+            what = "mapping" if mapping is None else "communication"
+            diags.add("PDO008", Loc(od.source, present.line),
+                      f"{kind}{n + 1} has no {what} object 0x{absent:04X}", present.index)
+
+
+@check
+def pdo_counts(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    section = od.section("DeviceInfo")
+    if section is None:
+        return
+    compact = _compact_pdo(od)
+    for map_base, (kind, comm_base) in MAPPINGS.items():
+        key = f"NrOf{kind[0]}XPDO"
+        fld = section.get(key)
+        declared = header_int(fld)
+        present = sum(1 for n in range(0x200)
+                      if comm_base + n in od.objects or map_base + n in od.objects)
+        if fld is None or declared is None:
+            continue
+        if present != declared and not (compact and present < declared):
+            diags.add("PDO009", Loc(od.source, fld.line),
+                      f"{fld.key}={fld.text.strip()} but the file defines {present} {kind}"
+                      f"{'' if present == 1 else 's'} (0x{comm_base:04X}-0x{comm_base + 0x1FF:04X})")
