@@ -26,6 +26,7 @@ demo: setup
 
 lint-code: setup
 	$(BIN)/ruff check odgen tests benchmarks
+	$(BIN)/mypy
 
 test: setup lint-code
 	$(BIN)/python -m pytest -q

@@ -121,9 +121,8 @@ class _Reader:
         obj.name = section.value("ParameterName") or ""
         code_entry = section.get("ObjectType")
         obj.object_code_written = code_entry is not None
-        obj.object_code = self._int_entry(code_entry) if code_entry is not None else VAR
-        if obj.object_code is None:
-            obj.object_code = VAR
+        code = self._int_entry(code_entry)
+        obj.object_code = VAR if code is None else code  # CiA 306: no ObjectType means VAR
         obj.sub_number = self._int_entry(section.get("SubNumber"))
         obj.compact_sub_obj = self._int_entry(section.get("CompactSubObj"))
         obj.count_label = section.value("CountLabel")
