@@ -43,11 +43,10 @@ define_rule(
     "XML005", E, "attribute value cannot be read", ref="CiA 311 CANopenObjectList",
     why="odgen needs this attribute to place or type the entry: an object without a readable "
     "`index`, or a sub-object without a readable `subIndex`, is skipped; an unreadable `dataType`, "
-    "`objectType`, `accessType` or `PDOmapping` is left unset.",
+    "`objectType`, `subNumber`, `objFlags` or `PDOmapping` is left unset.",
     example='<CANopenObject index="10x0" name="Device type" objectType="7"/>',
     fix='Write index as 4 hex digits ("1000"), subIndex as 2 ("0A"), dataType as hex ("0007"), '
-    'objectType as a decimal code ("7"), accessType as const/ro/wo/rw and PDOmapping as '
-    "no/default/optional/TPDO/RPDO.")
+    'objectType and subNumber in decimal ("7") and PDOmapping as no/default/optional/TPDO/RPDO.')
 define_rule(
     "XML006", E, "duplicate object index", ref="CiA 311 CANopenObjectList",
     why="An index may be described once. Tools disagree on which copy wins; odgen keeps the first.",
