@@ -2,8 +2,10 @@
 
 Compared: objects (every sub-entry attribute, value texts and parsed values,
 unknown keys) and header sections. Not compared, by design: comments, key
-order, duplicates the reader already ignored, and object-list entries that name
-no object (the writer derives the lists from the objects).
+order, duplicates the reader already ignored, object-list entries that name
+no object (the writer derives the lists from the objects), and trailing blanks
+of string values from XML files (INI values cannot end in blanks: every EDS
+reader strips them).
 """
 
 from __future__ import annotations
@@ -25,9 +27,19 @@ def _semantic(od: ObjectDictionary) -> tuple:
     return objects, sections, od.node_id
 
 
+def _strip_string_padding(od: ObjectDictionary) -> None:
+    for obj in od.objects.values():
+        for sub in obj.subs.values():
+            for value in (sub.default, sub.parameter_value):
+                if value is not None and isinstance(value.parsed, str):
+                    value.text, value.parsed = value.text.rstrip(), value.parsed.rstrip()
+
+
 def _round_trip(path: Path) -> None:
     first, _ = load_path(path)
     assert first is not None
+    if first.format in ("xdd", "xdc"):
+        _strip_string_padding(first)
     fmt = "dcf" if first.is_config else "eds"
     text = write_eds(first)
     second, _ = load_bytes(text.encode("utf-8"), "again." + fmt, fmt)

@@ -27,7 +27,8 @@ def render_table() -> str:
 def _entry(rule: Rule) -> list[str]:
     lines = [f"### {rule.id} — {rule.title}", ""]
     lines.append(f"Severity: **{rule.severity.label}**" + (f" · Reference: {rule.ref}" if rule.ref else ""))
-    lines += ["", f"**Why.** {rule.why}", "", "**Example.**", "", "```ini"]
+    fence = "xml" if _family(rule) == "XML" else "ini"
+    lines += ["", f"**Why.** {rule.why}", "", "**Example.**", "", f"```{fence}"]
     lines += rule.example.splitlines()
     lines += ["```", "", f"**Fix.** {rule.fix}", ""]
     return lines
