@@ -1,1 +1,440 @@
-"""Rule family comm (to be filled)."""
+"""COM: CiA 301 communication-profile semantics checked against the description.
+
+CiA 306 rule table rows C6-C8, plus what CiA 301 fixes for the communication
+objects every master relies on: mandatory objects, data types, identity,
+error control, COB-IDs and PDO parameters.
+"""
+
+from __future__ import annotations
+
+from ..diagnostics import Diagnostics, Loc, Severity, define_rule
+from ..model import Obj, ObjectDictionary, Sub, Value
+from ..model.datatypes import BASIC_TYPES
+from . import LintOptions, check
+from .objects import addr, at, node_span, number, value_line
+
+E, W, INFO = Severity.ERROR, Severity.WARNING, Severity.INFO
+
+define_rule(
+    "COM001", E, "mandatory object missing", ref="CiA 306 table row L3 / CiA 301 mandatory objects",
+    why="Every CANopen device has 0x1000 (device type), 0x1001 (error register) and, since CiA 301 "
+    "v4, 0x1018 (identity). Masters read them first; Lely's DCF loader refuses a file without them.",
+    example="(no [1018] section)",
+    fix="Add the object with its CiA 301 definition.")
+define_rule(
+    "COM002", E, "communication entry with the wrong data type",
+    ref="CiA 301 communication profile objects",
+    why="CiA 301 fixes the data type of every communication object (COB-IDs UNSIGNED32, "
+    "transmission types UNSIGNED8, times UNSIGNED16, ...). Masters access them by that size, so a "
+    "different DataType breaks SDO transfers and generated code.",
+    example="[1017]\nDataType=0x0007  (Producer heartbeat time is UNSIGNED16)",
+    fix="Use the CiA 301 data type named in the message.")
+define_rule(
+    "COM003", W, "identity information is writable", ref="CiA 301 communication profile objects",
+    why="0x1000, 0x1001, 0x1008-0x100A and 0x1018 describe the device; CiA 301 makes them ro (or "
+    "const). A writable entry lets a master overwrite what identifies the device.",
+    example="[1000]\nAccessType=rw",
+    fix="Write `AccessType=ro` (or const).")
+define_rule(
+    "COM004", W, "default COB-ID not from the predefined connection set",
+    ref="CiA 306 table row C6 / CiA 301 predefined connection set",
+    why="CiA 301's predefined connection set gives RPDO1-4 `$NODEID+0x200/0x300/0x400/0x500`, "
+    "TPDO1-4 `$NODEID+0x180/0x280/0x380/0x480`, the default SDO server `$NODEID+0x600` (receive) "
+    "and `$NODEID+0x580` (transmit) and EMCY `$NODEID+0x80`. Another base (often RPDO and TPDO "
+    "swapped) or a fixed number in an EDS makes the device talk on CAN-IDs masters do not expect. "
+    "A bare base (`0x180`) relies on CANopenNode adding the node-id at run time; other tools "
+    "take it literally.",
+    example="[1800sub1]\nDefaultValue=$NODEID+0x200",
+    fix="Write the predefined default, e.g. `DefaultValue=$NODEID+0x180` for TPDO1.")
+define_rule(
+    "COM005", E, "PDO COB-ID uses a restricted or invalid CAN-ID",
+    ref="CiA 306 table row C6 / CiA 301 predefined connection set",
+    why="A valid PDO (bit 31 clear) must not use the CAN-IDs CiA 301 restricts to NMT, SYNC/EMCY, "
+    "TIME, SDO, heartbeat and LSS (0x000-0x07F, 0x101-0x180, 0x581-0x5FF, 0x601-0x67F, 0x6E0-0x6FF, "
+    "0x701-0x7FF), and an 11-bit COB-ID (bit 29 clear) has no bits set in 11-28.",
+    example="[1800sub1]\nDefaultValue=$NODEID+0x700",
+    fix="Use a free CAN-ID, or set bit 31 (0x80000000) to disable the PDO.")
+define_rule(
+    "COM006", W, "identity object without Vendor-ID",
+    ref="CiA 306 table row C7 / CiA 301 object 0x1018",
+    why="0x1018 is a RECORD whose sub1 (Vendor-ID) is mandatory; masters identify devices and LSS "
+    "addresses them by it.",
+    example="[1018]\nObjectType=0x9\nSubNumber=1\n[1018sub0]",
+    fix="Add `[1018sub1]` Vendor-ID (UNSIGNED32, ro) and set sub0 to the highest sub-index.")
+define_rule(
+    "COM007", W, "no error control object", ref="CiA 306 table row C7 / CiA 301 error control",
+    why="A CiA 301 v4 device supports heartbeat (0x1017) or, for older masters, node guarding "
+    "(0x100C and 0x100D). Without either a master cannot tell that the node is alive.",
+    example="(no [1017], [100C] or [100D])",
+    fix="Add 0x1017 Producer heartbeat time (UNSIGNED16, rw).")
+define_rule(
+    "COM008", W, "heartbeat and node guarding both enabled",
+    ref="CiA 306 table row C7 / CiA 301 error control",
+    why="A device uses heartbeat or node guarding, not both; with both defaults non-zero the behaviour "
+    "depends on the stack. Lely's dcfgen refuses such a configuration.",
+    example="[1017]\nDefaultValue=1000\n[100C]\nDefaultValue=100\n[100D]\nDefaultValue=3",
+    fix="Set the default of 0x1017, or of 0x100C/0x100D, to 0.")
+define_rule(
+    "COM009", INFO, "PDO communication record with an unusual highest sub-index",
+    ref="CiA 306 table row C8",
+    why="CiA 301 defines RPDO communication parameters up to sub5 and TPDO ones up to sub6, with at "
+    "least sub1 (COB-ID) and sub2 (transmission type). Sparse records are legal.",
+    example="[1400sub0]\nDefaultValue=6",
+    fix="Remove the sub-objects CiA 301 does not define, and set sub0 accordingly.")
+define_rule(
+    "COM010", E, "communication record lacks a required sub-object",
+    ref="CiA 306 table row C8 / CiA 301 PDO and SDO parameters",
+    why="PDO communication records need sub1 (COB-ID) and sub2 (transmission type); SDO parameter "
+    "records need sub1 and sub2 (COB-IDs), SDO client records also sub3 (server node-ID). "
+    "Stacks cannot set up the channel without them.",
+    example="[1800]\nObjectType=0x9\nSubNumber=2\n[1800sub0]\n[1800sub1]",
+    fix="Add the missing sub-object.")
+define_rule(
+    "COM011", W, "reserved PDO transmission type", ref="CiA 301 PDO communication parameter",
+    why="Transmission types 241-251 are reserved for TPDOs, 241-253 for RPDOs (252/253, RTR, exist "
+    "only for TPDOs). Devices refuse them (abort 0x06090030).",
+    example="[1400sub2]\nDefaultValue=252",
+    fix="Use 0-240 (synchronous) or 254/255 (event-driven).")
+define_rule(
+    "COM012", W, "device type names no profile but profile objects exist",
+    ref="CiA 301 object 0x1000",
+    why="The low 16 bits of 0x1000 are the device profile number (401 = 0x191, 402 = 0x192, ...). "
+    "With 0 (no profile) but objects in 0x6000-0x9FFF, masters and profile tools ignore or "
+    "misinterpret the profile part.",
+    example="[1000]\nDefaultValue=0\n[6000]\n...",
+    fix="Write the profile number (and its additional information) into 0x1000.")
+define_rule(
+    "COM013", W, "device type or Vendor-ID without a value", ref="CiA 301 objects 0x1000, 0x1018",
+    why="0x1000 and 0x1018 sub1 are read-only constants masters check during boot-up; without a "
+    "DefaultValue the generated device answers 0.",
+    example="[1000]\nParameterName=Device type\nDataType=0x0007\nAccessType=ro",
+    fix="Add the DefaultValue (e.g. `0x00000191` for a CiA 401 device).")
+define_rule(
+    "COM014", W, "node guarding half configured", ref="CiA 301 objects 0x100C, 0x100D",
+    why="Node guarding needs both guard time (0x100C) and life time factor (0x100D); one without the "
+    "other cannot be used.",
+    example="[100C]\n(no [100D])",
+    fix="Add the missing object, or remove both and use heartbeat (0x1017).")
+define_rule(
+    "COM015", W, "invalid heartbeat consumer entry", ref="CiA 301 object 0x1016",
+    why="A 0x1016 entry is 0x00NNTTTT: bits 24-31 are reserved (0), NN is a node-id 1..127 when "
+    "the time TTTT is not 0, and no node-id may be monitored twice (devices refuse with abort "
+    "0x06040043).",
+    example="[1016sub1]\nDefaultValue=0x00800064  (node-id 128)",
+    fix="Write `0x00NNTTTT` with a node-id 1..127, each at most once.")
+
+U8, U16, U32, VSTR = 0x0005, 0x0006, 0x0007, 0x0009
+MANDATORY = {0x1000: "device type", 0x1001: "error register", 0x1018: "identity"}
+# Single-value communication objects and their data type.
+VAR_TYPES = {0x1000: U32, 0x1001: U8, 0x1002: U32, 0x1005: U32, 0x1006: U32, 0x1007: U32,
+             0x1008: VSTR, 0x1009: VSTR, 0x100A: VSTR, 0x100C: U16, 0x100D: U8, 0x1012: U32,
+             0x1013: U32, 0x1014: U32, 0x1015: U16, 0x1017: U16, 0x1019: U8}
+# Records/arrays: sub-index -> type (key 0 = "every sub-index from 1").
+ARRAY_TYPES = {0x1003: {0: U32}, 0x1010: {0: U32}, 0x1011: {0: U32}, 0x1016: {0: U32},
+               0x1018: {1: U32, 2: U32, 3: U32, 4: U32}, 0x1029: {0: U8}}
+PDO_COMM_TYPES = {1: U32, 2: U8, 3: U16, 4: U8, 5: U16, 6: U8}
+SDO_TYPES = {1: U32, 2: U32, 3: U8}
+READ_ONLY = (0x1000, 0x1001, 0x1008, 0x1009, 0x100A, 0x1018)
+RESTRICTED = ((0x000, 0x07F), (0x101, 0x180), (0x581, 0x5FF), (0x601, 0x67F), (0x6E0, 0x6FF),
+              (0x701, 0x7FF))
+RPDO, TPDO, SDO_SERVER, SDO_CLIENT = 0x1400, 0x1800, 0x1200, 0x1280
+
+
+def _value(od: ObjectDictionary, sub: Sub) -> tuple[Value | None, str]:
+    """The value in force: a DCF's ParameterValue where given, else the DefaultValue."""
+    if od.is_config and sub.parameter_value is not None and not sub.parameter_value.empty:
+        return sub.parameter_value, "parametervalue"
+    return sub.default, "defaultvalue"
+
+
+def _int(value: Value | None) -> int | None:
+    n = number(value)
+    return n if isinstance(n, int) and value is not None and not value.nodeid else None
+
+
+def _in(index: int, base: int, size: int = 0x200) -> bool:
+    return base <= index < base + size
+
+
+def _pdo_comm(index: int) -> str | None:
+    if _in(index, RPDO):
+        return "RPDO"
+    if _in(index, TPDO):
+        return "TPDO"
+    return None
+
+
+# -- mandatory objects, data types, access -----------------------------------------
+
+@check
+def mandatory_objects(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    for index, name in MANDATORY.items():
+        if index not in od.objects:
+            diags.add("COM001", Loc(od.source), f"mandatory object 0x{index:04X} ({name}) is missing")
+
+
+def _expected_type(obj: Obj, sub: Sub) -> int | None:
+    index = obj.index
+    if obj.is_var:
+        return VAR_TYPES.get(index)
+    if sub.subindex == 0:
+        return None  # sub0 is UNSIGNED8 everywhere: OBJ010
+    if _in(index, RPDO) or _in(index, TPDO):
+        return PDO_COMM_TYPES.get(sub.subindex)
+    if _in(index, 0x1600) or _in(index, 0x1A00):
+        return U32 if sub.subindex <= 0x40 else None
+    if _in(index, SDO_SERVER, 0x80) or _in(index, SDO_CLIENT, 0x80):
+        return SDO_TYPES.get(sub.subindex)
+    table = ARRAY_TYPES.get(index)
+    if table is None:
+        return None
+    return table.get(sub.subindex, table.get(0))
+
+
+@check
+def comm_data_types(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    for index, obj in od.objects.items():
+        if not 0x1000 <= index <= 0x1BFF:
+            continue
+        for sub in obj.subs.values():
+            expected = _expected_type(obj, sub)
+            if expected is None or sub.data_type is None or sub.data_type == expected:
+                continue
+            if sub.compact and sub.subindex > 1:
+                continue  # a CompactSubObj template is reported once, at sub1
+            got = BASIC_TYPES.get(sub.data_type)
+            diags.add("COM002", Loc(od.source, sub.line_of("datatype")),
+                      f"DataType=0x{sub.data_type:04X}{f' ({got.name})' if got else ''}; "
+                      f"CiA 301 defines {BASIC_TYPES[expected].name}", index, addr(obj, sub))
+
+
+@check
+def read_only_identity(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    for index in READ_ONLY:
+        obj = od.objects.get(index)
+        if obj is None:
+            continue
+        for sub in obj.subs.values():
+            if sub.writable and not sub.compact:
+                diags.add("COM003", Loc(od.source, sub.line_of("accesstype")),
+                          f"AccessType={sub.access}; CiA 301 defines it read-only", index, addr(obj, sub))
+
+
+# -- C6: COB-IDs -------------------------------------------------------------------
+
+def _predefined(index: int, subindex: int) -> tuple[int, str] | None:
+    """(base CAN-ID, name) of an entry the predefined connection set fixes."""
+    if _in(index, RPDO, 4) and subindex == 1:
+        return 0x200 + 0x100 * (index - RPDO), f"RPDO{index - RPDO + 1}"
+    if _in(index, TPDO, 4) and subindex == 1:
+        return 0x180 + 0x100 * (index - TPDO), f"TPDO{index - TPDO + 1}"
+    if index == SDO_SERVER and subindex in (1, 2):
+        return (0x600, "SDO server receive") if subindex == 1 else (0x580, "SDO server transmit")
+    if index == 0x1014 and subindex == 0:
+        return 0x80, "EMCY"
+    return None
+
+
+def _cob_entries(od: ObjectDictionary):
+    for index in [0x1014, SDO_SERVER, *range(RPDO, RPDO + 4), *range(TPDO, TPDO + 4)]:
+        obj = od.objects.get(index)
+        if obj is None:
+            continue
+        for subindex in (0, 1, 2):
+            sub = obj.subs.get(subindex)
+            known = _predefined(index, subindex)
+            if sub is not None and known is not None and (obj.is_var == (subindex == 0)):
+                yield obj, sub, known
+
+
+@check
+def predefined_cob_ids(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    for obj, sub, (base, name) in _cob_entries(od):
+        value, keyword = _value(od, sub)
+        raw = number(value)
+        if value is None or not isinstance(raw, int):
+            continue
+        if value.nodeid:
+            if raw & 0x7FF != base:
+                diags.add("COM004", Loc(od.source, value_line(sub, value, keyword)),
+                          f"COB-ID {value.text.strip()} is not the predefined {name} COB-ID $NODEID+0x{base:X}",
+                          obj.index, addr(obj, sub))
+        elif not od.is_config and not raw & 0x80000000 and raw & 0x7FF:
+            if raw & 0x7FF == base:  # CANopenNode adds the node-id to a bare base; CiA 301 does not
+                problem = f"lacks the node-id; write $NODEID+0x{base:X}, the predefined {name} COB-ID"
+            else:
+                problem = f"is fixed; the predefined {name} COB-ID is $NODEID+0x{base:X}"
+            diags.add("COM004", Loc(od.source, value_line(sub, value, keyword)),
+                      f"COB-ID {value.text.strip()} {problem}", obj.index, addr(obj, sub))
+
+
+@check
+def pdo_cob_ids(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    span = node_span(od, options)
+    for index, obj in od.objects.items():
+        if _pdo_comm(index) is None or obj.is_var or 1 not in obj.subs:
+            continue
+        sub = obj.subs[1]
+        value, keyword = _value(od, sub)
+        raw = number(value)
+        if value is None or not isinstance(raw, int):
+            continue
+        known = _predefined(index, 1)
+        if known and not value.nodeid and raw & 0x7FF == known[0]:
+            continue  # a bare predefined base: COM004 says what is missing
+        problem = _cob_problem(value, span)
+        if problem:
+            diags.add("COM005", Loc(od.source, value_line(sub, value, keyword)),
+                      f"COB-ID {value.text.strip()} {problem}", index, 1)
+
+
+def _cob_problem(value: Value, span: tuple[int, int]) -> str | None:
+    ids: list[int] = []
+    for node_id in span:
+        raw = at(value, node_id)
+        if not isinstance(raw, int) or raw < 0 or raw & 0x80000000 or raw & 0x20000000:
+            return None  # disabled, or a 29-bit identifier
+        if raw & 0x1FFFF800:
+            return "sets CAN-ID bits above 0x7FF without the 29-bit flag (bit 29)"
+        ids.append(raw & 0x7FF)
+    lo, hi = ids
+    for first, last in RESTRICTED:
+        if lo <= last and first <= hi:
+            can_id = max(lo, first)
+            node = f" for node-id {can_id - (lo - span[0])}" if value.nodeid else ""
+            return f"gives the restricted CAN-ID 0x{can_id:03X}{node}"
+    return None
+
+
+# -- C7: identity and error control -----------------------------------------------------
+
+@check
+def identity(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    obj = od.objects.get(0x1018)
+    if obj is not None and (obj.is_var or 1 not in obj.subs):
+        diags.add("COM006", Loc(od.source, obj.line), "has no Vendor-ID (sub1)", 0x1018)
+    for index, subindex in ((0x1000, 0), (0x1018, 1)):
+        target = od.objects.get(index)
+        sub = target.subs.get(subindex) if target is not None and target.is_var == (subindex == 0) else None
+        if sub is None:
+            continue
+        value, _ = _value(od, sub)
+        if value is None or value.empty:
+            what = "device type" if index == 0x1000 else "Vendor-ID"
+            diags.add("COM013", Loc(od.source, sub.line), f"{what} has no DefaultValue", index, addr(target, sub))
+
+
+def _var_value(od: ObjectDictionary, index: int) -> tuple[Obj | None, int | None]:
+    obj = od.objects.get(index)
+    if obj is None or obj.var is None:
+        return obj, None
+    value, _ = _value(od, obj.var)
+    return obj, _int(value)
+
+
+@check
+def error_control(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    heartbeat, hb_time = _var_value(od, 0x1017)
+    guard, guard_time = _var_value(od, 0x100C)
+    life, life_factor = _var_value(od, 0x100D)
+    if heartbeat is None and guard is None and life is None:
+        diags.add("COM007", Loc(od.source), "neither heartbeat (0x1017) nor node guarding (0x100C/0x100D)")
+    if (guard is None) != (life is None):
+        present, absent = (guard, 0x100D) if life is None else (life, 0x100C)
+        diags.add("COM014", Loc(od.source, present.line), f"is defined but 0x{absent:04X} is not", present.index)
+    if hb_time and guard_time and life_factor:
+        diags.add("COM008", Loc(od.source, value_line(heartbeat.var, heartbeat.var.default, "defaultvalue")),
+                  f"heartbeat {hb_time} ms and node guarding {guard_time} ms x {life_factor} are both enabled",
+                  0x1017)
+
+
+@check
+def heartbeat_consumers(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    obj = od.objects.get(0x1016)
+    if obj is None or obj.is_var:
+        return
+    seen: dict[int, int] = {}
+    for sub in obj.sorted_subs():
+        if sub.subindex == 0:
+            continue
+        value, keyword = _value(od, sub)
+        raw = _int(value)
+        if raw is None:
+            continue
+        node, time = (raw >> 16) & 0xFF, raw & 0xFFFF
+        problem = None
+        if raw >> 24:
+            problem = "sets the reserved bits 24-31"
+        elif time and not 1 <= node <= 127:
+            problem = f"monitors node-id {node}, not 1..127"
+        elif time and node in seen:
+            problem = f"monitors node-id {node} again (also sub{seen[node]})"
+        if problem:
+            diags.add("COM015", Loc(od.source, value_line(sub, value, keyword)),
+                      f"{value.text.strip()} {problem}", 0x1016, sub.subindex)
+        elif time:
+            seen[node] = sub.subindex
+
+
+@check
+def device_profile(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    obj, device_type = _var_value(od, 0x1000)
+    if obj is None or device_type is None or device_type & 0xFFFF:
+        return
+    profile = next((i for i in sorted(od.objects) if 0x6000 <= i <= 0x9FFF), None)
+    if profile is not None:
+        diags.add("COM012", Loc(od.source, value_line(obj.var, obj.var.default, "defaultvalue")),
+                  f"device type 0x{device_type:08X} names no device profile, but the file defines "
+                  f"profile objects (first 0x{profile:04X})", 0x1000)
+
+
+# -- C8: PDO and SDO parameter records -------------------------------------------------
+
+@check
+def comm_records(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    for index, obj in od.objects.items():
+        kind = _pdo_comm(index)
+        if obj.is_var or not 0x1200 <= index <= 0x19FF:
+            continue
+        if kind is not None:
+            _pdo_record(od, obj, kind, diags)
+        elif _in(index, SDO_SERVER, 0x80) or _in(index, SDO_CLIENT, 0x80):
+            required = (1, 2, 3) if _in(index, SDO_CLIENT, 0x80) else (1, 2)
+            _required(od, obj, required, diags)
+
+
+def _required(od: ObjectDictionary, obj: Obj, required: tuple[int, ...], diags: Diagnostics) -> bool:
+    missing = [s for s in required if s not in obj.subs]
+    if missing:
+        diags.add("COM010", Loc(od.source, obj.line),
+                  f"has no {', '.join(f'sub{s}' for s in missing)}", obj.index)
+    return not missing
+
+
+def _pdo_record(od: ObjectDictionary, obj: Obj, kind: str, diags: Diagnostics) -> None:
+    if not _required(od, obj, (1, 2), diags):
+        return
+    top = 5 if kind == "RPDO" else 6
+    sub0 = obj.subs.get(0)
+    highest = _int(_value(od, sub0)[0]) if sub0 is not None else None
+    if highest is None:
+        highest = max(obj.subs, default=0)
+    if not 2 <= highest <= top and sub0 is not None:
+        diags.add("COM009", Loc(od.source, sub0.line_of("defaultvalue")),
+                  f"{kind} communication record's highest sub-index is {highest}, CiA 301 defines 2..{top}",
+                  obj.index, 0)
+    _transmission_type(od, obj, kind, diags)
+
+
+def _transmission_type(od: ObjectDictionary, obj: Obj, kind: str, diags: Diagnostics) -> None:
+    sub = obj.subs.get(2)
+    if sub is None:
+        return
+    value, keyword = _value(od, sub)
+    ttype = _int(value)
+    reserved = range(241, 254) if kind == "RPDO" else range(241, 252)
+    if ttype is not None and ttype in reserved:
+        diags.add("COM011", Loc(od.source, value_line(sub, value, keyword)),
+                  f"transmission type {ttype} is reserved for {kind}s", obj.index, 2)
+
+

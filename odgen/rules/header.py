@@ -13,15 +13,15 @@ from ..diagnostics import Diagnostics, Loc, Severity, define_rule
 from ..model import Field, ObjectDictionary, Section
 from ..model.values import parse_int_literal
 from . import LintOptions, check
-from .objects import number
+from .objects import gaps, number
 
-E, W, I = Severity.ERROR, Severity.WARNING, Severity.INFO
+E, W, INFO = Severity.ERROR, Severity.WARNING, Severity.INFO
 
 define_rule(
     "HDR001", E, "required section missing", ref="CiA 306 table row H1",
-    why="An EDS/DCF starts with [FileInfo] and [DeviceInfo] and lists its objects in "
-    "[MandatoryObjects] (plus Optional/ManufacturerObjects). Without them tools cannot identify "
-    "the device or find its objects; objdictgen refuses the file.",
+    why="An EDS/DCF describes the device in [DeviceInfo] and lists its objects in [MandatoryObjects] "
+    "(plus Optional/ManufacturerObjects). Without them tools cannot identify the device or find "
+    "its objects; objdictgen refuses the file.",
     example="(no [DeviceInfo] section)",
     fix="Add the section with its keys.")
 define_rule(
@@ -34,7 +34,8 @@ define_rule(
     "HDR003", W, "header value is not a valid number", ref="CiA 306 table rows H3, H6, H7",
     why="FileVersion and FileRevision are UNSIGNED8; VendorNumber, ProductNumber and RevisionNumber "
     "UNSIGNED32; NrOfRXPDO/NrOfTXPDO 0..512; CompactPDO a bit field 0..0x3F; "
-    "DynamicChannelsSupported a count. Tools read other text as 0 or refuse the file.",
+    "DynamicChannelsSupported a count; a DCF's NodeID 1..127 (255: not yet configured by LSS). "
+    "Tools read other text as 0 or refuse the file.",
     example="[FileInfo]\nFileVersion=1.0",
     fix="Write a decimal or 0x-hex number in the key's range (`FileVersion=1`).")
 define_rule(
@@ -76,7 +77,8 @@ define_rule(
     example="Granularity=128",
     fix="Write the bit granularity the device supports, typically `Granularity=8`.")
 define_rule(
-    "HDR010", W, "DynamicChannelsSupported and [DynamicChannels] disagree", ref="CiA 306 table row H8 (verify)",
+    "HDR010", W, "DynamicChannelsSupported and [DynamicChannels] disagree",
+    ref="CiA 306 table row H8 (verify)",
     why="DynamicChannelsSupported is the number of dynamic channel segments (CiA 302 network "
     "variables); a count above 0 needs a [DynamicChannels] section describing them, and that "
     "section means nothing with a count of 0. (Row marked verify: warning.)",
@@ -89,7 +91,8 @@ define_rule(
     example="[DummyUsage]\nDummy0005=yes",
     fix="Write `DummyXXXX=1` for each data type usable as a dummy mapping, 0 otherwise.")
 define_rule(
-    "HDR012", W, "[DeviceInfo]/[DeviceComissioning] differs from the identity object", ref="CiA 306 table row H10",
+    "HDR012", W, "[DeviceInfo]/[DeviceComissioning] differs from the identity object",
+    ref="CiA 306 table row H10",
     why="VendorNumber, ProductNumber and RevisionNumber repeat 0x1018 sub1..sub3 (and a DCF's "
     "LSS_SerialNumber 0x1018 sub4). Masters compare the device's 0x1018 against the file, so a "
     "mismatch makes them reject a correct device (Lely warns about it).",
@@ -102,9 +105,19 @@ define_rule(
     example="[Comments]\nLines=3\nLine1=a\nLine2=b",
     fix="Set Lines to the number of LineN keys and number them from 1 without gaps.")
 
+define_rule(
+    "HDR014", W, "[FileInfo] missing", ref="CiA 306 table row H1",
+    why="CiA 306 files start with [FileInfo] (file name, version, EDSVersion, dates, author). Nothing "
+    "technical depends on it, but without it nobody can tell which revision of the file this is; "
+    "objdictgen refuses such files. (Lely's dcfgen writes DCFs without it.)",
+    example="(no [FileInfo] section)",
+    fix="Add [FileInfo] with at least FileName, FileVersion, FileRevision and EDSVersion=4.0.")
+
 KNOWN_KEYS = {
+    # LastEDS names a DCF's source EDS; CANopenEditor, python canopen and gocanopen also write it
+    # into EDS files, where it is harmless, so it is accepted in both.
     "fileinfo": ("FileName", "FileVersion", "FileRevision", "EDSVersion", "Description", "CreationTime",
-                 "CreationDate", "CreatedBy", "ModificationTime", "ModificationDate", "ModifiedBy"),
+                 "CreationDate", "CreatedBy", "ModificationTime", "ModificationDate", "ModifiedBy", "LastEDS"),
     "deviceinfo": ("VendorName", "VendorNumber", "ProductName", "ProductNumber", "RevisionNumber",
                    "OrderCode", "BaudRate_10", "BaudRate_20", "BaudRate_50", "BaudRate_125",
                    "BaudRate_250", "BaudRate_500", "BaudRate_800", "BaudRate_1000",
@@ -115,21 +128,21 @@ KNOWN_KEYS = {
     "devicecomissioning": ("NodeID", "NodeName", "NodeRefd", "Baudrate", "NetNumber", "NetworkName",
                            "NetRefd", "CANopenManager", "LSS_SerialNumber"),
 }
-DCF_ONLY_FILEINFO = ("LastEDS",)
 BIT_RATES = (10, 20, 50, 125, 250, 500, 800, 1000)
 FLAGS = tuple(f"BaudRate_{r}" for r in BIT_RATES) + (
     "SimpleBootUpMaster", "SimpleBootUpSlave", "GroupMessaging", "LSS_Supported", "NG_Slave", "NG_Master")
-# key -> (section, low, high) for numeric header values
+# key -> (section, valid values, how to say them) for numeric header values
 NUMBERS = {
-    "FileVersion": ("FileInfo", 0, 0xFF),
-    "FileRevision": ("FileInfo", 0, 0xFF),
-    "VendorNumber": ("DeviceInfo", 0, 0xFFFFFFFF),
-    "ProductNumber": ("DeviceInfo", 0, 0xFFFFFFFF),
-    "RevisionNumber": ("DeviceInfo", 0, 0xFFFFFFFF),
-    "NrOfRXPDO": ("DeviceInfo", 0, 512),
-    "NrOfTXPDO": ("DeviceInfo", 0, 512),
-    "CompactPDO": ("DeviceInfo", 0, 0x3F),
-    "DynamicChannelsSupported": ("DeviceInfo", 0, 0xFFFF),
+    "FileVersion": ("FileInfo", range(0x100), "0..255"),
+    "FileRevision": ("FileInfo", range(0x100), "0..255"),
+    "VendorNumber": ("DeviceInfo", range(0x1_0000_0000), "0..0xFFFFFFFF"),
+    "ProductNumber": ("DeviceInfo", range(0x1_0000_0000), "0..0xFFFFFFFF"),
+    "RevisionNumber": ("DeviceInfo", range(0x1_0000_0000), "0..0xFFFFFFFF"),
+    "NrOfRXPDO": ("DeviceInfo", range(513), "0..512"),
+    "NrOfTXPDO": ("DeviceInfo", range(513), "0..512"),
+    "CompactPDO": ("DeviceInfo", range(0x40), "0..0x3F"),
+    "DynamicChannelsSupported": ("DeviceInfo", range(0x10000), "0..65535"),
+    "NodeID": ("DeviceComissioning", (*range(1, 128), 255), "1..127 or 255"),
 }
 _DATE_RE = re.compile(r"^(\d{1,2})-(\d{1,2})-(\d{4})$")
 _TIME_RE = re.compile(r"^(\d{1,2}):(\d{2})\s?(AM|PM)$", re.IGNORECASE)
@@ -155,9 +168,10 @@ def _loc(od: ObjectDictionary, fld: Field | Section | None) -> Loc:
 def required_sections(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     if od.format not in ("eds", "dcf"):
         return
-    for name in ("FileInfo", "DeviceInfo"):
-        if od.section(name) is None:
-            diags.add("HDR001", Loc(od.source), f"[{name}] is missing")
+    if od.section("FileInfo") is None:
+        diags.add("HDR014", Loc(od.source), "[FileInfo] is missing")
+    if od.section("DeviceInfo") is None:
+        diags.add("HDR001", Loc(od.source), "[DeviceInfo] is missing")
     if "mandatoryobjects" not in od.object_lists:
         diags.add("HDR001", Loc(od.source), "[MandatoryObjects] is missing")
 
@@ -169,31 +183,26 @@ def header_keys(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) 
         if section is None:
             continue
         known = {k.lower() for k in keys}
-        if name == "fileinfo" and od.is_config:
-            known.update(k.lower() for k in DCF_ONLY_FILEINFO)
         for key, fld in section.fields.items():
             if key not in known:
-                extra = " (a DCF-only key)" if key in ("lasteds",) else ""
-                diags.add("HDR002", _loc(od, fld), f"'{fld.key}' is not a [{section.name}] key{extra}")
+                diags.add("HDR002", _loc(od, fld), f"'{fld.key}' is not a [{section.name}] key")
 
 
 # -- H3 --------------------------------------------------------------------------
 
 @check
 def header_numbers(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
-    for key, (section_name, low, high) in NUMBERS.items():
+    for key, (section_name, valid, said) in NUMBERS.items():
         section = od.section(section_name)
         fld = section.get(key) if section is not None else None
         if fld is None or fld.text.strip() == "":
             continue
         value = header_int(fld)
-        if value is None or not low <= value <= high:
-            what = "not a number" if value is None else f"outside {low}..{_hex_range(high)}"
+        if value is None and key == "NodeID":
+            continue  # the reader reports an unreadable NodeID (SYN015)
+        if value is None or value not in valid:
+            what = "not a number" if value is None else f"outside {said}"
             diags.add("HDR003", _loc(od, fld), f"{fld.key}={fld.text.strip()} is {what}")
-
-
-def _hex_range(high: int) -> str:
-    return f"0x{high:X}" if high > 0xFFFF or high in (0x3F,) else str(high)
 
 
 @check
@@ -348,12 +357,12 @@ def comment_lines(od: ObjectDictionary, diags: Diagnostics, options: LintOptions
         if numbers or lines_fld is not None:
             diags.add("HDR013", _loc(od, lines_fld or section), f"{said} ({len(numbers)} LineN keys)")
         return
-    missing = [n for n in range(1, declared + 1) if n not in numbers]
+    missing, n_missing = gaps(declared, set(numbers), 3)
     extra = sorted(n for n in numbers if not 1 <= n <= declared)
     if missing or extra:
         parts = []
         if missing:
-            parts.append("no " + ", ".join(f"Line{n}" for n in missing[:3]) + (" ..." if len(missing) > 3 else ""))
+            parts.append("no " + ", ".join(f"Line{n}" for n in missing) + (" ..." if n_missing > 3 else ""))
         if extra:
             parts.append(", ".join(f"Line{n}" for n in extra[:3]) + (" ..." if len(extra) > 3 else "") + " beyond it")
         diags.add("HDR013", _loc(od, lines_fld), f"Lines={lines_fld.text.strip()} but {'; '.join(parts)}")

@@ -10,8 +10,9 @@ from ..diagnostics import Diagnostics, Loc, Severity, define_rule
 from ..model import Field, ObjectDictionary, ObjectList
 from ..model.values import parse_int_literal
 from . import LintOptions, check
+from .objects import gaps
 
-E, W, I = Severity.ERROR, Severity.WARNING, Severity.INFO
+E, W, INFO = Severity.ERROR, Severity.WARNING, Severity.INFO
 
 define_rule(
     "LST001", E, "SupportedObjects missing or not a number", ref="CiA 306 table row L1",
@@ -76,14 +77,16 @@ define_rule(
     example="[MandatoryObjects]\nSupportedObjects=0x03",
     fix="Write the number in decimal: `SupportedObjects=3`.")
 define_rule(
-    "LST011", E, "object index in a reserved range", ref="CiA 306 table row L4 / CiA 301 §7.4.2",
+    "LST011", E, "object index in a reserved range",
+    ref="CiA 306 table row L4 / CiA 301 index ranges",
     why="CiA 301 reserves index 0x0000 and 0x0260-0x0FFF; no device may define objects there. "
     "(0x0001-0x025F data types, 0x1000-0x1FFF communication, 0x2000-0x5FFF manufacturer, "
     "0x6000-0x9FFF device profile, 0xA000-0xBFFF interface profile.)",
     example="[0800]\nParameterName=Misplaced",
     fix="Move the object to the manufacturer range 0x2000-0x5FFF.")
 define_rule(
-    "LST012", W, "object index in the reserved range 0xC000-0xFFFF", ref="CiA 306 table row L4 / CiA 301 §7.4.2",
+    "LST012", W, "object index in the reserved range 0xC000-0xFFFF",
+    ref="CiA 306 table row L4 / CiA 301 index ranges",
     why="CiA 301 reserves 0xC000-0xFFFF for future use; objects there may collide with later "
     "profiles and some tools reject them.",
     example="[C000]\nParameterName=Vendor block",
@@ -130,12 +133,12 @@ def _count(od: ObjectDictionary, olist: ObjectList, diags: Diagnostics) -> None:
         diags.add("LST010", Loc(od.source, supported.line),
                   f"[{olist.name}] SupportedObjects={supported.text.strip()} is not decimal")
     keys = _entry_keys(od, olist, diags)
-    missing = [n for n in range(1, declared + 1) if n not in keys]
+    first, missing = gaps(declared, set(keys))
     if missing:
-        shown = ", ".join(str(n) for n in missing[:5]) + (" ..." if len(missing) > 5 else "")
+        shown = ", ".join(str(n) for n in first) + (" ..." if missing > len(first) else "")
         diags.add("LST002", Loc(od.source, supported.line),
                   f"[{olist.name}] SupportedObjects={supported.text.strip()} but entr"
-                  f"{'y' if len(missing) == 1 else 'ies'} {shown} missing")
+                  f"{'y' if missing == 1 else 'ies'} {shown} missing")
     for n, fld in keys.items():
         if not 1 <= n <= declared:
             diags.add("LST003", Loc(od.source, fld.line),
@@ -189,26 +192,47 @@ def _entry(od: ObjectDictionary, key: str, name: str, fld: Field, seen: dict[int
         return
     if index in seen:
         diags.add("LST006", loc, f"[{name}] entry {fld.key} lists 0x{index:04X} again "
-                  f"(first at line {seen[index].line})", index)
+                  f"(first at line {seen[index].line})")
         return
     seen[index] = fld
     if index not in od.objects:
-        diags.add("LST005", loc, f"[{name}] entry {fld.key} lists 0x{index:04X}, which has no section", index)
+        diags.add("LST005", loc, f"[{name}] entry {fld.key} lists 0x{index:04X}, which has no section"
+                  f"{_decimal_hint(od, fld.text)}")
+        return  # which list it belongs in matters little for an object that does not exist
     proper = _proper_list(index)
     if proper == key:
         return  # data type definitions (0x0001-0x025F) count as optional objects
     if key == "optionalobjects" and proper == "mandatoryobjects":
-        diags.add("LST009", loc, f"[{name}] entry {fld.key} lists mandatory object 0x{index:04X}", index)
+        diags.add("LST009", loc, f"[{name}] entry {fld.key} lists mandatory object 0x{index:04X}")
         return
     wanted = dict(LISTS)[proper]
-    diags.add("LST008", loc, f"[{name}] entry {fld.key} lists 0x{index:04X}, which belongs in [{wanted}]", index)
+    diags.add("LST008", loc, f"[{name}] entry {fld.key} lists 0x{index:04X}, which belongs in [{wanted}]")
+
+
+def _decimal_hint(od: ObjectDictionary, text: str) -> str:
+    """`1=1018` is decimal 1018 = 0x03FA; say so when the hex reading names an object."""
+    text = text.strip()
+    if text.isdigit() and text[0] != "0" and int(text, 16) in od.objects:
+        return f" ({text} is decimal; 0x{int(text, 16):04X} was probably meant)"
+    return ""
+
+
+def _misread_decimals(od: ObjectDictionary) -> set[int]:
+    """Objects an entry names in decimal (`1=1018` for 0x1018)."""
+    found = set()
+    for olist in od.object_lists.values():
+        for fld in olist.entries:
+            if _decimal_hint(od, fld.text) and int(fld.text.strip()) not in od.objects:
+                found.add(int(fld.text.strip(), 16))
+    return found
 
 
 @check
 def unlisted_objects(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     if not _uses_lists(od) or not od.object_lists:
         return
-    listed = listed_indices(od)
+    listed = set(listed_indices(od))
+    listed |= _misread_decimals(od)  # already reported, with a hint, as LST005
     for index, obj in od.objects.items():
         if index not in listed and index >= 0x1000:
             wanted = dict(LISTS)[_proper_list(index)]

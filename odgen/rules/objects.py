@@ -14,7 +14,7 @@ from ..model.datatypes import BASIC_TYPES, DataType
 from ..model.od import OBJECT_CODES
 from . import LintOptions, check
 
-E, W, I = Severity.ERROR, Severity.WARNING, Severity.INFO
+E, W, INFO = Severity.ERROR, Severity.WARNING, Severity.INFO
 
 define_rule(
     "OBJ001", E, "ParameterName missing", ref="CiA 306 table row O1",
@@ -23,7 +23,7 @@ define_rule(
     example="[2000]\nObjectType=0x7\nDataType=0x0007\nAccessType=rw",
     fix="Add `ParameterName=<name>`.")
 define_rule(
-    "OBJ002", E, "invalid ObjectType", ref="CiA 306 table row O2 / CiA 301 §7.4.3",
+    "OBJ002", E, "invalid ObjectType", ref="CiA 306 table row O2 / CiA 301 object codes",
     why="ObjectType is a CiA 301 object code: 0x2 DOMAIN, 0x5 DEFTYPE, 0x6 DEFSTRUCT, 0x7 VAR, "
     "0x8 ARRAY, 0x9 RECORD (absent means VAR). A sub-object is always a VAR (0x7), or a DOMAIN (0x2).",
     example="[2000]\nObjectType=0x3",
@@ -47,7 +47,8 @@ define_rule(
     example="AccessType=readonly",
     fix="Use one of `ro`, `wo`, `rw`, `rwr`, `rww`, `const`.")
 define_rule(
-    "OBJ006", E, "ARRAY/RECORD needs exactly one of SubNumber and CompactSubObj", ref="CiA 306 table row O3",
+    "OBJ006", E, "ARRAY/RECORD needs exactly one of SubNumber and CompactSubObj",
+    ref="CiA 306 table row O3",
     why="An ARRAY, RECORD or DEFSTRUCT object says how many sub-objects it has either with `SubNumber` "
     "(followed by `[XXXXsubY]` sections) or with `CompactSubObj` (sub-objects implied). With neither, "
     "or both, readers disagree on its sub-objects.",
@@ -72,13 +73,15 @@ define_rule(
     example="[2000]\nObjectType=0x8\nSubNumber=4\n[2000sub0] [2000sub1] [2000sub2]",
     fix="Set SubNumber to the number of sub-object sections, or add the missing ones.")
 define_rule(
-    "OBJ010", E, "sub0 of an ARRAY/RECORD missing or not UNSIGNED8", ref="CiA 306 table row O5 / CiA 301 §7.4.3",
+    "OBJ010", E, "sub0 of an ARRAY/RECORD missing or not UNSIGNED8",
+    ref="CiA 306 table row O5 / CiA 301 ARRAY/RECORD sub0",
     why="Sub-index 0 of an ARRAY or RECORD holds its highest sub-index as UNSIGNED8. Without it, or "
     "with another type, masters cannot enumerate the object; Lely refuses the file.",
     example="[2000sub0]\nDataType=0x0007",
     fix="Add `[XXXXsub0]` with `DataType=0x0005`, `AccessType=ro` and the highest sub-index as DefaultValue.")
 define_rule(
-    "OBJ011", E, "sub0 differs from the highest sub-index", ref="CiA 306 table row O5 / CiA 301 §7.4.3",
+    "OBJ011", E, "sub0 differs from the highest sub-index",
+    ref="CiA 306 table row O5 / CiA 301 ARRAY/RECORD sub0",
     why="The DefaultValue of sub0 is the highest sub-index the object supports. A smaller value hides "
     "sub-objects from masters, a larger one announces sub-objects that do not exist. "
     "(0x1003 counts errors and PDO mapping objects count mapped entries instead; they are not checked here.)",
@@ -121,7 +124,7 @@ define_rule(
     example="LowLimit=1\nHighLimit=10\nDefaultValue=0",
     fix="Correct the value or the limits.")
 define_rule(
-    "OBJ018", I, "PDO-mappable rw entry without a direction", ref="CiA 306 table row O8",
+    "OBJ018", INFO, "PDO-mappable rw entry without a direction", ref="CiA 306 table row O8",
     why="CiA 306 marks the PDO direction of a mappable read/write entry with `rwr` (TPDO, process "
     "input) or `rww` (RPDO, process output). Plain `rw` is legal and may be mapped either way, but "
     "tools must guess the intent; Vector's checker warns. Information only (a third of real files "
@@ -129,13 +132,15 @@ define_rule(
     example="AccessType=rw\nPDOMapping=1",
     fix="Write `rww` for entries the device receives, `rwr` for entries it sends.")
 define_rule(
-    "OBJ019", W, "PDO-mappable entry of a type that cannot be mapped", ref="CiA 306 table row O8 / CiA 301 §7.2.2",
+    "OBJ019", W, "PDO-mappable entry of a type that cannot be mapped",
+    ref="CiA 306 table row O8 / CiA 301 PDO mapping",
     why="A PDO carries at most 64 bits (CAN FD: 512) of fixed-size data. DOMAIN entries have no fixed "
     "size and cannot be mapped.",
     example="DataType=0x000F\nPDOMapping=1",
     fix="Set `PDOMapping=0`.")
 define_rule(
-    "OBJ020", W, "VISIBLE_STRING value with invisible characters", ref="CiA 306 table row O12 / CiA 301 §7.1.6.3",
+    "OBJ020", W, "VISIBLE_STRING value with invisible characters",
+    ref="CiA 306 table row O12 / CiA 301 VISIBLE_STRING",
     why="VISIBLE_STRING holds printable ASCII (0x20-0x7E). Other characters are encoded differently "
     "by every tool (Windows-1252, UTF-8) and may not reach the device as written.",
     example="DataType=0x0009\nDefaultValue=Température",
@@ -143,8 +148,9 @@ define_rule(
 define_rule(
     "OBJ021", W, "DOMAIN with a DefaultValue", ref="CiA 306 table row O12 (verify)",
     why="A DOMAIN's content is not written in the description: CiA 306 uses UploadFile/DownloadFile. "
-    "Tools read a DOMAIN DefaultValue as text, as hex bytes or not at all. (Row marked verify: "
-    "warning until checked against the CiA 306 text.)",
+    "Tools read a DOMAIN DefaultValue as text, as hex bytes or not at all. `DefaultValue=0`, which "
+    "editors write for \"no content\", is not reported. (Row marked verify: warning until checked "
+    "against the CiA 306 text.)",
     example="DataType=0x000F\nDefaultValue=0x1234",
     fix="Remove the DefaultValue, or use OCTET_STRING (0x000A) for fixed bytes.")
 define_rule(
@@ -166,13 +172,14 @@ define_rule(
     example="(dev.eds)\n[2000]\nParameterValue=5",
     fix="Put the value into DefaultValue, or move the configuration into a DCF.")
 define_rule(
-    "OBJ025", W, "unknown keyword in an object section", ref="CiA 306 §4.6 (Lely dcfchk)",
+    "OBJ025", W, "unknown keyword in an object section",
+    ref="CiA 306 object section keywords (as Lely's dcfchk checks them)",
     why="The keyword is not one CiA 306 defines for object sections; odgen keeps it but no tool "
     "interprets it, and Lely rejects it.",
     example="[2000]\nUnit=rpm",
     fix="Remove the keyword or write it as a `;` comment.")
 define_rule(
-    "OBJ026", E, "ARRAY elements of different data types", ref="CiA 301 §7.4.3",
+    "OBJ026", E, "ARRAY elements of different data types", ref="CiA 301 object code ARRAY",
     why="All sub-objects 1..n of an ARRAY share one data type (that is what makes it an array, "
     "and how generators lay it out as a C array). Use a RECORD for mixed types.",
     example="[2000]\nObjectType=0x8\n[2000sub1] DataType=0x0007\n[2000sub2] DataType=0x0006",
@@ -247,6 +254,22 @@ def value_subs(obj: Obj) -> Iterator[Sub]:
     yield from written_subs(obj)
     if not obj.is_var and obj.compact_sub_obj and 1 in obj.subs and obj.subs[1].compact:
         yield obj.subs[1]
+
+
+def disabled(obj: Obj) -> bool:
+    """CANopenEditor's `CO_disabled`: kept in the project, left out of every export."""
+    flag = obj.extra.get("co_disabled")
+    return flag is not None and flag.text.strip().lower() == "true"
+
+
+def gaps(count: int, present: set[int], limit: int = 5) -> tuple[list[int], int]:
+    """The first `limit` numbers of 1..count not in `present`, and how many are missing.
+
+    Bounded by the entries present, not by `count`: a file may claim a count of 10**9.
+    """
+    inside = sum(1 for n in present if 1 <= n <= count)
+    first = [n for n in range(1, min(count, inside + limit) + 1) if n not in present][:limit]
+    return first, count - inside
 
 
 def defined_types(od: ObjectDictionary) -> set[int]:
@@ -447,19 +470,28 @@ _LABEL = {"lowlimit": "LowLimit", "highlimit": "HighLimit", "defaultvalue": "Def
 def _type_range(od: ObjectDictionary, index: int, where_sub: int | None, sub: Sub, keyword: str,
                 value: Value | None, dtype: DataType, span: tuple[int, int], rule: str,
                 diags: Diagnostics) -> None:
-    if value is None or number(value) is None or dtype.min is None or dtype.max is None:
+    bounds = _bounds(dtype)
+    if value is None or bounds is None or number(value) is None:
         return
-    for node_id in span:
+    low, high = bounds
+    for node_id in span if value.nodeid else span[:1]:
         v = at(value, node_id)
         if v is None or v != v:  # NaN has no range
             return
-        if v < dtype.min or v > dtype.max:
-            side = f"below the {dtype.name} minimum {_num(dtype.min)}" if v < dtype.min else \
-                f"above the {dtype.name} maximum {_num(dtype.max)}"
+        if v < low or v > high:
+            side = f"below the {dtype.name} minimum {_num(low)}" if v < low else \
+                f"above the {dtype.name} maximum {_num(high)}"
             node = f" (= {_num(v)} for node-id {node_id})" if value.nodeid else ""
             diags.add(rule, Loc(od.source, value_line(sub, value, keyword)),
                       f"{_LABEL[keyword]}={_show(value)}{node} is {side}", index, where_sub)
             return
+
+
+_BOUNDS = {t.code: (t.min, t.max) for t in BASIC_TYPES.values() if t.min is not None and t.max is not None}
+
+
+def _bounds(dtype: DataType) -> tuple[int | float, int | float] | None:
+    return _BOUNDS.get(dtype.code)
 
 
 def _num(v: int | float) -> str:
@@ -470,7 +502,7 @@ def _num(v: int | float) -> str:
 
 def _below(a: Value, b: Value, span: tuple[int, int]) -> int | None:
     """A node-id where a < b, or None. Both are linear in the node-id: the ends suffice."""
-    for node_id in span:
+    for node_id in span if a.nodeid or b.nodeid else span[:1]:
         va, vb = at(a, node_id), at(b, node_id)
         if va is not None and vb is not None and va < vb:
             return node_id
@@ -555,7 +587,7 @@ def string_values(od: ObjectDictionary, diags: Diagnostics, options: LintOptions
                 continue
             if dtype.kind == "vstring":
                 _visible(od, obj, sub, diags)
-            elif dtype.kind == "domain" and sub.default is not None and not sub.default.empty:
+            elif dtype.kind == "domain" and sub.default is not None and sub.default.text.strip() not in ("", "0"):
                 diags.add("OBJ021", Loc(od.source, value_line(sub, sub.default, "defaultvalue")),
                           "DOMAIN has a DefaultValue", obj.index, addr(obj, sub))
 
@@ -612,18 +644,25 @@ def dcf_only_content(od: ObjectDictionary, diags: Diagnostics, options: LintOpti
     section = od.section("DeviceComissioning")
     if section is not None:
         diags.add("OBJ024", Loc(od.source, section.line), f"[{section.name}] in an EDS")
+    found: dict[str, list[tuple[Obj, Sub]]] = {key: [] for key, _ in _DCF_ONLY}
+    for obj in od.sorted_objects():
+        for sub in written_subs(obj):
+            for key in found:
+                if key in sub.lines:
+                    found[key].append((obj, sub))
     for key, name in _DCF_ONLY:
-        found = [(obj, sub) for obj in od.sorted_objects() for sub in written_subs(obj) if key in sub.lines]
-        if not found:
+        if not found[key]:
             continue
-        obj, sub = found[0]
-        more = f" (and {len(found) - 1} more entries)" if len(found) > 1 else ""
+        obj, sub = found[key][0]
+        more = f" (and {len(found[key]) - 1} more entries)" if len(found[key]) > 1 else ""
         diags.add("OBJ024", Loc(od.source, sub.lines[key]), f"{name} in an EDS{more}",
                   obj.index, addr(obj, sub))
 
 
 @check
 def unknown_keywords(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    if od.format not in ("eds", "dcf"):
+        return  # XDD extensions are attributes, checked against the schema by the XML reader
     for obj in od.objects.values():
         places = [(obj.extra, None)] if not obj.is_var else []
         places += [(sub.extra, addr(obj, sub)) for sub in written_subs(obj)]

@@ -11,16 +11,17 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 
 from ..diagnostics import Diagnostics, Loc, Severity, define_rule, where
-from ..model import ARRAY, RECORD, Obj, ObjectDictionary, Sub, Value
+from ..model import ARRAY, RECORD, Field, Obj, ObjectDictionary, Sub, Value
 from ..model.datatypes import BASIC_TYPES
 from . import LintOptions, check
 from .header import dummy_enabled, granularity, header_int
-from .objects import number, value_line
+from .objects import disabled, number, value_line
 
-E, W, I = Severity.ERROR, Severity.WARNING, Severity.INFO
+E, W, INFO = Severity.ERROR, Severity.WARNING, Severity.INFO
 
 define_rule(
-    "PDO001", E, "mapped entry does not exist", ref="CiA 306 table row C1 / CiA 301 §7.5.2.36",
+    "PDO001", E, "mapped entry does not exist",
+    ref="CiA 306 table row C1 / CiA 301 PDO mapping parameter",
     why="Each mapping entry 1..sub0 of 0x1600-0x17FF/0x1A00-0x1BFF names index, sub-index and length "
     "(0xIIIISSLL) of an existing entry, or of a data type index 0x0001-0x001B enabled as a dummy in "
     "[DummyUsage]. Devices refuse such a mapping at start-up (abort 0x06020000), leaving the PDO dead.",
@@ -40,7 +41,8 @@ define_rule(
     example="[6000sub1]\nDataType=0x0005\n[1A00sub1]\nDefaultValue=0x60000110",
     fix="Write the entry's bit size in the low byte (`0x60000108`).")
 define_rule(
-    "PDO004", E, "mapped entry cannot be accessed in the PDO's direction", ref="CiA 306 table row C2",
+    "PDO004", E, "mapped entry cannot be accessed in the PDO's direction",
+    ref="CiA 306 table row C2",
     why="An RPDO writes its entries, so they must be writable (wo, rw, rww); a TPDO reads them, so "
     "they must be readable (ro, const, rw, rwr). CANopenEditor and Lely's dcfgen refuse the mapping.",
     example="[6000sub1]\nAccessType=ro\n[1600sub1]\nDefaultValue=0x60000108",
@@ -52,7 +54,7 @@ define_rule(
     example="[1A00sub0]\nDefaultValue=3\n3 entries of 32 bits",
     fix="Move entries to another PDO.")
 define_rule(
-    "PDO006", E, "more than 64 mapping entries", ref="CiA 301 §7.5.2.36",
+    "PDO006", E, "more than 64 mapping entries", ref="CiA 301 PDO mapping parameter",
     why="A mapping object has at most 64 entries (sub-index 1..0x40); sub0 cannot count more.",
     example="[1A00sub0]\nDefaultValue=65",
     fix="Map at most 64 entries.")
@@ -74,7 +76,8 @@ define_rule(
     "PDO009", W, "NrOfRXPDO/NrOfTXPDO differs from the PDOs present", ref="CiA 306 table row H6",
     why="NrOfRXPDO and NrOfTXPDO in [DeviceInfo] count the RPDOs (0x1400-0x15FF) and TPDOs "
     "(0x1800-0x19FF) the file defines. Masters size their configuration by them. With CompactPDO "
-    "the PDOs may be implied, so only more PDOs than declared are reported.",
+    "the PDOs may be implied, so only more PDOs than declared are reported. Objects CANopenEditor "
+    "marks `CO_disabled` are not counted.",
     example="NrOfTXPDO=4\n(only [1800] and [1801])",
     fix="Set the counts to the number of PDOs defined.")
 define_rule(
@@ -87,6 +90,7 @@ define_rule(
 
 MAPPINGS = {0x1600: ("RPDO", 0x1400), 0x1A00: ("TPDO", 0x1800)}
 FRAME_BITS, FD_FRAME_BITS = 64, 512
+MPDO = (0xFE, 0xFF)  # mapping sub0 of a multiplexed PDO: SAM-MPDO / DAM-MPDO (CiA 301)
 
 
 @dataclass
@@ -131,14 +135,16 @@ def mappings(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> 
         entries = list(_entries(od, obj, diags))
         offset = 0
         misaligned = False
+        contrary: list[Entry] = []
         for entry in entries:
-            _target(od, obj, kind, entry, diags)
+            _target(od, obj, kind, entry, contrary, diags)
             if gran and gran > 0 and offset % gran and not misaligned:
                 misaligned = True
                 diags.add("PDO007", Loc(od.source, entry.line),
                           f"maps {where(entry.index, entry.subindex)} at bit offset {offset}, "
                           f"not a multiple of Granularity {gran}", obj.index, entry.sub.subindex)
             offset += entry.length
+        _report_contrary(od, obj, kind, contrary, diags)
         sub0 = obj.subs.get(0)
         if offset > limit and sub0 is not None:
             value, keyword = mapping_value(od, sub0)
@@ -152,28 +158,36 @@ def _entries(od: ObjectDictionary, obj: Obj, diags: Diagnostics) -> Iterator[Ent
     sub0 = obj.subs.get(0)
     count_value, keyword = mapping_value(od, sub0) if sub0 is not None else (None, "")
     count = number(count_value)
+    if count in MPDO:
+        return  # multiplexed PDO: the entries are not a fixed mapping
     counted = isinstance(count, int) and not sub0.compact and not count_value.nodeid
     if counted and count > 64:
         diags.add("PDO006", Loc(od.source, value_line(sub0, count_value, keyword)),
                   f"sub0={count_value.text.strip()} counts more than 64 mapping entries", obj.index, 0)
+        return  # the count itself is wrong: its entries say nothing more
     last = min(count, 64) if counted else max(obj.subs, default=0)
+    absent = [i for i in range(1, last + 1) if i not in obj.subs]
+    if counted and absent:
+        names = ", ".join(f"sub{i}" for i in absent[:4]) + (" ..." if len(absent) > 4 else "")
+        diags.add("PDO001", Loc(od.source, value_line(sub0, count_value, keyword)),
+                  f"sub0={count_value.text.strip()} counts {names}, which {'is' if len(absent) == 1 else 'are'} "
+                  "not defined", obj.index, 0)
+    empty: list[Entry] = []
     for subindex in range(1, last + 1):
         sub = obj.subs.get(subindex)
-        if sub is None:
-            if counted:
-                diags.add("PDO001", Loc(od.source, value_line(sub0, count_value, keyword)),
-                          f"sub0={count_value.text.strip()} counts sub{subindex}, which is not defined", obj.index, 0)
-            continue
-        entry = _decode(od, sub)
+        entry = _decode(od, sub) if sub is not None else None
         if entry is None:
             continue
         if entry.value.parsed == 0:
-            if counted:
-                diags.add("PDO001", Loc(od.source, entry.line),
-                          f"maps nothing (0x00000000) but sub0={count_value.text.strip()} counts it",
-                          obj.index, subindex)
+            empty.append(entry)
             continue
         yield entry
+    if counted and empty:
+        # once per object: generators write sub0 = highest sub-index over all-zero entries
+        more = f" (and {len(empty) - 1} more empty entries)" if len(empty) > 1 else ""
+        diags.add("PDO001", Loc(od.source, empty[0].line),
+                  f"maps nothing (0x00000000) but sub0={count_value.text.strip()} counts it{more}",
+                  obj.index, empty[0].sub.subindex)
 
 
 def _decode(od: ObjectDictionary, sub: Sub) -> Entry | None:
@@ -184,7 +198,8 @@ def _decode(od: ObjectDictionary, sub: Sub) -> Entry | None:
     return Entry(sub, value, raw >> 16, (raw >> 8) & 0xFF, raw & 0xFF, value_line(sub, value, keyword))
 
 
-def _target(od: ObjectDictionary, obj: Obj, kind: str, entry: Entry, diags: Diagnostics) -> None:
+def _target(od: ObjectDictionary, obj: Obj, kind: str, entry: Entry, contrary: list[Entry],
+            diags: Diagnostics) -> None:
     loc = Loc(od.source, entry.line)
     name = where(entry.index, entry.subindex)
     if entry.index < 0x0020:
@@ -197,6 +212,8 @@ def _target(od: ObjectDictionary, obj: Obj, kind: str, entry: Entry, diags: Diag
     if not target.pdo_mapping:
         diags.add("PDO002", loc, f"maps {name}, which has PDOMapping=0", obj.index, entry.sub.subindex)
     _direction(od, obj, kind, entry, target, diags)
+    if (kind, target.access) in (("RPDO", "rwr"), ("TPDO", "rww")):
+        contrary.append(entry)
     _length(od, obj, entry, target, diags)
 
 
@@ -225,10 +242,20 @@ def _direction(od: ObjectDictionary, obj: Obj, kind: str, entry: Entry, target: 
         diags.add("PDO004", loc, f"RPDO maps {name}, which is {access}", obj.index, entry.sub.subindex)
     elif kind == "TPDO" and access == "wo":
         diags.add("PDO004", loc, f"TPDO maps {name}, which is wo", obj.index, entry.sub.subindex)
-    elif (kind, access) in (("RPDO", "rwr"), ("TPDO", "rww")):
-        other = "TPDO" if kind == "RPDO" else "RPDO"
-        diags.add("PDO010", loc, f"{kind} maps {name}, which is {access} ({other} data)",
-                  obj.index, entry.sub.subindex)
+
+
+def _report_contrary(od: ObjectDictionary, obj: Obj, kind: str, contrary: list[Entry],
+                     diags: Diagnostics) -> None:
+    """Once per mapping object: one wrong declaration is usually repeated for every entry."""
+    if not contrary:
+        return
+    first = contrary[0]
+    access = "rwr" if kind == "RPDO" else "rww"
+    other = "TPDO" if kind == "RPDO" else "RPDO"
+    more = f" (and {len(contrary) - 1} more entries)" if len(contrary) > 1 else ""
+    diags.add("PDO010", Loc(od.source, first.line),
+              f"{kind} maps {where(first.index, first.subindex)}, which is {access} ({other} data){more}",
+              obj.index, first.sub.subindex)
 
 
 def _length(od: ObjectDictionary, obj: Obj, entry: Entry, target: Sub, diags: Diagnostics) -> None:
@@ -253,10 +280,15 @@ def _compact_pdo(od: ObjectDictionary) -> bool:
     return bool(header_int(section.get("CompactPDO"))) if section is not None else False
 
 
-def _declared(od: ObjectDictionary, key: str) -> tuple[int | None, object]:
+def _declared(od: ObjectDictionary, key: str) -> tuple[int | None, Field | None]:
     section = od.section("DeviceInfo")
     fld = section.get(key) if section is not None else None
     return header_int(fld), fld
+
+
+def _present(od: ObjectDictionary, index: int) -> Obj | None:
+    obj = od.objects.get(index)
+    return obj if obj is not None and not disabled(obj) else None
 
 
 @check
@@ -266,7 +298,7 @@ def pairing(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> N
         implied, _ = _declared(od, f"NrOf{kind[0]}XPDO")
         implied = implied if compact and implied else 0
         for n in range(0x200):
-            comm, mapping = od.objects.get(comm_base + n), od.objects.get(map_base + n)
+            comm, mapping = _present(od, comm_base + n), _present(od, map_base + n)
             if (comm is None) == (mapping is None) or n < implied:
                 continue
             present, absent = (comm, map_base + n) if mapping is None else (mapping, comm_base + n)
@@ -285,8 +317,7 @@ def pdo_counts(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -
         key = f"NrOf{kind[0]}XPDO"
         fld = section.get(key)
         declared = header_int(fld)
-        present = sum(1 for n in range(0x200)
-                      if comm_base + n in od.objects or map_base + n in od.objects)
+        present = sum(1 for n in range(0x200) if _present(od, comm_base + n) or _present(od, map_base + n))
         if fld is None or declared is None:
             continue
         if present != declared and not (compact and present < declared):
