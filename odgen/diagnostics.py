@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import enum
 from collections.abc import Iterable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 
 class Severity(enum.IntEnum):
@@ -103,6 +103,15 @@ class Diagnostics:
     ) -> None:
         rule = RULES[rule_id]
         self.items.append(Diagnostic(rule_id, rule.severity, message, loc, index, sub))
+
+    def collapse(self, rule_id: str) -> None:
+        """Keep the first finding of a rule that repeats line after line, with a count of the rest."""
+        hits = [d for d in self.items if d.rule == rule_id]
+        if len(hits) < 2:
+            return
+        first = hits[0]
+        summary = replace(first, message=f"{first.message} (and {len(hits) - 1} more lines like it)")
+        self.items = [summary if d is first else d for d in self.items if d.rule != rule_id or d is first]
 
     def extend(self, other: Iterable[Diagnostic]) -> None:
         self.items.extend(other)

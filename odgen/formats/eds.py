@@ -44,7 +44,9 @@ _HASH_COMMENT = re.compile(r"\s+#.*$")
 def load_eds(data: bytes, source: str, diags: Diagnostics, fmt: str = "eds") -> ObjectDictionary:
     text = ini.decode(data, source, diags)
     parsed = ini.parse(text, source, diags, COMMENT_KEYS)
-    return _Reader(source, fmt, diags).read(parsed)
+    od = _Reader(source, fmt, diags).read(parsed)
+    diags.collapse("SYN014")  # files that comment inline do so on every line
+    return od
 
 
 class _Reader:
@@ -154,8 +156,8 @@ class _Reader:
         if name is None and "objecttype" in entries:  # only real sub-object sections carry their own
             sub.object_type = self._int_entry(entries["objecttype"])
         sub.data_type = self._int_entry(entries.get("datatype"))
-        access = _text(entries.get("accesstype"))
-        sub.access = access.strip().lower() if access is not None else None
+        access = entries.get("accesstype")
+        sub.access = self._strip_hash_comment(access).strip().lower() if access is not None else None
         sub.pdo_mapping = self._flag(entries.get("pdomapping"))
         sub.obj_flags = self._int_entry(entries.get("objflags"))
         sub.default = self._value(entries.get("defaultvalue"), sub)
