@@ -66,6 +66,8 @@ def test_nodeid_forms(text: str, relative: bool, rest: str) -> None:
     ("01 02 ff", "OCTET_STRING", b"\x01\x02\xff"),
     ("hello; world", "VISIBLE_STRING", "hello; world"),
     ("1", "BOOLEAN", 1),
+    ("365 43200000", "TIME_OF_DAY", (365 << 32) | 43200000),
+    ("1000", "TIME_DIFFERENCE", 1000),
 ])
 def test_value_parsing(text: str, type_name: str, parsed: object) -> None:
     value = parse_value(text, BY_NAME[type_name])

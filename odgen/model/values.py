@@ -21,6 +21,7 @@ Note = tuple[str, str]
 _INT_RE = re.compile(r"^([+-]?)(0[xX][0-9a-fA-F]+|[0-9]+)$")
 _NODEID_RE = re.compile(r"\$nodeid", re.IGNORECASE)
 _PREFIX_FORM = re.compile(r"^\$NODEID(\+.+)?$")
+_TIME_PAIR_RE = re.compile(r"^(\d+)\s+(\d+)$")
 _FLOAT_RE = re.compile(r"^[+-]?(\d+\.?\d*([eE][+-]?\d+)?|\.\d+([eE][+-]?\d+)?|inf|nan)$", re.I)
 
 
@@ -114,6 +115,19 @@ def _read_integer(value: Value, text: str, dtype: DataType) -> None:
     value.parsed = _twos_complement(value, number, rest, dtype)
 
 
+def _read_time(value: Value, text: str, dtype: DataType) -> None:
+    """TIME_OF_DAY/TIME_DIFFERENCE: one number, or Lely's `<days> <ms>` pair."""
+    pair = _TIME_PAIR_RE.match(text)
+    if pair is None:
+        _read_integer(value, text, dtype)
+        return
+    days, ms = int(pair.group(1)), int(pair.group(2))
+    if ms >= 1 << 28 or days >= 1 << 16:
+        value.error = f"'{text}' is not <days 0..65535> <ms 0..268435455>"
+        return
+    value.parsed = (days << 32) | ms  # ms in the low 28 bits, days in bytes 4-5
+
+
 def _bool_word(text: str) -> int | None:
     return {"true": 1, "false": 0}.get(text.lower())
 
@@ -172,7 +186,7 @@ _READERS = {
     "bool": _read_integer,
     "int": _read_integer,
     "uint": _read_integer,
-    "time": _read_integer,
+    "time": _read_time,
     "real": _read_real,
     "ostring": _read_octets,
     "vstring": _read_text,
