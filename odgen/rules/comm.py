@@ -7,11 +7,13 @@ error control, COB-IDs and PDO parameters.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+
 from ..diagnostics import Diagnostics, Loc, Severity, define_rule
 from ..model import Obj, ObjectDictionary, Sub, Value
 from ..model.datatypes import BASIC_TYPES
 from . import LintOptions, check
-from .objects import addr, at, node_span, number, value_line
+from .common import addr, at, default_line, node_span, number, plain_int, value_in_force, value_line
 
 E, W, INFO = Severity.ERROR, Severity.WARNING, Severity.INFO
 
@@ -140,20 +142,13 @@ RESTRICTED = ((0x000, 0x07F), (0x101, 0x180), (0x581, 0x5FF), (0x601, 0x67F), (0
 RPDO, TPDO, SDO_SERVER, SDO_CLIENT = 0x1400, 0x1800, 0x1200, 0x1280
 
 
-def _value(od: ObjectDictionary, sub: Sub) -> tuple[Value | None, str]:
-    """The value in force: a DCF's ParameterValue where given, else the DefaultValue."""
-    if od.is_config and sub.parameter_value is not None and not sub.parameter_value.empty:
-        return sub.parameter_value, "parametervalue"
-    return sub.default, "defaultvalue"
-
-
-def _int(value: Value | None) -> int | None:
-    n = number(value)
-    return n if isinstance(n, int) and value is not None and not value.nodeid else None
-
-
 def _in(index: int, base: int, size: int = 0x200) -> bool:
     return base <= index < base + size
+
+
+def _is_sdo(index: int) -> bool:
+    """An SDO server or client parameter record."""
+    return _in(index, SDO_SERVER, 0x80) or _in(index, SDO_CLIENT, 0x80)
 
 
 def _pdo_comm(index: int) -> str | None:
@@ -179,11 +174,11 @@ def _expected_type(obj: Obj, sub: Sub) -> int | None:
         return VAR_TYPES.get(index)
     if sub.subindex == 0:
         return None  # sub0 is UNSIGNED8 everywhere: OBJ010
-    if _in(index, RPDO) or _in(index, TPDO):
+    if _pdo_comm(index) is not None:
         return PDO_COMM_TYPES.get(sub.subindex)
     if _in(index, 0x1600) or _in(index, 0x1A00):
         return U32 if sub.subindex <= 0x40 else None
-    if _in(index, SDO_SERVER, 0x80) or _in(index, SDO_CLIENT, 0x80):
+    if _is_sdo(index):
         return SDO_TYPES.get(sub.subindex)
     table = ARRAY_TYPES.get(index)
     if table is None:
@@ -235,37 +230,47 @@ def _predefined(index: int, subindex: int) -> tuple[int, str] | None:
     return None
 
 
-def _cob_entries(od: ObjectDictionary):
+def _entry(obj: Obj | None, subindex: int) -> Sub | None:
+    """Sub-index 0 of a single-value object, or a sub-index 1.. of an ARRAY/RECORD; else None."""
+    if obj is None or obj.is_var != (subindex == 0):
+        return None
+    return obj.subs.get(subindex)
+
+
+def _cob_entries(od: ObjectDictionary) -> Iterator[tuple[Obj, Sub, tuple[int, str]]]:
     for index in [0x1014, SDO_SERVER, *range(RPDO, RPDO + 4), *range(TPDO, TPDO + 4)]:
         obj = od.objects.get(index)
         if obj is None:
             continue
         for subindex in (0, 1, 2):
-            sub = obj.subs.get(subindex)
+            sub = _entry(obj, subindex)
             known = _predefined(index, subindex)
-            if sub is not None and known is not None and (obj.is_var == (subindex == 0)):
+            if sub is not None and known is not None:
                 yield obj, sub, known
 
 
 @check
 def predefined_cob_ids(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for obj, sub, (base, name) in _cob_entries(od):
-        value, keyword = _value(od, sub)
+        value, keyword = value_in_force(od, sub)
         raw = number(value)
         if value is None or not isinstance(raw, int):
             continue
-        if value.nodeid:
-            if raw & 0x7FF != base:
-                diags.add("COM004", Loc(od.source, value_line(sub, value, keyword)),
-                          f"COB-ID {value.text.strip()} is not the predefined {name} COB-ID $NODEID+0x{base:X}",
-                          obj.index, addr(obj, sub))
-        elif not od.is_config and not raw & 0x80000000 and raw & 0x7FF:
-            if raw & 0x7FF == base:  # CANopenNode adds the node-id to a bare base; CiA 301 does not
-                problem = f"lacks the node-id; write $NODEID+0x{base:X}, the predefined {name} COB-ID"
-            else:
-                problem = f"is fixed; the predefined {name} COB-ID is $NODEID+0x{base:X}"
+        problem = _not_predefined(od, value, raw, base, name)
+        if problem:
             diags.add("COM004", Loc(od.source, value_line(sub, value, keyword)),
                       f"COB-ID {value.text.strip()} {problem}", obj.index, addr(obj, sub))
+
+
+def _not_predefined(od: ObjectDictionary, value: Value, raw: int, base: int, name: str) -> str | None:
+    """How a COB-ID (`raw`, the offset of a `$NODEID` value) misses the predefined `$NODEID+base`."""
+    if value.nodeid:
+        return f"is not the predefined {name} COB-ID $NODEID+0x{base:X}" if raw & 0x7FF != base else None
+    if od.is_config or raw & 0x80000000 or not raw & 0x7FF:
+        return None
+    if raw & 0x7FF == base:  # CANopenNode adds the node-id to a bare base; CiA 301 does not
+        return f"lacks the node-id; write $NODEID+0x{base:X}, the predefined {name} COB-ID"
+    return f"is fixed; the predefined {name} COB-ID is $NODEID+0x{base:X}"
 
 
 @check
@@ -275,7 +280,7 @@ def pdo_cob_ids(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) 
         if _pdo_comm(index) is None or obj.is_var or 1 not in obj.subs:
             continue
         sub = obj.subs[1]
-        value, keyword = _value(od, sub)
+        value, keyword = value_in_force(od, sub)
         raw = number(value)
         if value is None or not isinstance(raw, int):
             continue
@@ -315,35 +320,34 @@ def identity(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> 
         diags.add("COM006", Loc(od.source, obj.line), "has no Vendor-ID (sub1)", 0x1018)
     for index, subindex in ((0x1000, 0), (0x1018, 1)):
         target = od.objects.get(index)
-        sub = target.subs.get(subindex) if target is not None and target.is_var == (subindex == 0) else None
-        if sub is None:
+        sub = _entry(target, subindex)
+        if target is None or sub is None:
             continue
-        value, _ = _value(od, sub)
+        value, _ = value_in_force(od, sub)
         if value is None or value.empty:
             what = "device type" if index == 0x1000 else "Vendor-ID"
             diags.add("COM013", Loc(od.source, sub.line), f"{what} has no DefaultValue", index, addr(target, sub))
 
 
-def _var_value(od: ObjectDictionary, index: int) -> tuple[Obj | None, int | None]:
+def _var_int(od: ObjectDictionary, index: int) -> tuple[Sub | None, int | None]:
+    """The entry of a single-value object, and the integer in force there (None if not one)."""
     obj = od.objects.get(index)
-    if obj is None or obj.var is None:
-        return obj, None
-    value, _ = _value(od, obj.var)
-    return obj, _int(value)
+    sub = obj.var if obj is not None else None
+    return sub, (plain_int(value_in_force(od, sub)[0]) if sub is not None else None)
 
 
 @check
 def error_control(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
-    heartbeat, hb_time = _var_value(od, 0x1017)
-    guard, guard_time = _var_value(od, 0x100C)
-    life, life_factor = _var_value(od, 0x100D)
-    if heartbeat is None and guard is None and life is None:
+    guard, life = od.objects.get(0x100C), od.objects.get(0x100D)
+    if 0x1017 not in od.objects and guard is None and life is None:
         diags.add("COM007", Loc(od.source), "neither heartbeat (0x1017) nor node guarding (0x100C/0x100D)")
-    if (guard is None) != (life is None):
-        present, absent = (guard, 0x100D) if life is None else (life, 0x100C)
+    present, absent = (guard, 0x100D) if life is None else (life, 0x100C)
+    if present is not None and (guard is None or life is None):
         diags.add("COM014", Loc(od.source, present.line), f"is defined but 0x{absent:04X} is not", present.index)
-    if hb_time and guard_time and life_factor:
-        diags.add("COM008", Loc(od.source, value_line(heartbeat.var, heartbeat.var.default, "defaultvalue")),
+    heartbeat, hb_time = _var_int(od, 0x1017)
+    guard_time, life_factor = _var_int(od, 0x100C)[1], _var_int(od, 0x100D)[1]
+    if heartbeat is not None and hb_time and guard_time and life_factor:
+        diags.add("COM008", Loc(od.source, default_line(heartbeat)),
                   f"heartbeat {hb_time} ms and node guarding {guard_time} ms x {life_factor} are both enabled",
                   0x1017)
 
@@ -357,18 +361,12 @@ def heartbeat_consumers(od: ObjectDictionary, diags: Diagnostics, options: LintO
     for sub in obj.sorted_subs():
         if sub.subindex == 0:
             continue
-        value, keyword = _value(od, sub)
-        raw = _int(value)
-        if raw is None:
+        value, keyword = value_in_force(od, sub)
+        raw = plain_int(value)
+        if value is None or raw is None:
             continue
         node, time = (raw >> 16) & 0xFF, raw & 0xFFFF
-        problem = None
-        if raw >> 24:
-            problem = "sets the reserved bits 24-31"
-        elif time and not 1 <= node <= 127:
-            problem = f"monitors node-id {node}, not 1..127"
-        elif time and node in seen:
-            problem = f"monitors node-id {node} again (also sub{seen[node]})"
+        problem = _consumer_problem(raw >> 24, node, time, seen)
         if problem:
             diags.add("COM015", Loc(od.source, value_line(sub, value, keyword)),
                       f"{value.text.strip()} {problem}", 0x1016, sub.subindex)
@@ -376,14 +374,25 @@ def heartbeat_consumers(od: ObjectDictionary, diags: Diagnostics, options: LintO
             seen[node] = sub.subindex
 
 
+def _consumer_problem(reserved: int, node: int, time: int, seen: dict[int, int]) -> str | None:
+    """What is wrong with a 0x1016 entry 0xRRNNTTTT, given the node-ids monitored so far."""
+    if reserved:
+        return "sets the reserved bits 24-31"
+    if time and not 1 <= node <= 127:
+        return f"monitors node-id {node}, not 1..127"
+    if time and node in seen:
+        return f"monitors node-id {node} again (also sub{seen[node]})"
+    return None
+
+
 @check
 def device_profile(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
-    obj, device_type = _var_value(od, 0x1000)
-    if obj is None or device_type is None or device_type & 0xFFFF:
+    sub, device_type = _var_int(od, 0x1000)
+    if sub is None or device_type is None or device_type & 0xFFFF:
         return
     profile = next((i for i in sorted(od.objects) if 0x6000 <= i <= 0x9FFF), None)
     if profile is not None:
-        diags.add("COM012", Loc(od.source, value_line(obj.var, obj.var.default, "defaultvalue")),
+        diags.add("COM012", Loc(od.source, default_line(sub)),
                   f"device type 0x{device_type:08X} names no device profile, but the file defines "
                   f"profile objects (first 0x{profile:04X})", 0x1000)
 
@@ -398,7 +407,7 @@ def comm_records(od: ObjectDictionary, diags: Diagnostics, options: LintOptions)
             continue
         if kind is not None:
             _pdo_record(od, obj, kind, diags)
-        elif _in(index, SDO_SERVER, 0x80) or _in(index, SDO_CLIENT, 0x80):
+        elif _is_sdo(index):
             required = (1, 2, 3) if _in(index, SDO_CLIENT, 0x80) else (1, 2)
             _required(od, obj, required, diags)
 
@@ -416,7 +425,7 @@ def _pdo_record(od: ObjectDictionary, obj: Obj, kind: str, diags: Diagnostics) -
         return
     top = 5 if kind == "RPDO" else 6
     sub0 = obj.subs.get(0)
-    highest = _int(_value(od, sub0)[0]) if sub0 is not None else None
+    highest = plain_int(value_in_force(od, sub0)[0]) if sub0 is not None else None
     if highest is None:
         highest = max(obj.subs, default=0)
     if not 2 <= highest <= top and sub0 is not None:
@@ -430,8 +439,8 @@ def _transmission_type(od: ObjectDictionary, obj: Obj, kind: str, diags: Diagnos
     sub = obj.subs.get(2)
     if sub is None:
         return
-    value, keyword = _value(od, sub)
-    ttype = _int(value)
+    value, keyword = value_in_force(od, sub)
+    ttype = plain_int(value)
     reserved = range(241, 254) if kind == "RPDO" else range(241, 252)
     if ttype is not None and ttype in reserved:
         diags.add("COM011", Loc(od.source, value_line(sub, value, keyword)),

@@ -10,10 +10,9 @@ from __future__ import annotations
 import re
 
 from ..diagnostics import Diagnostics, Loc, Severity, define_rule
-from ..model import Field, ObjectDictionary, Section
-from ..model.values import parse_int_literal
+from ..model import Field, ObjectDictionary, Section, Sub, Value
 from . import LintOptions, check
-from .objects import gaps, number
+from .common import gaps, granularity, header_field, header_int, number
 
 E, W, INFO = Severity.ERROR, Severity.WARNING, Severity.INFO
 
@@ -150,14 +149,6 @@ _DUMMY_RE = re.compile(r"^dummy([0-9a-f]{4})$", re.IGNORECASE)
 _LINE_RE = re.compile(r"^line(\d+)$", re.IGNORECASE)
 
 
-def header_int(fld: Field | None) -> int | None:
-    """A header key's value as an integer; None when absent, empty or not a number."""
-    if fld is None:
-        return None
-    value, _ = parse_int_literal(fld.text)
-    return value
-
-
 def _loc(od: ObjectDictionary, fld: Field | Section | None) -> Loc:
     return Loc(od.source, fld.line if fld is not None else 0)
 
@@ -193,8 +184,7 @@ def header_keys(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) 
 @check
 def header_numbers(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for key, (section_name, valid, said) in NUMBERS.items():
-        section = od.section(section_name)
-        fld = section.get(key) if section is not None else None
+        fld = header_field(od, section_name, key)
         if fld is None or fld.text.strip() == "":
             continue
         value = header_int(fld)
@@ -255,8 +245,7 @@ def _supported_rates(section: Section) -> set[int]:
 
 
 def _commissioned_rate(od: ObjectDictionary, rates: set[int], diags: Diagnostics) -> None:
-    section = od.section("DeviceComissioning")
-    fld = section.get("Baudrate") if section is not None else None
+    fld = header_field(od, "DeviceComissioning", "Baudrate")
     if fld is None or not rates or not fld.text.strip():
         return
     rate = header_int(fld)
@@ -267,12 +256,6 @@ def _commissioned_rate(od: ObjectDictionary, rates: set[int], diags: Diagnostics
 
 
 # -- H5 --------------------------------------------------------------------------
-
-def granularity(od: ObjectDictionary) -> tuple[int | None, Field | None]:
-    section = od.section("DeviceInfo")
-    fld = section.get("Granularity") if section is not None else None
-    return header_int(fld), fld
-
 
 @check
 def granularity_range(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
@@ -285,11 +268,10 @@ def granularity_range(od: ObjectDictionary, diags: Diagnostics, options: LintOpt
 
 @check
 def dynamic_channels(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
-    info = od.section("DeviceInfo")
-    fld = info.get("DynamicChannelsSupported") if info is not None else None
+    fld = header_field(od, "DeviceInfo", "DynamicChannelsSupported")
     count = header_int(fld)
     channels = od.section("DynamicChannels")
-    if count and count > 0 and channels is None:
+    if fld is not None and count is not None and count > 0 and channels is None:
         diags.add("HDR010", _loc(od, fld), f"DynamicChannelsSupported={fld.text.strip()} "
                   "but there is no [DynamicChannels] section")
     elif channels is not None and not count:
@@ -312,11 +294,6 @@ def dummy_usage(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) 
             diags.add("HDR011", _loc(od, fld), f"{fld.key}={fld.text.strip()} is not 0 or 1")
 
 
-def dummy_enabled(od: ObjectDictionary, index: int) -> bool:
-    section = od.section("DummyUsage")
-    return section is not None and header_int(section.get(f"Dummy{index:04X}")) == 1
-
-
 # -- H10 -------------------------------------------------------------------------
 
 _IDENTITY = (("DeviceInfo", "VendorNumber", 1), ("DeviceInfo", "ProductNumber", 2),
@@ -329,17 +306,24 @@ def identity_numbers(od: ObjectDictionary, diags: Diagnostics, options: LintOpti
     if identity is None or identity.is_var:
         return
     for section_name, key, subindex in _IDENTITY:
-        section = od.section(section_name)
-        fld = section.get(key) if section is not None else None
+        fld = header_field(od, section_name, key)
         header = header_int(fld)
-        sub = identity.subs.get(subindex)
-        value = sub.parameter_value if sub is not None and od.is_config and sub.parameter_value else None
-        value = value or (sub.default if sub is not None else None)
+        value = _identity_value(od, identity.subs.get(subindex))
         device = number(value)
-        if header is None or device is None or value is None or value.nodeid or header == device:
+        if fld is None or header is None or value is None or device is None:
             continue
-        diags.add("HDR012", _loc(od, fld),
-                  f"{key}={fld.text.strip()} but 0x1018sub{subindex} is {value.text.strip()}")
+        if not value.nodeid and header != device:
+            diags.add("HDR012", _loc(od, fld),
+                      f"{key}={fld.text.strip()} but 0x1018sub{subindex} is {value.text.strip()}")
+
+
+def _identity_value(od: ObjectDictionary, sub: Sub | None) -> Value | None:
+    """A DCF's ParameterValue where written (even empty), else the DefaultValue."""
+    if sub is None:
+        return None
+    if od.is_config and sub.parameter_value is not None:
+        return sub.parameter_value
+    return sub.default
 
 
 # -- H11 -------------------------------------------------------------------------
@@ -352,17 +336,23 @@ def comment_lines(od: ObjectDictionary, diags: Diagnostics, options: LintOptions
     lines_fld = section.get("Lines")
     numbers = {int(m.group(1)): f for f in section.fields.values() if (m := _LINE_RE.match(f.key))}
     declared = header_int(lines_fld)
-    if declared is None:
+    if lines_fld is None or declared is None:
         said = f"Lines={lines_fld.text.strip()} is not a number" if lines_fld else "no Lines key"
         if numbers or lines_fld is not None:
             diags.add("HDR013", _loc(od, lines_fld or section), f"{said} ({len(numbers)} LineN keys)")
         return
-    missing, n_missing = gaps(declared, set(numbers), 3)
-    extra = sorted(n for n in numbers if not 1 <= n <= declared)
-    if missing or extra:
-        parts = []
-        if missing:
-            parts.append("no " + ", ".join(f"Line{n}" for n in missing) + (" ..." if n_missing > 3 else ""))
-        if extra:
-            parts.append(", ".join(f"Line{n}" for n in extra[:3]) + (" ..." if len(extra) > 3 else "") + " beyond it")
+    parts = _line_mismatches(declared, set(numbers))
+    if parts:
         diags.add("HDR013", _loc(od, lines_fld), f"Lines={lines_fld.text.strip()} but {'; '.join(parts)}")
+
+
+def _line_mismatches(declared: int, numbers: set[int]) -> list[str]:
+    """What differs between `Lines=declared` and the LineN keys present: missing ones, then extra ones."""
+    missing, n_missing = gaps(declared, numbers, 3)
+    extra = sorted(n for n in numbers if not 1 <= n <= declared)
+    parts = []
+    if missing:
+        parts.append("no " + ", ".join(f"Line{n}" for n in missing) + (" ..." if n_missing > 3 else ""))
+    if extra:
+        parts.append(", ".join(f"Line{n}" for n in extra[:3]) + (" ..." if len(extra) > 3 else "") + " beyond it")
+    return parts

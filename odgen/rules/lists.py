@@ -6,11 +6,13 @@ index-range rule (L4) applies to every format.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+
 from ..diagnostics import Diagnostics, Loc, Severity, define_rule
 from ..model import Field, ObjectDictionary, ObjectList
 from ..model.values import parse_int_literal
 from . import LintOptions, check
-from .objects import gaps
+from .common import gaps
 
 E, W, INFO = Severity.ERROR, Severity.WARNING, Severity.INFO
 
@@ -160,15 +162,21 @@ def _entry_keys(od: ObjectDictionary, olist: ObjectList, diags: Diagnostics) -> 
 
 # -- L2, L3 ----------------------------------------------------------------------
 
+def _listed(od: ObjectDictionary) -> Iterator[tuple[str, str, Field]]:
+    """(list key, list name, entry) of every object list entry, list by list."""
+    for key, name in LISTS:
+        olist = od.object_lists.get(key)
+        for fld in olist.entries if olist is not None else ():
+            yield key, name, fld
+
+
 def listed_indices(od: ObjectDictionary) -> dict[int, tuple[str, Field]]:
     """Index -> (list key, entry) of its first listing."""
     seen: dict[int, tuple[str, Field]] = {}
-    for key, _name in LISTS:
-        olist = od.object_lists.get(key)
-        for fld in olist.entries if olist is not None else ():
-            index, _ = parse_int_literal(fld.text)
-            if index is not None:
-                seen.setdefault(index, (key, fld))
+    for key, _name, fld in _listed(od):
+        index, _ = parse_int_literal(fld.text)
+        if index is not None:
+            seen.setdefault(index, (key, fld))
     return seen
 
 
@@ -177,10 +185,8 @@ def list_entries(od: ObjectDictionary, diags: Diagnostics, options: LintOptions)
     if not _uses_lists(od):
         return
     seen: dict[int, Field] = {}
-    for key, name in LISTS:
-        olist = od.object_lists.get(key)
-        for fld in olist.entries if olist is not None else ():
-            _entry(od, key, name, fld, seen, diags)
+    for key, name, fld in _listed(od):
+        _entry(od, key, name, fld, seen, diags)
 
 
 def _entry(od: ObjectDictionary, key: str, name: str, fld: Field, seen: dict[int, Field],

@@ -1,18 +1,16 @@
-"""OBJ: object and sub-object entries (CiA 306 rule table rows O1-O13, O15).
-
-Also the helpers the PDO and COM families share: node-id spans for `$NODEID`
-values, value evaluation and the address of an entry in messages.
-"""
+"""OBJ: object and sub-object entries (CiA 306 rule table rows O1-O13, O15)."""
 
 from __future__ import annotations
 
 from collections.abc import Iterator
 
 from ..diagnostics import Diagnostics, Loc, Severity, define_rule
-from ..model import ACCESS_TYPES, ARRAY, DEFSTRUCT, DEFTYPE, DOMAIN, RECORD, VAR, Obj, ObjectDictionary, Sub, Value
+from ..model import (ACCESS_TYPES, ARRAY, DEFSTRUCT, DEFTYPE, DOMAIN, RECORD, VAR, Field, Obj, ObjectDictionary, Sub,
+                     Value)
 from ..model.datatypes import BASIC_TYPES, DataType
 from ..model.od import OBJECT_CODES
 from . import LintOptions, check
+from .common import addr, at, default_line, node_span, number, plain_int, value_line
 
 E, W, INFO = Severity.ERROR, Severity.WARNING, Severity.INFO
 
@@ -199,44 +197,9 @@ HEADER_VALUE_KEYS = ("datatype", "accesstype", "defaultvalue", "lowlimit", "high
                      "parametervalue")
 # Objects whose sub0 is not "highest sub-index supported".
 _SUB0_COUNTS = ((0x1003, 0x1003), (0x1600, 0x17FF), (0x1A00, 0x1BFF))
-_NODE_IDS = (1, 127)
 
 
-# -- shared helpers (also used by the pdo and comm families) ------------------
-
-def node_span(od: ObjectDictionary, options: LintOptions) -> tuple[int, int]:
-    """The node-ids a `$NODEID` value must work for: the given one, a DCF's, or 1..127."""
-    if options.node_id is not None:
-        return options.node_id, options.node_id
-    if od.is_config and od.node_id is not None and 1 <= od.node_id <= 127:
-        return od.node_id, od.node_id
-    return _NODE_IDS
-
-
-def number(value: Value | None) -> int | float | None:
-    """A value's parsed number (the offset for `$NODEID` values), None if not a number."""
-    if value is None or value.error or isinstance(value.parsed, bool):
-        return None
-    return value.parsed if isinstance(value.parsed, (int, float)) else None
-
-
-def at(value: Value, node_id: int) -> int | float | None:
-    n = number(value)
-    if n is None:
-        return None
-    return n + node_id if value.nodeid else n
-
-
-def addr(obj: Obj, sub: Sub) -> int | None:
-    """The sub-index to name in a message: none for single-value objects."""
-    return None if obj.is_var else sub.subindex
-
-
-def value_line(sub: Sub, value: Value | None, keyword: str) -> int:
-    if value is not None and value.line:
-        return value.line
-    return sub.line_of(keyword)
-
+# -- entries -------------------------------------------------------------------
 
 def written_subs(obj: Obj) -> Iterator[Sub]:
     """Entries written as sections: a VAR's own, or an ARRAY/RECORD's sub-sections."""
@@ -254,22 +217,6 @@ def value_subs(obj: Obj) -> Iterator[Sub]:
     yield from written_subs(obj)
     if not obj.is_var and obj.compact_sub_obj and 1 in obj.subs and obj.subs[1].compact:
         yield obj.subs[1]
-
-
-def disabled(obj: Obj) -> bool:
-    """CANopenEditor's `CO_disabled`: kept in the project, left out of every export."""
-    flag = obj.extra.get("co_disabled")
-    return flag is not None and flag.text.strip().lower() == "true"
-
-
-def gaps(count: int, present: set[int], limit: int = 5) -> tuple[list[int], int]:
-    """The first `limit` numbers of 1..count not in `present`, and how many are missing.
-
-    Bounded by the entries present, not by `count`: a file may claim a count of 10**9.
-    """
-    inside = sum(1 for n in present if 1 <= n <= count)
-    first = [n for n in range(1, min(count, inside + limit) + 1) if n not in present][:limit]
-    return first, count - inside
 
 
 def defined_types(od: ObjectDictionary) -> set[int]:
@@ -412,14 +359,15 @@ def sub0_entries(od: ObjectDictionary, diags: Diagnostics, options: LintOptions)
 def _sub0_value(od: ObjectDictionary, obj: Obj, sub0: Sub, diags: Diagnostics) -> None:
     if any(lo <= obj.index <= hi for lo, hi in _SUB0_COUNTS):
         return
-    declared = number(sub0.default)
-    if not isinstance(declared, int) or sub0.default is None or sub0.default.nodeid:
+    default = sub0.default
+    declared = plain_int(default)
+    if default is None or declared is None:
         return
     highest = max(obj.subs)
     if highest == 0 or declared == highest:
         return
-    diags.add("OBJ011", Loc(od.source, value_line(sub0, sub0.default, "defaultvalue")),
-              f"DefaultValue={_show(sub0.default)} but the highest sub-index is {highest}", obj.index, 0)
+    diags.add("OBJ011", Loc(od.source, default_line(sub0)),
+              f"DefaultValue={_show(default)} but the highest sub-index is {highest}", obj.index, 0)
 
 
 # -- O9 ------------------------------------------------------------------------
@@ -588,7 +536,7 @@ def string_values(od: ObjectDictionary, diags: Diagnostics, options: LintOptions
             if dtype.kind == "vstring":
                 _visible(od, obj, sub, diags)
             elif dtype.kind == "domain" and sub.default is not None and sub.default.text.strip() not in ("", "0"):
-                diags.add("OBJ021", Loc(od.source, value_line(sub, sub.default, "defaultvalue")),
+                diags.add("OBJ021", Loc(od.source, default_line(sub)),
                           "DOMAIN has a DefaultValue", obj.index, addr(obj, sub))
 
 
@@ -664,7 +612,7 @@ def unknown_keywords(od: ObjectDictionary, diags: Diagnostics, options: LintOpti
     if od.format not in ("eds", "dcf"):
         return  # XDD extensions are attributes, checked against the schema by the XML reader
     for obj in od.objects.values():
-        places = [(obj.extra, None)] if not obj.is_var else []
+        places: list[tuple[dict[str, Field], int | None]] = [(obj.extra, None)] if not obj.is_var else []
         places += [(sub.extra, addr(obj, sub)) for sub in written_subs(obj)]
         for extra, subindex in places:
             for key, fld in extra.items():

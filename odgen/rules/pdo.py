@@ -11,11 +11,11 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 
 from ..diagnostics import Diagnostics, Loc, Severity, define_rule, where
-from ..model import ARRAY, RECORD, Field, Obj, ObjectDictionary, Sub, Value
-from ..model.datatypes import BASIC_TYPES
+from ..model import ARRAY, RECORD, Obj, ObjectDictionary, Sub, Value
+from ..model.datatypes import BASIC_TYPES, DataType
 from . import LintOptions, check
-from .header import dummy_enabled, granularity, header_int
-from .objects import disabled, number, value_line
+from .common import (disabled, dummy_enabled, granularity, header_field, header_int, number, plain_int,
+                     value_in_force, value_line)
 
 E, W, INFO = Severity.ERROR, Severity.WARNING, Severity.INFO
 
@@ -113,13 +113,6 @@ def _kind(index: int) -> tuple[str, int] | None:
     return None
 
 
-def mapping_value(od: ObjectDictionary, sub: Sub) -> tuple[Value | None, str]:
-    """The value a mapping entry holds: configured in a DCF, else the default."""
-    if od.is_config and sub.parameter_value is not None and not sub.parameter_value.empty:
-        return sub.parameter_value, "parametervalue"
-    return sub.default, "defaultvalue"
-
-
 def mapping_objects(od: ObjectDictionary) -> Iterator[tuple[Obj, str]]:
     for index, obj in od.objects.items():
         kind = _kind(index)
@@ -132,11 +125,10 @@ def mappings(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> 
     gran, _ = granularity(od)
     limit = FD_FRAME_BITS if options.can_fd else FRAME_BITS
     for obj, kind in mapping_objects(od):
-        entries = list(_entries(od, obj, diags))
         offset = 0
         misaligned = False
         contrary: list[Entry] = []
-        for entry in entries:
+        for entry in _entries(od, obj, diags):
             _target(od, obj, kind, entry, contrary, diags)
             if gran and gran > 0 and offset % gran and not misaligned:
                 misaligned = True
@@ -145,55 +137,69 @@ def mappings(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> 
                           f"not a multiple of Granularity {gran}", obj.index, entry.sub.subindex)
             offset += entry.length
         _report_contrary(od, obj, kind, contrary, diags)
-        sub0 = obj.subs.get(0)
-        if offset > limit and sub0 is not None:
-            value, keyword = mapping_value(od, sub0)
-            frame = "CAN FD frame" if options.can_fd else "CAN frame"
-            diags.add("PDO005", Loc(od.source, value_line(sub0, value, keyword)),
-                      f"{kind} maps {offset} bits; a {frame} carries {limit}", obj.index, 0)
+        if offset > limit:
+            _overflow(od, obj, kind, offset, limit, options, diags)
 
 
-def _entries(od: ObjectDictionary, obj: Obj, diags: Diagnostics) -> Iterator[Entry]:
+def _overflow(od: ObjectDictionary, obj: Obj, kind: str, offset: int, limit: int, options: LintOptions,
+              diags: Diagnostics) -> None:
+    sub0 = obj.subs.get(0)
+    if sub0 is None:
+        return
+    value, keyword = value_in_force(od, sub0)
+    frame = "CAN FD frame" if options.can_fd else "CAN frame"
+    diags.add("PDO005", Loc(od.source, value_line(sub0, value, keyword)),
+              f"{kind} maps {offset} bits; a {frame} carries {limit}", obj.index, 0)
+
+
+def _entries(od: ObjectDictionary, obj: Obj, diags: Diagnostics) -> list[Entry]:
     """The entries sub0 activates, reporting counted entries that are absent or empty."""
     sub0 = obj.subs.get(0)
-    count_value, keyword = mapping_value(od, sub0) if sub0 is not None else (None, "")
-    count = number(count_value)
-    if count in MPDO:
-        return  # multiplexed PDO: the entries are not a fixed mapping
-    counted = isinstance(count, int) and not sub0.compact and not count_value.nodeid
-    if counted and count > 64:
-        diags.add("PDO006", Loc(od.source, value_line(sub0, count_value, keyword)),
-                  f"sub0={count_value.text.strip()} counts more than 64 mapping entries", obj.index, 0)
-        return  # the count itself is wrong: its entries say nothing more
-    last = min(count, 64) if counted else max(obj.subs, default=0)
-    absent = [i for i in range(1, last + 1) if i not in obj.subs]
-    if counted and absent:
+    value, keyword = value_in_force(od, sub0) if sub0 is not None else (None, "")
+    if number(value) in MPDO:
+        return []  # multiplexed PDO: the entries are not a fixed mapping
+    count = plain_int(value) if sub0 is not None and not sub0.compact else None
+    if sub0 is None or value is None or count is None:
+        return _decoded(od, obj, max(obj.subs, default=0))[0]  # no count: every entry present is active
+    loc, said = Loc(od.source, value_line(sub0, value, keyword)), value.text.strip()
+    if count > 64:
+        diags.add("PDO006", loc, f"sub0={said} counts more than 64 mapping entries", obj.index, 0)
+        return []  # the count itself is wrong: its entries say nothing more
+    _absent(obj, count, loc, said, diags)
+    entries, empty = _decoded(od, obj, count)
+    if empty:
+        # once per object: generators write sub0 = highest sub-index over all-zero entries
+        more = f" (and {len(empty) - 1} more empty entries)" if len(empty) > 1 else ""
+        diags.add("PDO001", Loc(od.source, empty[0].line),
+                  f"maps nothing (0x00000000) but sub0={said} counts it{more}", obj.index, empty[0].sub.subindex)
+    return entries
+
+
+def _absent(obj: Obj, count: int, loc: Loc, said: str, diags: Diagnostics) -> None:
+    """PDO001 at sub0 (`loc`, written `said`) for the entries 1..count it counts that are not defined."""
+    absent = [i for i in range(1, count + 1) if i not in obj.subs]
+    if absent:
         names = ", ".join(f"sub{i}" for i in absent[:4]) + (" ..." if len(absent) > 4 else "")
-        diags.add("PDO001", Loc(od.source, value_line(sub0, count_value, keyword)),
-                  f"sub0={count_value.text.strip()} counts {names}, which {'is' if len(absent) == 1 else 'are'} "
+        diags.add("PDO001", loc, f"sub0={said} counts {names}, which {'is' if len(absent) == 1 else 'are'} "
                   "not defined", obj.index, 0)
+
+
+def _decoded(od: ObjectDictionary, obj: Obj, last: int) -> tuple[list[Entry], list[Entry]]:
+    """The readable entries 1..last: those that map something, and the empty ones (0x00000000)."""
+    entries: list[Entry] = []
     empty: list[Entry] = []
     for subindex in range(1, last + 1):
         sub = obj.subs.get(subindex)
         entry = _decode(od, sub) if sub is not None else None
-        if entry is None:
-            continue
-        if entry.value.parsed == 0:
-            empty.append(entry)
-            continue
-        yield entry
-    if counted and empty:
-        # once per object: generators write sub0 = highest sub-index over all-zero entries
-        more = f" (and {len(empty) - 1} more empty entries)" if len(empty) > 1 else ""
-        diags.add("PDO001", Loc(od.source, empty[0].line),
-                  f"maps nothing (0x00000000) but sub0={count_value.text.strip()} counts it{more}",
-                  obj.index, empty[0].sub.subindex)
+        if entry is not None:
+            (empty if entry.value.parsed == 0 else entries).append(entry)
+    return entries, empty
 
 
 def _decode(od: ObjectDictionary, sub: Sub) -> Entry | None:
-    value, keyword = mapping_value(od, sub)
-    raw = number(value)
-    if value is None or not isinstance(raw, int) or value.nodeid or not 0 <= raw <= 0xFFFFFFFF:
+    value, keyword = value_in_force(od, sub)
+    raw = plain_int(value)
+    if value is None or raw is None or not 0 <= raw <= 0xFFFFFFFF:
         return None
     return Entry(sub, value, raw >> 16, (raw >> 8) & 0xFF, raw & 0xFF, value_line(sub, value, keyword))
 
@@ -214,7 +220,7 @@ def _target(od: ObjectDictionary, obj: Obj, kind: str, entry: Entry, contrary: l
     _direction(od, obj, kind, entry, target, diags)
     if (kind, target.access) in (("RPDO", "rwr"), ("TPDO", "rww")):
         contrary.append(entry)
-    _length(od, obj, entry, target, diags)
+    _length(od, obj, entry, target.dtype, name, diags)
 
 
 def _dummy(od: ObjectDictionary, obj: Obj, entry: Entry, diags: Diagnostics) -> None:
@@ -228,9 +234,7 @@ def _dummy(od: ObjectDictionary, obj: Obj, entry: Entry, diags: Diagnostics) -> 
         diags.add("PDO001", loc, f"maps dummy 0x{entry.index:04X} ({dtype.name}) but [DummyUsage] "
                   f"Dummy{entry.index:04X} is not 1", obj.index, entry.sub.subindex)
         return
-    if not _length_fits(dtype.bits, dtype.kind, entry.length):
-        diags.add("PDO003", loc, f"maps dummy 0x{entry.index:04X} ({dtype.bits} bit) with length "
-                  f"{entry.length}", obj.index, entry.sub.subindex)
+    _length(od, obj, entry, dtype, f"dummy 0x{entry.index:04X}", diags)
 
 
 def _direction(od: ObjectDictionary, obj: Obj, kind: str, entry: Entry, target: Sub,
@@ -258,32 +262,21 @@ def _report_contrary(od: ObjectDictionary, obj: Obj, kind: str, contrary: list[E
               obj.index, first.sub.subindex)
 
 
-def _length(od: ObjectDictionary, obj: Obj, entry: Entry, target: Sub, diags: Diagnostics) -> None:
-    dtype = target.dtype
+def _length(od: ObjectDictionary, obj: Obj, entry: Entry, dtype: DataType | None, name: str,
+            diags: Diagnostics) -> None:
+    """PDO003 when the entry's length is not the size of the data type it maps (`name` in the message)."""
     if dtype is None or dtype.bits == 0:
         return  # strings and domains: size from the value, not checked here
-    if not _length_fits(dtype.bits, dtype.kind, entry.length):
-        diags.add("PDO003", Loc(od.source, entry.line),
-                  f"maps {where(entry.index, entry.subindex)} ({dtype.bits} bit) with length {entry.length}",
-                  obj.index, entry.sub.subindex)
-
-
-def _length_fits(bits: int, kind: str, length: int) -> bool:
     # BOOLEAN maps as 1 bit (bit-granular devices) or as a byte (byte-granular ones)
-    return length == bits or (kind == "bool" and length == 8)
+    if entry.length != dtype.bits and not (dtype.kind == "bool" and entry.length == 8):
+        diags.add("PDO003", Loc(od.source, entry.line),
+                  f"maps {name} ({dtype.bits} bit) with length {entry.length}", obj.index, entry.sub.subindex)
 
 
 # -- C5, H6 ----------------------------------------------------------------------
 
 def _compact_pdo(od: ObjectDictionary) -> bool:
-    section = od.section("DeviceInfo")
-    return bool(header_int(section.get("CompactPDO"))) if section is not None else False
-
-
-def _declared(od: ObjectDictionary, key: str) -> tuple[int | None, Field | None]:
-    section = od.section("DeviceInfo")
-    fld = section.get(key) if section is not None else None
-    return header_int(fld), fld
+    return bool(header_int(header_field(od, "DeviceInfo", "CompactPDO")))
 
 
 def _present(od: ObjectDictionary, index: int) -> Obj | None:
@@ -291,18 +284,27 @@ def _present(od: ObjectDictionary, index: int) -> Obj | None:
     return obj if obj is not None and not disabled(obj) else None
 
 
+def _half_pdo(od: ObjectDictionary, comm_index: int, map_index: int) -> tuple[Obj, int, str] | None:
+    """(object present, index missing, what is missing) for a PDO with only one of its two objects."""
+    comm, mapping = _present(od, comm_index), _present(od, map_index)
+    if comm is not None and mapping is None:
+        return comm, map_index, "mapping"
+    if mapping is not None and comm is None:
+        return mapping, comm_index, "communication"
+    return None
+
+
 @check
 def pairing(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     compact = _compact_pdo(od)
     for map_base, (kind, comm_base) in MAPPINGS.items():
-        implied, _ = _declared(od, f"NrOf{kind[0]}XPDO")
+        implied = header_int(header_field(od, "DeviceInfo", f"NrOf{kind[0]}XPDO"))
         implied = implied if compact and implied else 0
         for n in range(0x200):
-            comm, mapping = _present(od, comm_base + n), _present(od, map_base + n)
-            if (comm is None) == (mapping is None) or n < implied:
+            half = _half_pdo(od, comm_base + n, map_base + n)
+            if half is None or n < implied:
                 continue
-            present, absent = (comm, map_base + n) if mapping is None else (mapping, comm_base + n)
-            what = "mapping" if mapping is None else "communication"
+            present, absent, what = half
             diags.add("PDO008", Loc(od.source, present.line),
                       f"{kind}{n + 1} has no {what} object 0x{absent:04X}", present.index)
 
