@@ -230,7 +230,9 @@ class _Reader:
             return
         entries = self._compact_entries(obj, section)
         for subindex, entry in entries.items():
-            sub = obj.subs[subindex]
+            sub = obj.subs.get(subindex)
+            if sub is None:  # CompactSubObj on an object that is not an ARRAY/RECORD (OBJ007)
+                continue
             if kind == "names":
                 sub.name = entry.value
             else:

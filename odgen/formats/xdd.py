@@ -577,7 +577,7 @@ class _Reader:
         if written == "rw" and declared.text in ("rwr", "rww"):
             return declared.text  # the parameter says which PDO direction the rw entry takes
         self.report("XML009", el, "accessType", f"has accessType '{el.get('accessType')}' but its "
-                    f"parameter (line {declared.line}) says access '{_ACCESS_NAME[declared.text]}'; "
+                    f"parameter (line {declared.line}) says access '{_ACCESS_NAME.get(declared.text, declared.text)}'; "
                     f"'{written}' is used", *where)
         return written
 
