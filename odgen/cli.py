@@ -1,4 +1,4 @@
-"""Command line: `odgen lint`, `odgen convert`, `odgen rules`.
+"""Command line: `odgen lint`, `convert`, `generate`, `explain`, `rules`.
 
 Exit codes: 0 clean, 1 findings (errors, or warnings under --strict),
 2 usage error or unreadable input. Only odgen's own bugs raise past main(),
@@ -13,7 +13,10 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from . import __version__
-from .diagnostics import Severity
+from .codegen.explain import explain_lines
+from .codegen.generate import LOOKUPS, Request, generate, prepare, valid_name
+from .codegen.options import parse_pattern
+from .diagnostics import Diagnostics, Severity
 from .errors import OdgenError
 from .fileio import write_atomic
 from .formats import load_path
@@ -60,6 +63,20 @@ def build_parser() -> argparse.ArgumentParser:
     convert.add_argument("input", type=Path, metavar="IN")
     convert.add_argument("output", type=Path, metavar="OUT")
 
+    gen = commands.add_parser("generate", help="generate the C object dictionary (NAME.h, NAME.c)")
+    gen.add_argument("input", type=Path, metavar="FILE")
+    gen.add_argument("-o", "--output", type=Path, required=True, metavar="DIR")
+    gen.add_argument("--name", help="C name of the dictionary (default: from the file name)")
+    gen.add_argument("--options", type=Path, metavar="OPTS", help="options file (TOML): placement, hooks")
+    gen.add_argument("--node-id", type=_node_id, help="check $NODEID values for this node-id")
+    gen.add_argument("--lookup", choices=LOOKUPS, default="switch", help="index lookup (default: switch)")
+    gen.add_argument("--check", action="store_true", help="exit 1 if DIR differs from what would be generated")
+
+    explain = commands.add_parser("explain", help="show placement and hooks of an entry and their origin")
+    explain.add_argument("input", type=Path, metavar="FILE")
+    explain.add_argument("index", metavar="INDEX", help="e.g. 0x6040 or 0x6200sub1")
+    explain.add_argument("--options", type=Path, metavar="OPTS")
+
     rules = commands.add_parser("rules", help="list the rule catalogue")
     rules.add_argument("--markdown", action="store_true", help="as docs/rules.md")
     return parser
@@ -97,12 +114,59 @@ def cmd_convert(args: argparse.Namespace) -> int:
     return 0
 
 
+def _print_findings(diags: Diagnostics) -> None:
+    for d in diags.sorted():
+        if d.severity >= Severity.WARNING:
+            print(d.text(), file=sys.stderr)
+
+
+def cmd_generate(args: argparse.Namespace) -> int:
+    if args.name is not None and not valid_name(args.name):
+        raise OdgenError(f"--name '{args.name}' must be a C identifier of at most 32 characters")
+    request = Request(args.input, args.name, args.options, args.node_id, args.lookup)
+    result = generate(request)
+    _print_findings(result.diags)
+    if not result.files:
+        print(f"odgen: {args.input}: errors found, nothing written", file=sys.stderr)
+        return 1
+    if args.check:
+        return _check_outputs(args.output, result.files)
+    args.output.mkdir(parents=True, exist_ok=True)
+    for name, text in sorted(result.files.items()):
+        write_atomic(args.output / name, text)
+    return 0
+
+
+def _check_outputs(out: Path, files: dict[str, str]) -> int:
+    stale = [name for name, text in sorted(files.items())
+             if not (out / name).is_file() or (out / name).read_text(encoding="utf-8") != text]
+    for name in stale:
+        print(f"odgen: {out / name} is not what odgen would generate", file=sys.stderr)
+    return 1 if stale else 0
+
+
+def cmd_explain(args: argparse.Namespace) -> int:
+    pattern = parse_pattern(args.index)
+    if pattern is None:
+        raise OdgenError(f"'{args.index}' is not an index (0x6040) or sub-entry (0x6040sub1)")
+    result = prepare(Request(args.input, options=args.options))
+    _print_findings(result.diags)
+    if result.od is None or result.placements is None:
+        return 1
+    lines = explain_lines(result.od, result.placements, pattern)
+    if not lines:
+        raise OdgenError(f"{args.input} has no entry {args.index}")
+    print("\n".join(lines))
+    return 0
+
+
 def cmd_rules(args: argparse.Namespace) -> int:
     sys.stdout.write(render_markdown() if args.markdown else render_table())
     return 0
 
 
-COMMANDS = {"lint": cmd_lint, "convert": cmd_convert, "rules": cmd_rules}
+COMMANDS = {"lint": cmd_lint, "convert": cmd_convert, "generate": cmd_generate, "explain": cmd_explain,
+            "rules": cmd_rules}
 
 
 def main(argv: Sequence[str] | None = None) -> int:

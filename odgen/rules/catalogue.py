@@ -12,6 +12,7 @@ FAMILIES = {
     "OBJ": "Objects and sub-objects",
     "PDO": "PDO mapping",
     "COM": "Communication profile (CiA 301) semantics",
+    "GEN": "Generation: options file, placement, C names (odgen generate)",
 }
 
 

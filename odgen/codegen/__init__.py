@@ -1,0 +1,1 @@
+"""Code generation: placement and hooks (options), a view-model, jinja2 templates."""

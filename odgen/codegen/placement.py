@@ -1,0 +1,117 @@
+"""Where each value lives and which hooks it has, and where each decision came from.
+
+Layers, later wins: the auto rule, then the description (`;StorageLocation=` in
+EDS, `CO_storageGroup` in XDD), then the options file entries in order.
+
+Auto rule: const, or ro and not PDO-mappable, without hooks and not $NODEID-relative
+-> rom (FLASH); everything else -> ram. Persistence groups come only from the
+description or the options file. 0x1010/0x1011 sub-entries 1.. are the store and
+restore commands. `RAM` in a description is CANopenNode's default written on every
+entry, so it is read as "no preference", not as a decision.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..diagnostics import Diagnostics, Loc
+from ..model import Obj, ObjectDictionary, Sub
+from .names import identifier
+from .options import OptionEntry, Options
+
+STORE, RESTORE = 0x1010, 0x1011
+
+
+@dataclass
+class Placement:
+    storage: str  # rom | ram | persist:<group> | command
+    storage_from: str
+    hooks: tuple[str, ...] = ()
+    hooks_from: str = "none"
+    function: str | None = None
+    capacity: int | None = None
+    capacity_from: str = "default"
+
+    @property
+    def group(self) -> str | None:
+        return self.storage.split(":", 1)[1] if self.storage.startswith("persist:") else None
+
+
+def storage_from_description(text: str | None) -> str | None:
+    if text is None or not text.strip() or text.strip().upper() == "RAM":
+        return None
+    name = text.strip().upper()
+    if name == "ROM":
+        return "rom"
+    group = name[len("PERSIST_"):] if name.startswith("PERSIST_") else name
+    return "persist:" + identifier(group, "nv")
+
+
+def auto_storage(index: int, sub: Sub) -> tuple[str, str]:
+    if index in (STORE, RESTORE) and sub.subindex > 0:
+        return "command", "auto: 0x1010/0x1011 commands"
+    if sub.access == "const":
+        return "rom", "auto: const"
+    nodeid = sub.default is not None and sub.default.nodeid
+    if sub.access == "ro" and not sub.pdo_mapping and not nodeid:
+        return "rom", "auto: ro, not PDO-mappable"
+    reason = "$NODEID-relative" if nodeid else "writable or PDO-mappable"
+    return "ram", f"auto: {reason}"
+
+
+def place(od: ObjectDictionary, options: Options, diags: Diagnostics) -> dict[tuple[int, int], Placement]:
+    """Placement of every (index, sub) of the dictionary; GEN findings into `diags`."""
+    result: dict[tuple[int, int], Placement] = {}
+    for obj in od.sorted_objects():
+        for sub in obj.sorted_subs():
+            result[(obj.index, sub.subindex)] = _place_one(od, obj, sub, options)
+    for entry in options.entries:
+        if not entry.used:
+            patterns = ", ".join(p.text for p in entry.patterns)
+            diags.add("GEN002", Loc(options.source, entry.line), f"match {patterns} selects no entry")
+    for (index, subindex), placement in result.items():
+        _validate(od, index, subindex, placement, diags)
+    return result
+
+
+def _place_one(od: ObjectDictionary, obj: Obj, sub: Sub, options: Options) -> Placement:
+    storage, why = auto_storage(obj.index, sub)
+    described = storage_from_description(sub.storage or obj.storage)
+    if described is not None and storage != "command":
+        line = sub.line_of("storagelocation") if sub.storage else obj.line_of("storagelocation")
+        storage, why = described, f"{od.source}:{line}: storage location {sub.storage or obj.storage}"
+    placement = Placement(storage, why)
+    for entry in options.entries:
+        if any(p.matches(obj.index, sub.subindex) for p in entry.patterns):
+            entry.used = True
+            _apply(placement, entry, f"{options.source}:{entry.line}")
+    return placement
+
+
+def _apply(placement: Placement, entry: OptionEntry, origin: str) -> None:
+    if entry.storage is not None and placement.storage != "command":
+        storage = "persist:app" if entry.storage == "persist" else entry.storage  # the default group
+        placement.storage, placement.storage_from = storage, origin
+    if entry.hooks is not None:
+        placement.hooks, placement.hooks_from = entry.hooks, origin
+        placement.function = entry.function
+    if entry.capacity is not None:
+        placement.capacity, placement.capacity_from = entry.capacity, origin
+
+
+def _validate(od: ObjectDictionary, index: int, subindex: int, placement: Placement, diags: Diagnostics) -> None:
+    if placement.storage != "rom":
+        return
+    obj = od.objects[index]
+    sub = obj.subs[subindex]
+    reasons = []
+    if sub.writable:
+        reasons.append(f"it is writable ({sub.access})")
+    if sub.default is not None and sub.default.nodeid:
+        reasons.append("its default is $NODEID-relative")
+    if "pre_read" in placement.hooks:
+        reasons.append("a pre_read hook refreshes it")
+    if reasons:
+        diags.add("GEN003", Loc(od.source, sub.line),
+                  f"is placed in rom ({placement.storage_from}) but {' and '.join(reasons)}",
+                  index, None if obj.is_var else subindex)

@@ -1,0 +1,466 @@
+"""Everything the templates print, decided here: names, C types, initializers, tables.
+
+The templates only loop over these lists. Values live in one struct per storage
+class (rom in FLASH; ram and each persistence group in RAM with a const defaults
+copy), members ordered by alignment so the compiler adds no padding.
+"""
+
+from __future__ import annotations
+
+import math
+import struct
+import zlib
+from dataclasses import dataclass, field
+
+from ..diagnostics import Diagnostics, Loc
+from ..model import Obj, ObjectDictionary, Sub, Value
+from ..model.datatypes import BASIC_TYPES, DataType
+from .names import comment, identifier, string_literal
+from .placement import RESTORE, STORE, Placement
+
+DEFAULT_DOMAIN_CAPACITY = 64
+
+# type kind -> (C type by storage width)
+_INT_CTYPES = {8: "int8_t", 16: "int16_t", 24: "int32_t", 32: "int32_t", 40: "int64_t", 48: "int64_t",
+               56: "int64_t", 64: "int64_t"}
+_UINT_CTYPES = {1: "uint8_t", 8: "uint8_t", 16: "uint16_t", 24: "uint32_t", 32: "uint32_t", 40: "uint64_t",
+                48: "uint64_t", 56: "uint64_t", 64: "uint64_t"}
+_ALIGN = {"int8_t": 1, "uint8_t": 1, "char": 1, "int16_t": 2, "uint16_t": 2, "int32_t": 4, "uint32_t": 4,
+          "float": 4, "int64_t": 8, "uint64_t": 8, "double": 8}
+_GROUP_SUBS = {"comm": 2, "app": 3, "application": 3}
+
+
+@dataclass
+class Member:
+    """One value in a storage struct."""
+
+    name: str
+    ctype: str
+    array: str  # "" or "[n]"
+    init: str
+    note: str
+    align: int
+    key: tuple[int, int]
+
+
+@dataclass
+class StorageStruct:
+    name: str  # C struct variable, e.g. io_node_ram
+    type_name: str
+    attr: str  # placement macro
+    const: bool
+    members: list[Member] = field(default_factory=list)
+    defaults: str = ""  # name of the const defaults copy (RAM structs)
+
+    @property
+    def qualifier(self) -> str:
+        return "const " if self.const else ""
+
+
+@dataclass
+class SubView:
+    data: str
+    size: int
+    limit: int
+    sub: int
+    type: int
+    attr: str
+    storage: str
+    note: str
+
+
+@dataclass
+class EntryView:
+    index: int
+    first: int
+    count: int
+    code: str
+    note: str
+
+
+@dataclass
+class GroupView:
+    name: str
+    mirror: str
+    defaults: str
+    type_name: str
+    signature: int
+    store_sub: int
+    nv_offset: str
+
+
+@dataclass
+class NameMacro:
+    name: str
+    value: str
+    note: str
+
+
+@dataclass
+class Accessor:
+    name: str
+    expr: str
+    note: str
+
+
+@dataclass
+class HookView:
+    sub_pos: int
+    kinds: str
+    function: str
+    note: str
+
+
+@dataclass
+class DomainView:
+    name: str
+    buffer: str
+    length: str
+    capacity: int
+
+
+@dataclass
+class NodeIdFix:
+    lvalue: str
+    ctype: str
+
+
+@dataclass
+class DictView:
+    name: str
+    upper: str
+    version: str
+    digest: str
+    source: str
+    lookup: str
+    structs: list[StorageStruct] = field(default_factory=list)
+    entries: list[EntryView] = field(default_factory=list)
+    subs: list[SubView] = field(default_factory=list)
+    limits: list[tuple[str, str, str]] = field(default_factory=list)
+    hooks: list[HookView] = field(default_factory=list)
+    functions: list[str] = field(default_factory=list)
+    groups: list[GroupView] = field(default_factory=list)
+    domains: list[DomainView] = field(default_factory=list)
+    nodeid_fixes: list[NodeIdFix] = field(default_factory=list)
+    macros: list[NameMacro] = field(default_factory=list)
+    accessors: list[Accessor] = field(default_factory=list)
+
+    def _table(self, suffix: str, present: bool) -> str:
+        return f"{self.name}_{suffix}" if present else "NULL"
+
+    @property
+    def limits_ref(self) -> str:
+        return self._table("limits", bool(self.limits))
+
+    @property
+    def hook_map_ref(self) -> str:
+        return self._table("hook_map", bool(self.hooks))
+
+    @property
+    def hook_slots_ref(self) -> str:
+        return self._table("hook_slots", bool(self.hooks))
+
+    @property
+    def groups_ref(self) -> str:
+        return self._table("groups", bool(self.groups))
+
+    @property
+    def find_ref(self) -> str:
+        return self._table("find", self.lookup == "switch")
+
+
+# ---- values ----------------------------------------------------------------------------
+
+
+def ctype_of(dtype: DataType) -> str:
+    if dtype.kind == "int":
+        return _INT_CTYPES[dtype.bits]
+    if dtype.kind in ("uint", "bool"):
+        return _UINT_CTYPES[dtype.bits]
+    if dtype.kind == "real":
+        return "float" if dtype.bits == 32 else "double"
+    if dtype.kind == "time":
+        return "uint64_t"
+    if dtype.kind == "vstring":
+        return "char"
+    if dtype.kind == "ustring":
+        return "uint16_t"
+    return "uint8_t"  # octet string, domain
+
+
+def int_literal(value: int, ctype: str) -> str:
+    if ctype in ("int64_t", "int32_t"):
+        macro = "INT64_C" if ctype == "int64_t" else "INT32_C"
+        bits = 64 if ctype == "int64_t" else 32
+        if value == -(1 << (bits - 1)):
+            return f"(-{macro}({(1 << (bits - 1)) - 1}) - 1)"
+        return f"{macro}({value})"
+    if ctype == "uint64_t":
+        return f"UINT64_C(0x{value:X})"
+    if ctype == "uint32_t":
+        return f"UINT32_C(0x{value:X})"
+    return str(value)
+
+
+def real_literal(value: float, bits: int) -> str:
+    if math.isnan(value):
+        return "NAN"
+    if math.isinf(value):
+        return "INFINITY" if value > 0 else "-INFINITY"
+    if bits == 32:
+        value = struct.unpack("<f", struct.pack("<f", value))[0]
+        return f"{value:.9g}f" if "e" in f"{value:.9g}" or "." in f"{value:.9g}" else f"{value:.9g}.0f"
+    text = f"{value:.17g}"
+    return text if ("e" in text or "." in text) else text + ".0"
+
+
+def limit_bits(value: int | float, dtype: DataType) -> int:
+    """The 64-bit pattern odg_limit_t holds for a limit of `dtype`."""
+    if dtype.kind == "real":
+        return int.from_bytes(struct.pack("<d", float(value)), "little")
+    return int(value) & 0xFFFFFFFFFFFFFFFF
+
+
+def _value_of(sub: Sub) -> Value | None:
+    """A DCF's configured ParameterValue wins over the DefaultValue."""
+    if sub.parameter_value is not None and not sub.parameter_value.empty and sub.parameter_value.error is None:
+        return sub.parameter_value
+    return sub.default
+
+
+# ---- the builder --------------------------------------------------------------------------
+
+
+class _Builder:
+    def __init__(self, od: ObjectDictionary, placements: dict[tuple[int, int], Placement], name: str,
+                 diags: Diagnostics) -> None:
+        self.od, self.placements, self.diags = od, placements, diags
+        self.name = name
+        self.structs: dict[str, StorageStruct] = {}
+        self.member_names: dict[str, tuple[int, int]] = {}
+
+    def struct_for(self, storage: str) -> StorageStruct:
+        key = storage.replace(":", "_")
+        if key not in self.structs:
+            const = storage == "rom"
+            group = storage.split(":", 1)[1] if ":" in storage else ""
+            attr = "ODG_ATTR_ROM" if const else ("ODG_ATTR_PERSIST_" + group.upper() if group else "ODG_ATTR_RAM")
+            var = f"{self.name}_{key}"
+            self.structs[key] = StorageStruct(var, f"{var}_t", attr, const,
+                                              defaults="" if const else f"{var}_defaults")
+        return self.structs[key]
+
+    def member_name(self, obj: Obj, sub: Sub) -> str:
+        base = f"x{obj.index:04X}_" + identifier(obj.name, "object")
+        name = base if obj.is_var else f"{base}_s{sub.subindex}_" + identifier(sub.name, "sub")
+        key = (obj.index, sub.subindex)
+        if self.member_names.setdefault(name, key) != key:
+            self.diags.add("GEN004", Loc(self.od.source, sub.line), f"C name {name} is used twice", obj.index)
+        return name
+
+
+def build(od: ObjectDictionary, placements: dict[tuple[int, int], Placement], name: str, *,
+          version: str, digest: str, lookup: str, diags: Diagnostics) -> DictView:
+    b = _Builder(od, placements, name, diags)
+    view = DictView(name=name, upper=name.upper(), version=version, digest=digest,
+                    source=comment(od.source.rsplit("/", 1)[-1]), lookup=lookup)
+    for obj in od.sorted_objects():
+        if obj.index < 0x1000:
+            diags.add("GEN006", Loc(od.source, obj.line), "defines a data type; not generated", obj.index)
+            continue
+        _entry(b, view, obj)
+    view.structs = [_sorted_struct(s) for _, s in sorted(b.structs.items(), key=lambda kv: _struct_order(kv[0]))]
+    view.groups = _groups(od, view)
+    return view
+
+
+def _struct_order(key: str) -> tuple[int, str]:
+    return ({"rom": 0, "ram": 1}.get(key, 2), key)
+
+
+def _sorted_struct(s: StorageStruct) -> StorageStruct:
+    s.members.sort(key=lambda m: (-m.align, m.key))
+    return s
+
+
+def _entry(b: _Builder, view: DictView, obj: Obj) -> None:
+    subs = obj.sorted_subs()
+    dense = [s.subindex for s in subs] == list(range(len(subs)))
+    code = {2: "ODG_OBJ_DOMAIN", 8: "ODG_OBJ_ARRAY", 9: "ODG_OBJ_RECORD"}.get(obj.object_code, "ODG_OBJ_VAR")
+    view.entries.append(EntryView(obj.index, len(view.subs), len(subs), code + (" | ODG_E_DENSE" if dense else ""),
+                                  comment(obj.name)))
+    obj_ident = f"X{obj.index:04X}_" + identifier(obj.name, "object").upper()
+    view.macros.append(NameMacro(f"{view.upper}_IDX_{obj_ident}", f"0x{obj.index:04X}u", comment(obj.name)))
+    for sub in subs:
+        _sub(b, view, obj, sub)
+
+
+def _sub(b: _Builder, view: DictView, obj: Obj, sub: Sub) -> None:
+    placement = b.placements[(obj.index, sub.subindex)]
+    dtype = BASIC_TYPES.get(sub.data_type or 0)
+    if dtype is None:
+        b.diags.add("GEN005", Loc(b.od.source, sub.line_of("datatype")),
+                    f"has DataType 0x{sub.data_type or 0:04X}, not a basic type", obj.index,
+                    None if obj.is_var else sub.subindex)
+        return
+    member = b.member_name(obj, sub)
+    pos = len(view.subs)
+    attr = _attr_flags(sub, placement, dtype)
+    if placement.storage == "command":
+        storage = "ODG_S_STORE" + (" | ODG_S_RESTORE_FLAG" if obj.index == RESTORE else "")
+        view.subs.append(SubView("NULL", 4, 0, sub.subindex, dtype.code, attr, storage, comment(sub.name)))
+        return
+    data, size = _value_member(b, view, obj, sub, dtype, placement, member)
+    limit = _limit(view, sub, dtype)
+    if limit >= 0:
+        attr += " | ODG_A_LIMIT"
+    view.subs.append(SubView(data, size, max(limit, 0), sub.subindex, dtype.code, attr,
+                             _storage_code(placement, view), comment(sub.name)))
+    if placement.hooks:
+        kinds = " | ".join(f"ODG_HOOK_{k.upper()}" for k in placement.hooks)
+        label = comment(f"0x{obj.index:04X}sub{sub.subindex}")
+        view.hooks.append(HookView(pos, kinds, placement.function or "NULL", label))
+        if placement.function and placement.function not in view.functions:
+            view.functions.append(placement.function)
+    if not obj.is_var:
+        sub_ident = f"X{obj.index:04X}_S{sub.subindex}_" + identifier(sub.name, "sub").upper()
+        view.macros.append(NameMacro(f"{view.upper}_SUB_{sub_ident}", f"0x{sub.subindex:02X}u", comment(sub.name)))
+
+
+def _attr_flags(sub: Sub, placement: Placement, dtype: DataType) -> str:
+    flags = []
+    if sub.readable:
+        flags.append("ODG_A_READ")
+    if sub.writable:
+        flags.append("ODG_A_WRITE")
+    if sub.pdo_mapping and dtype.is_numeric:
+        if sub.access in ("ro", "const", "rwr", "rw"):
+            flags.append("ODG_A_TPDO")
+        if sub.access in ("wo", "rww", "rw"):
+            flags.append("ODG_A_RPDO")
+    value = _value_of(sub)
+    if value is not None and value.nodeid and isinstance(value.parsed, int):
+        flags.append("ODG_A_NODEID")
+    if placement.hooks:
+        flags.append("ODG_A_HOOK")
+    return " | ".join(flags) or "0"
+
+
+def _storage_code(placement: Placement, view: DictView) -> str:
+    if placement.storage == "rom":
+        return "ODG_S_ROM"
+    if placement.storage == "ram":
+        return "ODG_S_RAM"
+    group = placement.group or "app"
+    return f"ODG_S_PERSIST | ({view.upper}_GROUP_{group.upper()} << 2)"
+
+
+def _value_member(b: _Builder, view: DictView, obj: Obj, sub: Sub, dtype: DataType, placement: Placement,
+                  member: str) -> tuple[str, int]:
+    storage = "ram" if dtype.kind == "domain" and placement.storage == "rom" else placement.storage
+    target = b.struct_for(storage)
+    value = _value_of(sub)
+    ctype = ctype_of(dtype)
+    note = comment(f"0x{obj.index:04X}sub{sub.subindex} {sub.name}")
+    key = (obj.index, sub.subindex)
+    if dtype.kind in ("vstring", "ostring", "ustring"):
+        array, init, size = _string_init(dtype, value, placement.capacity)
+        target.members.append(Member(member, ctype, array, init, note, _ALIGN[ctype], key))
+        _accessor(view, member, target, note)
+        return f"{target.name}.{member}", size
+    if dtype.kind == "domain":
+        return _domain(b, view, target, member, value, placement, note, key)
+    init = _scalar_init(dtype, value, ctype)
+    target.members.append(Member(member, ctype, "", init, note, _ALIGN[ctype], key))
+    if value is not None and value.nodeid and isinstance(value.parsed, int):
+        view.nodeid_fixes.append(NodeIdFix(f"{target.name}.{member}", ctype))
+    _accessor(view, member, target, note)
+    return f"&{target.name}.{member}", max(dtype.bits // 8, 1)
+
+
+def _accessor(view: DictView, member: str, target: StorageStruct, note: str) -> None:
+    view.accessors.append(Accessor(f"{view.name}_{member}", f"({target.name}.{member})", note))
+
+
+def _scalar_init(dtype: DataType, value: Value | None, ctype: str) -> str:
+    parsed = value.parsed if value is not None and value.error is None else None
+    if dtype.kind == "real":
+        return real_literal(float(parsed) if isinstance(parsed, (int, float)) else 0.0, dtype.bits)
+    number = parsed if isinstance(parsed, int) else 0
+    return int_literal(number, ctype)
+
+
+def _string_init(dtype: DataType, value: Value | None, capacity: int | None) -> tuple[str, str, int]:
+    text = value.parsed if value is not None and value.error is None else None
+    if dtype.kind == "vstring":
+        data = (text if isinstance(text, str) else "").encode("utf-8")
+        cap = max(len(data), capacity or 0)
+        return f"[{cap + 1}]", string_literal(data), cap
+    if dtype.kind == "ostring":
+        data = text if isinstance(text, bytes) else b""
+        cap = max(len(data), capacity or 0)
+        body = ", ".join(f"0x{x:02X}" for x in data) or "0"
+        return f"[{max(cap, 1)}]", "{" + body + "}", cap
+    encoded = (text if isinstance(text, str) else "").encode("utf-16-le")
+    units = list(struct.unpack(f"<{len(encoded) // 2}H", encoded))
+    cap_units = max(len(units), (capacity or 0) // 2)
+    body = ", ".join(f"0x{u:04X}" for u in units + [0])
+    return f"[{cap_units + 1}]", "{" + body + "}", 2 * cap_units
+
+
+def _domain(b: _Builder, view: DictView, target: StorageStruct, member: str, value: Value | None,
+            placement: Placement, note: str, key: tuple[int, int]) -> tuple[str, int]:
+    raw = value.text.strip() if value is not None else ""
+    try:
+        data = bytes.fromhex(raw.removeprefix("0x")) if raw else b""
+    except ValueError:
+        data = raw.encode("utf-8")
+    cap = max(len(data), placement.capacity if placement.capacity is not None else DEFAULT_DOMAIN_CAPACITY, 1)
+    body = ", ".join(f"0x{x:02X}" for x in data) or "0"
+    target.members.append(Member(member + "_buf", "uint8_t", f"[{cap}]", "{" + body + "}", note, 1, key))
+    target.members.append(Member(member + "_len", "uint32_t", "", f"UINT32_C({len(data)})", note, 4, key))
+    dom = f"{b.name}_dom_{member}"
+    view.domains.append(DomainView(dom, f"{target.name}.{member}_buf", f"&{target.name}.{member}_len", cap))
+    return f"&{dom}", cap
+
+
+def _limit(view: DictView, sub: Sub, dtype: DataType) -> int:
+    if not dtype.is_numeric or (sub.low is None and sub.high is None):
+        return -1
+    low = _limit_value(sub.low, dtype.min)
+    high = _limit_value(sub.high, dtype.max)
+    if low is None or high is None:
+        return -1
+    view.limits.append((f"UINT64_C(0x{limit_bits(low, dtype):016X})", f"UINT64_C(0x{limit_bits(high, dtype):016X})",
+                        comment(f"{low} .. {high}")))
+    return len(view.limits) - 1
+
+
+def _limit_value(value: Value | None, fallback: int | float | None) -> int | float | None:
+    if value is None or value.empty:
+        return fallback
+    if value.error is not None or value.nodeid or not isinstance(value.parsed, (int, float)):
+        return None
+    return value.parsed
+
+
+def _groups(od: ObjectDictionary, view: DictView) -> list[GroupView]:
+    store = od.objects.get(STORE)
+    groups = []
+    offset = "0u"
+    for s in view.structs:
+        if not s.name.startswith(f"{view.name}_persist_"):
+            continue
+        group = s.name[len(f"{view.name}_persist_"):]
+        sub = _GROUP_SUBS.get(group, 0)
+        store_sub = sub if store is not None and sub in store.subs else 1
+        groups.append(GroupView(group, s.name, s.defaults, s.type_name, _signature(s), store_sub, offset))
+        offset = f"{offset} + 2u * ODG_PERSIST_SLOT_SIZE(sizeof({s.type_name}))"
+    return groups
+
+
+def _signature(s: StorageStruct) -> int:
+    """Layout signature: (index, sub, C type, array) in struct order."""
+    text = ";".join(f"{m.key[0]:04X}.{m.key[1]}.{m.ctype}{m.array}" for m in s.members)
+    return zlib.crc32(text.encode("ascii"))
+

@@ -1,0 +1,45 @@
+"""GEN: findings of the generator (options file, placement, C names).
+
+Defined here so they are part of the one catalogue; odgen.codegen reports them.
+"""
+
+from __future__ import annotations
+
+from ..diagnostics import Severity, define_rule
+
+E, W, N = Severity.ERROR, Severity.WARNING, Severity.INFO
+
+define_rule(
+    "GEN001", E, "invalid options file", ref="odgen options",
+    why="The options file decides placement, hooks and capacities; a key or value odgen does not "
+    "understand would silently change the generated dictionary.",
+    example='[[entry]]\nmatch = "0x2000"\nstorag = "rom"',
+    fix="Use the keys match, storage, hooks, function, capacity (see docs/generate.md).")
+define_rule(
+    "GEN002", W, "options pattern matches nothing", ref="odgen options",
+    why="A pattern that selects no entry is usually a typo or a stale line after the description changed.",
+    example='[[entry]]\nmatch = "0x2100"   # the file has no 0x2100\nstorage = "ram"',
+    fix="Correct the index/sub pattern or remove the entry.")
+define_rule(
+    "GEN003", E, "impossible storage class", ref="odgen placement",
+    why="A `rom` value lives in FLASH and can never change: it cannot be writable, $NODEID-relative "
+    "(resolved at run time) or refreshed by a pre-read hook.",
+    example='AccessType=rw\n# options: storage = "rom"',
+    fix="Use ram or persist for the entry, or make it const/ro without hooks.")
+define_rule(
+    "GEN004", E, "C identifier collision", ref="odgen names",
+    why="Two entries would get the same C name, so one accessor or macro would shadow the other.",
+    example="[2000sub1] ParameterName=Speed\n[2000sub1] ... (same sanitized name twice)",
+    fix="Rename one of the entries (ParameterName) so their C names differ.")
+define_rule(
+    "GEN005", E, "entry cannot be generated", ref="odgen generate",
+    why="The generated runtime handles the CiA 301 basic types 0x0001-0x001B; other data types "
+    "(DEFSTRUCT records used as a type, vendor types) have no defined memory layout.",
+    example="DataType=0x0040",
+    fix="Describe the entry with a basic data type, or exclude it with an options entry.")
+define_rule(
+    "GEN006", N, "object not generated", ref="odgen generate",
+    why="Data type definition objects (0x0001-0x025F) describe types, not values; they are not "
+    "placed in the generated dictionary.",
+    example="[0020]\nParameterName=PDO_COMMUNICATION_PARAMETER\nObjectType=0x6",
+    fix="Nothing to do; this is a note.")
