@@ -13,6 +13,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from . import __version__
+from .codegen.check import run_check
 from .codegen.explain import explain_lines
 from .codegen.generate import LOOKUPS, Request, generate, prepare, valid_name
 from .codegen.options import parse_pattern
@@ -76,6 +77,15 @@ def build_parser() -> argparse.ArgumentParser:
     explain.add_argument("input", type=Path, metavar="FILE")
     explain.add_argument("index", metavar="INDEX", help="e.g. 0x6040 or 0x6200sub1")
     explain.add_argument("--options", type=Path, metavar="OPTS")
+
+    chk = commands.add_parser("check", help="generate, compile and run a self-test of the dictionary")
+    chk.add_argument("input", type=Path, metavar="FILE")
+    chk.add_argument("--name", help="C name of the dictionary")
+    chk.add_argument("--options", type=Path, metavar="OPTS")
+    chk.add_argument("--node-id", type=_node_id, help="node-id the self-test runs with (default 5)")
+    chk.add_argument("--lookup", choices=LOOKUPS, default="switch")
+    chk.add_argument("--keep", type=Path, metavar="DIR", help="build in DIR and keep the files")
+    chk.add_argument("--verbose", "-v", action="store_true", help="print the whole self-test output")
 
     rules = commands.add_parser("rules", help="list the rule catalogue")
     rules.add_argument("--markdown", action="store_true", help="as docs/rules.md")
@@ -160,13 +170,29 @@ def cmd_explain(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_check(args: argparse.Namespace) -> int:
+    if args.name is not None and not valid_name(args.name):
+        raise OdgenError(f"--name '{args.name}' must be a C identifier of at most 32 characters")
+    request = Request(args.input, args.name, args.options, args.node_id, args.lookup)
+    outcome = run_check(request, workdir=args.keep)
+    _print_findings(outcome.result.diags)
+    if not outcome.result.files:
+        print(f"odgen: {args.input}: errors found, nothing generated", file=sys.stderr)
+        return 1
+    lines = outcome.output.splitlines()
+    shown = lines if args.verbose or not outcome.ok else [x for x in lines if not x.startswith("FAIL")]
+    print("\n".join(shown))
+    print(f"odgen check: {args.input}: {'ok' if outcome.ok else 'FAILED'}")
+    return 0 if outcome.ok else 1
+
+
 def cmd_rules(args: argparse.Namespace) -> int:
     sys.stdout.write(render_markdown() if args.markdown else render_table())
     return 0
 
 
 COMMANDS = {"lint": cmd_lint, "convert": cmd_convert, "generate": cmd_generate, "explain": cmd_explain,
-            "rules": cmd_rules}
+            "check": cmd_check, "rules": cmd_rules}
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -1,0 +1,60 @@
+"""`odgen check`: generate, compile with the host C compiler against the runtime, run the self-test."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..errors import OdgenError
+from .generate import Request, Result, _environment, generate
+from .selftest import build_selftest
+
+RUNTIME = Path(__file__).resolve().parents[2] / "runtime"
+RUNTIME_SOURCES = ("odg.c", "odg_persist.c")
+CFLAGS = ("-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-O1")
+DEFAULT_NODE_ID = 5
+
+
+@dataclass
+class CheckOutcome:
+    ok: bool
+    output: str
+    result: Result
+
+
+def compiler() -> str:
+    cc = os.environ.get("CC") or shutil.which("cc") or shutil.which("gcc") or shutil.which("clang")
+    if not cc:
+        raise OdgenError("no C compiler found (set CC, or install gcc)")
+    return cc
+
+
+def _compile(cc: str, workdir: Path, name: str, extra: tuple[str, ...]) -> subprocess.CompletedProcess[str]:
+    sources = [str(workdir / f"{name}.c"), str(workdir / f"{name}_selftest.c")]
+    sources += [str(RUNTIME / s) for s in RUNTIME_SOURCES]
+    cmd = [cc, *CFLAGS, *extra, f"-I{RUNTIME}", f"-I{workdir}", *sources, "-lm", "-o", str(workdir / "selftest")]
+    return subprocess.run(cmd, capture_output=True, text=True, check=False)
+
+
+def run_check(request: Request, workdir: Path | None = None, cc: str | None = None,
+              cflags: tuple[str, ...] = ()) -> CheckOutcome:
+    result = generate(request)
+    if not result.files or result.view is None or result.od is None or result.placements is None:
+        return CheckOutcome(False, "", result)
+    with tempfile.TemporaryDirectory(prefix="odgen-check-") as tmp:
+        work = workdir or Path(tmp)
+        work.mkdir(parents=True, exist_ok=True)
+        for fname, text in result.files.items():
+            (work / fname).write_text(text, encoding="utf-8")
+        test = build_selftest(result.od, result.placements, result.view, request.node_id or DEFAULT_NODE_ID)
+        selftest = _environment().get_template("selftest.c.j2").render(t=test)
+        (work / f"{result.view.name}_selftest.c").write_text(selftest, encoding="utf-8")
+        built = _compile(cc or compiler(), work, result.view.name, cflags)
+        if built.returncode != 0:
+            return CheckOutcome(False, "compile failed:\n" + built.stdout + built.stderr, result)
+        ran = subprocess.run([str(work / "selftest")], capture_output=True, text=True, check=False, timeout=120)
+        return CheckOutcome(ran.returncode == 0, ran.stdout + ran.stderr, result)

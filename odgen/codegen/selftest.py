@@ -1,0 +1,164 @@
+"""Expectations for the generated self-test, computed from the model by a second path.
+
+The view-model turns values into C initializers; this module turns the same model
+values into CANopen wire bytes (little-endian) directly, so the self-test compares
+what the compiled dictionary serves with what the description says.
+"""
+
+from __future__ import annotations
+
+import struct
+from dataclasses import dataclass, field
+
+from ..model import Obj, ObjectDictionary, Sub, Value
+from ..model.datatypes import BASIC_TYPES, DataType
+from .placement import RESTORE, STORE, Placement
+from .viewmodel import DEFAULT_DOMAIN_CAPACITY, DictView
+
+MAX_WRITE_CASES = 3
+
+
+@dataclass
+class WriteCase:
+    data: str  # C byte list
+    length: int
+    expect: str  # abort code name
+
+
+@dataclass
+class Expect:
+    index: int
+    sub: int
+    label: str
+    readable: bool
+    writable: bool
+    value: str  # C byte list of the expected upload, "" when not compared
+    length: int
+    compare: bool
+    writes: list[WriteCase] = field(default_factory=list)
+    hook_kinds: str = "0"
+    persistent: bool = False
+
+
+@dataclass
+class SelfTest:
+    name: str
+    node_id: int
+    expects: list[Expect]
+    functions: list[str]
+    missing_index: int
+    groups: int
+    has_store: bool
+    structs: list[tuple[str, str]]  # (label, C variable)
+
+    @property
+    def test_persistence(self) -> bool:
+        return self.groups > 0 and self.has_store
+
+
+def wire_bytes(value: int | float | bytes | str, dtype: DataType) -> bytes:
+    if dtype.kind == "real":
+        return struct.pack("<f" if dtype.bits == 32 else "<d", float(value))
+    if dtype.kind in ("int", "uint", "bool", "time"):
+        size = max(dtype.bits // 8, 1)
+        return (int(value) & ((1 << (8 * size)) - 1)).to_bytes(size, "little")
+    if isinstance(value, bytes):
+        return value
+    if dtype.kind == "ustring":
+        return str(value).encode("utf-16-le")
+    return str(value).encode("utf-8")
+
+
+def c_bytes(data: bytes) -> str:
+    return "{" + ", ".join(f"0x{b:02X}" for b in data) + "}" if data else "{0}"
+
+
+def _value(sub: Sub) -> Value | None:
+    pv = sub.parameter_value
+    if pv is not None and not pv.empty and pv.error is None:
+        return pv
+    return sub.default
+
+
+def _expected(sub: Sub, dtype: DataType, node_id: int) -> bytes | None:
+    value = _value(sub)
+    if dtype.kind == "domain":
+        return None  # domains are compared by length only in hooks/streams, not by text form
+    if value is None or value.error is not None or value.parsed is None:
+        if dtype.is_string:
+            return b""
+        return wire_bytes(0, dtype)
+    resolved = value.resolve(node_id)
+    if resolved is None:
+        return None
+    if dtype.kind == "ostring" and isinstance(resolved, bytes):
+        return resolved
+    return wire_bytes(resolved, dtype)
+
+
+def _bound(value: Value | None, fallback: int | float | None) -> int | float | None:
+    if value is None or value.empty:
+        return fallback
+    if value.error is not None or value.nodeid or not isinstance(value.parsed, (int, float)):
+        return None
+    return value.parsed
+
+
+def _limits(sub: Sub, dtype: DataType) -> tuple[int | float, int | float] | None:
+    lo, hi = _bound(sub.low, dtype.min), _bound(sub.high, dtype.max)
+    return (lo, hi) if lo is not None and hi is not None and lo <= hi else None
+
+
+def _write_cases(sub: Sub, dtype: DataType) -> list[WriteCase]:
+    if not dtype.is_numeric:
+        return []
+    bounds = _limits(sub, dtype)
+    if bounds is None:
+        return []
+    lo, hi = bounds
+    mid = (lo + hi) / 2 if dtype.kind == "real" else (int(lo) + int(hi)) // 2
+    cases = [WriteCase(c_bytes(wire_bytes(v, dtype)), len(wire_bytes(v, dtype)), "ODG_OK") for v in (lo, hi, mid)]
+    size = len(wire_bytes(lo, dtype))
+    cases.append(WriteCase(c_bytes(wire_bytes(lo, dtype) + b"\x00"), size + 1, "ODG_ABORT_TOO_LONG"))
+    if dtype.is_integer and dtype.min is not None and dtype.max is not None:
+        if int(hi) < int(dtype.max):
+            cases.append(WriteCase(c_bytes(wire_bytes(int(hi) + 1, dtype)), size, "ODG_ABORT_VALUE_HIGH"))
+        if int(lo) > int(dtype.min):
+            cases.append(WriteCase(c_bytes(wire_bytes(int(lo) - 1, dtype)), size, "ODG_ABORT_VALUE_LOW"))
+    return cases
+
+
+def _expect(obj: Obj, sub: Sub, placement: Placement, node_id: int) -> Expect | None:
+    dtype = BASIC_TYPES.get(sub.data_type or 0)
+    if dtype is None or obj.index < 0x1000 or (obj.index in (STORE, RESTORE) and sub.subindex > 0):
+        return None
+    expected = _expected(sub, dtype, node_id)
+    label = f"0x{obj.index:04X}sub{sub.subindex}"
+    exp = Expect(obj.index, sub.subindex, label, sub.readable, sub.writable,
+                 c_bytes(expected or b""), len(expected or b""), expected is not None and dtype.kind != "domain",
+                 hook_kinds=" | ".join(f"ODG_HOOK_{k.upper()}" for k in placement.hooks) or "0",
+                 persistent=placement.storage.startswith("persist:"))
+    if sub.writable:
+        exp.writes = _write_cases(sub, dtype)
+    elif dtype.is_numeric:
+        data = expected or wire_bytes(0, dtype)
+        exp.writes = [WriteCase(c_bytes(data), len(data), "ODG_ABORT_READ_ONLY")]
+    return exp
+
+
+def build_selftest(od: ObjectDictionary, placements: dict[tuple[int, int], Placement], view: DictView,
+                   node_id: int) -> SelfTest:
+    expects = []
+    for obj in od.sorted_objects():
+        for sub in obj.sorted_subs():
+            exp = _expect(obj, sub, placements[(obj.index, sub.subindex)], node_id)
+            if exp is not None:
+                expects.append(exp)
+    missing = next(i for i in range(0x5FFF, 0x1FFF, -1) if i not in od.objects)
+    structs = [(s.name.removeprefix(view.name + "_"), s.name) for s in view.structs]
+    store = od.objects.get(STORE)
+    return SelfTest(view.name, node_id, expects, view.functions, missing, len(view.groups),
+                    store is not None and 1 in store.subs and RESTORE in od.objects, structs)
+
+
+__all__ = ["DEFAULT_DOMAIN_CAPACITY", "SelfTest", "build_selftest"]
