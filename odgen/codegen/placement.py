@@ -29,6 +29,7 @@ class Placement:
     hooks: tuple[str, ...] = ()
     hooks_from: str = "none"
     function: str | None = None
+    function_loc: Loc | None = None  # the options entry that named the function
     capacity: int | None = None
     capacity_from: str = "default"
 
@@ -84,17 +85,18 @@ def _place_one(od: ObjectDictionary, obj: Obj, sub: Sub, options: Options) -> Pl
     for entry in options.entries:
         if any(p.matches(obj.index, sub.subindex) for p in entry.patterns):
             entry.used = True
-            _apply(placement, entry, f"{options.source}:{entry.line}")
+            _apply(placement, entry, Loc(options.source, entry.line))
     return placement
 
 
-def _apply(placement: Placement, entry: OptionEntry, origin: str) -> None:
+def _apply(placement: Placement, entry: OptionEntry, loc: Loc) -> None:
+    origin = str(loc)
     if entry.storage is not None and placement.storage != "command":
         storage = "persist:app" if entry.storage == "persist" else entry.storage  # the default group
         placement.storage, placement.storage_from = storage, origin
     if entry.hooks is not None:
         placement.hooks, placement.hooks_from = entry.hooks, origin
-        placement.function = entry.function
+        placement.function, placement.function_loc = entry.function, loc
     if entry.capacity is not None:
         placement.capacity, placement.capacity_from = entry.capacity, origin
 

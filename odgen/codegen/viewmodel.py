@@ -271,7 +271,25 @@ def build(od: ObjectDictionary, placements: dict[tuple[int, int], Placement], na
         _entry(b, view, obj)
     view.structs = [_sorted_struct(s) for _, s in sorted(b.structs.items(), key=lambda kv: _struct_order(kv[0]))]
     view.groups = _groups(od, view)
+    _check_functions(b, view)
     return view
+
+
+def _generated_symbols(view: DictView) -> set[str]:
+    tables = ("entries", "subs", "limits", "hook_map", "hook_slots", "groups", "state", "find", "reset")
+    names = {view.name, *(f"{view.name}_{t}" for t in tables), *(a.name for a in view.accessors)}
+    names |= {s.name for s in view.structs} | {s.defaults for s in view.structs} | {d.name for d in view.domains}
+    return names
+
+
+def _check_functions(b: _Builder, view: DictView) -> None:
+    """Hook functions named in the options must not clash with generated or runtime names."""
+    taken = _generated_symbols(view)
+    for placement in b.placements.values():
+        fn = placement.function
+        if fn and (fn in taken or fn.startswith("odg_")) and placement.function_loc is not None:
+            b.diags.add("GEN004", placement.function_loc, f"hook function {fn} clashes with a generated or runtime name")
+            taken.discard(fn)  # report each clash once
 
 
 def _struct_order(key: str) -> tuple[int, str]:

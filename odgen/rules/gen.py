@@ -28,9 +28,11 @@ define_rule(
     fix="Use ram or persist for the entry, or make it const/ro without hooks.")
 define_rule(
     "GEN004", E, "C identifier collision", ref="odgen names",
-    why="Two entries would get the same C name, so one accessor or macro would shadow the other.",
-    example="[2000sub1] ParameterName=Speed\n[2000sub1] ... (same sanitized name twice)",
-    fix="Rename one of the entries (ParameterName) so their C names differ.")
+    why="A C name odgen would emit twice does not compile or silently shadows another: entry names are "
+    "made unique by their index and sub-index, but a hook function named in the options file can clash "
+    "with a generated symbol or the odg_ runtime prefix.",
+    example='[[entry]]\nmatch = "0x6200sub1"\nhooks = ["post_write"]\nfunction = "io_node_reset"',
+    fix="Name the hook function outside the dictionary's prefix and outside odg_.")
 define_rule(
     "GEN005", E, "entry cannot be generated", ref="odgen generate",
     why="The generated runtime handles the CiA 301 basic types 0x0001-0x001B; other data types "

@@ -1,0 +1,123 @@
+"""odgen generate: GEN rules by fixture, refusal, determinism, --check, names, placement."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+
+from odgen.cli import main
+from odgen.codegen.generate import Request, generate
+from odgen.codegen.names import comment, identifier, string_literal
+from odgen.diagnostics import RULES
+
+from .conftest import FIXTURES, ROOT
+
+GEN = FIXTURES / "generate"
+PLAIN = GEN / "plain.eds"
+EXAMPLE = ROOT / "examples" / "io-node" / "io-node.eds"
+EXAMPLE_OPTIONS = ROOT / "examples" / "io-node" / "io-node.toml"
+
+
+def _rendered(result) -> list[str]:
+    prefix = f"{GEN}/"
+    return [d.text().replace(prefix, "") for d in result.diags.sorted()]
+
+
+def _fixture_cases() -> list[tuple[str, Path, Path | None]]:
+    cases = []
+    for path in sorted(GEN.glob("GEN*")):
+        if path.suffix == ".toml":
+            cases.append((path.stem, PLAIN, path))
+        else:
+            cases.append((path.stem, path, None))
+    return cases
+
+
+def _expectations(path: Path) -> list[str]:
+    marker = "# expect: " if path.suffix == ".toml" else "; expect: "
+    return [x[len(marker):] for x in path.read_text().splitlines() if x.startswith(marker)]
+
+
+@pytest.mark.parametrize("rule,eds,options", _fixture_cases(), ids=lambda c: c if isinstance(c, str) else "")
+def test_gen_fixture(rule: str, eds: Path, options: Path | None) -> None:
+    result = generate(Request(eds, options=options))
+    wanted = _expectations(options or eds)
+    assert wanted and all(f"[{rule}]" in w for w in wanted)
+    got = _rendered(result)
+    for line in wanted:
+        assert line in got, f"expected {line!r}, got {got}"
+    if RULES[rule].severity.label == "error":
+        assert result.files == {}, "generation must stop on an error"
+
+
+def test_every_gen_rule_has_a_fixture() -> None:
+    assert {r for r in RULES if r.startswith("GEN")} == {rule for rule, _, _ in _fixture_cases()}
+
+
+def test_refuses_on_lint_errors_and_writes_nothing(tmp_path: Path) -> None:
+    bad = FIXTURES / "syntax" / "SYN003.eds"
+    assert main(["generate", str(bad), "-o", str(tmp_path / "out")]) == 1
+    assert not (tmp_path / "out").exists()
+
+
+def test_output_is_deterministic_and_hash_tracks_options(tmp_path: Path) -> None:
+    one, two, three = (tmp_path / n for n in ("one", "two", "three"))
+    assert main(["generate", str(EXAMPLE), "-o", str(one)]) == 0
+    assert main(["generate", str(EXAMPLE), "-o", str(two)]) == 0
+    assert main(["generate", str(EXAMPLE), "-o", str(three), "--options", str(EXAMPLE_OPTIONS)]) == 0
+    files = sorted(p.name for p in one.iterdir())
+    assert files == ["io_node.c", "io_node.h"]
+    for name in files:
+        assert (one / name).read_bytes() == (two / name).read_bytes()
+    assert (one / "io_node.h").read_text() != (three / "io_node.h").read_text()
+    header = (one / "io_node.h").read_text()
+    assert "hash" in header and not re.search(r"\d{4}-\d\d-\d\d|\d\d:\d\d:\d\d", header), "no timestamps"
+
+
+def test_check_flag_reports_stale_files(tmp_path: Path) -> None:
+    out = tmp_path / "gen"
+    assert main(["generate", str(EXAMPLE), "-o", str(out), "--check"]) == 1
+    assert main(["generate", str(EXAMPLE), "-o", str(out)]) == 0
+    assert main(["generate", str(EXAMPLE), "-o", str(out), "--check"]) == 0
+    (out / "io_node.c").write_text("/* edited */\n")
+    assert main(["generate", str(EXAMPLE), "-o", str(out), "--check"]) == 1
+
+
+@pytest.mark.parametrize("name", ["../../x", "/abs/x", "int", "9lives", "a-b", "x" * 40])
+def test_unsafe_names_are_rejected(tmp_path: Path, name: str, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["generate", str(EXAMPLE), "-o", str(tmp_path), "--name", name]) == 2
+    assert "C identifier" in capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_sanitizer() -> None:
+    assert identifier("Vendor-ID") == "vendor_id"
+    assert identifier("1st value") == "n1st_value"
+    assert identifier("int") == "int_"
+    assert identifier("***") == "entry"
+    assert "*/" not in comment("evil */ #define X")
+    assert "\n" not in comment("two\nlines")
+    assert string_literal('a"b\\c??=\n\xe9'.encode()) == '"a\\"b\\\\c\\?\\?=\\012\\303\\251"'
+
+
+def test_explain_names_the_origin(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["explain", str(EXAMPLE), "0x6200sub1", "--options", str(EXAMPLE_OPTIONS)]) == 0
+    out = capsys.readouterr().out
+    assert "storage: ram" in out and "auto: writable or PDO-mappable" in out
+    assert "pre_write, post_write -> io_node_apply_outputs()" in out and "io-node.toml:21" in out
+    assert main(["explain", str(EXAMPLE), "0x2000", "--options", str(EXAMPLE_OPTIONS)]) == 0
+    assert "persist:app" in capsys.readouterr().out
+
+
+def test_placement_rules() -> None:
+    result = generate(Request(EXAMPLE, options=EXAMPLE_OPTIONS))
+    placements = result.placements
+    assert placements is not None
+    assert placements[(0x1018, 1)].storage == "rom"  # ro, not mappable
+    assert placements[(0x1001, 0)].storage == "ram"  # ro but PDO-mappable
+    assert placements[(0x1200, 1)].storage == "ram"  # $NODEID-relative
+    assert placements[(0x1010, 1)].storage == "command"
+    assert placements[(0x1017, 0)].storage == "persist:comm"
+    assert placements[(0x2000, 0)].storage == "persist:app"
