@@ -196,6 +196,18 @@ typedef struct odg_group {
     uint8_t store_sub;       /* its sub-index in 0x1010/0x1011 (1 = all groups) */
 } odg_group_t;
 
+/* NV layout of a group: two slots, at nv_addr and nv_addr + ODG_PERSIST_SLOT_SIZE(size); a slot
+ * is a 20-byte header and the image, rounded up to ODG_PERSIST_ALIGN (a power of two; set it to
+ * the erase page size of a page-erased flash so that each slot has pages of its own). A constant
+ * expression, so generated group tables can place the slots. */
+#ifndef ODG_PERSIST_ALIGN
+#define ODG_PERSIST_ALIGN 8u
+#endif
+#define ODG_PERSIST_HEADER_SIZE 20u
+#define ODG_PERSIST_SLOT_SIZE(size)                                                     \
+    ((((uint32_t)(size)) + ODG_PERSIST_HEADER_SIZE + ((uint32_t)ODG_PERSIST_ALIGN - 1u)) \
+     & ~((uint32_t)ODG_PERSIST_ALIGN - 1u))
+
 /* Outcome of odg_persist_boot for one group. */
 typedef enum odg_boot_status {
     ODG_BOOT_LOADED = 0,     /* newest valid slot with a matching signature was loaded */

@@ -288,7 +288,8 @@ def _check_functions(b: _Builder, view: DictView) -> None:
     for placement in b.placements.values():
         fn = placement.function
         if fn and (fn in taken or fn.startswith("odg_")) and placement.function_loc is not None:
-            b.diags.add("GEN004", placement.function_loc, f"hook function {fn} clashes with a generated or runtime name")
+            clash = f"hook function {fn} clashes with a generated or runtime name"
+            b.diags.add("GEN004", placement.function_loc, clash)
             taken.discard(fn)  # report each clash once
 
 
