@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 from ..model import Obj, ObjectDictionary, Sub, Value
 from ..model.datatypes import BASIC_TYPES, DataType
 from .placement import RESTORE, STORE, Placement
-from .viewmodel import DEFAULT_DOMAIN_CAPACITY, DictView
+from .viewmodel import DEFAULT_DOMAIN_CAPACITY, DictView, initial_number
 
 MAX_WRITE_CASES = 3
 
@@ -85,9 +85,7 @@ def _expected(sub: Sub, dtype: DataType, node_id: int) -> bytes | None:
     if dtype.kind == "domain":
         return None  # domains are compared by length only in hooks/streams, not by text form
     if value is None or value.error is not None or value.parsed is None:
-        if dtype.is_string:
-            return b""
-        return wire_bytes(0, dtype)
+        return b"" if dtype.is_string else wire_bytes(initial_number(sub, dtype), dtype)
     resolved = value.resolve(node_id)
     if resolved is None:
         return None

@@ -389,7 +389,7 @@ def _value_member(b: _Builder, view: DictView, obj: Obj, sub: Sub, dtype: DataTy
         return f"{target.name}.{member}", size
     if dtype.kind == "domain":
         return _domain(b, view, target, member, value, placement, note, key)
-    init = _scalar_init(dtype, value, ctype)
+    init = _scalar_init(sub, dtype, ctype)
     target.members.append(Member(member, ctype, "", init, note, _ALIGN[ctype], key))
     if value is not None and value.nodeid and isinstance(value.parsed, int):
         view.nodeid_fixes.append(NodeIdFix(f"{target.name}.{member}", ctype))
@@ -401,12 +401,24 @@ def _accessor(view: DictView, member: str, target: StorageStruct, note: str) -> 
     view.accessors.append(Accessor(f"{view.name}_{member}", f"({target.name}.{member})", note))
 
 
-def _scalar_init(dtype: DataType, value: Value | None, ctype: str) -> str:
+def initial_number(sub: Sub, dtype: DataType) -> int | float:
+    """The value an entry starts with: its default, or without one 0 moved into its limits."""
+    value = _value_of(sub)
     parsed = value.parsed if value is not None and value.error is None else None
+    if isinstance(parsed, (int, float)) and not isinstance(parsed, bool):
+        return float(parsed) if dtype.kind == "real" else int(parsed)
+    zero: int | float = 0.0 if dtype.kind == "real" else 0
+    for bound, pick in ((sub.low, max), (sub.high, min)):
+        if bound is not None and bound.error is None and not bound.nodeid and isinstance(bound.parsed, (int, float)):
+            zero = pick(zero, bound.parsed)
+    return zero
+
+
+def _scalar_init(sub: Sub, dtype: DataType, ctype: str) -> str:
+    number = initial_number(sub, dtype)
     if dtype.kind == "real":
-        return real_literal(float(parsed) if isinstance(parsed, (int, float)) else 0.0, dtype.bits)
-    number = parsed if isinstance(parsed, int) else 0
-    return int_literal(number, ctype)
+        return real_literal(float(number), dtype.bits)
+    return int_literal(int(number), ctype)
 
 
 def _string_init(dtype: DataType, value: Value | None, capacity: int | None) -> tuple[str, str, int]:
