@@ -1,0 +1,118 @@
+"""Generated C is compiled and run: the matrix, the corpus, golden files, CMake.
+
+`odgen check` builds the dictionary with the runtime and a generated self-test that
+compares every entry with values computed from the description, exercises hooks and
+the persistence cycle, and prints `N passed, M failed`.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+
+from odgen.codegen.check import run_check
+from odgen.codegen.generate import Request, generate
+from odgen.diagnostics import Severity
+from odgen.lint import lint_path
+from odgen.rules import LintOptions
+
+from .conftest import BUILD, FIXTURES, ROOT, corpus_files
+
+GEN = FIXTURES / "generate"
+GOLDEN = Path(__file__).resolve().parent / "golden"
+ALLTYPES = Request(GEN / "alltypes.eds", options=GEN / "alltypes.toml")
+EXAMPLE = ROOT / "examples" / "io-node" / "io-node.eds"
+SANITIZE = ("-fsanitize=address,undefined", "-fno-sanitize-recover=all", "-g")
+GOLDEN_CASES = {
+    "io_node": Request(EXAMPLE),
+    "io_node_persist": Request(EXAMPLE, name="io_node_persist", options=EXAMPLE.with_suffix(".toml")),
+    "alltypes": ALLTYPES,
+    "plain_bsearch": Request(GEN / "plain.eds", name="plain_bsearch", lookup="bsearch"),
+}
+
+
+def _compiler(name: str) -> str:
+    path = shutil.which(name)
+    assert path, f"{name} is missing: `make test` installs it (make sysdeps)"
+    return path
+
+
+def _assert_passed(outcome) -> None:
+    assert outcome.ok, outcome.output[-3000:]
+    assert outcome.output.rstrip().endswith("0 failed")
+
+
+@pytest.mark.parametrize("cc", ["gcc", "clang"])
+@pytest.mark.parametrize("lookup", ["switch", "bsearch"])
+def test_all_types_storage_classes_and_hooks(cc: str, lookup: str) -> None:
+    request = Request(ALLTYPES.input, options=ALLTYPES.options, lookup=lookup)
+    _assert_passed(run_check(request, cc=_compiler(cc)))
+
+
+def test_all_types_under_sanitizers() -> None:
+    _assert_passed(run_check(ALLTYPES, cc=_compiler("clang"), cflags=SANITIZE))
+
+
+def _lint_clean(path: Path) -> bool:
+    result = lint_path(path, LintOptions())
+    return result.od is not None and result.count(Severity.ERROR) == 0
+
+
+def test_every_lint_clean_corpus_file_generates_compiles_and_checks() -> None:
+    files = [p for p in corpus_files() if _lint_clean(p)]
+    if not files:
+        pytest.skip("../shared/corpus is absent")
+    failures, lines = [], []
+    for path in files:
+        for cc in ("gcc", "clang"):
+            outcome = run_check(Request(path, name="od"), cc=_compiler(cc))
+            summary = outcome.output.strip().splitlines()[-1] if outcome.output.strip() else "no output"
+            lines.append(f"| {path.name} | {cc} | {'ok' if outcome.ok else 'FAILED'} | {summary} |")
+            if not outcome.ok:
+                failures.append(f"{path.name} ({cc}): {outcome.output[-800:]}")
+    BUILD.mkdir(parents=True, exist_ok=True)
+    (BUILD / "corpus-check.md").write_text(
+        f"# odgen check on {len(files)} lint-clean corpus files\n\n| file | cc | result | self-test |\n"
+        "|---|---|---|---|\n" + "\n".join(lines) + "\n", encoding="utf-8")
+    assert not failures, "\n\n".join(failures)
+
+
+@pytest.mark.parametrize("case", sorted(GOLDEN_CASES))
+def test_golden_files(case: str) -> None:
+    """Set ODGEN_UPDATE_GOLDEN=1 to rewrite tests/golden after an intended change."""
+    result = generate(GOLDEN_CASES[case])
+    assert result.files
+    folder = GOLDEN / case
+    if os.environ.get("ODGEN_UPDATE_GOLDEN") == "1":
+        folder.mkdir(parents=True, exist_ok=True)
+        for name, text in result.files.items():
+            (folder / name).write_text(text, encoding="utf-8")
+    for name, text in result.files.items():
+        assert (folder / name).read_text(encoding="utf-8") == text, f"{case}/{name} changed: review, then update"
+
+
+def test_hostile_names_give_safe_c(tmp_path: Path) -> None:
+    hostile = 'x */ #define BAD 1 /* "q" \\\\ \u00e9' + "A" * 10000
+    text = (GEN / "plain.eds").read_text().replace("ParameterName=Speed", f"ParameterName={hostile}")
+    path = tmp_path / "hostile.eds"
+    path.write_text(text, encoding="utf-8")
+    outcome = run_check(Request(path), cc=_compiler("gcc"))
+    _assert_passed(outcome)
+    for text in generate(Request(path)).files.values():
+        assert not any(line.lstrip().startswith("#define BAD") for line in text.splitlines())
+        assert all(len(line) < 400 for line in text.splitlines()), "names and comments are clipped"
+
+
+def test_cmake_firmware_example_builds_and_runs(tmp_path: Path) -> None:
+    cmake = _compiler("cmake")
+    source = ROOT / "examples" / "cmake-firmware"
+    env = dict(os.environ, PATH=f"{ROOT / '.venv' / 'bin'}{os.pathsep}{os.environ.get('PATH', '')}")
+    for cmd in ([cmake, "-S", str(source), "-B", str(tmp_path)], [cmake, "--build", str(tmp_path)]):
+        done = subprocess.run(cmd, capture_output=True, text=True, env=env, check=False)
+        assert done.returncode == 0, done.stdout + done.stderr
+    ran = subprocess.run([str(tmp_path / "firmware")], capture_output=True, text=True, check=False)
+    assert ran.returncode == 0 and "looped back" in ran.stdout, ran.stdout + ran.stderr
