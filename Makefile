@@ -15,14 +15,17 @@ $(STAMP): pyproject.toml
 
 setup: $(STAMP)
 
-# Lint the examples (until the generator exists, this is the main job), then
-# show the same findings as SARIF for a CI upload and convert an example back to EDS.
+# The main job on the example: lint it, generate its C dictionary, compile it with the
+# runtime and run the self-test (which reports where each storage class landed and its
+# size), then write the lint findings as SARIF and convert the description back to EDS.
 demo: setup
 	$(BIN)/odgen lint examples/*/*.eds
 	mkdir -p build/demo
+	$(BIN)/odgen generate examples/io-node/io-node.eds --options examples/io-node/io-node.toml -o build/demo
+	$(BIN)/odgen check examples/io-node/io-node.eds --options examples/io-node/io-node.toml --keep build/demo/check
 	$(BIN)/odgen lint --format sarif -o build/demo/examples.sarif examples/*/*.eds
 	$(BIN)/odgen convert examples/io-node/io-node.eds build/demo/io-node.eds
-	@echo "demo: SARIF report in build/demo/examples.sarif, converted EDS in build/demo/io-node.eds"
+	@echo "demo: C dictionary in build/demo/io_node.[ch], SARIF in build/demo/examples.sarif"
 
 lint-code: setup
 	$(BIN)/ruff check odgen tests benchmarks

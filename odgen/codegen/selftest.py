@@ -49,7 +49,7 @@ class SelfTest:
     missing_index: int
     groups: int
     has_store: bool
-    structs: list[tuple[str, str]]  # (label, C variable)
+    structs: list[tuple[str, str, str]]  # (label, C variable, where it lives)
 
     @property
     def test_persistence(self) -> bool:
@@ -153,7 +153,8 @@ def build_selftest(od: ObjectDictionary, placements: dict[tuple[int, int], Place
             if exp is not None:
                 expects.append(exp)
     missing = next(i for i in range(0x5FFF, 0x1FFF, -1) if i not in od.objects)
-    structs = [(s.name.removeprefix(view.name + "_"), s.name) for s in view.structs]
+    structs = [(s.name.removeprefix(view.name + "_"), s.name,
+                "FLASH" if s.const else "RAM, and as much FLASH for its defaults") for s in view.structs]
     store = od.objects.get(STORE)
     return SelfTest(view.name, node_id, expects, view.functions, missing, len(view.groups),
                     store is not None and 1 in store.subs and RESTORE in od.objects, structs)
