@@ -5,7 +5,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 CORPUS ?= ../shared/corpus/files
 
-.PHONY: setup demo test lint-code docs bench clean
+.PHONY: setup sysdeps demo test lint-code docs bench clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -31,7 +31,11 @@ lint-code: setup
 	$(BIN)/ruff check odgen tests benchmarks
 	$(BIN)/mypy
 
-test: setup lint-code
+# clang for the runtime tests (tests/test_runtime.py builds with gcc and clang).
+sysdeps:
+	@command -v clang >/dev/null 2>&1 || (apt-get update -qq && apt-get install -y -qq clang)
+
+test: setup lint-code sysdeps
 	$(BIN)/python -m pytest -q
 
 # docs/rules.md is generated from the rule catalogue (a test checks it is current).

@@ -294,12 +294,6 @@ odg_abort_t odg_verify(const odg_dict_t *dict, uint16_t *bad_index);
 
 /* ---- persistence (odg_persist.c) --------------------------------------------------- */
 
-/* NV layout of a persistence group: two slots, each a header of at most
- * ODG_PERSIST_HEADER_SIZE bytes and the image padded to 4 bytes. Generated code places
- * groups with these macros, so they are compile-time constants. */
-#define ODG_PERSIST_HEADER_SIZE 32u
-#define ODG_PERSIST_SLOT_SIZE(size) (ODG_PERSIST_HEADER_SIZE + ((((uint32_t)(size)) + 3u) & ~3u))
-
 /* Bytes one slot of a group of `size` bytes takes in NV: ODG_PERSIST_SLOT_SIZE(size). */
 uint32_t odg_persist_slot_size(uint32_t size);
 
