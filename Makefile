@@ -32,8 +32,11 @@ lint-code: setup
 	$(BIN)/mypy
 
 # clang for the runtime tests (tests/test_runtime.py builds with gcc and clang).
+# System tools the tests compile and build with (Debian packages of the same names).
+SYSTOOLS := gcc clang cmake
 sysdeps:
-	@command -v clang >/dev/null 2>&1 || (apt-get update -qq && apt-get install -y -qq clang)
+	@missing=""; for t in $(SYSTOOLS); do command -v $$t >/dev/null 2>&1 || missing="$$missing $$t"; done; \
+	if [ -n "$$missing" ]; then apt-get update -qq && apt-get install -y -qq $$missing; fi
 
 test: setup lint-code sysdeps
 	$(BIN)/python -m pytest -q
