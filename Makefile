@@ -47,6 +47,7 @@ docs: setup
 
 bench: setup
 	$(BIN)/python benchmarks/lint_speed.py
+	$(BIN)/python benchmarks/footprint.py
 
 clean:
 	rm -rf build .pytest_cache

@@ -1,7 +1,8 @@
 /*
  * odg.c - core of the odgen runtime: find, read, write, hooks, PDO mapping check, self-check.
  *
- * C99, no malloc, no stdio. Values are kept in native C types (see odg.h); the wire format is
+ * C99, no malloc, no stdio. Values are kept in native C types (see odg.h), each at its
+ * descriptor's `offset` into the block of its storage class (odg_value_); the wire format is
  * built byte by byte (little-endian), never by copying a native multi-byte integer, so the
  * code is endian-portable. All numeric types share one path: a value is widened to 64 bits,
  * packed to / unpacked from `size` wire bytes, sign-extended for signed types.
@@ -59,7 +60,7 @@ const char *odg_abort_text(odg_abort_t code)
 
 /* ---- native values ----------------------------------------------------------------- */
 
-void *odg_mut_(const void *p)
+static void *odg_mut_(const void *p)
 {
     union {
         const void *c;
@@ -107,12 +108,27 @@ void odg_store_(void *p, uint32_t size, uint64_t v)
     }
 }
 
-/* The wire bytes of a numeric value (8 bytes; the first `size` count). */
-static void pack(const odg_sub_t *s, uint8_t *b)
+/* Where the value of `s` lies: `offset` bytes into the block of its storage class. Not for
+ * ODG_S_STORE (no value) or DOMAIN (see dom_of). ROM values are only ever read through it. */
+uint8_t *odg_value_(const odg_dict_t *d, const odg_sub_t *s)
 {
+    uint32_t c = ODG_S_CLASS(s->storage);
+    const void *b = c == ODG_S_RAM ? d->ram
+                    : c == ODG_S_ROM ? d->rom
+                                     : d->groups[ODG_S_GROUP(s->storage)].mirror;
+    return (uint8_t *)odg_mut_(b) + s->offset;
+}
+
+/* The wire bytes of a numeric value (8 bytes; the first `size` count). */
+static void pack(const odg_ref_t *r, uint8_t *b)
+{
+    const odg_sub_t *s = r->sub;
     /* a 0x1010/0x1011 command reads 1: "saves / restores on command" */
-    uint64_t v = ODG_S_CLASS(s->storage) == ODG_S_STORE ? 1u : odg_load_(s->data, s->size);
+    uint64_t v = 1u;
     unsigned i;
+    if (ODG_S_CLASS(s->storage) != ODG_S_STORE) {
+        v = odg_load_(odg_value_(r->dict, s), s->size);
+    }
     for (i = 0; i < 8u; i++, v >>= 8) {
         b[i] = (uint8_t)v;
     }
@@ -162,56 +178,58 @@ static uint64_t limit_key(const odg_sub_t *s, uint64_t bits)
 
 /* ---- strings and domains ------------------------------------------------------------- */
 
-static const odg_domain_t *dom_of(const odg_sub_t *s)
+/* The descriptor of a DOMAIN: its `offset` indexes dict->domains. */
+static const odg_domain_t *dom_of(const odg_ref_t *r)
 {
-    return (const odg_domain_t *)s->data;
+    return &r->dict->domains[r->sub->offset];
 }
 
-static uint32_t capacity(const odg_sub_t *s)
+static uint32_t capacity(const odg_ref_t *r)
 {
-    return s->type == ODG_T_DOMAIN ? dom_of(s)->capacity : s->size;
+    return r->sub->type == ODG_T_DOMAIN ? dom_of(r)->capacity : r->sub->size;
 }
 
-static uint8_t *bytes_of(const odg_sub_t *s)
+/* The bytes of a string (the uint16_t units of a UNICODE_STRING) or of a domain's buffer. */
+static uint8_t *bytes_of(const odg_ref_t *r)
 {
-    return s->type == ODG_T_DOMAIN ? dom_of(s)->data : (uint8_t *)odg_mut_(s->data);
+    return r->sub->type == ODG_T_DOMAIN ? dom_of(r)->data : odg_value_(r->dict, r->sub);
 }
 
 uint32_t odg_length(const odg_ref_t *ref)
 {
     const odg_sub_t *s = ref->sub;
-    uint32_t n = 0;
-    if (s->type == ODG_T_VISIBLE_STRING) {
-        const char *c = (const char *)s->data;
-        while (n < s->size && c[n] != 0) {
-            n++;
-        }
-    } else if (s->type == ODG_T_UNICODE_STRING) {
-        const uint16_t *u = (const uint16_t *)s->data;
-        while (2u * n + 1u < s->size && u[n] != 0u) {
-            n++;
-        }
-        n *= 2u;
-    } else if (s->type == ODG_T_DOMAIN) {
-        n = *dom_of(s)->length;
-        if (n > dom_of(s)->capacity) {
-            n = dom_of(s)->capacity;
-        }
-    } else {
-        n = s->size; /* numbers, OCTET_STRING, 0x1010/0x1011 commands */
+    uint32_t n = 0, w = s->type == ODG_T_UNICODE_STRING ? 2u : 1u;
+    const uint8_t *p;
+    if (s->type == ODG_T_DOMAIN) {
+        const odg_domain_t *dom = dom_of(ref);
+        n = *dom->length;
+        return n < dom->capacity ? n : dom->capacity;
+    }
+    if (s->type != ODG_T_VISIBLE_STRING && w == 1u) {
+        return s->size; /* numbers, OCTET_STRING, 0x1010/0x1011 commands */
+    }
+    /* up to the terminating char 0 or uint16_t 0 (both of its bytes 0, in either byte order) */
+    p = odg_value_(ref->dict, s);
+    while (n + w <= s->size && (p[n] | p[n + w - 1u]) != 0u) {
+        n += w;
     }
     return n;
 }
 
 /* ---- hooks ------------------------------------------------------------------------ */
 
-/* Binary search of a table whose rows start with a sorted uint16_t key. */
-static int32_t bsearch16(const void *base, uint32_t stride, uint32_t n, uint16_t key)
+/* The layout of a table for bsearch16: row size, and where in a row its uint16_t key lies. */
+#define KEYED(type, member) ((uint32_t)(sizeof(type) | offsetof(type, member) << 8))
+
+/* Binary search of `n` rows laid out as KEYED says, sorted by that key: the row holding `key`,
+ * or -1. `base` is only used when n > 0 (a table may be NULL when empty). */
+static int32_t bsearch16(const void *base, uint32_t layout, uint32_t n, uint16_t key)
 {
     uint32_t lo = 0, hi = n;
     while (lo < hi) {
         uint32_t mid = (lo + hi) >> 1;
-        uint16_t k = *(const uint16_t *)(const void *)((const uint8_t *)base + mid * stride);
+        const uint8_t *row = (const uint8_t *)base + mid * (layout & 0xFFu);
+        uint16_t k = *(const uint16_t *)(const void *)(row + (layout >> 8));
         if (k == key) {
             return (int32_t)mid;
         }
@@ -226,7 +244,7 @@ static int32_t bsearch16(const void *base, uint32_t stride, uint32_t n, uint16_t
 
 static int32_t hook_slot(const odg_dict_t *d, uint16_t sub_pos)
 {
-    return bsearch16(d->hook_map, sizeof *d->hook_map, d->n_hooks, sub_pos);
+    return bsearch16(d->hook_map, KEYED(odg_hook_map_t, sub_pos), d->n_hooks, sub_pos);
 }
 
 static odg_abort_t hook(const odg_ref_t *r, unsigned kind, const void *data, uint32_t len)
@@ -269,7 +287,8 @@ odg_abort_t odg_find(const odg_dict_t *dict, uint16_t index, uint8_t sub, odg_re
     const odg_entry_t *e;
     uint32_t p, end;
     int32_t i = dict->find ? dict->find(index)
-                           : bsearch16(dict->entries, sizeof *dict->entries, dict->n_entries, index);
+                           : bsearch16(dict->entries, KEYED(odg_entry_t, index), dict->n_entries,
+                                       index);
     if (i < 0) {
         return ODG_ABORT_NO_OBJECT;
     }
@@ -311,9 +330,9 @@ odg_abort_t odg_read(const odg_ref_t *ref, uint32_t offset, void *buf, uint32_t 
     }
     len = odg_length(ref);
     if (IS_STREAM(s)) {
-        src = bytes_of(s);
+        src = bytes_of(ref);
     } else {
-        pack(s, tmp);
+        pack(ref, tmp);
     }
     if (offset > len) {
         offset = len;
@@ -325,7 +344,7 @@ odg_abort_t odg_read(const odg_ref_t *ref, uint32_t offset, void *buf, uint32_t 
     for (i = 0; i < len; i++) {
         uint32_t k = offset + i;
         out[i] = s->type == ODG_T_UNICODE_STRING
-                     ? (uint8_t)(((const uint16_t *)s->data)[k >> 1] >> ((k & 1u) * 8u))
+                     ? (uint8_t)(((const uint16_t *)(const void *)src)[k >> 1] >> ((k & 1u) * 8u))
                      : src[k];
     }
     *n = len;
@@ -335,9 +354,10 @@ odg_abort_t odg_read(const odg_ref_t *ref, uint32_t offset, void *buf, uint32_t 
 /* ---- write --------------------------------------------------------------------------------- */
 
 /* Access and length of a download of `len` bytes at `off` of a `total`-byte value. */
-static odg_abort_t wcheck(const odg_sub_t *s, uint32_t off, uint32_t len, uint32_t total)
+static odg_abort_t wcheck(const odg_ref_t *r, uint32_t off, uint32_t len, uint32_t total)
 {
-    uint32_t c = capacity(s);
+    const odg_sub_t *s = r->sub;
+    uint32_t c = capacity(r);
     if (!(s->attr & ODG_A_WRITE) || ODG_S_CLASS(s->storage) == ODG_S_ROM) {
         return ODG_ABORT_READ_ONLY;
     }
@@ -353,17 +373,25 @@ static odg_abort_t wcheck(const odg_sub_t *s, uint32_t off, uint32_t len, uint32
     return ODG_OK;
 }
 
-/* Range of a numeric value (sign-extended; REAL as its bits). */
-static odg_abort_t check(const odg_dict_t *d, const odg_sub_t *s, uint64_t v)
+/* Position in dict->limits of the limits of the sub-entry at `pos` (binary search), or -1. */
+static int32_t limit_of(const odg_dict_t *d, uint16_t pos)
 {
+    return bsearch16(d->limits, KEYED(odg_limit_t, sub_pos), d->n_limits, pos);
+}
+
+/* Range of a numeric value (sign-extended; REAL as its bits). */
+static odg_abort_t check(const odg_ref_t *r, uint64_t v)
+{
+    const odg_sub_t *s = r->sub;
     const odg_limit_t *l;
+    int32_t i;
     if (s->type == ODG_T_BOOLEAN && v > 1u) {
         return ODG_ABORT_VALUE_RANGE;
     }
-    if (!(s->attr & ODG_A_LIMIT)) {
-        return ODG_OK;
+    if (!(s->attr & ODG_A_LIMIT) || (i = limit_of(r->dict, r->sub_pos)) < 0) {
+        return ODG_OK; /* odg_verify: every ODG_A_LIMIT entry has its limits */
     }
-    l = &d->limits[s->limit];
+    l = &r->dict->limits[i];
     if (s->type == ODG_T_REAL32) {
         v <<= 32;
     }
@@ -403,13 +431,13 @@ static odg_abort_t command(const odg_ref_t *r)
 }
 
 /* Store `len` wire bytes at wire offset `off` of a string or domain. */
-static void put(const odg_sub_t *s, uint32_t off, const uint8_t *b, uint32_t len)
+static void put(const odg_ref_t *r, uint32_t off, const uint8_t *b, uint32_t len)
 {
-    uint8_t *dst = bytes_of(s);
+    uint8_t *dst = bytes_of(r);
     uint32_t i;
     for (i = 0; i < len; i++, off++) {
-        if (s->type == ODG_T_UNICODE_STRING) {
-            uint16_t *u = (uint16_t *)odg_mut_(s->data) + (off >> 1);
+        if (r->sub->type == ODG_T_UNICODE_STRING) {
+            uint16_t *u = (uint16_t *)(void *)dst + (off >> 1);
             unsigned sh = (off & 1u) * 8u;
             *u = (uint16_t)((*u & ~(0xFFu << sh)) | ((unsigned)b[i] << sh));
         } else {
@@ -423,11 +451,11 @@ static odg_abort_t finish(const odg_ref_t *r, uint32_t total)
 {
     const odg_sub_t *s = r->sub;
     if (s->type == ODG_T_DOMAIN) {
-        *dom_of(s)->length = total;
+        *dom_of(r)->length = total;
     } else if (s->type != ODG_T_OCTET_STRING) {
         /* clear the rest: char[size + 1] or uint16_t[size / 2 + 1] */
         uint32_t w = s->type == ODG_T_UNICODE_STRING ? 2u : 1u;
-        memset((uint8_t *)odg_mut_(s->data) + total, 0, s->size + w - total);
+        memset(odg_value_(r->dict, s) + total, 0, s->size + w - total);
     }
     return hook(r, ODG_HOOK_POST_WRITE, NULL, 0);
 }
@@ -437,7 +465,7 @@ odg_abort_t odg_write(const odg_ref_t *ref, const void *buf, uint32_t len)
     const odg_sub_t *s = ref->sub;
     const uint8_t *b = (const uint8_t *)buf;
     uint64_t v;
-    odg_abort_t ac = wcheck(s, 0, len, len);
+    odg_abort_t ac = wcheck(ref, 0, len, len);
     if (ac != ODG_OK) {
         return ac;
     }
@@ -445,7 +473,7 @@ odg_abort_t odg_write(const odg_ref_t *ref, const void *buf, uint32_t len)
         if ((ac = hook(ref, ODG_HOOK_PRE_WRITE, buf, len)) != ODG_OK) {
             return ac;
         }
-        put(s, 0, b, len);
+        put(ref, 0, b, len);
         return finish(ref, len);
     }
     v = unpack(s, b);
@@ -454,7 +482,7 @@ odg_abort_t odg_write(const odg_ref_t *ref, const void *buf, uint32_t len)
                  ? ODG_OK
                  : ODG_ABORT_DATA_STORE;
     } else {
-        ac = check(ref->dict, s, v);
+        ac = check(ref, v);
     }
     if (ac != ODG_OK || (ac = hook(ref, ODG_HOOK_PRE_WRITE, buf, len)) != ODG_OK) {
         return ac;
@@ -464,7 +492,7 @@ odg_abort_t odg_write(const odg_ref_t *ref, const void *buf, uint32_t len)
             return ac;
         }
     } else {
-        odg_store_(odg_mut_(s->data), s->size, v);
+        odg_store_(odg_value_(ref->dict, s), s->size, v);
     }
     return hook(ref, ODG_HOOK_POST_WRITE, NULL, 0);
 }
@@ -479,16 +507,16 @@ odg_abort_t odg_write_part(const odg_ref_t *ref, uint32_t offset, const void *bu
         if (offset == 0u && len == total) {
             return odg_write(ref, buf, len);
         }
-        ac = wcheck(s, 0, total, total);
+        ac = wcheck(ref, 0, total, total);
         return ac != ODG_OK ? ac : ODG_ABORT_UNSUPPORTED;
     }
-    if ((ac = wcheck(s, offset, len, total)) != ODG_OK) {
+    if ((ac = wcheck(ref, offset, len, total)) != ODG_OK) {
         return ac;
     }
     if (offset == 0u && (ac = hook(ref, ODG_HOOK_PRE_WRITE, NULL, total)) != ODG_OK) {
         return ac;
     }
-    put(s, offset, (const uint8_t *)buf, len);
+    put(ref, offset, (const uint8_t *)buf, len);
     return offset + len == total ? finish(ref, total) : ODG_OK;
 }
 
@@ -552,6 +580,20 @@ static const uint8_t wire_size[0x1C] = {
     0xFF, 1, 1, 2, 4, 1, 2, 4, 4, 0, 0, 0, 6, 6, 0xFF, 0,
     3,    8, 5, 6, 7, 8, 3, 0xFF, 5, 6, 7, 8};
 
+/* Alignment of the C type that holds each type (see odg.h), 1 where there is none. Generated
+ * blocks are structs, so a value lies at its member's offset and is aligned for its type. */
+typedef struct { char c; uint16_t v; } al16_t;
+typedef struct { char c; uint32_t v; } al32_t;
+typedef struct { char c; uint64_t v; } al64_t;
+typedef struct { char c; float v; } alf_t;
+typedef struct { char c; double v; } ald_t;
+#define A16 offsetof(al16_t, v)
+#define A32 offsetof(al32_t, v)
+#define A64 offsetof(al64_t, v)
+static const uint8_t type_align[0x1C] = {
+    1,   1, 1, A16, A32, 1, A16, A32, offsetof(alf_t, v), 1, 1, A16, A64, A64, 1, 1,
+    A32, offsetof(ald_t, v), A64, A64, A64, A64, A32, 1, A64, A64, A64, A64};
+
 static int in_object(const void *p, uint32_t len, const void *base, uint32_t size)
 {
     uintptr_t a = (uintptr_t)p, b = (uintptr_t)base;
@@ -594,79 +636,87 @@ static uint64_t native_value(const odg_sub_t *s, const void *p)
     return unpack(s, b);
 }
 
-static int sub_ok(const odg_dict_t *d, const odg_sub_t *s)
+static int sub_ok(const odg_ref_t *r)
 {
+    const odg_dict_t *d = r->dict;
+    const odg_sub_t *s = r->sub;
     uint32_t cls = ODG_S_CLASS(s->storage), m = TBIT(s->type), n;
-    const odg_domain_t *dom = dom_of(s);
-    const void *value = s->data;
+    const odg_group_t *g = NULL;
+    int32_t li;
+    const void *base = cls == ODG_S_ROM ? d->rom : d->ram;
+    const uint8_t *value;
     if (s->type >= sizeof wire_size || wire_size[s->type] == 0xFFu || (s->attr & 0x80u)) {
         return 0;
     }
     if (cls == ODG_S_STORE) {
-        return s->type == ODG_T_UNSIGNED32 && s->size == 4u && s->data == NULL &&
+        return s->type == ODG_T_UNSIGNED32 && s->size == 4u && s->offset == 0u &&
                !(s->attr & (ODG_A_NODEID | ODG_A_LIMIT)) && !(s->storage & 0x7Cu);
     }
-    if (s->data == NULL || (cls != ODG_S_PERSIST && s->storage > 3u) ||
-        (cls == ODG_S_ROM && (s->attr & (ODG_A_WRITE | ODG_A_NODEID)))) {
+    if ((cls != ODG_S_PERSIST && s->storage > 3u) ||
+        (cls == ODG_S_ROM && (s->attr & (ODG_A_WRITE | ODG_A_NODEID))) ||
+        ((m & T_STREAM) && (s->attr & (ODG_A_NODEID | ODG_A_LIMIT)))) {
         return 0;
     }
-    /* first where the value lies (`n` bytes at `value`), before reading anything there */
-    if (m & T_STREAM) {
-        if (s->attr & (ODG_A_NODEID | ODG_A_LIMIT) ||
-            (s->type == ODG_T_UNICODE_STRING && (s->size & 1u))) {
-            return 0;
-        }
-        n = s->type == ODG_T_OCTET_STRING ? s->size
-                                          : s->size + (s->type == ODG_T_UNICODE_STRING ? 2u : 1u);
-        if (s->type == ODG_T_DOMAIN) {
-            if (dom->data == NULL || dom->length == NULL || dom->capacity < s->size) {
-                return 0;
-            }
-            value = dom->data;
-            n = dom->capacity;
-        }
-    } else {
-        n = s->size <= 2u ? s->size : (s->size <= 4u ? 4u : 8u);
-        if (s->size != wire_size[s->type] || ((s->attr & ODG_A_NODEID) && (m & T_REAL)) ||
-            ((s->attr & ODG_A_LIMIT) && d->limits == NULL)) {
-            return 0;
-        }
+    /* the limits (the table is sorted by now, so the binary search is valid) */
+    if ((s->attr & ODG_A_LIMIT) &&
+        ((li = limit_of(d, r->sub_pos)) < 0 || !limits_ordered(s, &d->limits[li]))) {
+        return 0;
     }
     if (cls == ODG_S_PERSIST) {
-        const odg_group_t *g;
         if (ODG_S_GROUP(s->storage) >= d->n_groups) {
             return 0;
         }
         g = &d->groups[ODG_S_GROUP(s->storage)];
-        if (!in_object(value, n, g->mirror, g->size) ||
-            (s->type == ODG_T_DOMAIN && !in_object(dom->length, 4u, g->mirror, g->size))) {
+        base = g->defaults != NULL ? g->mirror : NULL;
+    }
+    /* first where the value lies, before reading anything there */
+    if (s->type == ODG_T_DOMAIN) {
+        const odg_domain_t *dom;
+        if (s->offset >= d->n_domains) {
             return 0;
         }
-        if (!(m & T_STREAM)) { /* the default in the FLASH copy must be in range, too */
-            const uint8_t *def = (const uint8_t *)g->defaults +
-                                 ((uintptr_t)s->data - (uintptr_t)g->mirror);
-            if (check(d, s, native_value(s, def)) != ODG_OK) {
-                return 0;
-            }
+        dom = &d->domains[s->offset];
+        if (dom->data == NULL || dom->length == NULL || dom->capacity < s->size ||
+            (g != NULL && (!in_object(dom->data, dom->capacity, g->mirror, g->size) ||
+                           !in_object(dom->length, 4u, g->mirror, g->size)))) {
+            return 0;
+        }
+        return *dom->length <= dom->capacity;
+    }
+    if (m & T_STREAM) {
+        if (s->type == ODG_T_UNICODE_STRING && (s->size & 1u)) {
+            return 0;
+        }
+        n = s->type == ODG_T_OCTET_STRING ? s->size
+                                          : s->size + (s->type == ODG_T_UNICODE_STRING ? 2u : 1u);
+    } else {
+        n = s->size <= 2u ? s->size : (s->size <= 4u ? 4u : 8u);
+        if (s->size != wire_size[s->type] || ((s->attr & ODG_A_NODEID) && (m & T_REAL))) {
+            return 0;
         }
     }
-    /* then the value itself */
+    if (base == NULL || (g != NULL && (uint32_t)s->offset + n > g->size)) {
+        return 0; /* no block, or beyond the group's struct */
+    }
+    value = (const uint8_t *)base + s->offset;
+    if (((uintptr_t)value & (type_align[s->type] - 1u)) != 0u) {
+        return 0; /* not where a struct member of its C type could lie */
+    }
+    /* then the value itself (and for a persisted number the FLASH default, too) */
     if (s->type == ODG_T_VISIBLE_STRING) {
-        return ((const char *)s->data)[s->size] == 0;
+        return value[s->size] == 0u;
     }
     if (s->type == ODG_T_UNICODE_STRING) {
-        return ((const uint16_t *)s->data)[s->size / 2u] == 0u;
-    }
-    if (s->type == ODG_T_DOMAIN) {
-        return *dom->length <= dom->capacity;
+        return ((const uint16_t *)(const void *)value)[s->size / 2u] == 0u;
     }
     if (m & T_STREAM) {
         return 1;
     }
-    if ((s->attr & ODG_A_LIMIT) && !limits_ordered(s, &d->limits[s->limit])) {
+    if (g != NULL &&
+        check(r, native_value(s, (const uint8_t *)g->defaults + s->offset)) != ODG_OK) {
         return 0;
     }
-    return check(d, s, native_value(s, s->data)) == ODG_OK;
+    return check(r, native_value(s, value)) == ODG_OK;
 }
 
 /* Index of the entry holding sub position `pos` (for error reports). */
@@ -681,6 +731,24 @@ static uint16_t owner(const odg_dict_t *d, uint32_t pos)
     return 0xFFFFu;
 }
 
+/* A table of `n` rows laid out as KEYED says, keyed by sub position: strictly increasing, each
+ * naming a sub-entry that has `attr`. */
+static int pos_table_ok(const odg_dict_t *d, const void *base, uint32_t layout, uint32_t n,
+                        unsigned attr, uint16_t *bad_index)
+{
+    uint32_t i, prev = 0;
+    for (i = 0; i < n; i++) {
+        const uint8_t *row = (const uint8_t *)base + i * (layout & 0xFFu);
+        uint32_t pos = *(const uint16_t *)(const void *)(row + (layout >> 8));
+        if (pos >= d->n_subs || !(d->subs[pos].attr & attr) || (i > 0u && pos <= prev)) {
+            *bad_index = owner(d, pos);
+            return 0;
+        }
+        prev = pos;
+    }
+    return 1;
+}
+
 odg_abort_t odg_verify(const odg_dict_t *dict, uint16_t *bad_index)
 {
     uint16_t dummy;
@@ -692,7 +760,16 @@ odg_abort_t odg_verify(const odg_dict_t *dict, uint16_t *bad_index)
     *bad_index = 0xFFFFu; /* table-wide faults */
     if (d == NULL || d->entries == NULL || d->subs == NULL || d->state == NULL ||
         (d->n_hooks && (d->hook_map == NULL || d->hook_slots == NULL)) ||
+        (d->n_limits && d->limits == NULL) || (d->n_domains && d->domains == NULL) ||
         (d->n_groups && d->groups == NULL)) {
+        return ODG_ABORT_INTERNAL;
+    }
+    /* the tables searched by sub position: sorted, and only for subs with the attribute (that
+     * every ODG_A_LIMIT sub has limits is checked with the sub, the hooks by count below) */
+    if (!pos_table_ok(d, d->limits, KEYED(odg_limit_t, sub_pos), d->n_limits, ODG_A_LIMIT,
+                      bad_index) ||
+        !pos_table_ok(d, d->hook_map, KEYED(odg_hook_map_t, sub_pos), d->n_hooks, ODG_A_HOOK,
+                      bad_index)) {
         return ODG_ABORT_INTERNAL;
     }
     for (i = 0; i < d->n_entries; i++) {
@@ -709,12 +786,16 @@ odg_abort_t odg_verify(const odg_dict_t *dict, uint16_t *bad_index)
             return ODG_ABORT_INTERNAL;
         }
         for (k = 0; k < e->count; k++) {
-            const odg_sub_t *s = &d->subs[e->first + k];
-            if ((k > 0u && s->sub <= s[-1].sub) || ((e->code & ODG_E_DENSE) && s->sub != k) ||
-                !sub_ok(d, s)) {
+            odg_ref_t r;
+            r.dict = d;
+            r.entry = e;
+            r.sub_pos = (uint16_t)(e->first + k);
+            r.sub = &d->subs[r.sub_pos];
+            if ((k > 0u && r.sub->sub <= r.sub[-1].sub) ||
+                ((e->code & ODG_E_DENSE) && r.sub->sub != k) || !sub_ok(&r)) {
                 return ODG_ABORT_INTERNAL;
             }
-            hooked += (s->attr & ODG_A_HOOK) ? 1u : 0u;
+            hooked += (r.sub->attr & ODG_A_HOOK) ? 1u : 0u;
         }
         next += e->count;
     }
@@ -723,15 +804,11 @@ odg_abort_t odg_verify(const odg_dict_t *dict, uint16_t *bad_index)
         return ODG_ABORT_INTERNAL;
     }
     for (i = 0; i < d->n_hooks; i++) {
-        uint16_t pos = d->hook_map[i].sub_pos;
-        *bad_index = owner(d, pos);
-        if (pos >= d->n_subs || !(d->subs[pos].attr & ODG_A_HOOK) ||
-            (i > 0u && pos <= d->hook_map[i - 1u].sub_pos) || d->hook_map[i].kinds == 0u ||
-            (d->hook_map[i].kinds & ~7u)) {
+        if (d->hook_map[i].kinds == 0u || (d->hook_map[i].kinds & ~7u)) {
+            *bad_index = owner(d, d->hook_map[i].sub_pos);
             return ODG_ABORT_INTERNAL;
         }
     }
-    *bad_index = 0xFFFFu;
     for (i = 0; i < d->n_groups; i++) {
         const odg_group_t *g = &d->groups[i];
         uint32_t len = 2u * ODG_PERSIST_SLOT_SIZE(g->size);

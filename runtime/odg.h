@@ -112,7 +112,7 @@ typedef struct odg_domain {
 #define ODG_A_RPDO   0x08u /* may be mapped into an RPDO */
 #define ODG_A_NODEID 0x10u /* default is $NODEID-relative: node-id added at init */
 #define ODG_A_HOOK   0x20u /* has a hook slot: see odg_hook_map_t */
-#define ODG_A_LIMIT  0x40u /* `limit` indexes odg_dict_t.limits */
+#define ODG_A_LIMIT  0x40u /* has an odg_limit_t in dict->limits (found by sub position) */
 
 /* odg_sub_t.storage: the class, and for PERSIST the group index in the upper bits */
 #define ODG_S_ROM      0u /* const, FLASH */
@@ -123,10 +123,13 @@ typedef struct odg_domain {
 #define ODG_S_GROUP(s) ((uint8_t)((s) >> 2))
 #define ODG_S_RESTORE_FLAG 0x80u /* with ODG_S_STORE: 0x1011 "load" command instead */
 
+/* 8 bytes per sub-entry: no pointer. The value lies at `offset` bytes into the block of its
+ * storage class: dict->rom (ODG_S_ROM), dict->ram (ODG_S_RAM), or the mirror of group
+ * ODG_S_GROUP(storage) (ODG_S_PERSIST). For a DOMAIN, `offset` indexes dict->domains instead.
+ * ODG_S_STORE entries have no value (offset 0). */
 typedef struct odg_sub {
-    const void *data;  /* the value (see the type table); for ODG_S_STORE, NULL */
+    uint16_t offset;   /* see above */
     uint16_t size;     /* wire size in bytes; capacity for strings and domains */
-    uint16_t limit;    /* index into odg_dict_t.limits when ODG_A_LIMIT */
     uint8_t sub;       /* sub-index */
     uint8_t type;      /* enum odg_type */
     uint8_t attr;      /* ODG_A_* */
@@ -152,6 +155,7 @@ typedef struct odg_entry {
 typedef struct odg_limit {
     uint64_t low;
     uint64_t high;
+    uint16_t sub_pos;  /* position of its odg_sub_t in dict->subs; the table is sorted by it */
 } odg_limit_t;
 
 /* ---- hooks ---------------------------------------------------------------------- */
@@ -226,7 +230,10 @@ typedef struct odg_state {
 typedef struct odg_dict {
     const odg_entry_t *entries;
     const odg_sub_t *subs;
-    const odg_limit_t *limits;
+    const void *rom;                 /* FLASH block of ODG_S_ROM values (NULL when none) */
+    void *ram;                       /* RAM block of ODG_S_RAM values (NULL when none) */
+    const odg_domain_t *domains;     /* DOMAIN descriptors, indexed by odg_sub_t.offset */
+    const odg_limit_t *limits;       /* n_limits, sorted by sub_pos */
     const odg_hook_map_t *hook_map;
     odg_hook_slot_t *hook_slots;     /* RAM, n_hooks */
     const odg_group_t *groups;
@@ -236,6 +243,8 @@ typedef struct odg_dict {
     uint16_t n_entries;
     uint16_t n_subs;
     uint16_t n_hooks;
+    uint16_t n_limits;
+    uint16_t n_domains;
     uint8_t n_groups;
 } odg_dict_t;
 

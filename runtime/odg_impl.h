@@ -13,7 +13,9 @@ uint64_t odg_load_(const void *p, uint32_t size);
 /* Store the low bytes of `v` into the C type that holds a value of wire size `size`. */
 void odg_store_(void *p, uint32_t size, uint64_t v);
 
-/* The RAM value behind a descriptor's `const void *data` (never called for ODG_S_ROM). */
-void *odg_mut_(const void *p);
+/* Where the value of `s` lies: `s->offset` bytes into dict->rom, dict->ram or the mirror of
+ * its group, by its storage class. Not for ODG_S_STORE subs (no value) nor DOMAINs (whose
+ * offset indexes dict->domains). Writable except for ODG_S_ROM, which is only ever read. */
+uint8_t *odg_value_(const odg_dict_t *d, const odg_sub_t *s);
 
 #endif /* ODG_IMPL_H */

@@ -200,7 +200,8 @@ static void defaults(const odg_dict_t *d, uint8_t g)
     for (p = 0; p < d->n_subs; p++) {
         const odg_sub_t *s = &d->subs[p];
         if ((s->attr & ODG_A_NODEID) && s->storage == (uint8_t)(ODG_S_PERSIST | (unsigned)g << 2)) {
-            odg_store_(odg_mut_(s->data), s->size, odg_load_(s->data, s->size) + d->state->node_id);
+            uint8_t *v = odg_value_(d, s);
+            odg_store_(v, s->size, odg_load_(v, s->size) + d->state->node_id);
         }
     }
 }

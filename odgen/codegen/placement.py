@@ -51,6 +51,8 @@ def storage_from_description(text: str | None) -> str | None:
 def auto_storage(index: int, sub: Sub) -> tuple[str, str]:
     if index in (STORE, RESTORE) and sub.subindex > 0:
         return "command", "auto: 0x1010/0x1011 commands"
+    if sub.data_type == 0x000F:
+        return "ram", "auto: DOMAIN buffers live in RAM"
     if sub.access == "const":
         return "rom", "auto: const"
     nodeid = sub.default is not None and sub.default.nodeid
@@ -113,6 +115,8 @@ def _validate(od: ObjectDictionary, index: int, subindex: int, placement: Placem
         reasons.append("its default is $NODEID-relative")
     if "pre_read" in placement.hooks:
         reasons.append("a pre_read hook refreshes it")
+    if sub.data_type == 0x000F:
+        reasons.append("a DOMAIN keeps its buffer and length in RAM")
     if reasons:
         diags.add("GEN003", Loc(od.source, sub.line),
                   f"is placed in rom ({placement.storage_from}) but {' and '.join(reasons)}",

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 from ..model import Obj, ObjectDictionary, Sub, Value
 from ..model.datatypes import BASIC_TYPES, DataType
 from .placement import RESTORE, STORE, Placement
-from .viewmodel import DEFAULT_DOMAIN_CAPACITY, DictView, initial_number
+from .viewmodel import DictView, initial_number
 
 MAX_WRITE_CASES = 3
 
@@ -159,5 +159,3 @@ def build_selftest(od: ObjectDictionary, placements: dict[tuple[int, int], Place
     return SelfTest(view.name, node_id, expects, view.functions, missing, len(view.groups),
                     store is not None and 1 in store.subs and RESTORE in od.objects, structs)
 
-
-__all__ = ["DEFAULT_DOMAIN_CAPACITY", "SelfTest", "build_selftest"]

@@ -18,7 +18,7 @@ from ..model.datatypes import BASIC_TYPES, DataType
 from .names import comment, identifier, string_literal
 from .placement import RESTORE, STORE, Placement
 
-DEFAULT_DOMAIN_CAPACITY = 64
+DEFAULT_DOMAIN_CAPACITY = 0  # a DOMAIN holds its default unless the options give a capacity
 
 # type kind -> (C type by storage width)
 _INT_CTYPES = {8: "int8_t", 16: "int16_t", 24: "int32_t", 32: "int32_t", 40: "int64_t", 48: "int64_t",
@@ -59,9 +59,8 @@ class StorageStruct:
 
 @dataclass
 class SubView:
-    data: str
+    offset: str
     size: int
-    limit: int
     sub: int
     type: int
     attr: str
@@ -112,6 +111,14 @@ class HookView:
 
 
 @dataclass
+class LimitView:
+    low: str
+    high: str
+    sub_pos: int
+    note: str
+
+
+@dataclass
 class DomainView:
     name: str
     buffer: str
@@ -136,7 +143,7 @@ class DictView:
     structs: list[StorageStruct] = field(default_factory=list)
     entries: list[EntryView] = field(default_factory=list)
     subs: list[SubView] = field(default_factory=list)
-    limits: list[tuple[str, str, str]] = field(default_factory=list)
+    limits: list[LimitView] = field(default_factory=list)
     hooks: list[HookView] = field(default_factory=list)
     functions: list[str] = field(default_factory=list)
     groups: list[GroupView] = field(default_factory=list)
@@ -163,6 +170,22 @@ class DictView:
     @property
     def groups_ref(self) -> str:
         return self._table("groups", bool(self.groups))
+
+    @property
+    def domains_ref(self) -> str:
+        return self._table("domains", bool(self.domains))
+
+    def _block(self, key: str) -> str:
+        block = next((s for s in self.structs if s.name == f"{self.name}_{key}"), None)
+        return f"&{block.name}" if block is not None else "NULL"
+
+    @property
+    def rom_ref(self) -> str:
+        return self._block("rom")
+
+    @property
+    def ram_ref(self) -> str:
+        return self._block("ram")
 
     @property
     def find_ref(self) -> str:
@@ -327,13 +350,12 @@ def _sub(b: _Builder, view: DictView, obj: Obj, sub: Sub) -> None:
     attr = _attr_flags(sub, placement, dtype)
     if placement.storage == "command":
         storage = "ODG_S_STORE" + (" | ODG_S_RESTORE_FLAG" if obj.index == RESTORE else "")
-        view.subs.append(SubView("NULL", 4, 0, sub.subindex, dtype.code, attr, storage, comment(sub.name)))
+        view.subs.append(SubView("0", 4, sub.subindex, dtype.code, attr, storage, comment(sub.name)))
         return
-    data, size = _value_member(b, view, obj, sub, dtype, placement, member)
-    limit = _limit(view, sub, dtype)
-    if limit >= 0:
+    offset, size = _value_member(b, view, obj, sub, dtype, placement, member)
+    if _limit(view, pos, sub, dtype):
         attr += " | ODG_A_LIMIT"
-    view.subs.append(SubView(data, size, max(limit, 0), sub.subindex, dtype.code, attr,
+    view.subs.append(SubView(offset, size, sub.subindex, dtype.code, attr,
                              _storage_code(placement, view), comment(sub.name)))
     if placement.hooks:
         kinds = " | ".join(f"ODG_HOOK_{k.upper()}" for k in placement.hooks)
@@ -376,8 +398,7 @@ def _storage_code(placement: Placement, view: DictView) -> str:
 
 def _value_member(b: _Builder, view: DictView, obj: Obj, sub: Sub, dtype: DataType, placement: Placement,
                   member: str) -> tuple[str, int]:
-    storage = "ram" if dtype.kind == "domain" and placement.storage == "rom" else placement.storage
-    target = b.struct_for(storage)
+    target = b.struct_for(placement.storage)
     value = _value_of(sub)
     ctype = ctype_of(dtype)
     note = comment(f"0x{obj.index:04X}sub{sub.subindex} {sub.name}")
@@ -386,7 +407,7 @@ def _value_member(b: _Builder, view: DictView, obj: Obj, sub: Sub, dtype: DataTy
         array, init, size = _string_init(dtype, value, placement.capacity)
         target.members.append(Member(member, ctype, array, init, note, _ALIGN[ctype], key))
         _accessor(view, member, target, note)
-        return f"{target.name}.{member}", size
+        return _offset(target, member), size
     if dtype.kind == "domain":
         return _domain(b, view, target, member, value, placement, note, key)
     init = _scalar_init(sub, dtype, ctype)
@@ -394,7 +415,11 @@ def _value_member(b: _Builder, view: DictView, obj: Obj, sub: Sub, dtype: DataTy
     if value is not None and value.nodeid and isinstance(value.parsed, int):
         view.nodeid_fixes.append(NodeIdFix(f"{target.name}.{member}", ctype))
     _accessor(view, member, target, note)
-    return f"&{target.name}.{member}", max(dtype.bits // 8, 1)
+    return _offset(target, member), max(dtype.bits // 8, 1)
+
+
+def _offset(target: StorageStruct, member: str) -> str:
+    return f"offsetof({target.type_name}, {member})"
 
 
 def _accessor(view: DictView, member: str, target: StorageStruct, note: str) -> None:
@@ -450,21 +475,20 @@ def _domain(b: _Builder, view: DictView, target: StorageStruct, member: str, val
     body = ", ".join(f"0x{x:02X}" for x in data) or "0"
     target.members.append(Member(member + "_buf", "uint8_t", f"[{cap}]", "{" + body + "}", note, 1, key))
     target.members.append(Member(member + "_len", "uint32_t", "", f"UINT32_C({len(data)})", note, 4, key))
-    dom = f"{b.name}_dom_{member}"
-    view.domains.append(DomainView(dom, f"{target.name}.{member}_buf", f"&{target.name}.{member}_len", cap))
-    return f"&{dom}", cap
+    view.domains.append(DomainView(member, f"{target.name}.{member}_buf", f"&{target.name}.{member}_len", cap))
+    return str(len(view.domains) - 1), cap
 
 
-def _limit(view: DictView, sub: Sub, dtype: DataType) -> int:
+def _limit(view: DictView, pos: int, sub: Sub, dtype: DataType) -> bool:
     if not dtype.is_numeric or (sub.low is None and sub.high is None):
-        return -1
+        return False
     low = _limit_value(sub.low, dtype.min)
     high = _limit_value(sub.high, dtype.max)
     if low is None or high is None:
-        return -1
-    view.limits.append((f"UINT64_C(0x{limit_bits(low, dtype):016X})", f"UINT64_C(0x{limit_bits(high, dtype):016X})",
-                        comment(f"{low} .. {high}")))
-    return len(view.limits) - 1
+        return False
+    view.limits.append(LimitView(f"UINT64_C(0x{limit_bits(low, dtype):016X})",
+                                 f"UINT64_C(0x{limit_bits(high, dtype):016X})", pos, comment(f"{low} .. {high}")))
+    return True
 
 
 def _limit_value(value: Value | None, fallback: int | float | None) -> int | float | None:

@@ -96,9 +96,12 @@ ODG_ATTR_ROM const td_persist_app_t td_persist_app_defaults = {
     .x2500_s4_buf = {0x01, 0x02},
 };
 
-ODG_ATTR_ROM static const odg_domain_t td_dom_x200F = {td_ram.x200F_buf, &td_ram.x200F_len, 16u};
-ODG_ATTR_ROM static const odg_domain_t td_dom_x2300_s6 = {td_ram.x2300_s6_buf, &td_ram.x2300_s6_len, 8u};
-ODG_ATTR_ROM static const odg_domain_t td_dom_x2500_s4 = {td_persist_app.x2500_s4_buf, &td_persist_app.x2500_s4_len, 8u};
+/* DOMAIN descriptors, indexed by the offset of their odg_sub_t */
+ODG_ATTR_ROM static const odg_domain_t td_domains[3] = {
+    {td_ram.x200F_buf, &td_ram.x200F_len, 16u},                   /* 0: 0x200F */
+    {td_ram.x2300_s6_buf, &td_ram.x2300_s6_len, 8u},              /* 1: 0x2300sub6 */
+    {td_persist_app.x2500_s4_buf, &td_persist_app.x2500_s4_len, 8u}, /* 2: 0x2500sub4 */
+};
 
 ODG_ATTR_ROM static const odg_entry_t td_entries[40] = {
     {0x1000, 0, 1, ODG_OBJ_VAR | ODG_E_DENSE},     /* Device type */
@@ -148,99 +151,101 @@ ODG_ATTR_ROM static const odg_entry_t td_entries[40] = {
 #define COMM (ODG_S_PERSIST | (TD_GROUP_COMM << 2))
 #define APP (ODG_S_PERSIST | (TD_GROUP_APP << 2))
 
-/* data, size, limit, sub, type, attr, storage */
+/* offset, size, sub, type, attr, storage: offsetof() into the struct of the storage class,
+ * for a DOMAIN the index into td_domains, for 0x1010/0x1011 commands 0 */
 ODG_ATTR_ROM static const odg_sub_t td_subs[78] = {
-    {&td_rom.x1000, 4, 0, 0, 0x07, ODG_A_READ, ODG_S_ROM},                         /* 0 */
-    {td_rom.x1008, 8, 0, 0, 0x09, ODG_A_READ, ODG_S_ROM},                          /* 1 */
-    {&td_rom.x1010_s0, 1, 0, 0, 0x05, ODG_A_READ, ODG_S_ROM},                      /* 2 */
-    {NULL, 4, 0, 1, 0x07, RW, ODG_S_STORE},                                        /* 3: save all */
-    {NULL, 4, 0, 2, 0x07, RW, ODG_S_STORE},                                        /* 4: comm */
-    {NULL, 4, 0, 3, 0x07, RW, ODG_S_STORE},                                        /* 5: app */
-    {NULL, 4, 0, 4, 0x07, RW, ODG_S_STORE},                                        /* 6: no group */
-    {&td_rom.x1011_s0, 1, 0, 0, 0x05, ODG_A_READ, ODG_S_ROM},                      /* 7 */
-    {NULL, 4, 0, 1, 0x07, RW, ODG_S_STORE | ODG_S_RESTORE_FLAG},                   /* 8 */
-    {NULL, 4, 0, 2, 0x07, RW, ODG_S_STORE | ODG_S_RESTORE_FLAG},                   /* 9 */
-    {NULL, 4, 0, 3, 0x07, RW, ODG_S_STORE | ODG_S_RESTORE_FLAG},                   /* 10 */
-    {NULL, 4, 0, 4, 0x07, RW, ODG_S_STORE | ODG_S_RESTORE_FLAG},                   /* 11 */
-    {&td_ram.x1014, 4, 0, 0, 0x07, RW | ODG_A_NODEID, ODG_S_RAM},                  /* 12 */
-    {&td_persist_comm.x1017, 2, 0, 0, 0x06, RW, COMM},                             /* 13 */
-    {&td_rom.x1018_s0, 1, 0, 0, 0x05, ODG_A_READ, ODG_S_ROM},                      /* 14 */
-    {&td_rom.x1018_s1, 4, 0, 1, 0x07, ODG_A_READ, ODG_S_ROM},                      /* 15 */
-    {&td_rom.x1018_s2, 4, 0, 2, 0x07, ODG_A_READ, ODG_S_ROM},                      /* 16 */
-    {&td_rom.x1018_s3, 4, 0, 3, 0x07, ODG_A_READ, ODG_S_ROM},                      /* 17 */
-    {&td_ram.x1018_s4, 4, 0, 4, 0x07, ODG_A_READ | ODG_A_TPDO, ODG_S_RAM},         /* 18 */
-    {&td_rom.x1400_s0, 1, 0, 0, 0x05, ODG_A_READ, ODG_S_ROM},                      /* 19 */
-    {&td_persist_comm.x1400_s1, 4, 0, 1, 0x07, RW | ODG_A_NODEID, COMM},           /* 20 */
-    {&td_persist_comm.x1400_s2, 1, 0, 2, 0x05, RW, COMM},                          /* 21 */
-    {&td_ram.x2001, 1, 0, 0, 0x01, RW | PDO, ODG_S_RAM},                           /* 22 */
-    {&td_ram.x2002, 1, 0, 0, 0x02, RW | PDO, ODG_S_RAM},                           /* 23 */
-    {&td_ram.x2003, 2, 0, 0, 0x03, RW | PDO, ODG_S_RAM},                           /* 24 */
-    {&td_ram.x2004, 4, 0, 0, 0x04, RW | PDO, ODG_S_RAM},                           /* 25 */
-    {&td_ram.x2005, 1, 0, 0, 0x05, RW | PDO, ODG_S_RAM},                           /* 26 */
-    {&td_ram.x2006, 2, 0, 0, 0x06, RW | PDO, ODG_S_RAM},                           /* 27 */
-    {&td_ram.x2007, 4, 0, 0, 0x07, RW | PDO, ODG_S_RAM},                           /* 28 */
-    {&td_ram.x2008, 4, 0, 0, 0x08, RW | PDO, ODG_S_RAM},                           /* 29 */
-    {td_ram.x2009, 8, 0, 0, 0x09, RW, ODG_S_RAM},                                  /* 30 */
-    {td_ram.x200A, 4, 0, 0, 0x0A, RW, ODG_S_RAM},                                  /* 31 */
-    {td_ram.x200B, 8, 0, 0, 0x0B, RW, ODG_S_RAM},                                  /* 32 */
-    {&td_ram.x200C, 6, 0, 0, 0x0C, RW | PDO, ODG_S_RAM},                           /* 33 */
-    {&td_ram.x200D, 6, 0, 0, 0x0D, RW | PDO, ODG_S_RAM},                           /* 34 */
-    {&td_dom_x200F, 16, 0, 0, 0x0F, RW, ODG_S_RAM},                                /* 35 */
-    {&td_ram.x2010, 3, 0, 0, 0x10, RW | PDO, ODG_S_RAM},                           /* 36 */
-    {&td_ram.x2011, 8, 0, 0, 0x11, RW | PDO, ODG_S_RAM},                           /* 37 */
-    {&td_ram.x2012, 5, 0, 0, 0x12, RW | PDO, ODG_S_RAM},                           /* 38 */
-    {&td_ram.x2013, 6, 0, 0, 0x13, RW | PDO, ODG_S_RAM},                           /* 39 */
-    {&td_ram.x2014, 7, 0, 0, 0x14, RW | PDO, ODG_S_RAM},                           /* 40 */
-    {&td_ram.x2015, 8, 0, 0, 0x15, RW | PDO, ODG_S_RAM},                           /* 41 */
-    {&td_ram.x2016, 3, 0, 0, 0x16, RW | PDO, ODG_S_RAM},                           /* 42 */
-    {&td_ram.x2018, 5, 0, 0, 0x18, RW | PDO, ODG_S_RAM},                           /* 43 */
-    {&td_ram.x2019, 6, 0, 0, 0x19, RW | PDO, ODG_S_RAM},                           /* 44 */
-    {&td_ram.x201A, 7, 0, 0, 0x1A, RW | PDO, ODG_S_RAM},                           /* 45 */
-    {&td_ram.x201B, 8, 0, 0, 0x1B, RW | PDO, ODG_S_RAM},                           /* 46 */
-    {&td_rom.x2100_s0, 1, 0, 0, 0x05, ODG_A_READ, ODG_S_ROM},                      /* 47 */
-    {&td_ram.x2100_s1, 2, 0, 1, 0x06, RW, ODG_S_RAM},                              /* 48 */
-    {&td_ram.x2100_s5, 4, 0, 5, 0x07, RW, ODG_S_RAM},                              /* 49 */
-    {&td_ram.x2100_s200, 1, 0, 200, 0x02, RW, ODG_S_RAM},                          /* 50 */
-    {&td_ram.x2101_s1, 2, 0, 1, 0x06, RW, ODG_S_RAM},                              /* 51 */
-    {&td_ram.x2101_s2, 2, 0, 2, 0x06, RW, ODG_S_RAM},                              /* 52 */
-    {&td_rom.x2200_s0, 1, 0, 0, 0x05, ODG_A_READ, ODG_S_ROM},                      /* 53 */
-    {&td_ram.x2200_s1, 2, 0, 1, 0x03, RW | ODG_A_LIMIT, ODG_S_RAM},                /* 54 */
-    {&td_ram.x2200_s2, 4, 1, 2, 0x07, RW | ODG_A_LIMIT, ODG_S_RAM},                /* 55 */
-    {&td_ram.x2200_s3, 4, 2, 3, 0x08, RW | ODG_A_LIMIT, ODG_S_RAM},                /* 56 */
-    {&td_ram.x2200_s4, 8, 3, 4, 0x11, RW | ODG_A_LIMIT, ODG_S_RAM},                /* 57 */
-    {&td_ram.x2200_s5, 3, 4, 5, 0x10, RW | ODG_A_LIMIT, ODG_S_RAM},                /* 58 */
-    {&td_ram.x2200_s6, 8, 5, 6, 0x1B, RW | ODG_A_LIMIT, ODG_S_RAM},                /* 59 */
-    {&td_ram.x2200_s7, 8, 6, 7, 0x15, RW | ODG_A_LIMIT, ODG_S_RAM},                /* 60 */
-    {&td_ram.x2200_s8, 5, 7, 8, 0x12, RW | ODG_A_LIMIT, ODG_S_RAM},                /* 61 */
-    {&td_ram.x2200_s9, 4, 8, 9, 0x08, RW | ODG_A_LIMIT, ODG_S_RAM},                /* 62 */
-    {&td_rom.x2300_s0, 1, 0, 0, 0x05, ODG_A_READ, ODG_S_ROM},                      /* 63 */
-    {&td_ram.x2300_s1, 4, 0, 1, 0x07, ODG_A_READ | ODG_A_TPDO | ODG_A_HOOK, ODG_S_RAM}, /* 64 */
-    {&td_ram.x2300_s2, 2, 0, 2, 0x06, RW | ODG_A_HOOK, ODG_S_RAM},                 /* 65 */
-    {&td_ram.x2300_s3, 1, 0, 3, 0x05, RW | ODG_A_HOOK, ODG_S_RAM},                 /* 66 */
-    {td_ram.x2300_s4, 8, 0, 4, 0x09, RW | ODG_A_HOOK, ODG_S_RAM},                  /* 67 */
-    {&td_ram.x2300_s5, 1, 0, 5, 0x05, RW | ODG_A_HOOK, ODG_S_RAM},                 /* 68 */
-    {&td_dom_x2300_s6, 8, 0, 6, 0x0F, RW | ODG_A_HOOK, ODG_S_RAM},                 /* 69 */
-    {&td_ram.x2400, 4, 0, 0, 0x07, ODG_A_WRITE | ODG_A_RPDO, ODG_S_RAM},           /* 70 */
-    {&td_ram.x2401, 4, 0, 0, 0x07, ODG_A_READ, ODG_S_RAM},                         /* 71 */
-    {&td_rom.x2500_s0, 1, 0, 0, 0x05, ODG_A_READ, ODG_S_ROM},                      /* 72 */
-    {&td_persist_app.x2500_s1, 4, 0, 1, 0x07, RW, APP},                            /* 73 */
-    {td_persist_app.x2500_s2, 8, 0, 2, 0x09, RW, APP},                             /* 74 */
-    {&td_persist_app.x2500_s3, 8, 9, 3, 0x15, RW | ODG_A_LIMIT, APP},              /* 75 */
-    {&td_dom_x2500_s4, 8, 0, 4, 0x0F, RW, APP},                                    /* 76 */
-    {&td_persist_app.x2500_s5, 2, 0, 5, 0x06, RW | ODG_A_NODEID, APP},             /* 77 */
+    {offsetof(td_rom_t, x1000), 4, 0, 0x07, ODG_A_READ, ODG_S_ROM},                   /* 0 */
+    {offsetof(td_rom_t, x1008), 8, 0, 0x09, ODG_A_READ, ODG_S_ROM},                   /* 1 */
+    {offsetof(td_rom_t, x1010_s0), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM},                /* 2 */
+    {0, 4, 1, 0x07, RW, ODG_S_STORE},                                                 /* 3: save all */
+    {0, 4, 2, 0x07, RW, ODG_S_STORE},                                                 /* 4: comm */
+    {0, 4, 3, 0x07, RW, ODG_S_STORE},                                                 /* 5: app */
+    {0, 4, 4, 0x07, RW, ODG_S_STORE},                                                 /* 6: no group */
+    {offsetof(td_rom_t, x1011_s0), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM},                /* 7 */
+    {0, 4, 1, 0x07, RW, ODG_S_STORE | ODG_S_RESTORE_FLAG},                            /* 8 */
+    {0, 4, 2, 0x07, RW, ODG_S_STORE | ODG_S_RESTORE_FLAG},                            /* 9 */
+    {0, 4, 3, 0x07, RW, ODG_S_STORE | ODG_S_RESTORE_FLAG},                            /* 10 */
+    {0, 4, 4, 0x07, RW, ODG_S_STORE | ODG_S_RESTORE_FLAG},                            /* 11 */
+    {offsetof(td_ram_t, x1014), 4, 0, 0x07, RW | ODG_A_NODEID, ODG_S_RAM},            /* 12 */
+    {offsetof(td_persist_comm_t, x1017), 2, 0, 0x06, RW, COMM},                       /* 13 */
+    {offsetof(td_rom_t, x1018_s0), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM},                /* 14 */
+    {offsetof(td_rom_t, x1018_s1), 4, 1, 0x07, ODG_A_READ, ODG_S_ROM},                /* 15 */
+    {offsetof(td_rom_t, x1018_s2), 4, 2, 0x07, ODG_A_READ, ODG_S_ROM},                /* 16 */
+    {offsetof(td_rom_t, x1018_s3), 4, 3, 0x07, ODG_A_READ, ODG_S_ROM},                /* 17 */
+    {offsetof(td_ram_t, x1018_s4), 4, 4, 0x07, ODG_A_READ | ODG_A_TPDO, ODG_S_RAM},   /* 18 */
+    {offsetof(td_rom_t, x1400_s0), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM},                /* 19 */
+    {offsetof(td_persist_comm_t, x1400_s1), 4, 1, 0x07, RW | ODG_A_NODEID, COMM},     /* 20 */
+    {offsetof(td_persist_comm_t, x1400_s2), 1, 2, 0x05, RW, COMM},                    /* 21 */
+    {offsetof(td_ram_t, x2001), 1, 0, 0x01, RW | PDO, ODG_S_RAM},                     /* 22 */
+    {offsetof(td_ram_t, x2002), 1, 0, 0x02, RW | PDO, ODG_S_RAM},                     /* 23 */
+    {offsetof(td_ram_t, x2003), 2, 0, 0x03, RW | PDO, ODG_S_RAM},                     /* 24 */
+    {offsetof(td_ram_t, x2004), 4, 0, 0x04, RW | PDO, ODG_S_RAM},                     /* 25 */
+    {offsetof(td_ram_t, x2005), 1, 0, 0x05, RW | PDO, ODG_S_RAM},                     /* 26 */
+    {offsetof(td_ram_t, x2006), 2, 0, 0x06, RW | PDO, ODG_S_RAM},                     /* 27 */
+    {offsetof(td_ram_t, x2007), 4, 0, 0x07, RW | PDO, ODG_S_RAM},                     /* 28 */
+    {offsetof(td_ram_t, x2008), 4, 0, 0x08, RW | PDO, ODG_S_RAM},                     /* 29 */
+    {offsetof(td_ram_t, x2009), 8, 0, 0x09, RW, ODG_S_RAM},                           /* 30 */
+    {offsetof(td_ram_t, x200A), 4, 0, 0x0A, RW, ODG_S_RAM},                           /* 31 */
+    {offsetof(td_ram_t, x200B), 8, 0, 0x0B, RW, ODG_S_RAM},                           /* 32 */
+    {offsetof(td_ram_t, x200C), 6, 0, 0x0C, RW | PDO, ODG_S_RAM},                     /* 33 */
+    {offsetof(td_ram_t, x200D), 6, 0, 0x0D, RW | PDO, ODG_S_RAM},                     /* 34 */
+    {0, 16, 0, 0x0F, RW, ODG_S_RAM},                                                  /* 35: td_domains[0] */
+    {offsetof(td_ram_t, x2010), 3, 0, 0x10, RW | PDO, ODG_S_RAM},                     /* 36 */
+    {offsetof(td_ram_t, x2011), 8, 0, 0x11, RW | PDO, ODG_S_RAM},                     /* 37 */
+    {offsetof(td_ram_t, x2012), 5, 0, 0x12, RW | PDO, ODG_S_RAM},                     /* 38 */
+    {offsetof(td_ram_t, x2013), 6, 0, 0x13, RW | PDO, ODG_S_RAM},                     /* 39 */
+    {offsetof(td_ram_t, x2014), 7, 0, 0x14, RW | PDO, ODG_S_RAM},                     /* 40 */
+    {offsetof(td_ram_t, x2015), 8, 0, 0x15, RW | PDO, ODG_S_RAM},                     /* 41 */
+    {offsetof(td_ram_t, x2016), 3, 0, 0x16, RW | PDO, ODG_S_RAM},                     /* 42 */
+    {offsetof(td_ram_t, x2018), 5, 0, 0x18, RW | PDO, ODG_S_RAM},                     /* 43 */
+    {offsetof(td_ram_t, x2019), 6, 0, 0x19, RW | PDO, ODG_S_RAM},                     /* 44 */
+    {offsetof(td_ram_t, x201A), 7, 0, 0x1A, RW | PDO, ODG_S_RAM},                     /* 45 */
+    {offsetof(td_ram_t, x201B), 8, 0, 0x1B, RW | PDO, ODG_S_RAM},                     /* 46 */
+    {offsetof(td_rom_t, x2100_s0), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM},                /* 47 */
+    {offsetof(td_ram_t, x2100_s1), 2, 1, 0x06, RW, ODG_S_RAM},                        /* 48 */
+    {offsetof(td_ram_t, x2100_s5), 4, 5, 0x07, RW, ODG_S_RAM},                        /* 49 */
+    {offsetof(td_ram_t, x2100_s200), 1, 200, 0x02, RW, ODG_S_RAM},                    /* 50 */
+    {offsetof(td_ram_t, x2101_s1), 2, 1, 0x06, RW, ODG_S_RAM},                        /* 51 */
+    {offsetof(td_ram_t, x2101_s2), 2, 2, 0x06, RW, ODG_S_RAM},                        /* 52 */
+    {offsetof(td_rom_t, x2200_s0), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM},                /* 53 */
+    {offsetof(td_ram_t, x2200_s1), 2, 1, 0x03, RW | ODG_A_LIMIT, ODG_S_RAM},          /* 54 */
+    {offsetof(td_ram_t, x2200_s2), 4, 2, 0x07, RW | ODG_A_LIMIT, ODG_S_RAM},          /* 55 */
+    {offsetof(td_ram_t, x2200_s3), 4, 3, 0x08, RW | ODG_A_LIMIT, ODG_S_RAM},          /* 56 */
+    {offsetof(td_ram_t, x2200_s4), 8, 4, 0x11, RW | ODG_A_LIMIT, ODG_S_RAM},          /* 57 */
+    {offsetof(td_ram_t, x2200_s5), 3, 5, 0x10, RW | ODG_A_LIMIT, ODG_S_RAM},          /* 58 */
+    {offsetof(td_ram_t, x2200_s6), 8, 6, 0x1B, RW | ODG_A_LIMIT, ODG_S_RAM},          /* 59 */
+    {offsetof(td_ram_t, x2200_s7), 8, 7, 0x15, RW | ODG_A_LIMIT, ODG_S_RAM},          /* 60 */
+    {offsetof(td_ram_t, x2200_s8), 5, 8, 0x12, RW | ODG_A_LIMIT, ODG_S_RAM},          /* 61 */
+    {offsetof(td_ram_t, x2200_s9), 4, 9, 0x08, RW | ODG_A_LIMIT, ODG_S_RAM},          /* 62 */
+    {offsetof(td_rom_t, x2300_s0), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM},                /* 63 */
+    {offsetof(td_ram_t, x2300_s1), 4, 1, 0x07, ODG_A_READ | ODG_A_TPDO | ODG_A_HOOK, ODG_S_RAM}, /* 64 */
+    {offsetof(td_ram_t, x2300_s2), 2, 2, 0x06, RW | ODG_A_HOOK, ODG_S_RAM},           /* 65 */
+    {offsetof(td_ram_t, x2300_s3), 1, 3, 0x05, RW | ODG_A_HOOK, ODG_S_RAM},           /* 66 */
+    {offsetof(td_ram_t, x2300_s4), 8, 4, 0x09, RW | ODG_A_HOOK, ODG_S_RAM},           /* 67 */
+    {offsetof(td_ram_t, x2300_s5), 1, 5, 0x05, RW | ODG_A_HOOK, ODG_S_RAM},           /* 68 */
+    {1, 8, 6, 0x0F, RW | ODG_A_HOOK, ODG_S_RAM},                                      /* 69: td_domains[1] */
+    {offsetof(td_ram_t, x2400), 4, 0, 0x07, ODG_A_WRITE | ODG_A_RPDO, ODG_S_RAM},     /* 70 */
+    {offsetof(td_ram_t, x2401), 4, 0, 0x07, ODG_A_READ, ODG_S_RAM},                   /* 71 */
+    {offsetof(td_rom_t, x2500_s0), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM},                /* 72 */
+    {offsetof(td_persist_app_t, x2500_s1), 4, 1, 0x07, RW, APP},                      /* 73 */
+    {offsetof(td_persist_app_t, x2500_s2), 8, 2, 0x09, RW, APP},                      /* 74 */
+    {offsetof(td_persist_app_t, x2500_s3), 8, 3, 0x15, RW | ODG_A_LIMIT, APP},        /* 75 */
+    {2, 8, 4, 0x0F, RW, APP},                                                         /* 76: td_domains[2] */
+    {offsetof(td_persist_app_t, x2500_s5), 2, 5, 0x06, RW | ODG_A_NODEID, APP},       /* 77 */
 };
 
+/* low, high, sub_pos: sorted by sub_pos */
 ODG_ATTR_ROM static const odg_limit_t td_limits[10] = {
-    {UINT64_C(0xFFFFFFFFFFFFFF9C), UINT64_C(0x0000000000000064)}, /* -100 .. 100 */
-    {UINT64_C(0x000000000000000A), UINT64_C(0x00000000000003E8)}, /* 10 .. 1000 */
-    {UINT64_C(0xBFF8000000000000), UINT64_C(0x4004000000000000)}, /* -1.5 .. 2.5 */
-    {UINT64_C(0xC08F400000000000), UINT64_C(0x408F400000000000)}, /* -1000.0 .. 1000.0 */
-    {UINT64_C(0xFFFFFFFFFF85EE00), UINT64_C(0x00000000007A1200)}, /* -8000000 .. 8000000 */
-    {UINT64_C(0x0000000000000001), UINT64_C(0xFFFFFFFFFFFFFFF0)}, /* 1 .. 2^64-16 */
-    {UINT64_C(0x8000000000000001), UINT64_C(0xFFFFFFFFFFFFFFFB)}, /* -2^63+1 .. -5 */
-    {UINT64_C(0xFFFFFF8000000000), UINT64_C(0x0000007FFFFFFFFF)}, /* INTEGER40 full range */
-    {UINT64_C(0xBFB999999999999A), UINT64_C(0x3FB999999999999A)}, /* -0.1 .. 0.1 */
-    {UINT64_C(0xFFFFFFFFFFF0BDC0), UINT64_C(0x00000000000F4240)}, /* -1000000 .. 1000000 */
+    {UINT64_C(0xFFFFFFFFFFFFFF9C), UINT64_C(0x0000000000000064), 54}, /* -100 .. 100 */
+    {UINT64_C(0x000000000000000A), UINT64_C(0x00000000000003E8), 55}, /* 10 .. 1000 */
+    {UINT64_C(0xBFF8000000000000), UINT64_C(0x4004000000000000), 56}, /* -1.5 .. 2.5 */
+    {UINT64_C(0xC08F400000000000), UINT64_C(0x408F400000000000), 57}, /* -1000.0 .. 1000.0 */
+    {UINT64_C(0xFFFFFFFFFF85EE00), UINT64_C(0x00000000007A1200), 58}, /* -8000000 .. 8000000 */
+    {UINT64_C(0x0000000000000001), UINT64_C(0xFFFFFFFFFFFFFFF0), 59}, /* 1 .. 2^64-16 */
+    {UINT64_C(0x8000000000000001), UINT64_C(0xFFFFFFFFFFFFFFFB), 60}, /* -2^63+1 .. -5 */
+    {UINT64_C(0xFFFFFF8000000000), UINT64_C(0x0000007FFFFFFFFF), 61}, /* INTEGER40 full range */
+    {UINT64_C(0xBFB999999999999A), UINT64_C(0x3FB999999999999A), 62}, /* -0.1 .. 0.1 */
+    {UINT64_C(0xFFFFFFFFFFF0BDC0), UINT64_C(0x00000000000F4240), 75}, /* -1000000 .. 1000000 */
 };
 
 ODG_ATTR_ROM static const odg_hook_map_t td_hook_map[6] = {
@@ -331,6 +336,9 @@ static void td_reset(const odg_dict_t *dict)
 ODG_ATTR_ROM const odg_dict_t td = {
     td_entries,
     td_subs,
+    &td_rom,
+    &td_ram,
+    td_domains,
     td_limits,
     td_hook_map,
     td_hook_slots,
@@ -341,5 +349,7 @@ ODG_ATTR_ROM const odg_dict_t td = {
     40,
     78,
     6,
+    10,
+    3,
     2
 };

@@ -1,9 +1,10 @@
 /*
  * td.h - a HAND-WRITTEN object dictionary "td" for the runtime tests, laid out exactly as
- * odgen's templates emit one (storage-class structs with const defaults, const descriptor
- * tables, hook map and slots, persistence groups, state, reset). It covers every basic data
- * type 0x01-0x1B, rom/ram/persist storage, $NODEID values, dense and sparse entries, a hooked
- * entry of each kind, and the 0x1010/0x1011 commands.
+ * odgen's templates emit one (one struct per storage class with const defaults; const
+ * descriptor tables whose values are offsetof() into those structs, a DOMAIN table, limits
+ * keyed by sub position; hook map and slots, persistence groups, state, reset). It covers
+ * every basic data type 0x01-0x1B, rom/ram/persist storage, $NODEID values, dense and sparse
+ * entries, a hooked entry of each kind, and the 0x1010/0x1011 commands.
  */
 #ifndef TD_H
 #define TD_H
@@ -27,6 +28,7 @@
 #define TD_N_SUBS 78u
 #define TD_N_HOOKS 6u
 #define TD_N_LIMITS 10u
+#define TD_N_DOMAINS 3u
 
 /* td_rom: ODG_ATTR_ROM */
 typedef struct {

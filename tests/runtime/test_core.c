@@ -610,12 +610,13 @@ static void test_access(void)
     CHECK_EQ(td_ram.x2400, 0xCAFEu);
     {
         /* a FLASH value is never written, even if its descriptor claims write access */
-        static const uint32_t flash = 7;
-        odg_sub_t s = {&flash, 4, 0, 0, ODG_T_UNSIGNED32, ODG_A_READ | ODG_A_WRITE, ODG_S_ROM};
+        odg_sub_t s = {offsetof(td_rom_t, x1000), 4, 0, ODG_T_UNSIGNED32, ODG_A_READ | ODG_A_WRITE,
+                       ODG_S_ROM};
         odg_ref_t r = ref_of(0x1000, 0);
         r.sub = &s;
         CHECK_EQ(odg_write(&r, "\x01\x00\x00\x00", 4), ODG_ABORT_READ_ONLY);
         CHECK_EQ(odg_write_part(&r, 0, "\x01\x00\x00\x00", 4, 4), ODG_ABORT_READ_ONLY);
+        CHECK_EQ(td_rom.x1000, 0x00020191u);
     }
     /* 0x1010/0x1011 without an NV driver */
     CHECK_EQ(rdv(0x1010, 1), 1u);
@@ -861,6 +862,7 @@ static void test_mapping(void)
 static odg_entry_t E[TD_N_ENTRIES];
 static odg_sub_t S[TD_N_SUBS + 1];
 static odg_limit_t L[TD_N_LIMITS];
+static odg_domain_t DOM[TD_N_DOMAINS];
 static odg_hook_map_t HM[TD_N_HOOKS];
 static odg_group_t G[2];
 static odg_dict_t D;
@@ -871,12 +873,14 @@ static void fresh(void)
     memcpy(S, td.subs, TD_N_SUBS * sizeof S[0]);
     S[TD_N_SUBS] = S[TD_N_SUBS - 1];
     memcpy(L, td.limits, sizeof L);
+    memcpy(DOM, td.domains, sizeof DOM);
     memcpy(HM, td.hook_map, sizeof HM);
     memcpy(G, td.groups, sizeof G);
     D = td;
     D.entries = E;
     D.subs = S;
     D.limits = L;
+    D.domains = DOM;
     D.hook_map = HM;
     D.groups = G;
 }
@@ -903,7 +907,6 @@ static int32_t find_claims_0x1015(uint16_t index)
 static void test_verify(void)
 {
     uint16_t bad = 0x1234;
-    odg_domain_t dom;
     td_persist_app_t defaults;
     odg_dict_t sw = td;
     CHECK_EQ(odg_verify(&td, &bad), ODG_OK);
@@ -957,13 +960,11 @@ static void test_verify(void)
     BAD(0x2010);
     S[33].size = 8;
     BAD(0x200C);
-    S[28].data = NULL;
-    BAD(0x2007);
     S[28].storage = 0x05;
     BAD(0x2007);
     S[28].attr |= 0x80u;
     BAD(0x2007);
-    S[3].data = &td_ram.x2007;
+    S[3].offset = 4; /* a command has no value */
     BAD(0x1010);
     S[3].type = ODG_T_UNSIGNED16;
     BAD(0x1010);
@@ -985,6 +986,46 @@ static void test_verify(void)
     BAD(0x2009);
     S[32].size = 7;
     BAD(0x200B);
+    /* where values lie: the block of the class is there, the offset aligned for the C type */
+    D.rom = NULL;
+    BAD(0x1000);
+    D.ram = NULL;
+    BAD(0x1014);
+    S[28].offset = (uint16_t)(S[28].offset + 2u); /* UNSIGNED32 */
+    BAD(0x2007);
+    S[28].offset = (uint16_t)(S[28].offset + 1u);
+    BAD(0x2007);
+    S[27].offset = (uint16_t)(S[27].offset + 1u); /* UNSIGNED16 */
+    BAD(0x2006);
+    S[29].offset = (uint16_t)(S[29].offset + 2u); /* REAL32 */
+    BAD(0x2008);
+    S[36].offset = (uint16_t)(S[36].offset + 1u); /* INTEGER24 in an int32_t */
+    BAD(0x2010);
+    S[41].offset = (uint16_t)(S[41].offset + 2u); /* INTEGER64 */
+    BAD(0x2015);
+    S[37].offset = (uint16_t)(S[37].offset + 1u); /* REAL64 */
+    BAD(0x2011);
+    S[32].offset = (uint16_t)(S[32].offset + 1u); /* UNICODE_STRING: uint16_t units */
+    BAD(0x200B);
+    S[15].offset = (uint16_t)(S[15].offset + 2u); /* in the ROM block */
+    BAD(0x1018);
+    S[26].offset = offsetof(td_ram_t, x2002); /* a byte may lie anywhere (here: on another) */
+    CHECK_EQ(odg_verify(&D, &bad), ODG_OK);
+    fresh();
+    /* domains: an index into the domain table, whose descriptor fits the sub-entry */
+    S[35].offset = TD_N_DOMAINS;
+    BAD(0x200F);
+    S[35].offset = 0xFFFF;
+    BAD(0x200F);
+    D.n_domains = TD_N_DOMAINS - 1u; /* 0x2500sub4 has the last one */
+    BAD(0x2500);
+    D.domains = NULL;
+    BAD(0xFFFF);
+    S[35].offset = 1; /* a domain of capacity 8 for a sub-entry of 16 */
+    BAD(0x200F);
+    S[69].offset = 0; /* capacity 16 for 8 is fine */
+    CHECK_EQ(odg_verify(&D, &bad), ODG_OK);
+    fresh();
     /* limits: ordered by the type's class */
     L[0].low = 100;
     L[0].high = (uint64_t)-100;
@@ -1007,7 +1048,33 @@ static void test_verify(void)
     L[5].low = UINT64_C(0xFFFFFFFFFFFFFFF0); /* ordered if read as signed, not as unsigned */
     L[5].high = 1;
     BAD(0x2200);
+    /* limits: sorted by sub position, one for each ODG_A_LIMIT sub-entry and for no other */
     D.limits = NULL;
+    BAD(0xFFFF);
+    D.limits = NULL;
+    D.n_limits = 0;
+    BAD(0x2200); /* ODG_A_LIMIT without limits */
+    D.n_limits = TD_N_LIMITS - 1u; /* the last, 0x2500sub3's, cut off */
+    BAD(0x2500);
+    S[28].attr |= ODG_A_LIMIT;
+    BAD(0x2007);
+    S[54].attr &= (uint8_t)~ODG_A_LIMIT; /* limits for a sub-entry without ODG_A_LIMIT */
+    BAD(0x2200);
+    S[75].attr &= (uint8_t)~ODG_A_LIMIT;
+    BAD(0x2500);
+    L[0].sub_pos = 53; /* 0x2200sub0 */
+    BAD(0x2200);
+    L[9].sub_pos = TD_N_SUBS;
+    BAD(0xFFFF);
+    {
+        odg_limit_t l = L[0]; /* unsorted */
+        L[0] = L[1];
+        L[1] = l;
+    }
+    BAD(0x2200);
+    L[9].sub_pos = 61; /* after 62 */
+    BAD(0x2200);
+    L[4].sub_pos = L[3].sub_pos; /* twice */
     BAD(0x2200);
     /* current values */
     td_ram.x2200_s1 = 101;
@@ -1028,32 +1095,37 @@ static void test_verify(void)
     td_ram.x200F_len = 17;
     BAD(0x200F);
     td_ram.x200F_len = 3;
-    dom.data = td_ram.x200F_buf;
-    dom.length = &td_ram.x200F_len;
-    dom.capacity = 8; /* less than the descriptor's size */
-    S[35].data = &dom;
+    DOM[0].capacity = 8; /* less than the descriptor's size */
     BAD(0x200F);
-    dom.capacity = 16;
-    dom.data = NULL;
-    S[35].data = &dom;
+    DOM[0].data = NULL;
     BAD(0x200F);
-    /* persistence */
+    DOM[0].length = NULL;
+    BAD(0x200F);
+    /* persistence: offset and size within the group's struct */
     S[13].storage = ODG_S_PERSIST | (2u << 2);
     BAD(0x1017);
-    S[13].data = &td_ram.x2006;
+    S[13].offset = sizeof(td_persist_comm_t);
     BAD(0x1017);
-    S[21].data = (const uint8_t *)&td_persist_comm + sizeof td_persist_comm;
+    S[13].offset = sizeof(td_persist_comm_t) - 2u; /* the last two bytes: inside */
+    CHECK_EQ(odg_verify(&D, &bad), ODG_OK);
+    fresh();
+    S[21].offset = sizeof(td_persist_comm_t); /* one byte past the end */
     BAD(0x1400);
-    S[73].storage = ODG_S_PERSIST | (TD_GROUP_COMM << 2);
+    S[20].offset = sizeof(td_persist_comm_t); /* aligned, but beyond */
+    BAD(0x1400);
+    S[74].offset = sizeof(td_persist_app_t) - 8u; /* char[9]: its terminator is outside */
     BAD(0x2500);
-    dom.data = td_persist_app.x2500_s4_buf;
-    dom.length = &td_ram.x200F_len; /* length outside the group */
-    dom.capacity = 8;
-    S[76].data = &dom;
+    S[73].storage = ODG_S_PERSIST | (TD_GROUP_COMM << 2); /* offset 8 of an 8-byte group */
+    BAD(0x2500);
+    DOM[2].length = &td_ram.x200F_len; /* a persisted domain's length outside the group */
+    BAD(0x2500);
+    DOM[2].data = td_ram.x2300_s6_buf; /* and its buffer */
     BAD(0x2500);
     defaults = td_persist_app_defaults;
     defaults.x2500_s3 = 2000000; /* FLASH default outside the limits */
     G[1].defaults = &defaults;
+    BAD(0x2500);
+    G[1].defaults = NULL;
     BAD(0x2500);
     /* hook map */
     HM[1].sub_pos = 64;
@@ -1088,6 +1160,60 @@ static void test_verify(void)
     CHECK_EQ(odg_verify(&td, &bad), ODG_OK);
 }
 
+/* Values are found through the dictionary's blocks, not at fixed addresses: a copy of td with
+ * other ROM, RAM and group structs reads and writes those. */
+static void test_blocks(void)
+{
+    static td_rom_t rom2;
+    static td_ram_t ram2;
+    static td_persist_comm_t comm2;
+    static odg_group_t groups2[2];
+    odg_dict_t d2 = td;
+    odg_ref_t r;
+    uint8_t b[16];
+    uint32_t n = 0, x2007 = td_ram.x2007;
+    rom2 = td_rom;
+    rom2.x1000 = 0x0A0B0C0Du;
+    ram2 = td_ram_defaults;
+    ram2.x2007 = 0x11223344u;
+    comm2 = td_persist_comm_defaults;
+    comm2.x1017 = 0x0102;
+    memcpy(groups2, td.groups, sizeof groups2);
+    groups2[TD_GROUP_COMM].mirror = &comm2;
+    d2.rom = &rom2;
+    d2.ram = &ram2;
+    d2.groups = groups2;
+    CHECK_EQ(odg_verify(&d2, NULL), ODG_OK);
+    CHECK_EQ(odg_find(&d2, 0x1000, 0, &r), ODG_OK);
+    CHECK_EQ(odg_read(&r, 0, b, sizeof b, &n), ODG_OK);
+    CHECK(n == 4 && bytes_eq(b, "\x0D\x0C\x0B\x0A", 4));
+    CHECK_EQ(odg_find(&d2, 0x2007, 0, &r), ODG_OK);
+    CHECK_EQ(odg_read(&r, 0, b, sizeof b, &n), ODG_OK);
+    CHECK(n == 4 && bytes_eq(b, "\x44\x33\x22\x11", 4));
+    CHECK_EQ(odg_write(&r, "\x01\x02\x03\x04", 4), ODG_OK);
+    CHECK_EQ(ram2.x2007, 0x04030201u);
+    CHECK_EQ(td_ram.x2007, x2007);
+    CHECK_EQ(odg_find(&d2, 0x2009, 0, &r), ODG_OK);
+    CHECK_EQ(odg_write(&r, "zz", 2), ODG_OK);
+    CHECK(bytes_eq(ram2.x2009, "zz\0\0\0\0\0\0\0", 9));
+    CHECK_EQ(odg_length(&r), 2);
+    CHECK_EQ(odg_find(&d2, 0x200B, 0, &r), ODG_OK);
+    CHECK_EQ(odg_write_part(&r, 0, "Q\0", 2, 4), ODG_OK);
+    CHECK_EQ(odg_write_part(&r, 2, "R\0", 2, 4), ODG_OK);
+    CHECK(ram2.x200B[0] == 'Q' && ram2.x200B[1] == 'R' && ram2.x200B[2] == 0);
+    CHECK_EQ(odg_length(&r), 4);
+    CHECK_EQ(odg_find(&d2, 0x1017, 0, &r), ODG_OK);
+    CHECK_EQ(odg_read(&r, 0, b, sizeof b, &n), ODG_OK);
+    CHECK(n == 2 && bytes_eq(b, "\x02\x01", 2));
+    CHECK_EQ(odg_write(&r, "\x03\x04", 2), ODG_OK);
+    CHECK_EQ(comm2.x1017, 0x0403);
+    CHECK_EQ(td_persist_comm.x1017, 1000);
+    CHECK_EQ(odg_find(&d2, 0x2200, 2, &r), ODG_OK); /* limits found by sub position */
+    CHECK_EQ(odg_write(&r, "\xE9\x03\x00\x00", 4), ODG_ABORT_VALUE_HIGH);
+    CHECK_EQ(odg_write(&r, "\xE8\x03\x00\x00", 4), ODG_OK);
+    CHECK_EQ(ram2.x2200_s2, 1000);
+}
+
 /* -0.0 and +0.0 are the same number to the limits */
 static void test_signed_zero(void)
 {
@@ -1119,6 +1245,7 @@ int main(void)
     test_abort_text();
     test_init();
     test_verify();
+    test_blocks();
     test_find();
     test_reads();
     test_numeric_writes();

@@ -62,7 +62,12 @@ ODG_ATTR_ROM static const alltypes_persist_comm_t alltypes_persist_comm_defaults
     .x2005_uint8_value = 7,
 };
 
-ODG_ATTR_ROM static const odg_domain_t alltypes_dom_x200E_domain_value = {alltypes_ram.x200E_domain_value_buf, &alltypes_ram.x200E_domain_value_len, 16u};
+ODG_ATTR_ROM static const odg_domain_t alltypes_domains[1] = {
+    {alltypes_ram.x200E_domain_value_buf, &alltypes_ram.x200E_domain_value_len, 16u}, /* x200E_domain_value */
+};
+
+/* Offsets into a value block are 16-bit. */
+typedef char alltypes_assert_block_sizes[(sizeof(alltypes_rom_t) <= 65535u && sizeof(alltypes_ram_t) <= 65535u && sizeof(alltypes_persist_app_t) <= 65535u && sizeof(alltypes_persist_comm_t) <= 65535u && 1) ? 1 : -1];
 
 ODG_ATTR_ROM static const odg_entry_t alltypes_entries[35] = {
     {0x1000, 0, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Device type */
@@ -102,61 +107,61 @@ ODG_ATTR_ROM static const odg_entry_t alltypes_entries[35] = {
     {0x2103, 41, 3, ODG_OBJ_RECORD}, /* Sparse record */
 };
 
-/* data, size, limit, sub, type, attr, storage */
+/* offset, size, sub, type, attr, storage */
 ODG_ATTR_ROM static const odg_sub_t alltypes_subs[44] = {
-    {&alltypes_rom.x1000_device_type, 4, 0, 0, 0x07, ODG_A_READ, ODG_S_ROM}, /* Device type */
-    {&alltypes_ram.x1001_error_register, 1, 0, 0, 0x05, ODG_A_READ | ODG_A_TPDO, ODG_S_RAM}, /* Error register */
-    {&alltypes_rom.x1010_store_parameters_s0_highest_sub_index_supported, 1, 0, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
-    {NULL, 4, 0, 1, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_STORE}, /* Save all parameters */
-    {NULL, 4, 0, 2, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_STORE}, /* Save communication parameters */
-    {NULL, 4, 0, 3, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_STORE}, /* Save application parameters */
-    {&alltypes_rom.x1011_restore_default_parameters_s0_highest_sub_index_supported, 1, 0, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
-    {NULL, 4, 0, 1, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_STORE | ODG_S_RESTORE_FLAG}, /* Restore all parameters */
-    {NULL, 4, 0, 2, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_STORE | ODG_S_RESTORE_FLAG}, /* Restore communication parameters */
-    {NULL, 4, 0, 3, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_STORE | ODG_S_RESTORE_FLAG}, /* Restore application parameters */
-    {&alltypes_persist_comm.x1017_producer_heartbeat_time, 2, 0, 0, 0x06, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Producer heartbeat time */
-    {&alltypes_rom.x1018_identity_s0_highest_sub_index_supported, 1, 0, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
-    {&alltypes_rom.x1018_identity_s1_vendor_id, 4, 0, 1, 0x07, ODG_A_READ, ODG_S_ROM}, /* Vendor-ID */
-    {&alltypes_persist_comm.x2001_bool_flag, 1, 0, 0, 0x01, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Bool flag */
-    {&alltypes_persist_comm.x2002_int8_value, 1, 0, 0, 0x02, ODG_A_READ | ODG_A_WRITE | ODG_A_TPDO | ODG_A_RPDO | ODG_A_LIMIT, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Int8 value */
-    {&alltypes_persist_comm.x2003_int16_value, 2, 1, 0, 0x03, ODG_A_READ | ODG_A_WRITE | ODG_A_TPDO | ODG_A_RPDO | ODG_A_LIMIT, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Int16 value */
-    {&alltypes_persist_comm.x2004_int32_value, 4, 0, 0, 0x04, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Int32 value */
-    {&alltypes_persist_comm.x2005_uint8_value, 1, 2, 0, 0x05, ODG_A_READ | ODG_A_WRITE | ODG_A_TPDO | ODG_A_RPDO | ODG_A_HOOK | ODG_A_LIMIT, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Uint8 value */
-    {&alltypes_persist_comm.x2006_uint16_value, 2, 3, 0, 0x06, ODG_A_READ | ODG_A_WRITE | ODG_A_TPDO | ODG_A_RPDO | ODG_A_HOOK | ODG_A_LIMIT, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Uint16 value */
-    {&alltypes_persist_comm.x2007_uint32_value, 4, 0, 0, 0x07, ODG_A_READ | ODG_A_WRITE | ODG_A_TPDO | ODG_A_RPDO | ODG_A_NODEID, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Uint32 value */
-    {&alltypes_persist_comm.x2008_real32_value, 4, 4, 0, 0x08, ODG_A_READ | ODG_A_WRITE | ODG_A_LIMIT, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Real32 value */
-    {alltypes_ram.x2009_device_label, 40, 0, 0, 0x09, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Device label */
-    {alltypes_ram.x200A_octet_value, 4, 0, 0, 0x0A, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Octet value */
-    {alltypes_ram.x200B_unicode_label, 6, 0, 0, 0x0B, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Unicode label */
-    {&alltypes_ram.x200C_time_of_day, 6, 0, 0, 0x0C, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Time of day */
-    {&alltypes_ram.x200D_time_difference, 6, 0, 0, 0x0D, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Time difference */
-    {&alltypes_dom_x200E_domain_value, 16, 0, 0, 0x0F, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Domain value */
-    {&alltypes_ram.x200F_int24_value, 3, 0, 0, 0x10, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Int24 value */
-    {&alltypes_persist_app.x2010_real64_value, 8, 0, 0, 0x11, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Real64 value */
-    {&alltypes_persist_app.x2011_int40_value, 5, 0, 0, 0x12, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Int40 value */
-    {&alltypes_persist_app.x2012_int48_value, 6, 0, 0, 0x13, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Int48 value */
-    {&alltypes_persist_app.x2013_int56_value, 7, 0, 0, 0x14, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Int56 value */
-    {&alltypes_persist_app.x2014_int64_value, 8, 0, 0, 0x15, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Int64 value */
-    {&alltypes_persist_app.x2015_uint24_value, 3, 0, 0, 0x16, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Uint24 value */
-    {&alltypes_persist_app.x2016_uint40_value, 5, 0, 0, 0x18, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Uint40 value */
-    {&alltypes_persist_app.x2017_uint48_value, 6, 0, 0, 0x19, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Uint48 value */
-    {&alltypes_persist_app.x2018_uint56_value, 7, 0, 0, 0x1A, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Uint56 value */
-    {&alltypes_persist_app.x2019_uint64_value, 8, 0, 0, 0x1B, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Uint64 value */
-    {&alltypes_rom.x2100_firmware_build, 4, 0, 0, 0x07, ODG_A_READ, ODG_S_ROM}, /* Firmware build */
-    {&alltypes_ram.x2101_status_word, 2, 0, 0, 0x06, ODG_A_READ | ODG_A_TPDO | ODG_A_HOOK, ODG_S_RAM}, /* Status word */
-    {&alltypes_ram.x2102_command_word, 2, 0, 0, 0x06, ODG_A_WRITE, ODG_S_RAM}, /* Command word */
-    {&alltypes_persist_app.x2103_sparse_record_s0_highest_sub_index_supported, 1, 0, 0, 0x05, ODG_A_READ, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Highest sub-index supported */
-    {&alltypes_persist_app.x2103_sparse_record_s1_first, 2, 0, 1, 0x06, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* First */
-    {&alltypes_persist_app.x2103_sparse_record_s4_fourth, 4, 5, 4, 0x04, ODG_A_READ | ODG_A_WRITE | ODG_A_HOOK | ODG_A_LIMIT, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Fourth */
+    {offsetof(alltypes_rom_t, x1000_device_type), 4, 0, 0x07, ODG_A_READ, ODG_S_ROM}, /* Device type */
+    {offsetof(alltypes_ram_t, x1001_error_register), 1, 0, 0x05, ODG_A_READ | ODG_A_TPDO, ODG_S_RAM}, /* Error register */
+    {offsetof(alltypes_rom_t, x1010_store_parameters_s0_highest_sub_index_supported), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
+    {0, 4, 1, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_STORE}, /* Save all parameters */
+    {0, 4, 2, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_STORE}, /* Save communication parameters */
+    {0, 4, 3, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_STORE}, /* Save application parameters */
+    {offsetof(alltypes_rom_t, x1011_restore_default_parameters_s0_highest_sub_index_supported), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
+    {0, 4, 1, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_STORE | ODG_S_RESTORE_FLAG}, /* Restore all parameters */
+    {0, 4, 2, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_STORE | ODG_S_RESTORE_FLAG}, /* Restore communication parameters */
+    {0, 4, 3, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_STORE | ODG_S_RESTORE_FLAG}, /* Restore application parameters */
+    {offsetof(alltypes_persist_comm_t, x1017_producer_heartbeat_time), 2, 0, 0x06, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Producer heartbeat time */
+    {offsetof(alltypes_rom_t, x1018_identity_s0_highest_sub_index_supported), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
+    {offsetof(alltypes_rom_t, x1018_identity_s1_vendor_id), 4, 1, 0x07, ODG_A_READ, ODG_S_ROM}, /* Vendor-ID */
+    {offsetof(alltypes_persist_comm_t, x2001_bool_flag), 1, 0, 0x01, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Bool flag */
+    {offsetof(alltypes_persist_comm_t, x2002_int8_value), 1, 0, 0x02, ODG_A_READ | ODG_A_WRITE | ODG_A_TPDO | ODG_A_RPDO | ODG_A_LIMIT, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Int8 value */
+    {offsetof(alltypes_persist_comm_t, x2003_int16_value), 2, 0, 0x03, ODG_A_READ | ODG_A_WRITE | ODG_A_TPDO | ODG_A_RPDO | ODG_A_LIMIT, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Int16 value */
+    {offsetof(alltypes_persist_comm_t, x2004_int32_value), 4, 0, 0x04, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Int32 value */
+    {offsetof(alltypes_persist_comm_t, x2005_uint8_value), 1, 0, 0x05, ODG_A_READ | ODG_A_WRITE | ODG_A_TPDO | ODG_A_RPDO | ODG_A_HOOK | ODG_A_LIMIT, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Uint8 value */
+    {offsetof(alltypes_persist_comm_t, x2006_uint16_value), 2, 0, 0x06, ODG_A_READ | ODG_A_WRITE | ODG_A_TPDO | ODG_A_RPDO | ODG_A_HOOK | ODG_A_LIMIT, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Uint16 value */
+    {offsetof(alltypes_persist_comm_t, x2007_uint32_value), 4, 0, 0x07, ODG_A_READ | ODG_A_WRITE | ODG_A_TPDO | ODG_A_RPDO | ODG_A_NODEID, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Uint32 value */
+    {offsetof(alltypes_persist_comm_t, x2008_real32_value), 4, 0, 0x08, ODG_A_READ | ODG_A_WRITE | ODG_A_LIMIT, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Real32 value */
+    {offsetof(alltypes_ram_t, x2009_device_label), 40, 0, 0x09, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Device label */
+    {offsetof(alltypes_ram_t, x200A_octet_value), 4, 0, 0x0A, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Octet value */
+    {offsetof(alltypes_ram_t, x200B_unicode_label), 6, 0, 0x0B, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Unicode label */
+    {offsetof(alltypes_ram_t, x200C_time_of_day), 6, 0, 0x0C, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Time of day */
+    {offsetof(alltypes_ram_t, x200D_time_difference), 6, 0, 0x0D, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Time difference */
+    {0, 16, 0, 0x0F, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Domain value */
+    {offsetof(alltypes_ram_t, x200F_int24_value), 3, 0, 0x10, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Int24 value */
+    {offsetof(alltypes_persist_app_t, x2010_real64_value), 8, 0, 0x11, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Real64 value */
+    {offsetof(alltypes_persist_app_t, x2011_int40_value), 5, 0, 0x12, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Int40 value */
+    {offsetof(alltypes_persist_app_t, x2012_int48_value), 6, 0, 0x13, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Int48 value */
+    {offsetof(alltypes_persist_app_t, x2013_int56_value), 7, 0, 0x14, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Int56 value */
+    {offsetof(alltypes_persist_app_t, x2014_int64_value), 8, 0, 0x15, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Int64 value */
+    {offsetof(alltypes_persist_app_t, x2015_uint24_value), 3, 0, 0x16, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Uint24 value */
+    {offsetof(alltypes_persist_app_t, x2016_uint40_value), 5, 0, 0x18, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Uint40 value */
+    {offsetof(alltypes_persist_app_t, x2017_uint48_value), 6, 0, 0x19, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Uint48 value */
+    {offsetof(alltypes_persist_app_t, x2018_uint56_value), 7, 0, 0x1A, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Uint56 value */
+    {offsetof(alltypes_persist_app_t, x2019_uint64_value), 8, 0, 0x1B, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Uint64 value */
+    {offsetof(alltypes_rom_t, x2100_firmware_build), 4, 0, 0x07, ODG_A_READ, ODG_S_ROM}, /* Firmware build */
+    {offsetof(alltypes_ram_t, x2101_status_word), 2, 0, 0x06, ODG_A_READ | ODG_A_TPDO | ODG_A_HOOK, ODG_S_RAM}, /* Status word */
+    {offsetof(alltypes_ram_t, x2102_command_word), 2, 0, 0x06, ODG_A_WRITE, ODG_S_RAM}, /* Command word */
+    {offsetof(alltypes_persist_app_t, x2103_sparse_record_s0_highest_sub_index_supported), 1, 0, 0x05, ODG_A_READ, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Highest sub-index supported */
+    {offsetof(alltypes_persist_app_t, x2103_sparse_record_s1_first), 2, 1, 0x06, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* First */
+    {offsetof(alltypes_persist_app_t, x2103_sparse_record_s4_fourth), 4, 4, 0x04, ODG_A_READ | ODG_A_WRITE | ODG_A_HOOK | ODG_A_LIMIT, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Fourth */
 };
 
 ODG_ATTR_ROM static const odg_limit_t alltypes_limits[6] = {
-    {UINT64_C(0xFFFFFFFFFFFFFF9C), UINT64_C(0x0000000000000064)}, /* -100 .. 100 */
-    {UINT64_C(0xFFFFFFFFFFFFFC18), UINT64_C(0x00000000000003E8)}, /* -1000 .. 1000 */
-    {UINT64_C(0x0000000000000001), UINT64_C(0x00000000000000C8)}, /* 1 .. 200 */
-    {UINT64_C(0x0000000000000000), UINT64_C(0x0000000000008000)}, /* 0 .. 32768 */
-    {UINT64_C(0xC024000000000000), UINT64_C(0x4024000000000000)}, /* -10.0 .. 10.0 */
-    {UINT64_C(0xFFFFFFFFFFFFFFF6), UINT64_C(0x000000000000000A)}, /* -10 .. 10 */
+    {UINT64_C(0xFFFFFFFFFFFFFF9C), UINT64_C(0x0000000000000064), 14}, /* -100 .. 100 */
+    {UINT64_C(0xFFFFFFFFFFFFFC18), UINT64_C(0x00000000000003E8), 15}, /* -1000 .. 1000 */
+    {UINT64_C(0x0000000000000001), UINT64_C(0x00000000000000C8), 17}, /* 1 .. 200 */
+    {UINT64_C(0x0000000000000000), UINT64_C(0x0000000000008000), 18}, /* 0 .. 32768 */
+    {UINT64_C(0xC024000000000000), UINT64_C(0x4024000000000000), 20}, /* -10.0 .. 10.0 */
+    {UINT64_C(0xFFFFFFFFFFFFFFF6), UINT64_C(0x000000000000000A), 43}, /* -10 .. 10 */
 };
 
 ODG_ATTR_ROM static const odg_hook_map_t alltypes_hook_map[4] = {
@@ -234,6 +239,9 @@ static void alltypes_reset(const odg_dict_t *dict)
 ODG_ATTR_ROM const odg_dict_t alltypes = {
     alltypes_entries,
     alltypes_subs,
+    &alltypes_rom,
+    &alltypes_ram,
+    alltypes_domains,
     alltypes_limits,
     alltypes_hook_map,
     alltypes_hook_slots,
@@ -244,5 +252,7 @@ ODG_ATTR_ROM const odg_dict_t alltypes = {
     35,
     44,
     4,
+    6,
+    1,
     2
 };

@@ -47,6 +47,9 @@ ODG_ATTR_ROM static const io_node_ram_t io_node_ram_defaults = {
 };
 
 
+/* Offsets into a value block are 16-bit. */
+typedef char io_node_assert_block_sizes[(sizeof(io_node_rom_t) <= 65535u && sizeof(io_node_ram_t) <= 65535u && 1) ? 1 : -1];
+
 ODG_ATTR_ROM static const odg_entry_t io_node_entries[14] = {
     {0x1000, 0, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Device type */
     {0x1001, 1, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Error register */
@@ -64,45 +67,45 @@ ODG_ATTR_ROM static const odg_entry_t io_node_entries[14] = {
     {0x6200, 31, 2, ODG_OBJ_ARRAY | ODG_E_DENSE}, /* Write output 8-bit */
 };
 
-/* data, size, limit, sub, type, attr, storage */
+/* offset, size, sub, type, attr, storage */
 ODG_ATTR_ROM static const odg_sub_t io_node_subs[33] = {
-    {&io_node_rom.x1000_device_type, 4, 0, 0, 0x07, ODG_A_READ, ODG_S_ROM}, /* Device type */
-    {&io_node_ram.x1001_error_register, 1, 0, 0, 0x05, ODG_A_READ | ODG_A_TPDO, ODG_S_RAM}, /* Error register */
-    {&io_node_rom.x1010_store_parameters_s0_highest_sub_index_supported, 1, 0, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
-    {NULL, 4, 0, 1, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_STORE}, /* Save all parameters */
-    {&io_node_rom.x1011_restore_default_parameters_s0_highest_sub_index_supported, 1, 0, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
-    {NULL, 4, 0, 1, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_STORE | ODG_S_RESTORE_FLAG}, /* Restore all default parameters */
-    {&io_node_ram.x1017_producer_heartbeat_time, 2, 0, 0, 0x06, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Producer heartbeat time */
-    {&io_node_rom.x1018_identity_s0_highest_sub_index_supported, 1, 0, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
-    {&io_node_rom.x1018_identity_s1_vendor_id, 4, 0, 1, 0x07, ODG_A_READ, ODG_S_ROM}, /* Vendor-ID */
-    {&io_node_rom.x1018_identity_s2_product_code, 4, 0, 2, 0x07, ODG_A_READ, ODG_S_ROM}, /* Product code */
-    {&io_node_rom.x1018_identity_s3_revision_number, 4, 0, 3, 0x07, ODG_A_READ, ODG_S_ROM}, /* Revision number */
-    {&io_node_rom.x1018_identity_s4_serial_number, 4, 0, 4, 0x07, ODG_A_READ, ODG_S_ROM}, /* Serial number */
-    {&io_node_rom.x1200_sdo_server_parameter_s0_highest_sub_index_supported, 1, 0, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
-    {&io_node_ram.x1200_sdo_server_parameter_s1_cob_id_client_to_server_rx, 4, 0, 1, 0x07, ODG_A_READ | ODG_A_NODEID, ODG_S_RAM}, /* COB-ID client to server (rx) */
-    {&io_node_ram.x1200_sdo_server_parameter_s2_cob_id_server_to_client_tx, 4, 0, 2, 0x07, ODG_A_READ | ODG_A_NODEID, ODG_S_RAM}, /* COB-ID server to client (tx) */
-    {&io_node_rom.x1400_rpdo_communication_parameter_s0_highest_sub_index_supported, 1, 0, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
-    {&io_node_ram.x1400_rpdo_communication_parameter_s1_cob_id_used_by_rpdo, 4, 0, 1, 0x07, ODG_A_READ | ODG_A_WRITE | ODG_A_NODEID, ODG_S_RAM}, /* COB-ID used by RPDO */
-    {&io_node_ram.x1400_rpdo_communication_parameter_s2_transmission_type, 1, 0, 2, 0x05, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Transmission type */
-    {&io_node_ram.x1600_rpdo_mapping_parameter_s0_number_of_mapped_application_objects_in_pdo, 1, 0, 0, 0x05, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Number of mapped application objects in PDO */
-    {&io_node_ram.x1600_rpdo_mapping_parameter_s1_application_object_1, 4, 0, 1, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Application object 1 */
-    {&io_node_rom.x1800_tpdo_communication_parameter_s0_highest_sub_index_supported, 1, 0, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
-    {&io_node_ram.x1800_tpdo_communication_parameter_s1_cob_id_used_by_tpdo, 4, 0, 1, 0x07, ODG_A_READ | ODG_A_WRITE | ODG_A_NODEID, ODG_S_RAM}, /* COB-ID used by TPDO */
-    {&io_node_ram.x1800_tpdo_communication_parameter_s2_transmission_type, 1, 0, 2, 0x05, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Transmission type */
-    {&io_node_ram.x1800_tpdo_communication_parameter_s3_inhibit_time, 2, 0, 3, 0x06, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Inhibit time */
-    {&io_node_ram.x1800_tpdo_communication_parameter_s5_event_timer, 2, 0, 5, 0x06, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Event timer */
-    {&io_node_ram.x1800_tpdo_communication_parameter_s6_sync_start_value, 1, 0, 6, 0x05, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* SYNC start value */
-    {&io_node_ram.x1A00_tpdo_mapping_parameter_s0_number_of_mapped_application_objects_in_pdo, 1, 0, 0, 0x05, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Number of mapped application objects in PDO */
-    {&io_node_ram.x1A00_tpdo_mapping_parameter_s1_application_object_1, 4, 0, 1, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Application object 1 */
-    {&io_node_ram.x2000_debounce_time_ms, 2, 0, 0, 0x06, ODG_A_READ | ODG_A_WRITE | ODG_A_LIMIT, ODG_S_RAM}, /* Debounce time ms */
-    {&io_node_rom.x6000_read_input_8_bit_s0_highest_sub_index_supported, 1, 0, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
-    {&io_node_ram.x6000_read_input_8_bit_s1_read_input_1h_to_8h, 1, 0, 1, 0x05, ODG_A_READ | ODG_A_TPDO, ODG_S_RAM}, /* Read input 1h to 8h */
-    {&io_node_rom.x6200_write_output_8_bit_s0_highest_sub_index_supported, 1, 0, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
-    {&io_node_ram.x6200_write_output_8_bit_s1_write_output_1h_to_8h, 1, 0, 1, 0x05, ODG_A_READ | ODG_A_WRITE | ODG_A_RPDO, ODG_S_RAM}, /* Write output 1h to 8h */
+    {offsetof(io_node_rom_t, x1000_device_type), 4, 0, 0x07, ODG_A_READ, ODG_S_ROM}, /* Device type */
+    {offsetof(io_node_ram_t, x1001_error_register), 1, 0, 0x05, ODG_A_READ | ODG_A_TPDO, ODG_S_RAM}, /* Error register */
+    {offsetof(io_node_rom_t, x1010_store_parameters_s0_highest_sub_index_supported), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
+    {0, 4, 1, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_STORE}, /* Save all parameters */
+    {offsetof(io_node_rom_t, x1011_restore_default_parameters_s0_highest_sub_index_supported), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
+    {0, 4, 1, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_STORE | ODG_S_RESTORE_FLAG}, /* Restore all default parameters */
+    {offsetof(io_node_ram_t, x1017_producer_heartbeat_time), 2, 0, 0x06, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Producer heartbeat time */
+    {offsetof(io_node_rom_t, x1018_identity_s0_highest_sub_index_supported), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
+    {offsetof(io_node_rom_t, x1018_identity_s1_vendor_id), 4, 1, 0x07, ODG_A_READ, ODG_S_ROM}, /* Vendor-ID */
+    {offsetof(io_node_rom_t, x1018_identity_s2_product_code), 4, 2, 0x07, ODG_A_READ, ODG_S_ROM}, /* Product code */
+    {offsetof(io_node_rom_t, x1018_identity_s3_revision_number), 4, 3, 0x07, ODG_A_READ, ODG_S_ROM}, /* Revision number */
+    {offsetof(io_node_rom_t, x1018_identity_s4_serial_number), 4, 4, 0x07, ODG_A_READ, ODG_S_ROM}, /* Serial number */
+    {offsetof(io_node_rom_t, x1200_sdo_server_parameter_s0_highest_sub_index_supported), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
+    {offsetof(io_node_ram_t, x1200_sdo_server_parameter_s1_cob_id_client_to_server_rx), 4, 1, 0x07, ODG_A_READ | ODG_A_NODEID, ODG_S_RAM}, /* COB-ID client to server (rx) */
+    {offsetof(io_node_ram_t, x1200_sdo_server_parameter_s2_cob_id_server_to_client_tx), 4, 2, 0x07, ODG_A_READ | ODG_A_NODEID, ODG_S_RAM}, /* COB-ID server to client (tx) */
+    {offsetof(io_node_rom_t, x1400_rpdo_communication_parameter_s0_highest_sub_index_supported), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
+    {offsetof(io_node_ram_t, x1400_rpdo_communication_parameter_s1_cob_id_used_by_rpdo), 4, 1, 0x07, ODG_A_READ | ODG_A_WRITE | ODG_A_NODEID, ODG_S_RAM}, /* COB-ID used by RPDO */
+    {offsetof(io_node_ram_t, x1400_rpdo_communication_parameter_s2_transmission_type), 1, 2, 0x05, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Transmission type */
+    {offsetof(io_node_ram_t, x1600_rpdo_mapping_parameter_s0_number_of_mapped_application_objects_in_pdo), 1, 0, 0x05, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Number of mapped application objects in PDO */
+    {offsetof(io_node_ram_t, x1600_rpdo_mapping_parameter_s1_application_object_1), 4, 1, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Application object 1 */
+    {offsetof(io_node_rom_t, x1800_tpdo_communication_parameter_s0_highest_sub_index_supported), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
+    {offsetof(io_node_ram_t, x1800_tpdo_communication_parameter_s1_cob_id_used_by_tpdo), 4, 1, 0x07, ODG_A_READ | ODG_A_WRITE | ODG_A_NODEID, ODG_S_RAM}, /* COB-ID used by TPDO */
+    {offsetof(io_node_ram_t, x1800_tpdo_communication_parameter_s2_transmission_type), 1, 2, 0x05, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Transmission type */
+    {offsetof(io_node_ram_t, x1800_tpdo_communication_parameter_s3_inhibit_time), 2, 3, 0x06, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Inhibit time */
+    {offsetof(io_node_ram_t, x1800_tpdo_communication_parameter_s5_event_timer), 2, 5, 0x06, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Event timer */
+    {offsetof(io_node_ram_t, x1800_tpdo_communication_parameter_s6_sync_start_value), 1, 6, 0x05, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* SYNC start value */
+    {offsetof(io_node_ram_t, x1A00_tpdo_mapping_parameter_s0_number_of_mapped_application_objects_in_pdo), 1, 0, 0x05, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Number of mapped application objects in PDO */
+    {offsetof(io_node_ram_t, x1A00_tpdo_mapping_parameter_s1_application_object_1), 4, 1, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Application object 1 */
+    {offsetof(io_node_ram_t, x2000_debounce_time_ms), 2, 0, 0x06, ODG_A_READ | ODG_A_WRITE | ODG_A_LIMIT, ODG_S_RAM}, /* Debounce time ms */
+    {offsetof(io_node_rom_t, x6000_read_input_8_bit_s0_highest_sub_index_supported), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
+    {offsetof(io_node_ram_t, x6000_read_input_8_bit_s1_read_input_1h_to_8h), 1, 1, 0x05, ODG_A_READ | ODG_A_TPDO, ODG_S_RAM}, /* Read input 1h to 8h */
+    {offsetof(io_node_rom_t, x6200_write_output_8_bit_s0_highest_sub_index_supported), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
+    {offsetof(io_node_ram_t, x6200_write_output_8_bit_s1_write_output_1h_to_8h), 1, 1, 0x05, ODG_A_READ | ODG_A_WRITE | ODG_A_RPDO, ODG_S_RAM}, /* Write output 1h to 8h */
 };
 
 ODG_ATTR_ROM static const odg_limit_t io_node_limits[1] = {
-    {UINT64_C(0x0000000000000001), UINT64_C(0x00000000000001F4)}, /* 1 .. 500 */
+    {UINT64_C(0x0000000000000001), UINT64_C(0x00000000000001F4), 28}, /* 1 .. 500 */
 };
 
 ODG_ATTR_RAM static odg_state_t io_node_state;
@@ -141,6 +144,9 @@ static void io_node_reset(const odg_dict_t *dict)
 ODG_ATTR_ROM const odg_dict_t io_node = {
     io_node_entries,
     io_node_subs,
+    &io_node_rom,
+    &io_node_ram,
+    NULL,
     io_node_limits,
     NULL,
     NULL,
@@ -150,6 +156,8 @@ ODG_ATTR_ROM const odg_dict_t io_node = {
     io_node_reset,
     14,
     33,
+    0,
+    1,
     0,
     0
 };

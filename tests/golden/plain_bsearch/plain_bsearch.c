@@ -22,6 +22,9 @@ ODG_ATTR_ROM static const plain_bsearch_ram_t plain_bsearch_ram_defaults = {
 };
 
 
+/* Offsets into a value block are 16-bit. */
+typedef char plain_bsearch_assert_block_sizes[(sizeof(plain_bsearch_rom_t) <= 65535u && sizeof(plain_bsearch_ram_t) <= 65535u && 1) ? 1 : -1];
+
 ODG_ATTR_ROM static const odg_entry_t plain_bsearch_entries[5] = {
     {0x1000, 0, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Device type */
     {0x1001, 1, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Error register */
@@ -30,14 +33,14 @@ ODG_ATTR_ROM static const odg_entry_t plain_bsearch_entries[5] = {
     {0x2000, 5, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Speed */
 };
 
-/* data, size, limit, sub, type, attr, storage */
+/* offset, size, sub, type, attr, storage */
 ODG_ATTR_ROM static const odg_sub_t plain_bsearch_subs[6] = {
-    {&plain_bsearch_rom.x1000_device_type, 4, 0, 0, 0x07, ODG_A_READ, ODG_S_ROM}, /* Device type */
-    {&plain_bsearch_ram.x1001_error_register, 1, 0, 0, 0x05, ODG_A_READ | ODG_A_TPDO, ODG_S_RAM}, /* Error register */
-    {&plain_bsearch_ram.x1017_producer_heartbeat_time, 2, 0, 0, 0x06, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Producer heartbeat time */
-    {&plain_bsearch_rom.x1018_identity_s0_highest_sub_index_supported, 1, 0, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
-    {&plain_bsearch_rom.x1018_identity_s1_vendor_id, 4, 0, 1, 0x07, ODG_A_READ, ODG_S_ROM}, /* Vendor-ID */
-    {&plain_bsearch_ram.x2000_speed, 2, 0, 0, 0x06, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Speed */
+    {offsetof(plain_bsearch_rom_t, x1000_device_type), 4, 0, 0x07, ODG_A_READ, ODG_S_ROM}, /* Device type */
+    {offsetof(plain_bsearch_ram_t, x1001_error_register), 1, 0, 0x05, ODG_A_READ | ODG_A_TPDO, ODG_S_RAM}, /* Error register */
+    {offsetof(plain_bsearch_ram_t, x1017_producer_heartbeat_time), 2, 0, 0x06, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Producer heartbeat time */
+    {offsetof(plain_bsearch_rom_t, x1018_identity_s0_highest_sub_index_supported), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
+    {offsetof(plain_bsearch_rom_t, x1018_identity_s1_vendor_id), 4, 1, 0x07, ODG_A_READ, ODG_S_ROM}, /* Vendor-ID */
+    {offsetof(plain_bsearch_ram_t, x2000_speed), 2, 0, 0x06, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Speed */
 };
 
 ODG_ATTR_RAM static odg_state_t plain_bsearch_state;
@@ -51,6 +54,9 @@ static void plain_bsearch_reset(const odg_dict_t *dict)
 ODG_ATTR_ROM const odg_dict_t plain_bsearch = {
     plain_bsearch_entries,
     plain_bsearch_subs,
+    &plain_bsearch_rom,
+    &plain_bsearch_ram,
+    NULL,
     NULL,
     NULL,
     NULL,
@@ -60,6 +66,8 @@ ODG_ATTR_ROM const odg_dict_t plain_bsearch = {
     plain_bsearch_reset,
     5,
     6,
+    0,
+    0,
     0,
     0
 };
