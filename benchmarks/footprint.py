@@ -126,12 +126,18 @@ def runtime_sizes() -> dict[str, object]:
                     "  if (odg_read(&r, 0, b, sizeof b, &n)) return 2;\n"
                     "  return (int)odg_write(&r, b, n); }\n")
     out = work / "core.elf"
-    subprocess.run(["arm-none-eabi-gcc", *CFLAGS, "-DODG_NO_ABORT_TEXT", f"-I{ROOT / 'runtime'}", str(core),
-                    str(ROOT / "runtime" / "odg.c"), str(ROOT / "runtime" / "odg_persist.c"),
-                    "-nostdlib", "-Wl,--gc-sections", "-Wl,--defsym=d=0", "-Wl,-e,main", "-o", str(out)],
-                   check=True, capture_output=True, text=True)
-    syms = symbols(out)
-    sizes["core_find_read_write"] = sum(v for k, v in syms.items() if k != "main" and not k.startswith("_"))
+    runtime_objs = []
+    for name in ("odg", "odg_persist"):
+        obj = work / f"{name}-notext.o"
+        subprocess.run(["arm-none-eabi-gcc", *CFLAGS, "-DODG_NO_ABORT_TEXT", f"-I{ROOT / 'runtime'}", "-c",
+                        str(ROOT / "runtime" / f"{name}.c"), "-o", str(obj)], check=True, capture_output=True)
+        runtime_objs.append(obj)
+    subprocess.run(["arm-none-eabi-gcc", *CFLAGS, f"-I{ROOT / 'runtime'}", str(core), *map(str, runtime_objs),
+                    "--specs=nosys.specs", "-nostartfiles", "-Wl,--gc-sections", "-Wl,--defsym=d=0",
+                    "-Wl,-e,main", "-o", str(out)], check=True, capture_output=True, text=True)
+    ours = set().union(*(symbols(obj).keys() for obj in runtime_objs))
+    # what the linker kept of the runtime: libc's memcpy/memset are not counted
+    sizes["core_find_read_write"] = sum(v for k, v in symbols(out).items() if k in ours)
     return sizes
 
 

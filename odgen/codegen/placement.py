@@ -20,6 +20,9 @@ from .names import identifier
 from .options import OptionEntry, Options
 
 STORE, RESTORE = 0x1010, 0x1011
+# ro by access type, yet written by the communication stack itself: error register, status
+# register, pre-defined error field.
+RUNTIME_UPDATED = frozenset({0x1001, 0x1002, 0x1003})
 
 
 @dataclass
@@ -53,6 +56,8 @@ def auto_storage(index: int, sub: Sub) -> tuple[str, str]:
         return "command", "auto: 0x1010/0x1011 commands"
     if sub.data_type == 0x000F:
         return "ram", "auto: DOMAIN buffers live in RAM"
+    if index in RUNTIME_UPDATED:
+        return "ram", "auto: the stack updates it at run time (CiA 301)"
     if sub.access == "const":
         return "rom", "auto: const"
     nodeid = sub.default is not None and sub.default.nodeid
