@@ -15,7 +15,7 @@ from ..lint import lint_model
 from ..model import ObjectDictionary
 from ..rules import LintOptions
 from .names import identifier, is_identifier
-from .options import Options, load_options
+from .options import Options, load_options, parse_options
 from .placement import Placement, place
 from .viewmodel import DictView, build
 
@@ -30,6 +30,7 @@ class Request:
     options: Path | None = None
     node_id: int | None = None
     lookup: str = "switch"
+    defaults: str = ""  # options (TOML) applied before the options file, e.g. by `odgen roundtrip`
 
 
 @dataclass
@@ -55,7 +56,7 @@ def digest(request: Request, name: str) -> str:
     h = hashlib.sha256(read_bytes(request.input))
     if request.options is not None:
         h.update(read_bytes(request.options))
-    h.update(f"|{name}|{request.lookup}|{request.node_id}|{__version__}".encode())
+    h.update(f"|{name}|{request.lookup}|{request.node_id}|{request.defaults}|{__version__}".encode())
     return h.hexdigest()[:16]
 
 
@@ -66,7 +67,10 @@ def prepare(request: Request) -> Result:
     if od is None:
         return result
     lint_model(od, diags, LintOptions(node_id=request.node_id))
-    options = load_options(request.options, diags) if request.options else Options()
+    options = parse_options(request.defaults, "(built-in defaults)", diags) if request.defaults else Options()
+    if request.options:
+        user = load_options(request.options, diags)
+        options.entries += user.entries
     if diags.count(Severity.ERROR):
         return result
     result.placements = place(od, options, diags)

@@ -46,6 +46,7 @@ class Pattern:
 
 @dataclass
 class OptionEntry:
+    source: str
     line: int
     patterns: list[Pattern]
     storage: str | None = None
@@ -129,7 +130,7 @@ def _entry(raw: object, loc: Loc, diags: Diagnostics) -> OptionEntry | None:
     patterns = _patterns(raw.get("match"), loc, diags)
     if patterns is None:
         return None
-    entry = OptionEntry(loc.line, patterns)
+    entry = OptionEntry(loc.file, loc.line, patterns)
     checks = (_storage, _hooks, _function, _capacity)
     return entry if all(check(entry, raw, loc, diags) for check in checks) else None
 

@@ -76,7 +76,7 @@ def place(od: ObjectDictionary, options: Options, diags: Diagnostics) -> dict[tu
     for entry in options.entries:
         if not entry.used:
             patterns = ", ".join(p.text for p in entry.patterns)
-            diags.add("GEN002", Loc(options.source, entry.line), f"match {patterns} selects no entry")
+            diags.add("GEN002", Loc(entry.source, entry.line), f"match {patterns} selects no entry")
     for (index, subindex), placement in result.items():
         _validate(od, index, subindex, placement, diags)
     return result
@@ -92,7 +92,7 @@ def _place_one(od: ObjectDictionary, obj: Obj, sub: Sub, options: Options) -> Pl
     for entry in options.entries:
         if any(p.matches(obj.index, sub.subindex) for p in entry.patterns):
             entry.used = True
-            _apply(placement, entry, Loc(options.source, entry.line))
+            _apply(placement, entry, Loc(entry.source, entry.line))
     return placement
 
 

@@ -80,7 +80,8 @@ def _value(sub: Sub) -> Value | None:
     return sub.default
 
 
-def _expected(sub: Sub, dtype: DataType, node_id: int) -> bytes | None:
+def expected_bytes(sub: Sub, dtype: DataType, node_id: int) -> bytes | None:
+    """The wire bytes an upload of `sub` must give on node `node_id` (None: not comparable)."""
     value = _value(sub)
     if dtype.kind == "domain":
         return None  # domains are compared by length only in hooks/streams, not by text form
@@ -107,30 +108,33 @@ def _limits(sub: Sub, dtype: DataType) -> tuple[int | float, int | float] | None
     return (lo, hi) if lo is not None and hi is not None and lo <= hi else None
 
 
-def _write_cases(sub: Sub, dtype: DataType) -> list[WriteCase]:
-    if not dtype.is_numeric:
-        return []
-    bounds = _limits(sub, dtype)
+def write_cases(sub: Sub, dtype: DataType) -> list[tuple[bytes, str]]:
+    """Downloads to try on a writable numeric entry: low, high and middle value, one byte too
+    many, and one past each limit that is narrower than the type; with the expected result."""
+    bounds = _limits(sub, dtype) if dtype.is_numeric else None
     if bounds is None:
         return []
     lo, hi = bounds
     mid = (lo + hi) / 2 if dtype.kind == "real" else (int(lo) + int(hi)) // 2
-    cases = [WriteCase(c_bytes(wire_bytes(v, dtype)), len(wire_bytes(v, dtype)), "ODG_OK") for v in (lo, hi, mid)]
-    size = len(wire_bytes(lo, dtype))
-    cases.append(WriteCase(c_bytes(wire_bytes(lo, dtype) + b"\x00"), size + 1, "ODG_ABORT_TOO_LONG"))
+    cases = [(wire_bytes(v, dtype), "ODG_OK") for v in (lo, hi, mid)]
+    cases.append((wire_bytes(lo, dtype) + b"\x00", "ODG_ABORT_TOO_LONG"))
     if dtype.is_integer and dtype.min is not None and dtype.max is not None:
         if int(hi) < int(dtype.max):
-            cases.append(WriteCase(c_bytes(wire_bytes(int(hi) + 1, dtype)), size, "ODG_ABORT_VALUE_HIGH"))
+            cases.append((wire_bytes(int(hi) + 1, dtype), "ODG_ABORT_VALUE_HIGH"))
         if int(lo) > int(dtype.min):
-            cases.append(WriteCase(c_bytes(wire_bytes(int(lo) - 1, dtype)), size, "ODG_ABORT_VALUE_LOW"))
+            cases.append((wire_bytes(int(lo) - 1, dtype), "ODG_ABORT_VALUE_LOW"))
     return cases
+
+
+def _write_cases(sub: Sub, dtype: DataType) -> list[WriteCase]:
+    return [WriteCase(c_bytes(data), len(data), expect) for data, expect in write_cases(sub, dtype)]
 
 
 def _expect(obj: Obj, sub: Sub, placement: Placement, node_id: int) -> Expect | None:
     dtype = BASIC_TYPES.get(sub.data_type or 0)
     if dtype is None or obj.index < 0x1000 or (obj.index in (STORE, RESTORE) and sub.subindex > 0):
         return None
-    expected = _expected(sub, dtype, node_id)
+    expected = expected_bytes(sub, dtype, node_id)
     label = f"0x{obj.index:04X}sub{sub.subindex}"
     exp = Expect(obj.index, sub.subindex, label, sub.readable, sub.writable,
                  c_bytes(expected or b""), len(expected or b""), expected is not None and dtype.kind != "domain",
