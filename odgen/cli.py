@@ -8,12 +8,15 @@ and then as one line unless --debug asks for the traceback.
 from __future__ import annotations
 
 import argparse
+import subprocess
 import sys
 from collections.abc import Sequence
 from pathlib import Path
 
 from . import __version__
 from .codegen.check import run_check
+from .roundtrip import FileOutcome, roundtrip_file, summary_lines, write_report
+from .roundtrip.build import build_node
 from .codegen.explain import explain_lines
 from .codegen.generate import LOOKUPS, Request, generate, prepare, valid_name
 from .codegen.options import parse_pattern
@@ -86,6 +89,20 @@ def build_parser() -> argparse.ArgumentParser:
     chk.add_argument("--lookup", choices=LOOKUPS, default="switch")
     chk.add_argument("--keep", type=Path, metavar="DIR", help="build in DIR and keep the files")
     chk.add_argument("--verbose", "-v", action="store_true", help="print the whole self-test output")
+
+    node = commands.add_parser("node", help="build a CANopen node from a description and run it on SocketCAN")
+    node.add_argument("input", type=Path, metavar="FILE")
+    node.add_argument("--iface", default="vcan0")
+    node.add_argument("--node-id", type=_node_id, default=5)
+    node.add_argument("--nv", type=Path, help="file that keeps stored parameters (default: none)")
+    node.add_argument("--options", type=Path, metavar="OPTS")
+
+    rt = commands.add_parser("roundtrip", help="check a node built from FILE with python canopen on a CAN bus")
+    rt.add_argument("files", nargs="+", type=Path, metavar="FILE")
+    rt.add_argument("--iface", default="vcan0")
+    rt.add_argument("--node-id", type=_node_id, default=5)
+    rt.add_argument("--options", type=Path, metavar="OPTS")
+    rt.add_argument("--report", type=Path, help="write the results as JSON")
 
     rules = commands.add_parser("rules", help="list the rule catalogue")
     rules.add_argument("--markdown", action="store_true", help="as docs/rules.md")
@@ -186,13 +203,38 @@ def cmd_check(args: argparse.Namespace) -> int:
     return 0 if outcome.ok else 1
 
 
+def cmd_node(args: argparse.Namespace) -> int:
+    program, result = build_node(Request(args.input, name="od", options=args.options, node_id=args.node_id))
+    _print_findings(result.diags)
+    cmd = [str(program), "--iface", args.iface, "--node-id", str(args.node_id)]
+    if args.nv is not None:
+        cmd += ["--nv", str(args.nv)]
+    return subprocess.call(cmd)
+
+
+def cmd_roundtrip(args: argparse.Namespace) -> int:
+    outcomes = []
+    for path in args.files:
+        try:
+            outcome = roundtrip_file(path, args.iface, args.node_id, args.options)
+        except OdgenError as err:
+            outcome = FileOutcome(str(path), [], str(err))
+        outcomes.append(outcome)
+        print("\n".join(summary_lines(outcome)), flush=True)
+    if args.report:
+        write_report(args.report, outcomes)
+    passed = sum(1 for o in outcomes if o.ok)
+    print(f"odgen roundtrip: {passed} of {len(outcomes)} file(s) passed every check")
+    return 0 if passed == len(outcomes) else 1
+
+
 def cmd_rules(args: argparse.Namespace) -> int:
     sys.stdout.write(render_markdown() if args.markdown else render_table())
     return 0
 
 
 COMMANDS = {"lint": cmd_lint, "convert": cmd_convert, "generate": cmd_generate, "explain": cmd_explain,
-            "check": cmd_check, "rules": cmd_rules}
+            "check": cmd_check, "node": cmd_node, "roundtrip": cmd_roundtrip, "rules": cmd_rules}
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -1,0 +1,83 @@
+"""Build a CANopen node program from any description: generated dictionary + runtime + SocketCAN main.
+
+Builds are cached by a hash of everything that goes into them, so `odgen node` and
+`odgen roundtrip` start at once the second time.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import subprocess
+from pathlib import Path
+
+from ..codegen.check import RUNTIME, compiler
+from ..codegen.generate import Request, Result, generate
+from ..errors import OdgenError
+
+CFLAGS = ("-std=c99", "-O2", "-Wall", "-Wextra", "-Werror", "-pedantic")
+NODE_MAIN = RUNTIME / "linux" / "odg_node_main.c"
+
+
+def cache_dir() -> Path:
+    base = os.environ.get("ODGEN_CACHE") or os.path.join(os.environ.get("XDG_CACHE_HOME", str(Path.home() / ".cache")),
+                                                        "odgen")
+    return Path(base) / "node"
+
+
+def runtime_sources() -> list[Path]:
+    """The core runtime, the node layer and the Linux adapter (the node main is added by name)."""
+    core = sorted(p for p in RUNTIME.glob("odg*.c"))
+    linux = sorted(p for p in (RUNTIME / "linux").glob("*.c") if p != NODE_MAIN)
+    return core + linux
+
+
+def _stubs(functions: list[str]) -> str:
+    """Hook functions the options name: the node program answers with the stored value only."""
+    lines = ['#include "odg.h"']
+    for fn in functions:
+        lines.append(f"odg_abort_t {fn}(const odg_ref_t *ref, odg_hook_kind_t kind, const void *data, "
+                     "uint32_t len, void *ctx);")
+        lines.append(f"odg_abort_t {fn}(const odg_ref_t *ref, odg_hook_kind_t kind, const void *data, "
+                     "uint32_t len, void *ctx)\n{\n    (void)ref; (void)kind; (void)data; (void)len; (void)ctx;\n"
+                     "    return ODG_OK;\n}")
+    return "\n".join(lines) + "\n"
+
+
+def _digest(result: Result, sources: list[Path], cc: str) -> str:
+    h = hashlib.sha256(cc.encode())
+    for name, text in sorted(result.files.items()):
+        h.update(name.encode() + text.encode())
+    for path in [*sources, NODE_MAIN, RUNTIME / "odg.h"]:
+        h.update(path.read_bytes())
+    for header in sorted(RUNTIME.glob("**/*.h")):
+        h.update(header.read_bytes())
+    return h.hexdigest()[:20]
+
+
+def build_node(request: Request) -> tuple[Path, Result]:
+    """Generate and compile; returns the program path. Raises OdgenError when it cannot be built."""
+    result = generate(request)
+    if not result.files or result.view is None:
+        raise OdgenError(f"{request.input}: errors found, no dictionary to build")
+    if not NODE_MAIN.is_file():
+        raise OdgenError(f"the node program source {NODE_MAIN} is missing")
+    cc = compiler()
+    sources = runtime_sources()
+    out = cache_dir() / _digest(result, sources, cc)
+    program = out / "node"
+    if program.is_file():
+        return program, result
+    out.mkdir(parents=True, exist_ok=True)
+    for name, text in result.files.items():
+        (out / name).write_text(text, encoding="utf-8")
+    (out / "hook_stubs.c").write_text(_stubs(result.view.functions), encoding="utf-8")
+    name = result.view.name
+    cmd = [cc, *CFLAGS, f"-I{RUNTIME}", f"-I{RUNTIME / 'linux'}", f"-I{out}", f"-DODG_DICT={name}",
+           f'-DODG_DICT_HEADER="{name}.h"', str(out / f"{name}.c"), str(out / "hook_stubs.c"), str(NODE_MAIN),
+           *map(str, sources), "-lm", "-o", str(out / "node.tmp")]
+    built = subprocess.run(cmd, capture_output=True, text=True, check=False)
+    if built.returncode != 0:
+        raise OdgenError(f"building the node program failed:\n{built.stdout}{built.stderr}")
+    os.replace(out / "node.tmp", program)
+    return program, result

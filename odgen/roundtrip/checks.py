@@ -1,0 +1,391 @@
+"""`odgen roundtrip`: a node built from the description, on a CAN bus, checked by python canopen.
+
+The client is python canopen's RemoteNode loaded from the same description (written as
+EDS by odgen, so XDD inputs work too). Expected values come from the model, not from the
+node: uploads equal the described defaults, downloads within limits read back, the CiA 301
+abort codes come back where they must, NMT and heartbeat behave, PDOs remapped by SDO carry
+the right values, and 0x1010/0x1011 store and restore across a restart.
+"""
+
+from __future__ import annotations
+
+import logging
+import statistics
+import subprocess
+import tempfile
+import threading
+import time
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..codegen.placement import Placement
+from ..codegen.selftest import expected_bytes, wire_bytes, write_cases
+from ..formats.eds_writer import write_eds
+from ..model import Obj, ObjectDictionary, Sub
+from ..model.datatypes import BASIC_TYPES, DataType
+
+ABORTS = {"ODG_OK": 0, "ODG_ABORT_TOO_LONG": 0x06070012, "ODG_ABORT_VALUE_HIGH": 0x06090031,
+          "ODG_ABORT_VALUE_LOW": 0x06090032, "ODG_ABORT_READ_ONLY": 0x06010002}
+WRITE_ONLY, NO_OBJECT, NO_SUB = 0x06010001, 0x06020000, 0x06090011
+# Objects whose writes change how the node talks (SDO/PDO/SYNC/EMCY/heartbeat) or act as
+# commands: checked by their own steps, not by the generic downloads.
+ACTIVE = frozenset({0x1005, 0x1006, 0x1007, 0x1010, 0x1011, 0x1012, 0x1014, 0x1015, 0x1017}) | frozenset(
+    range(0x1200, 0x1C00))
+BOOT_TIMEOUT = 5.0
+
+
+@dataclass
+class Check:
+    name: str
+    passed: int = 0
+    failures: list[str] = field(default_factory=list)
+    skipped: str = ""
+
+    def expect(self, ok: bool, what: str) -> None:
+        if ok:
+            self.passed += 1
+        else:
+            self.failures.append(what)
+
+    def as_dict(self) -> dict[str, object]:
+        return {"name": self.name, "passed": self.passed, "failed": len(self.failures),
+                "failures": self.failures[:50], "skipped": self.skipped}
+
+
+@dataclass
+class Entry:
+    obj: Obj
+    sub: Sub
+    dtype: DataType
+    placement: Placement
+
+    @property
+    def label(self) -> str:
+        return f"0x{self.obj.index:04X}sub{self.sub.subindex}"
+
+
+class Session:
+    """One node process and one canopen client on `iface`."""
+
+    def __init__(self, od: ObjectDictionary, placements: dict[tuple[int, int], Placement], program: Path,
+                 iface: str, node_id: int, workdir: Path) -> None:
+        import canopen  # the independent client; imported here so lint-only use never needs it
+
+        self.canopen = canopen
+        self.od, self.program, self.iface, self.node_id = od, program, iface, node_id
+        self.workdir = workdir
+        self.nv = workdir / "node.nv"
+        self.entries = _entries(od, placements)
+        eds = workdir / "client.eds"
+        eds.write_text(write_eds(od), encoding="utf-8")
+        self.network = canopen.Network()
+        self.network.NOTIFIER_CYCLE = 0.1
+        self.network.connect(interface="socketcan", channel=iface)
+        self.node = canopen.RemoteNode(node_id, str(eds))
+        self.network.add_node(self.node)
+        self.node.sdo.RESPONSE_TIMEOUT = 1.0
+        self.booted = threading.Event()
+        self.heartbeats: list[tuple[float, int]] = []
+        self.network.subscribe(0x700 + node_id, self._on_heartbeat)
+        self.process: subprocess.Popen[bytes] | None = None
+
+    def _on_heartbeat(self, can_id: int, data: bytearray, timestamp: float) -> None:
+        if data:
+            self.heartbeats.append((time.monotonic(), data[0]))
+            if data[0] == 0:
+                self.booted.set()
+
+    def start(self) -> bool:
+        self.booted.clear()
+        log = open(self.workdir / "node.log", "ab")  # noqa: SIM115 - closed with the process
+        cmd = [str(self.program), "--iface", self.iface, "--node-id", str(self.node_id), "--nv", str(self.nv)]
+        self.process = subprocess.Popen(cmd, stdout=log, stderr=log)
+        log.close()
+        return self.booted.wait(BOOT_TIMEOUT)
+
+    def stop(self) -> None:
+        if self.process is not None and self.process.poll() is None:
+            self.process.terminate()
+            try:
+                self.process.wait(5)
+            except subprocess.TimeoutExpired:
+                self.process.kill()
+                self.process.wait()
+        self.process = None
+
+    def close(self) -> None:
+        self.stop()
+        self.network.disconnect()
+
+    # -- SDO helpers ---------------------------------------------------------------------
+
+    def upload(self, index: int, sub: int) -> tuple[bytes | None, int]:
+        try:
+            return bytes(self.node.sdo.upload(index, sub)), 0
+        except self.canopen.SdoAbortedError as err:
+            return None, err.code
+
+    def download(self, index: int, sub: int, data: bytes) -> int:
+        try:
+            self.node.sdo.download(index, sub, data)
+            return 0
+        except self.canopen.SdoAbortedError as err:
+            return err.code
+
+
+def _entries(od: ObjectDictionary, placements: dict[tuple[int, int], Placement]) -> list[Entry]:
+    out = []
+    for obj in od.sorted_objects():
+        for sub in obj.sorted_subs():
+            dtype = BASIC_TYPES.get(sub.data_type or 0)
+            if dtype is not None and (obj.index, sub.subindex) in placements and obj.index >= 0x1000:
+                out.append(Entry(obj, sub, dtype, placements[(obj.index, sub.subindex)]))
+    return out
+
+
+def _is_command(e: Entry) -> bool:
+    return e.placement.storage == "command"
+
+
+# ---- the checks ------------------------------------------------------------------------------
+
+
+def check_uploads(s: Session) -> Check:
+    check = Check("upload every readable entry and compare with the description")
+    for e in s.entries:
+        if _is_command(e):
+            continue
+        data, code = s.upload(e.obj.index, e.sub.subindex)
+        if not e.sub.readable:
+            check.expect(code == WRITE_ONLY, f"{e.label}: read of write-only gave 0x{code:08X}")
+            continue
+        want = expected_bytes(e.sub, e.dtype, s.node_id)
+        if want is None:
+            check.expect(code == 0, f"{e.label}: upload aborted 0x{code:08X}")
+        else:
+            check.expect(data == want, f"{e.label}: uploaded {_hex(data)}, described {_hex(want)}")
+    return check
+
+
+def check_downloads(s: Session) -> Check:
+    check = Check("download limits and a middle value, read back; aborts out of range and for ro")
+    for e in s.entries:
+        if _is_command(e) or e.obj.index in ACTIVE or not e.dtype.is_numeric:
+            continue
+        if not e.sub.writable:
+            data = expected_bytes(e.sub, e.dtype, s.node_id) or wire_bytes(0, e.dtype)
+            code = s.download(e.obj.index, e.sub.subindex, data)
+            check.expect(code == ABORTS["ODG_ABORT_READ_ONLY"], f"{e.label}: write to {e.sub.access} gave 0x{code:08X}")
+            continue
+        original, _ = s.upload(e.obj.index, e.sub.subindex) if e.sub.readable else (None, 0)
+        for data, expect in write_cases(e.sub, e.dtype):
+            code = s.download(e.obj.index, e.sub.subindex, data)
+            check.expect(code == ABORTS[expect], f"{e.label}: download {_hex(data)} gave 0x{code:08X}, "
+                                                 f"expected 0x{ABORTS[expect]:08X}")
+            if code == 0 and e.sub.readable:
+                back, _ = s.upload(e.obj.index, e.sub.subindex)
+                check.expect(back == data, f"{e.label}: wrote {_hex(data)}, read back {_hex(back)}")
+        if original is not None:
+            s.download(e.obj.index, e.sub.subindex, original)
+    return check
+
+
+def check_unknown(s: Session) -> Check:
+    check = Check("unknown index and sub-index abort 0x06020000 / 0x06090011")
+    missing = next(i for i in range(0x5FFF, 0x1FFF, -1) if i not in s.od.objects)
+    check.expect(s.upload(missing, 0)[1] == NO_OBJECT, f"0x{missing:04X}: no 0x06020000")
+    obj = s.od.sorted_objects()[0]
+    absent = next(i for i in range(0xFE, 0, -1) if i not in obj.subs)
+    check.expect(s.upload(obj.index, absent)[1] == NO_SUB, f"0x{obj.index:04X}sub{absent}: no 0x06090011")
+    return check
+
+
+def check_strings(s: Session) -> Check:
+    check = Check("segmented and block transfer of strings and domains")
+    for e in s.entries:
+        if e.dtype.kind not in ("vstring", "ostring", "domain") or not (e.sub.writable and e.sub.readable):
+            continue
+        size = _capacity(s, e)
+        if size == 0:
+            continue
+        data = bytes((0x41 + i % 26) for i in range(size))
+        code = s.download(e.obj.index, e.sub.subindex, data)
+        back, _ = s.upload(e.obj.index, e.sub.subindex)
+        check.expect(code == 0 and back == data, f"{e.label}: segmented {size} bytes came back {_hex(back)}")
+        check.expect(_block_round_trip(s, e, data[::-1]), f"{e.label}: block transfer of {size} bytes")
+    if not check.passed and not check.failures:
+        check.skipped = "no writable string or domain"
+    return check
+
+
+def _capacity(s: Session, e: Entry) -> int:
+    data, _ = s.upload(e.obj.index, e.sub.subindex)
+    described = expected_bytes(e.sub, e.dtype, s.node_id) or b""
+    return max(len(described), e.placement.capacity or 0, len(data or b""))
+
+
+def _block_round_trip(s: Session, e: Entry, data: bytes) -> bool:
+    try:
+        with s.node.sdo.open(e.obj.index, e.sub.subindex, "wb", size=len(data), block_transfer=True) as f:
+            f.write(data)
+        with s.node.sdo.open(e.obj.index, e.sub.subindex, "rb", block_transfer=True) as f:
+            return bytes(f.read()) == data
+    except (s.canopen.SdoAbortedError, s.canopen.SdoCommunicationError):
+        return False
+
+
+def check_nmt(s: Session) -> Check:
+    check = Check("NMT transitions and heartbeat period")
+    hb = s.od.find(0x1017)
+    if hb is None or not hb.writable:
+        check.skipped = "no writable 0x1017"
+        return check
+    original, _ = s.upload(0x1017, 0)
+    check.expect(s.download(0x1017, 0, (100).to_bytes(2, "little")) == 0, "0x1017 = 100 ms refused")
+    for command, state in (("OPERATIONAL", 0x05), ("STOPPED", 0x04), ("PRE-OPERATIONAL", 0x7F)):
+        s.node.nmt.state = command
+        check.expect(_state_seen(s, state), f"{command}: heartbeat state 0x{state:02X} not seen")
+    period = _period(s)
+    check.expect(period is not None and 80 <= period <= 130, f"heartbeat period {period} ms, want 100")
+    s.booted.clear()
+    s.node.nmt.state = "RESET"
+    check.expect(s.booted.wait(BOOT_TIMEOUT), "reset node: no boot-up")
+    if original is not None:
+        s.download(0x1017, 0, original)
+    return check
+
+
+def _state_seen(s: Session, state: int, timeout: float = 1.0) -> bool:
+    start = time.monotonic()
+    while time.monotonic() - start < timeout:
+        if any(t > start and b == state for t, b in list(s.heartbeats)):
+            return True
+        time.sleep(0.02)
+    return False
+
+
+def _period(s: Session) -> float | None:
+    start = time.monotonic()
+    time.sleep(0.65)
+    times = [t for t, b in list(s.heartbeats) if t > start]
+    gaps = [1000 * (b - a) for a, b in zip(times, times[1:], strict=False)]
+    return statistics.median(gaps) if gaps else None
+
+
+def check_pdos(s: Session) -> Check:
+    check = Check("remap a TPDO and an RPDO by SDO, SYNC, compare values")
+    tpdo_var = _mappable(s, tpdo=True)
+    rpdo_var = _mappable(s, tpdo=False)
+    if 0x1800 in s.od.objects and 0x1A00 in s.od.objects and tpdo_var is not None:
+        _tpdo(s, check, tpdo_var)
+    if 0x1400 in s.od.objects and 0x1600 in s.od.objects and rpdo_var is not None:
+        _rpdo(s, check, rpdo_var)
+    if not check.passed and not check.failures:
+        check.skipped = "no PDO pair with a mappable entry"
+    return check
+
+
+def _mappable(s: Session, tpdo: bool) -> Entry | None:
+    access = ("ro", "const", "rwr", "rw") if tpdo else ("wo", "rww", "rw")
+    for e in s.entries:
+        if (e.sub.pdo_mapping and e.sub.access in access and e.dtype.is_numeric and e.obj.index >= 0x2000
+                and (tpdo or (e.sub.readable and write_cases(e.sub, e.dtype)))):
+            return e
+    return None
+
+
+def _tpdo(s: Session, check: Check, e: Entry) -> None:
+    try:
+        s.node.tpdo.read(from_od=False)
+        pdo = s.node.tpdo[1]
+        pdo.clear()
+        pdo.add_variable(e.obj.index, e.sub.subindex)
+        pdo.trans_type, pdo.enabled = 1, True
+        pdo.save()
+    except (s.canopen.SdoAbortedError, s.canopen.SdoCommunicationError) as err:
+        check.expect(False, f"TPDO1 remap to {e.label} failed: {err}")
+        return
+    s.node.nmt.state = "OPERATIONAL"
+    time.sleep(0.05)
+    s.network.sync.transmit()
+    got = pdo.wait_for_reception(timeout=1.0)
+    value, _ = s.upload(e.obj.index, e.sub.subindex)
+    check.expect(got is not None and value is not None and bytes(pdo.data) == value,
+                 f"TPDO1 on SYNC carried {_hex(bytes(pdo.data) if got else None)}, SDO reads {_hex(value)}")
+
+
+def _rpdo(s: Session, check: Check, e: Entry) -> None:
+    data = write_cases(e.sub, e.dtype)[1][0]  # the high limit: a value other than the default
+    try:
+        s.node.nmt.state = "PRE-OPERATIONAL"
+        s.node.rpdo.read(from_od=False)
+        pdo = s.node.rpdo[1]
+        pdo.clear()
+        pdo.add_variable(e.obj.index, e.sub.subindex)
+        pdo.trans_type, pdo.enabled = 255, True
+        pdo.save()
+    except (s.canopen.SdoAbortedError, s.canopen.SdoCommunicationError) as err:
+        check.expect(False, f"RPDO1 remap to {e.label} failed: {err}")
+        return
+    s.node.nmt.state = "OPERATIONAL"
+    time.sleep(0.05)
+    pdo.data = bytearray(data)
+    pdo.transmit()
+    time.sleep(0.1)
+    value, _ = s.upload(e.obj.index, e.sub.subindex)
+    check.expect(value == data, f"RPDO1 sent {_hex(data)} to {e.label}, SDO reads {_hex(value)}")
+
+
+def check_persistence(s: Session) -> Check:
+    check = Check("store (0x1010), restart, kept; restore (0x1011), restart, defaults")
+    target = next((e for e in s.entries if e.placement.group and e.sub.writable and e.sub.readable
+                   and e.obj.index not in ACTIVE and write_cases(e.sub, e.dtype)), None)
+    if target is None or s.od.find(0x1010, 1) is None or s.od.find(0x1011, 1) is None:
+        check.skipped = "no persistent writable entry or no 0x1010/0x1011 sub 1"
+        return check
+    value = write_cases(target.sub, target.dtype)[1][0]
+    default = expected_bytes(target.sub, target.dtype, s.node_id)
+    check.expect(s.download(target.obj.index, target.sub.subindex, value) == 0, f"{target.label}: write refused")
+    check.expect(s.download(0x1010, 1, b"save") == 0, "0x1010sub1 'save' refused")
+    check.expect(s.download(0x1010, 1, b"nope") == 0x08000020, "0x1010sub1 without 'save' did not abort 0x08000020")
+    s.stop()
+    check.expect(s.start(), "no boot-up after restart")
+    check.expect(s.upload(target.obj.index, target.sub.subindex)[0] == value, f"{target.label}: not kept")
+    check.expect(s.download(0x1011, 1, b"load") == 0, "0x1011sub1 'load' refused")
+    s.stop()
+    check.expect(s.start(), "no boot-up after restart")
+    check.expect(s.upload(target.obj.index, target.sub.subindex)[0] == default, f"{target.label}: default not back")
+    return check
+
+
+CHECKS: tuple[Callable[[Session], Check], ...] = (check_uploads, check_downloads, check_unknown, check_strings,
+                                                  check_pdos, check_nmt, check_persistence)
+
+
+def _hex(data: bytes | None) -> str:
+    return "none" if data is None else (data.hex(" ") if len(data) <= 16 else data[:16].hex(" ") + " ...")
+
+
+@contextmanager
+def session(od: ObjectDictionary, placements: dict[tuple[int, int], Placement], program: Path, iface: str,
+            node_id: int) -> Iterator[Session]:
+    logging.getLogger("canopen").setLevel(logging.CRITICAL)
+    with tempfile.TemporaryDirectory(prefix="odgen-roundtrip-") as tmp:
+        s = Session(od, placements, program, iface, node_id, Path(tmp))
+        try:
+            yield s
+        finally:
+            s.close()
+
+
+def run_checks(s: Session) -> list[Check]:
+    if not s.start():
+        return [Check("boot-up", failures=[f"no boot-up from node {s.node_id} within {BOOT_TIMEOUT} s: "
+                                           + (s.workdir / "node.log").read_text(errors="replace")[-500:]])]
+    results = [Check("boot-up", passed=1)]
+    for step in CHECKS:
+        s.node.nmt.state = "PRE-OPERATIONAL"
+        results.append(step(s))
+    return results
