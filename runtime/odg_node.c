@@ -1,0 +1,267 @@
+/*
+ * odg_node.c - NMT slave, heartbeat producer, EMCY producer and frame dispatch of the CANopen
+ * node. The SDO server is in odg_sdo.c, SYNC and PDOs in odg_pdo.c. See odg_node.h.
+ */
+#include <string.h>
+
+#include "odg_impl.h"
+#include "odg_node_impl.h"
+
+/* ---- helpers shared with odg_sdo.c and odg_pdo.c ------------------------------------ */
+
+int odg_node_send_(odg_node_t *n, uint32_t cob, const uint8_t *data, uint8_t len)
+{
+    odg_frame_t f;
+    memset(&f, 0, sizeof f);
+    f.id = ODG_COB_ID(cob);
+    f.len = len;
+    if (len > 0u) {
+        memcpy(f.data, data, len);
+    }
+    return n->cfg.send(n->cfg.send_ctx, &f);
+}
+
+odg_abort_t odg_node_get_(const odg_node_t *n, uint16_t index, uint8_t sub, uint32_t *value)
+{
+    odg_ref_t r;
+    uint8_t b[4];
+    uint32_t got = 0, v = 0;
+    odg_abort_t ac = odg_find(n->cfg.dict, index, sub, &r);
+    if (ac == ODG_OK) {
+        ac = odg_read(&r, 0, b, sizeof b, &got);
+    }
+    while (got > 0u) {
+        got--;
+        v = v << 8 | b[got];
+    }
+    *value = v;
+    return ac;
+}
+
+uint32_t odg_node_get_or_(const odg_node_t *n, uint16_t index, uint8_t sub, uint32_t dflt)
+{
+    uint32_t v;
+    return odg_node_get_(n, index, sub, &v) == ODG_OK ? v : dflt;
+}
+
+odg_abort_t odg_node_check_(odg_node_t *n, uint16_t index, uint8_t sub, const uint8_t *data,
+                            uint32_t len)
+{
+    uint32_t v = 0;
+    if (index < 0x1400u || index >= 0x1C00u || len > 4u) {
+        return ODG_OK; /* only PDO parameters have rules beyond the dictionary's own checks */
+    }
+    while (len > 0u) {
+        len--;
+        v = v << 8 | data[len];
+    }
+    return odg_pdo_check_(n, index, sub, v);
+}
+
+/* COB-IDs of SYNC, EMCY and the SDO server; 0x1200 has the pre-defined ones when absent. */
+static void load_cobs(odg_node_t *n)
+{
+    uint32_t id = n->cfg.node_id;
+    n->sdo_rx = odg_node_get_or_(n, 0x1200, 1, 0x600u + id);
+    n->sdo_tx = odg_node_get_or_(n, 0x1200, 2, 0x580u + id);
+    n->sync_cob = odg_node_get_or_(n, 0x1005, 0, 0x80u);
+    n->emcy_cob = odg_node_get_or_(n, 0x1014, 0, 0x80u + id);
+}
+
+void odg_node_written_(odg_node_t *n, uint16_t index)
+{
+    if (index >= 0x1400u && index < 0x1C00u) {
+        odg_pdo_load_(n, index >= 0x1800u, (uint16_t)(index & 0x1FFu));
+    } else if (index == 0x1005u || index == 0x1014u || index == 0x1200u) {
+        load_cobs(n);
+    }
+}
+
+void odg_node_reload(odg_node_t *node)
+{
+    uint16_t k;
+    load_cobs(node);
+    for (k = 0; k < ODG_NODE_MAX_RPDO; k++) {
+        odg_pdo_load_(node, 0, k);
+    }
+    for (k = 0; k < ODG_NODE_MAX_TPDO; k++) {
+        odg_pdo_load_(node, 1, k);
+    }
+}
+
+/* ---- NMT ------------------------------------------------------------------------------- */
+
+/* Initialising: drop the SDO transfer, re-read the communication entries (after odg_init for
+ * a reset of the node), send the boot-up frame, and go pre-operational. */
+static odg_abort_t boot(odg_node_t *n, int reset_node)
+{
+    static const uint8_t bootup = 0x00;
+    odg_abort_t ac = ODG_OK;
+    n->state = ODG_NMT_INITIALISING;
+    odg_sdo_drop_(n);
+    if (reset_node) {
+        ac = odg_init(n->cfg.dict, n->cfg.node_id, n->cfg.nv, n->cfg.boot);
+    }
+    n->error_register = (uint8_t)odg_node_get_or_(n, 0x1001, 0, 0);
+    odg_node_reload(n);
+    n->hb_timer = 0;
+    (void)odg_node_send_(n, 0x700u + n->cfg.node_id, &bootup, 1);
+    n->state = ODG_NMT_PRE_OPERATIONAL;
+    return ac;
+}
+
+static void enter(odg_node_t *n, odg_nmt_state_t s)
+{
+    if (n->state == (uint8_t)s) {
+        return;
+    }
+    n->state = (uint8_t)s;
+    if (s == ODG_NMT_STOPPED) {
+        odg_sdo_drop_(n); /* no SDO in stopped: a transfer in progress is dropped silently */
+    } else if (s == ODG_NMT_OPERATIONAL) {
+        odg_pdo_start_(n);
+    }
+}
+
+static void nmt(odg_node_t *n, const odg_frame_t *f)
+{
+    uint8_t cmd = f->data[0];
+    if (f->len < 2u || (f->data[1] != 0u && f->data[1] != n->cfg.node_id)) {
+        return;
+    }
+    switch (cmd) {
+    case ODG_NMT_START:
+        enter(n, ODG_NMT_OPERATIONAL);
+        break;
+    case ODG_NMT_STOP:
+        enter(n, ODG_NMT_STOPPED);
+        break;
+    case ODG_NMT_ENTER_PREOP:
+        enter(n, ODG_NMT_PRE_OPERATIONAL);
+        break;
+    case ODG_NMT_RESET_NODE:
+        (void)boot(n, 1);
+        break;
+    case ODG_NMT_RESET_COMM:
+        (void)boot(n, 0);
+        break;
+    default:
+        return; /* unknown commands are ignored, as CiA 301 has no reply for them */
+    }
+    if (n->cfg.on_nmt) {
+        n->cfg.on_nmt(n->cfg.app_ctx, cmd);
+    }
+}
+
+/* ---- API ----------------------------------------------------------------------------------- */
+
+odg_abort_t odg_node_init(odg_node_t *node, const odg_node_config_t *cfg)
+{
+    memset(node, 0, sizeof *node);
+    node->cfg = *cfg;
+    if (cfg->dict == NULL || cfg->send == NULL || cfg->node_id < 1u || cfg->node_id > 127u) {
+        return ODG_ABORT_INCOMPATIBLE;
+    }
+    return boot(node, 1);
+}
+
+void odg_node_receive(odg_node_t *node, const odg_frame_t *frame)
+{
+    uint32_t id = frame->id;
+    if ((frame->flags & (ODG_FRAME_RTR | ODG_FRAME_EFF)) || frame->len > 8u ||
+        node->state == ODG_NMT_INITIALISING) {
+        return;
+    }
+    if (id == 0u) {
+        nmt(node, frame);
+    } else if (id == ODG_COB_ID(node->sdo_rx) && !(node->sdo_rx & ODG_COB_INVALID)) {
+        if (node->state != ODG_NMT_STOPPED) {
+            odg_sdo_receive_(node, frame);
+        }
+    } else if (node->state == ODG_NMT_OPERATIONAL) {
+        if (id == ODG_COB_ID(node->sync_cob)) {
+            odg_pdo_sync_(node, frame); /* 0x1005 bit 31 is "don't care" for a consumer */
+        } else {
+            odg_pdo_receive_(node, frame);
+        }
+    }
+}
+
+/* The heartbeat period is read from 0x1017 on every tick, so an SDO write (or an application
+ * change) takes effect at once; 0 or an absent 0x1017 stops the heartbeat. */
+static void heartbeat(odg_node_t *n, uint32_t ms)
+{
+    uint32_t period = odg_node_get_or_(n, 0x1017, 0, 0);
+    uint32_t t = n->hb_timer + ms;
+    if (period == 0u) {
+        n->hb_timer = 0;
+        return;
+    }
+    if (t < ms) {
+        t = 0xFFFFFFFFu;
+    }
+    if (t >= period) {
+        (void)odg_node_send_(n, 0x700u + n->cfg.node_id, &n->state, 1);
+        t -= period; /* keep the phase when ticks do not divide the period ... */
+        if (t >= period) {
+            t = 0; /* ... but never send a burst after a long pause */
+        }
+    }
+    n->hb_timer = t;
+}
+
+void odg_node_tick(odg_node_t *node, uint32_t elapsed_ms)
+{
+    if (node->state == ODG_NMT_INITIALISING) {
+        return;
+    }
+    heartbeat(node, elapsed_ms);
+    odg_sdo_tick_(node, elapsed_ms);
+    if (node->state == ODG_NMT_OPERATIONAL) {
+        odg_pdo_tick_(node, elapsed_ms);
+    }
+}
+
+odg_nmt_state_t odg_node_state(const odg_node_t *node)
+{
+    return (odg_nmt_state_t)node->state;
+}
+
+/* 0x1001 is read-only for SDO, so the node stores it directly into its storage block (the
+ * runtime's own odg_value_), where a read will find it. */
+static void set_error_register(odg_node_t *n, uint8_t reg)
+{
+    odg_ref_t r;
+    n->error_register = reg;
+    if (odg_find(n->cfg.dict, 0x1001, 0, &r) == ODG_OK && r.sub->size == 1u &&
+        r.sub->type == ODG_T_UNSIGNED8 && ODG_S_CLASS(r.sub->storage) != ODG_S_ROM &&
+        ODG_S_CLASS(r.sub->storage) != ODG_S_STORE) {
+        odg_store_(odg_value_(n->cfg.dict, r.sub), 1, reg);
+    }
+}
+
+odg_abort_t odg_node_emcy(odg_node_t *node, uint16_t code, uint8_t error_register,
+                          const uint8_t *vendor, uint8_t n_vendor)
+{
+    uint8_t d[8];
+    set_error_register(node, error_register);
+    if ((node->state != ODG_NMT_PRE_OPERATIONAL && node->state != ODG_NMT_OPERATIONAL) ||
+        (node->emcy_cob & ODG_COB_INVALID)) {
+        return ODG_ABORT_DATA_STATE;
+    }
+    memset(d, 0, sizeof d);
+    d[0] = (uint8_t)code;
+    d[1] = (uint8_t)(code >> 8);
+    d[2] = error_register;
+    if (vendor != NULL) {
+        memcpy(d + 3, vendor, n_vendor < 5u ? n_vendor : 5u);
+    }
+    return odg_node_send_(node, node->emcy_cob, d, 8) == 0 ? ODG_OK : ODG_ABORT_HARDWARE;
+}
+
+void odg_node_tpdo_request(odg_node_t *node, uint16_t n)
+{
+    if (node->state == ODG_NMT_OPERATIONAL && n < ODG_NODE_MAX_TPDO) {
+        odg_pdo_request_(node, n);
+    }
+}

@@ -1,0 +1,374 @@
+/*
+ * odg_pdo.c - SYNC consumer, TPDOs and RPDOs of the node, configured by the dictionary's
+ * 0x1400-0x15FF / 0x1600-0x17FF (RPDO) and 0x1800-0x19FF / 0x1A00-0x1BFF (TPDO) entries.
+ *
+ * Each PDO's parameters are read once into odg_pdo_t (at boot, and again after every SDO
+ * write to its entries); mapped values are read and written through the dictionary at each
+ * transmission or reception, so hooks and limits apply. Mapping is bit-granular (a BOOLEAN
+ * may take 1 bit), at most ODG_NODE_MAX_MAP objects and 64 bits per PDO.
+ */
+#include <string.h>
+
+#include "odg_node_impl.h"
+
+#define TYPE_SYNC_MAX 240u /* 0: acyclic synchronous, 1..240: every n-th SYNC */
+#define TYPE_EVENT 254u    /* 254, 255: event-driven */
+
+static uint16_t comm_index(int tx, uint16_t k)
+{
+    return (uint16_t)((tx ? 0x1800u : 0x1400u) + k);
+}
+
+static int active(const odg_pdo_t *p)
+{
+    return p->n_map > 0u && !(p->cob & ODG_COB_INVALID);
+}
+
+/* Copy `n` bits, LSB first (CiA 301 PDO mapping order), from bit `spos` of `src` to `dpos`. */
+static void copy_bits(uint8_t *dst, uint32_t dpos, const uint8_t *src, uint32_t spos, uint32_t n)
+{
+    for (; n > 0u; n--, dpos++, spos++) {
+        unsigned bit = (unsigned)src[spos >> 3] >> (spos & 7u) & 1u;
+        unsigned mask = 1u << (dpos & 7u);
+        dst[dpos >> 3] = (uint8_t)(bit ? dst[dpos >> 3] | mask : dst[dpos >> 3] & ~mask);
+    }
+}
+
+/* ---- mapping ---------------------------------------------------------------------------- */
+
+/* One mapping entry. RPDOs may map the data type indices 0x0001-0x0007 as dummies (gaps of
+ * that type's size), which need no object in the dictionary. */
+static odg_abort_t check_entry(const odg_node_t *n, int tx, uint32_t m)
+{
+    static const uint8_t dummy_bits[8] = {0, 1, 8, 16, 32, 8, 16, 32};
+    uint32_t index = m >> 16, bits = m & 0xFFu;
+    if (!tx && index >= 1u && index <= 7u) {
+        return (m & 0xFF00u) == 0u && (bits == dummy_bits[index] || (index == 1u && bits == 8u))
+                   ? ODG_OK
+                   : ODG_ABORT_NOT_MAPPABLE;
+    }
+    return odg_check_mapping(n->cfg.dict, m, tx ? ODG_A_TPDO : ODG_A_RPDO, NULL);
+}
+
+/* Entries 1..count of mapping entry `index` as the dictionary holds them: each mappable, and
+ * together at most 64 bits (else PDO_LENGTH, as for a count beyond the entries there are). */
+static odg_abort_t read_mapping(const odg_node_t *n, int tx, uint16_t index, uint32_t count,
+                                uint32_t *map)
+{
+    uint32_t i, m, bits = 0;
+    odg_abort_t ac;
+    if (count > ODG_NODE_MAX_MAP) {
+        return ODG_ABORT_PDO_LENGTH;
+    }
+    for (i = 1; i <= count; i++) {
+        if ((ac = odg_node_get_(n, index, (uint8_t)i, &m)) != ODG_OK) {
+            return ac == ODG_ABORT_NO_SUB ? ODG_ABORT_PDO_LENGTH : ac;
+        }
+        if ((ac = check_entry(n, tx, m)) != ODG_OK) {
+            return ac;
+        }
+        bits += m & 0xFFu;
+        if (map != NULL) {
+            map[i - 1u] = m;
+        }
+    }
+    return bits > 64u ? ODG_ABORT_PDO_LENGTH : ODG_OK;
+}
+
+/* A TPDO starts afresh (entering operational, or reconfigured): send at the first chance. */
+static void restart(odg_pdo_t *p)
+{
+    p->flags = ODG_PDO_F_REQUEST;
+    p->count = 0;
+    p->inhibit_left = 0;
+    p->event_left = p->event;
+}
+
+void odg_pdo_load_(odg_node_t *n, int tx, uint16_t k)
+{
+    uint16_t comm = comm_index(tx, k);
+    uint32_t count, i, bits = 0;
+    odg_pdo_t *p;
+    if (k >= (tx ? ODG_NODE_MAX_TPDO : ODG_NODE_MAX_RPDO)) {
+        return;
+    }
+    p = tx ? &n->tpdo[k] : &n->rpdo[k];
+    memset(p, 0, sizeof *p);
+    if (odg_node_get_(n, comm, 1, &p->cob) != ODG_OK) {
+        p->cob = ODG_COB_INVALID; /* no such PDO */
+        return;
+    }
+    p->type = (uint8_t)odg_node_get_or_(n, comm, 2, 255);
+    p->inhibit = (uint16_t)odg_node_get_or_(n, comm, 3, 0);
+    p->event = (uint16_t)odg_node_get_or_(n, comm, 5, 0);
+    p->sync_start = (uint8_t)odg_node_get_or_(n, comm, 6, 0);
+    count = odg_node_get_or_(n, (uint16_t)(comm + 0x200u), 0, 0);
+    /* a mapping or type the node cannot serve (only possible in the dictionary's defaults,
+     * as SDO writes are checked) leaves the PDO unused */
+    if ((p->type > TYPE_SYNC_MAX && p->type < TYPE_EVENT) ||
+        read_mapping(n, tx, (uint16_t)(comm + 0x200u), count, p->map) != ODG_OK) {
+        count = 0;
+    }
+    for (i = 0; i < count; i++) {
+        bits += p->map[i] & 0xFFu;
+    }
+    p->n_map = (uint8_t)count;
+    p->len = tx ? 0u : (uint8_t)((bits + 7u) / 8u);
+    if (tx && n->state == ODG_NMT_OPERATIONAL) {
+        restart(p);
+    }
+}
+
+void odg_pdo_start_(odg_node_t *n)
+{
+    uint16_t k;
+    for (k = 0; k < ODG_NODE_MAX_TPDO; k++) {
+        restart(&n->tpdo[k]);
+    }
+    for (k = 0; k < ODG_NODE_MAX_RPDO; k++) {
+        n->rpdo[k].flags = 0;
+    }
+}
+
+/* ---- checks before the SDO server stores a PDO parameter ------------------------------ */
+
+/* CAN-IDs CiA 301 reserves for NMT, SYNC/EMCY/TIME ranges, SDO, LSS and error control. */
+static int restricted(uint32_t id)
+{
+    return id <= 0x7Fu || (id >= 0x101u && id <= 0x180u) || (id >= 0x581u && id <= 0x5FFu) ||
+           (id >= 0x601u && id <= 0x67Fu) || (id >= 0x6E0u && id <= 0x6FFu) || id >= 0x701u;
+}
+
+/* COB-ID (sub 1): disabling is always allowed; a valid PDO keeps bits 0..29 (CiA 301); only
+ * 11-bit identifiers outside the restricted ones can be made valid. */
+static odg_abort_t check_cob(uint32_t old, uint32_t v)
+{
+    if (v & ODG_COB_INVALID) {
+        return ODG_OK;
+    }
+    if (!(old & ODG_COB_INVALID) && ((v ^ old) & 0x3FFFFFFFu)) {
+        return ODG_ABORT_VALUE_RANGE;
+    }
+    return (v & 0x3FFFF800u) || restricted(v & 0x7FFu) ? ODG_ABORT_VALUE_RANGE : ODG_OK;
+}
+
+/*
+ * Mapping entries follow the order of CiA 301: invalidate the PDO (COB-ID bit 31),
+ * set sub 0 to 0, write the entries, set sub 0 to their number, make the PDO valid again.
+ * Writing a mapping while the PDO is valid, or an entry while sub 0 is not 0, aborts with
+ * 0x06010000, as in CANopenNode (0x08000022 would also fit). An entry is checked when
+ * written (0 clears it), and all of them again when sub 0 = n: 0x06040041 not mappable,
+ * 0x06020000/0x06090011 no such object, 0x06040042 more than 64 bits or entries.
+ */
+static odg_abort_t check_mapping_write(odg_node_t *n, int tx, uint16_t index, uint8_t sub,
+                                       uint32_t v, int valid)
+{
+    if (valid) {
+        return ODG_ABORT_UNSUPPORTED;
+    }
+    if (sub == 0u) {
+        return read_mapping(n, tx, index, v, NULL);
+    }
+    if (odg_node_get_or_(n, index, 0, 0) != 0u) {
+        return ODG_ABORT_UNSUPPORTED;
+    }
+    return v == 0u ? ODG_OK : check_entry(n, tx, v);
+}
+
+/* Communication parameters: besides the COB-ID, the transmission types 241..253 (reserved,
+ * or RTR-only which this node does not serve), and the inhibit time and SYNC start value of
+ * a valid TPDO (CiA 301 forbids changing them while it exists) abort with 0x06090030. */
+odg_abort_t odg_pdo_check_(odg_node_t *n, uint16_t index, uint8_t sub, uint32_t v)
+{
+    int tx = index >= 0x1800u;
+    uint32_t cob = odg_node_get_or_(n, (uint16_t)(index & ~0x200u), 1, ODG_COB_INVALID);
+    int valid = !(cob & ODG_COB_INVALID);
+    if (index & 0x200u) {
+        return check_mapping_write(n, tx, index, sub, v, valid);
+    }
+    if (sub == 1u) {
+        return check_cob(cob, v);
+    }
+    if (sub == 2u) {
+        return v > TYPE_SYNC_MAX && v < TYPE_EVENT ? ODG_ABORT_VALUE_RANGE : ODG_OK;
+    }
+    return tx && valid && (sub == 3u || sub == 6u) ? ODG_ABORT_VALUE_RANGE : ODG_OK;
+}
+
+/* ---- TPDO ---------------------------------------------------------------------------------- */
+
+/* Read the mapped values now (PRE_READ hooks run) into a frame. */
+static odg_abort_t sample(odg_node_t *n, const odg_pdo_t *p, uint8_t *out, uint8_t *len)
+{
+    uint32_t i, pos = 0;
+    memset(out, 0, 8);
+    for (i = 0; i < p->n_map; i++) {
+        odg_ref_t r;
+        uint8_t v[8];
+        uint32_t got = 0, bits = p->map[i] & 0xFFu;
+        odg_abort_t ac = odg_check_mapping(n->cfg.dict, p->map[i], ODG_A_TPDO, &r);
+        if (ac == ODG_OK) {
+            ac = odg_read(&r, 0, v, sizeof v, &got);
+        }
+        if (ac != ODG_OK) {
+            return ac;
+        }
+        memset(v + got, 0, sizeof v - got);
+        copy_bits(out, pos, v, 0, bits);
+        pos += bits;
+    }
+    *len = (uint8_t)((pos + 7u) / 8u);
+    return ODG_OK;
+}
+
+/* Sample and send; unless `force`, only when the data differ from the last frame sent. */
+static void transmit(odg_node_t *n, odg_pdo_t *p, int force)
+{
+    uint8_t d[8], len;
+    if (sample(n, p, d, &len) != ODG_OK) {
+        return;
+    }
+    if (!force && (p->flags & ODG_PDO_F_SENT) && len == p->len && memcmp(d, p->data, len) == 0) {
+        return;
+    }
+    if (odg_node_send_(n, p->cob, d, len) != 0) {
+        return; /* the event stays pending */
+    }
+    memcpy(p->data, d, sizeof d);
+    p->len = len;
+    p->flags = (uint8_t)((p->flags | ODG_PDO_F_SENT) & ~ODG_PDO_F_REQUEST);
+    p->inhibit_left = p->inhibit;
+    p->event_left = p->event;
+}
+
+void odg_pdo_request_(odg_node_t *n, uint16_t k)
+{
+    odg_pdo_t *p = &n->tpdo[k];
+    p->flags |= ODG_PDO_F_REQUEST;
+    if (active(p) && p->type >= TYPE_EVENT && p->inhibit_left == 0u) {
+        transmit(n, p, 1);
+    }
+}
+
+/* Event-driven TPDOs: sent when requested, when the event timer expires, or when a mapped
+ * value changed (sampled every tick), but never within the inhibit time of the last one. */
+void odg_pdo_tick_(odg_node_t *n, uint32_t ms)
+{
+    uint32_t ticks = ms > 0x19999999u ? 0xFFFFFFFFu : ms * 10u; /* in 100 us */
+    uint16_t k;
+    for (k = 0; k < ODG_NODE_MAX_TPDO; k++) {
+        odg_pdo_t *p = &n->tpdo[k];
+        if (!active(p) || p->type < TYPE_EVENT) {
+            continue;
+        }
+        p->inhibit_left = p->inhibit_left > ticks ? p->inhibit_left - ticks : 0u;
+        p->event_left = (uint16_t)(p->event_left > ms ? p->event_left - ms : 0u);
+        if (p->inhibit_left == 0u) {
+            transmit(n, p, (p->flags & ODG_PDO_F_REQUEST) || (p->event != 0u && p->event_left == 0u));
+        }
+    }
+}
+
+/* Synchronous TPDOs count SYNCs from the one whose counter byte equals the SYNC start value
+ * (when both are used), else from the first. */
+static int sync_started(odg_pdo_t *p, const odg_frame_t *f)
+{
+    if (!(p->flags & ODG_PDO_F_STARTED) &&
+        (p->sync_start == 0u || f->len == 0u || f->data[0] == p->sync_start)) {
+        p->flags |= ODG_PDO_F_STARTED;
+        p->count = (uint8_t)(p->sync_start != 0u && f->len != 0u ? p->type - 1u : 0u);
+    }
+    return (p->flags & ODG_PDO_F_STARTED) != 0u;
+}
+
+/* ---- RPDO -------------------------------------------------------------------------------- */
+
+/* Write the mapped values of a received frame. A value the dictionary refuses (limits, a
+ * hook's veto) is dropped: a PDO has no answer. */
+static void apply(odg_node_t *n, const odg_pdo_t *p, const uint8_t *data)
+{
+    uint32_t i, pos = 0;
+    for (i = 0; i < p->n_map; i++) {
+        uint32_t m = p->map[i], bits = m & 0xFFu;
+        odg_ref_t r;
+        uint8_t v[8];
+        if ((m >> 16) > 7u && odg_check_mapping(n->cfg.dict, m, ODG_A_RPDO, &r) == ODG_OK) {
+            memset(v, 0, sizeof v);
+            copy_bits(v, 0, data, pos, bits);
+            (void)odg_write(&r, v, (bits + 7u) / 8u);
+        }
+        pos += bits;
+    }
+}
+
+/* A frame shorter than the mapping is not processed: EMCY 0x8210 once, and an error reset
+ * (0x0000) once a frame of the right length comes again. Longer frames are processed. */
+static void length_error(odg_node_t *n, odg_pdo_t *p, int error)
+{
+    uint8_t reg = n->error_register;
+    uint16_t k;
+    if (error == ((p->flags & ODG_PDO_F_LEN_ERR) != 0u)) {
+        return;
+    }
+    p->flags ^= ODG_PDO_F_LEN_ERR;
+    if (error) {
+        (void)odg_node_emcy(n, 0x8210, (uint8_t)(reg | 0x11u), NULL, 0); /* generic + communication */
+        return;
+    }
+    for (k = 0; k < ODG_NODE_MAX_RPDO; k++) {
+        if (n->rpdo[k].flags & ODG_PDO_F_LEN_ERR) {
+            return; /* another RPDO is still in error */
+        }
+    }
+    reg &= (uint8_t)~0x10u;
+    (void)odg_node_emcy(n, 0x0000, (uint8_t)(reg == 0x01u ? 0u : reg), NULL, 0);
+}
+
+void odg_pdo_receive_(odg_node_t *n, const odg_frame_t *f)
+{
+    uint16_t k;
+    for (k = 0; k < ODG_NODE_MAX_RPDO; k++) {
+        odg_pdo_t *p = &n->rpdo[k];
+        if (!active(p) || ODG_COB_ID(p->cob) != f->id) {
+            continue;
+        }
+        length_error(n, p, f->len < p->len);
+        if (f->len < p->len) {
+            return;
+        }
+        if (p->type <= TYPE_SYNC_MAX) {
+            memcpy(p->data, f->data, sizeof p->data); /* applied at the next SYNC */
+            p->flags |= ODG_PDO_F_RECEIVED;
+        } else {
+            apply(n, p, f->data);
+        }
+        return;
+    }
+}
+
+/* ---- SYNC ---------------------------------------------------------------------------------- */
+
+/* RPDO data received since the last SYNC take effect first, then synchronous TPDOs sample. */
+void odg_pdo_sync_(odg_node_t *n, const odg_frame_t *f)
+{
+    uint16_t k;
+    for (k = 0; k < ODG_NODE_MAX_RPDO; k++) {
+        odg_pdo_t *p = &n->rpdo[k];
+        if (active(p) && (p->flags & ODG_PDO_F_RECEIVED)) {
+            p->flags &= (uint8_t)~ODG_PDO_F_RECEIVED;
+            apply(n, p, p->data);
+        }
+    }
+    for (k = 0; k < ODG_NODE_MAX_TPDO; k++) {
+        odg_pdo_t *p = &n->tpdo[k];
+        if (!active(p) || p->type > TYPE_SYNC_MAX) {
+            continue;
+        }
+        if (p->type == 0u) {
+            transmit(n, p, (p->flags & ODG_PDO_F_REQUEST) != 0u); /* on an event or a change */
+        } else if (sync_started(p, f) && ++p->count >= p->type) {
+            p->count = 0;
+            transmit(n, p, 1);
+        }
+    }
+}

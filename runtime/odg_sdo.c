@@ -1,0 +1,561 @@
+/*
+ * odg_sdo.c - the node's SDO server: expedited, segmented and block
+ * transfers in both directions, over odg_read / odg_write / odg_write_part.
+ *
+ * Downloads of at most 8 bytes (every number) are collected in sdo.buf and written whole
+ * with odg_write when complete; longer ones (strings, domains) go to odg_write_part segment
+ * by segment. A block download holds its newest segment back until the end frame, because
+ * only that frame says how many of its bytes count; the held bytes complete the value only
+ * once the CRC has matched. Uploads take the first 8 bytes with one odg_read at offset 0
+ * (which runs the PRE_READ hook once) and the rest at their offsets.
+ */
+#include <string.h>
+
+#include "odg_node_impl.h"
+
+#define SIZE_UNKNOWN 0xFFFFFFFFu
+
+static uint32_t get32(const uint8_t *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+static void put32(uint8_t *p, uint32_t v)
+{
+    p[0] = (uint8_t)v;
+    p[1] = (uint8_t)(v >> 8);
+    p[2] = (uint8_t)(v >> 16);
+    p[3] = (uint8_t)(v >> 24);
+}
+
+/* CRC-16-CCITT of CiA 301 block transfers: polynomial 0x1021, initial value 0, MSB first. */
+static uint16_t crc16(uint16_t crc, const uint8_t *p, uint32_t len)
+{
+    unsigned k;
+    while (len-- > 0u) {
+        crc = (uint16_t)(crc ^ (unsigned)*p++ << 8);
+        for (k = 0; k < 8u; k++) {
+            crc = (uint16_t)(crc & 0x8000u ? (unsigned)crc << 1 ^ 0x1021u : (unsigned)crc << 1);
+        }
+    }
+    return crc;
+}
+
+/* An 8-byte response: command byte, then index and sub-index of the transfer, then zeros. */
+static void respond(odg_node_t *n, uint8_t cmd, const uint8_t *tail, uint32_t tail_len)
+{
+    uint8_t d[8];
+    memset(d, 0, sizeof d);
+    d[0] = cmd;
+    d[1] = (uint8_t)n->sdo.index;
+    d[2] = (uint8_t)(n->sdo.index >> 8);
+    d[3] = n->sdo.sub;
+    if (tail_len > 0u) {
+        memcpy(d + 4, tail, tail_len);
+    }
+    (void)odg_node_send_(n, n->sdo_tx, d, 8);
+}
+
+/* Abort the transfer (or the request) with `code`; the server is idle afterwards. */
+static void fail(odg_node_t *n, odg_abort_t code)
+{
+    uint8_t c[4];
+    put32(c, code);
+    respond(n, 0x80, c, 4);
+    n->sdo.state = ODG_SDO_IDLE;
+}
+
+/* A frame whose bytes 1..7 are not index and sub-index (segment and block responses). */
+static void send3(odg_node_t *n, uint8_t b0, uint8_t b1, uint8_t b2)
+{
+    uint8_t f[8];
+    memset(f, 0, sizeof f);
+    f[0] = b0;
+    f[1] = b1;
+    f[2] = b2;
+    (void)odg_node_send_(n, n->sdo_tx, f, 8);
+}
+
+void odg_sdo_drop_(odg_node_t *n)
+{
+    n->sdo.state = ODG_SDO_IDLE;
+}
+
+/* ---- download ------------------------------------------------------------------------- */
+
+/* Store a complete value of at most 8 bytes: PDO rules first, then the dictionary. */
+static odg_abort_t write_whole(odg_node_t *n, const uint8_t *data, uint32_t len)
+{
+    odg_sdo_t *s = &n->sdo;
+    odg_abort_t ac = odg_node_check_(n, s->index, s->sub, data, len);
+    if (ac == ODG_OK) {
+        ac = odg_write(&s->ref, data, len);
+    }
+    odg_node_written_(n, s->index);
+    return ac;
+}
+
+static void begin_download(odg_node_t *n, uint32_t total)
+{
+    odg_sdo_t *s = &n->sdo;
+    s->total = total;
+    s->offset = 0;
+    s->crc = 0;
+    s->toggle = 0;
+    s->flags = (uint8_t)(total == SIZE_UNKNOWN ? 0u : ODG_SDO_F_SIZED);
+    if (total != SIZE_UNKNOWN && total > 8u) {
+        s->flags |= ODG_SDO_F_STREAM;
+    }
+}
+
+/* Take the next `len` bytes of a download. Without an indicated size the bytes are
+ * collected, so at most 8 fit (a number): a longer value without a size cannot go to
+ * odg_write_part, which needs the total first. */
+static odg_abort_t take(odg_node_t *n, const uint8_t *data, uint32_t len)
+{
+    odg_sdo_t *s = &n->sdo;
+    odg_abort_t ac;
+    if ((s->flags & ODG_SDO_F_SIZED) && len > s->total - s->offset) {
+        return ODG_ABORT_TOO_LONG;
+    }
+    if (s->flags & ODG_SDO_F_STREAM) {
+        if ((ac = odg_write_part(&s->ref, s->offset, data, len, s->total)) != ODG_OK) {
+            return ac;
+        }
+    } else if (len > 8u - s->offset) {
+        return ODG_ABORT_OUT_OF_MEMORY;
+    } else {
+        memcpy(s->buf + s->offset, data, len);
+    }
+    s->crc = crc16(s->crc, data, len);
+    s->offset += len;
+    return ODG_OK;
+}
+
+/* All bytes are in: write a collected value; a stream completed with its last part. */
+static odg_abort_t finish_download(odg_node_t *n)
+{
+    odg_sdo_t *s = &n->sdo;
+    if ((s->flags & ODG_SDO_F_SIZED) && s->offset != s->total) {
+        return ODG_ABORT_TOO_SHORT;
+    }
+    if (s->flags & ODG_SDO_F_STREAM) {
+        odg_node_written_(n, s->index);
+        return ODG_OK;
+    }
+    return write_whole(n, s->buf, s->offset);
+}
+
+static void download_initiate(odg_node_t *n, const uint8_t *d)
+{
+    odg_sdo_t *s = &n->sdo;
+    odg_abort_t ac;
+    if (d[0] & 0x02u) { /* expedited */
+        uint32_t len = (d[0] & 0x01u) ? 4u - (d[0] >> 2 & 3u) : 4u;
+        ac = write_whole(n, d + 4, len);
+        if (ac == ODG_ABORT_TOO_LONG && !(d[0] & 0x01u) && odg_length(&s->ref) < 4u) {
+            ac = write_whole(n, d + 4, odg_length(&s->ref)); /* size not indicated: a short number */
+        }
+        if (ac != ODG_OK) {
+            fail(n, ac);
+            return;
+        }
+        respond(n, 0x60, NULL, 0);
+        return;
+    }
+    begin_download(n, (d[0] & 0x01u) ? get32(d + 4) : SIZE_UNKNOWN);
+    respond(n, 0x60, NULL, 0);
+    s->state = ODG_SDO_DN_SEG;
+}
+
+static void download_segment(odg_node_t *n, const uint8_t *d)
+{
+    odg_sdo_t *s = &n->sdo;
+    odg_abort_t ac;
+    uint8_t toggle = (uint8_t)(d[0] >> 4 & 1u);
+    if ((d[0] >> 5) != 0u) {
+        fail(n, ODG_ABORT_COMMAND);
+        return;
+    }
+    if (toggle != s->toggle) {
+        fail(n, ODG_ABORT_TOGGLE);
+        return;
+    }
+    ac = take(n, d + 1, 7u - (d[0] >> 1 & 7u));
+    if (ac == ODG_OK && (d[0] & 0x01u)) {
+        ac = finish_download(n);
+    }
+    if (ac != ODG_OK) {
+        fail(n, ac);
+        return;
+    }
+    send3(n, (uint8_t)(0x20u | (unsigned)toggle << 4), 0, 0); /* bytes 1..7 reserved */
+    s->toggle ^= 1u;
+    if (d[0] & 0x01u) {
+        s->state = ODG_SDO_IDLE;
+    }
+}
+
+static void block_download_initiate(odg_node_t *n, const uint8_t *d)
+{
+    odg_sdo_t *s = &n->sdo;
+    uint8_t blksize = ODG_NODE_SDO_BLKSIZE;
+    begin_download(n, (d[0] & 0x02u) ? get32(d + 4) : SIZE_UNKNOWN);
+    if (d[0] & 0x04u) {
+        s->flags |= ODG_SDO_F_CRC;
+    }
+    s->blksize = blksize;
+    s->seq = 0;
+    respond(n, 0xA4, &blksize, 1); /* sc = 1: the server checks the CRC */
+    s->state = ODG_SDO_BLK_DN;
+}
+
+/* A segment of a sub-block: byte 0 is c (last) << 7 | sequence number. A segment out of
+ * order (one was lost) is ignored; the ack then names the last good one, and the client
+ * repeats the rest in the next sub-block. */
+static void block_download_segment(odg_node_t *n, const uint8_t *d)
+{
+    odg_sdo_t *s = &n->sdo;
+    uint8_t seq = d[0] & 0x7Fu, last = d[0] & 0x80u;
+    odg_abort_t ac;
+    if (seq == 0u || seq > s->blksize) {
+        fail(n, ODG_ABORT_SEQUENCE);
+        return;
+    }
+    if (seq == s->seq + 1u && !(s->flags & ODG_SDO_F_LAST)) {
+        if ((s->flags & ODG_SDO_F_HELD) && (ac = take(n, s->seg, 7)) != ODG_OK) {
+            fail(n, ac);
+            return;
+        }
+        memcpy(s->seg, d + 1, 7);
+        s->flags |= (uint8_t)(ODG_SDO_F_HELD | (last ? ODG_SDO_F_LAST : 0u));
+        s->seq = seq;
+    }
+    if (seq == s->blksize || last) {
+        send3(n, 0xA2, s->seq, s->blksize); /* ackseq, blksize for the next sub-block */
+        s->seq = 0;
+        if (s->flags & ODG_SDO_F_LAST) {
+            s->state = ODG_SDO_BLK_DN_END;
+        }
+    }
+}
+
+static void block_download_end(odg_node_t *n, const uint8_t *d)
+{
+    odg_sdo_t *s = &n->sdo;
+    uint32_t len = 7u - (d[0] >> 2 & 7u);
+    odg_abort_t ac;
+    if ((d[0] & 0xE3u) != 0xC1u) {
+        fail(n, ODG_ABORT_COMMAND);
+        return;
+    }
+    if ((s->flags & ODG_SDO_F_CRC) &&
+        crc16(s->crc, s->seg, len) != (uint16_t)(d[1] | (unsigned)d[2] << 8)) {
+        fail(n, ODG_ABORT_CRC);
+        return;
+    }
+    ac = take(n, s->seg, len);
+    if (ac == ODG_OK) {
+        ac = finish_download(n);
+    }
+    if (ac != ODG_OK) {
+        fail(n, ac);
+        return;
+    }
+    send3(n, 0xA1, 0, 0);
+    s->state = ODG_SDO_IDLE;
+}
+
+/* ---- upload ----------------------------------------------------------------------------- */
+
+/* `len` bytes of the value from `off`: the first 8 from the snapshot taken at the start,
+ * the rest read now. A value that shrank meanwhile is padded with zeros. */
+static odg_abort_t upload_data(odg_node_t *n, uint32_t off, uint8_t *out, uint32_t len)
+{
+    odg_sdo_t *s = &n->sdo;
+    uint32_t k = 0, got = 0;
+    odg_abort_t ac = ODG_OK;
+    for (; k < len && off + k < s->n_buf; k++) {
+        out[k] = s->buf[off + k];
+    }
+    if (k < len) {
+        ac = odg_read(&s->ref, off + k, out + k, len - k, &got);
+    }
+    memset(out + k + got, 0, len - k - got);
+    return ac;
+}
+
+/* Read the first bytes (PRE_READ runs here) and the size of the value. */
+static odg_abort_t upload_begin(odg_node_t *n)
+{
+    odg_sdo_t *s = &n->sdo;
+    uint32_t got = 0;
+    odg_abort_t ac = odg_read(&s->ref, 0, s->buf, sizeof s->buf, &got);
+    s->n_buf = (uint8_t)got;
+    s->total = got < sizeof s->buf ? got : odg_length(&s->ref);
+    s->offset = 0;
+    s->toggle = 0;
+    s->crc = 0;
+    return ac;
+}
+
+/* Answer an upload request: expedited for 1..4 bytes, else announce a segmented transfer. */
+static void upload_respond(odg_node_t *n)
+{
+    odg_sdo_t *s = &n->sdo;
+    uint8_t size[4];
+    if (s->total >= 1u && s->total <= 4u) {
+        respond(n, (uint8_t)(0x43u | (4u - s->total) << 2), s->buf, s->total);
+        s->state = ODG_SDO_IDLE;
+        return;
+    }
+    put32(size, s->total);
+    respond(n, 0x41, size, 4);
+    s->state = ODG_SDO_UP_SEG;
+}
+
+static void upload_segment(odg_node_t *n, const uint8_t *d)
+{
+    odg_sdo_t *s = &n->sdo;
+    uint8_t f[8], toggle = (uint8_t)(d[0] >> 4 & 1u);
+    uint32_t len = s->total - s->offset < 7u ? s->total - s->offset : 7u;
+    odg_abort_t ac;
+    if ((d[0] & 0xEFu) != 0x60u) {
+        fail(n, ODG_ABORT_COMMAND);
+        return;
+    }
+    if (toggle != s->toggle) {
+        fail(n, ODG_ABORT_TOGGLE);
+        return;
+    }
+    memset(f, 0, sizeof f);
+    if ((ac = upload_data(n, s->offset, f + 1, len)) != ODG_OK) {
+        fail(n, ac);
+        return;
+    }
+    s->offset += len;
+    f[0] = (uint8_t)((unsigned)toggle << 4 | (7u - len) << 1 | (s->offset >= s->total ? 1u : 0u));
+    (void)odg_node_send_(n, n->sdo_tx, f, 8);
+    s->toggle ^= 1u;
+    if (s->offset >= s->total) {
+        s->state = ODG_SDO_IDLE;
+    }
+}
+
+static void block_upload_initiate(odg_node_t *n, const uint8_t *d)
+{
+    odg_sdo_t *s = &n->sdo;
+    uint8_t size[4];
+    odg_abort_t ac;
+    if (d[4] == 0u || d[4] > 127u) {
+        fail(n, ODG_ABORT_BLOCK_SIZE);
+        return;
+    }
+    if ((ac = upload_begin(n)) != ODG_OK) {
+        fail(n, ac);
+        return;
+    }
+    if (d[5] != 0u && s->total <= d[5]) {
+        upload_respond(n); /* protocol switch threshold: a plain upload is cheaper */
+        return;
+    }
+    s->blksize = d[4];
+    s->flags = (d[0] & 0x04u) ? ODG_SDO_F_CRC : 0u;
+    put32(size, s->total);
+    respond(n, 0xC6, size, 4); /* sc = 1 (CRC supported), s = 1 (size indicated) */
+    s->state = ODG_SDO_BLK_UP_START;
+}
+
+/* Send the segments of the sub-block not yet sent; stops early when `send` is busy (the
+ * next tick resumes). The last segment carries c = 1, and an empty value one empty segment. */
+static void block_upload_pump(odg_node_t *n)
+{
+    odg_sdo_t *s = &n->sdo;
+    uint8_t f[8];
+    while (s->state == ODG_SDO_BLK_UP && s->seq < s->blksize && !(s->flags & ODG_SDO_F_LAST)) {
+        uint32_t len = s->total - s->offset < 7u ? s->total - s->offset : 7u;
+        uint8_t last = s->offset + len >= s->total ? 0x80u : 0u;
+        odg_abort_t ac;
+        memset(f, 0, sizeof f);
+        if ((ac = upload_data(n, s->offset, f + 1, len)) != ODG_OK) {
+            fail(n, ac);
+            return;
+        }
+        f[0] = (uint8_t)(last | (s->seq + 1u));
+        if (odg_node_send_(n, n->sdo_tx, f, 8) != 0) {
+            return;
+        }
+        s->seq++;
+        s->offset += len;
+        s->flags |= last ? ODG_SDO_F_LAST : 0u;
+    }
+}
+
+/* CRC of the acknowledged bytes [from, to), read again: cheaper in RAM than keeping a CRC
+ * per segment for the case that the client asks for a repetition. */
+static odg_abort_t crc_range(odg_node_t *n, uint32_t from, uint32_t to)
+{
+    uint8_t b[7];
+    odg_abort_t ac = ODG_OK;
+    while (from < to && ac == ODG_OK) {
+        uint32_t len = to - from < 7u ? to - from : 7u;
+        ac = upload_data(n, from, b, len);
+        n->sdo.crc = crc16(n->sdo.crc, b, len);
+        from += len;
+    }
+    return ac;
+}
+
+static void block_upload_ack(odg_node_t *n, const uint8_t *d)
+{
+    odg_sdo_t *s = &n->sdo;
+    uint32_t acked;
+    odg_abort_t ac;
+    if (d[1] > s->seq) {
+        fail(n, ODG_ABORT_SEQUENCE);
+        return;
+    }
+    if (d[2] == 0u || d[2] > 127u) {
+        fail(n, ODG_ABORT_BLOCK_SIZE);
+        return;
+    }
+    acked = s->blk_offset + 7u * d[1];
+    acked = acked < s->total ? acked : s->total;
+    s->crc = s->blk_crc;
+    if ((ac = crc_range(n, s->blk_offset, acked)) != ODG_OK) {
+        fail(n, ac);
+        return;
+    }
+    if (d[1] < s->seq) {
+        s->flags &= (uint8_t)~ODG_SDO_F_LAST; /* repeat from the first segment not acked */
+    }
+    s->blk_offset = s->offset = acked;
+    s->blk_crc = s->crc;
+    s->blksize = d[2];
+    s->seq = 0;
+    if (s->flags & ODG_SDO_F_LAST) {
+        /* n: bytes of the last segment that hold no data (an empty value sent one empty one) */
+        uint32_t used = s->total == 0u ? 0u : (s->total - 1u) % 7u + 1u;
+        send3(n, (uint8_t)(0xC1u | (7u - used) << 2), (uint8_t)s->crc, (uint8_t)(s->crc >> 8));
+        s->state = ODG_SDO_BLK_UP_END;
+        return;
+    }
+    block_upload_pump(n);
+}
+
+static void block_upload(odg_node_t *n, const uint8_t *d)
+{
+    odg_sdo_t *s = &n->sdo;
+    uint8_t want = s->state == ODG_SDO_BLK_UP_START ? 0xA3u
+                   : s->state == ODG_SDO_BLK_UP     ? 0xA2u
+                                                     : 0xA1u;
+    if (d[0] != want) {
+        fail(n, ODG_ABORT_COMMAND);
+    } else if (s->state == ODG_SDO_BLK_UP_START) {
+        s->state = ODG_SDO_BLK_UP;
+        s->blk_offset = s->offset = 0;
+        s->blk_crc = 0;
+        s->seq = 0;
+        block_upload_pump(n);
+    } else if (s->state == ODG_SDO_BLK_UP) {
+        block_upload_ack(n, d);
+    } else {
+        s->state = ODG_SDO_IDLE; /* the client confirmed the end */
+    }
+}
+
+/* ---- dispatch ------------------------------------------------------------------------------ */
+
+static void initiate(odg_node_t *n, const uint8_t *d)
+{
+    odg_sdo_t *s = &n->sdo;
+    odg_abort_t ac;
+    unsigned ccs = d[0] >> 5;
+    s->index = (uint16_t)(d[1] | (unsigned)d[2] << 8);
+    s->sub = d[3];
+    s->flags = 0;
+    s->n_buf = 0;
+    if (!(ccs == 1u || ccs == 2u || (ccs == 5u && (d[0] & 3u) == 0u) ||
+          (ccs == 6u && (d[0] & 1u) == 0u))) {
+        fail(n, ODG_ABORT_COMMAND);
+        return;
+    }
+    if ((ac = odg_find(n->cfg.dict, s->index, s->sub, &s->ref)) != ODG_OK) {
+        fail(n, ac);
+        return;
+    }
+    if (ccs == 1u) {
+        download_initiate(n, d);
+    } else if (ccs == 2u) {
+        if ((ac = upload_begin(n)) != ODG_OK) {
+            fail(n, ac);
+            return;
+        }
+        upload_respond(n);
+    } else if (ccs == 5u) {
+        block_upload_initiate(n, d);
+    } else {
+        block_download_initiate(n, d);
+    }
+}
+
+/*
+ * Every SDO frame has 8 bytes (CiA 301). A shorter one is answered with an abort
+ * 0x05040001 (and ends a transfer in progress) rather than ignored, so that the client learns
+ * at once instead of running into its timeout; only a short abort frame is silently taken
+ * as the client's abort. An abort from the client (command byte 0x80) drops the transfer
+ * without an answer: an abort is never answered.
+ */
+void odg_sdo_receive_(odg_node_t *n, const odg_frame_t *f)
+{
+    odg_sdo_t *s = &n->sdo;
+    uint8_t d[8];
+    memset(d, 0, sizeof d);
+    memcpy(d, f->data, f->len);
+    s->timer = 0;
+    if (f->len > 0u && d[0] == 0x80u) {
+        s->state = ODG_SDO_IDLE;
+        return;
+    }
+    if (f->len < 8u) {
+        if (s->state == ODG_SDO_IDLE) {
+            s->index = (uint16_t)(d[1] | (unsigned)d[2] << 8);
+            s->sub = d[3];
+        }
+        fail(n, ODG_ABORT_COMMAND);
+        return;
+    }
+    switch (s->state) {
+    case ODG_SDO_IDLE:
+        initiate(n, d);
+        break;
+    case ODG_SDO_DN_SEG:
+        download_segment(n, d);
+        break;
+    case ODG_SDO_UP_SEG:
+        upload_segment(n, d);
+        break;
+    case ODG_SDO_BLK_DN:
+        block_download_segment(n, d);
+        break;
+    case ODG_SDO_BLK_DN_END:
+        block_download_end(n, d);
+        break;
+    default:
+        block_upload(n, d);
+        break;
+    }
+}
+
+void odg_sdo_tick_(odg_node_t *n, uint32_t ms)
+{
+    odg_sdo_t *s = &n->sdo;
+    if (s->state == ODG_SDO_IDLE) {
+        return;
+    }
+    block_upload_pump(n);
+    s->timer = s->timer + ms < s->timer ? 0xFFFFFFFFu : s->timer + ms;
+    if (s->timer >= ODG_NODE_SDO_TIMEOUT_MS) {
+        fail(n, ODG_ABORT_TIMEOUT);
+    }
+}

@@ -1,0 +1,391 @@
+/*
+ * test_node_pdo.c - SYNC, TPDOs, RPDOs, PDO remapping by SDO and EMCY, against the pdo_node
+ * dictionary generated at test time from tests/node/pdo-node.eds:
+ *
+ *   TPDO1 0x180+id  type 255, no timers    0x2000 u8, 0x2001 u16
+ *   TPDO2 0x280+id  type 3 (every 3rd SYNC) 0x2002 u32
+ *   TPDO3 invalid   type 0                 (nothing mapped)
+ *   RPDO1 0x200+id  type 255               0x2005 i16 (-100..100), 0x2004 sub1/sub2 1 bit each
+ *   RPDO2 0x300+id  type 1                 0x2002 u32
+ *   0x1005 = 0x80, 0x1014 = 0x80+id, 0x1017 = 0, eight mapping entries per PDO
+ */
+#include <stdio.h>
+#include <string.h>
+
+#include "fake.h"
+#include "pdo_node.h"
+
+#define TPDO1 (0x180u + NID)
+#define TPDO2 (0x280u + NID)
+#define TPDO3 (0x380u + NID)
+#define RPDO1 (0x200u + NID)
+#define RPDO2 (0x300u + NID)
+#define EMCY (0x80u + NID)
+#define INVALID 0x80000000u
+
+static void sync0(void)
+{
+    rx0(0x80);
+}
+
+static void operational(void)
+{
+    start_node(&pdo_node, NULL);
+    nmt(ODG_NMT_START, NID);
+    CHECK_EQ(odg_node_state(&node), ODG_NMT_OPERATIONAL);
+}
+
+static int frame_is(const odg_frame_t *f, const uint8_t *data, unsigned len)
+{
+    return f->id != 0u && f->len == len && memcmp(f->data, data, len) == 0;
+}
+#define FRAME_IS(f, ...) \
+    frame_is((f), (const uint8_t[]){__VA_ARGS__}, (unsigned)sizeof((const uint8_t[]){__VA_ARGS__}))
+
+static void test_only_when_operational(void)
+{
+    start_node(&pdo_node, NULL);
+    clear();
+    sync0();
+    run_ms(100);
+    CHECK_EQ(n_sent, 0);
+    rx(RPDO1, 10, 0, 0);
+    CHECK_EQ(pdo_node_x2005_limited_i16, 0);
+    nmt(ODG_NMT_START, NID);
+    after(1);
+    CHECK_EQ(count_id(TPDO1), 1);
+    nmt(ODG_NMT_STOP, NID);
+    clear();
+    pdo_node_x2000_u8_value = 0x99;
+    sync0();
+    sync0();
+    sync0();
+    run_ms(100);
+    rx(RPDO1, 10, 0, 0);
+    CHECK_EQ(n_sent, 0);
+    CHECK_EQ(pdo_node_x2005_limited_i16, 0);
+    /* operational again: event-driven TPDOs are sent at once */
+    nmt(ODG_NMT_START, NID);
+    after(1);
+    CHECK_EQ(count_id(TPDO1), 1);
+    CHECK(FRAME_IS(last_id(TPDO1), 0x99, 0x33, 0x22));
+}
+
+static void test_event_driven(void)
+{
+    uint32_t t;
+    operational();
+    clear();
+    after(1);
+    CHECK_EQ(count_id(TPDO1), 1);
+    CHECK(FRAME_IS(last_id(TPDO1), 0x11, 0x33, 0x22));
+    run_ms(500);
+    CHECK_EQ(count_id(TPDO1), 1); /* no change, no event timer */
+    /* a change by SDO, or by the application, is sent at the next tick */
+    CHECK_EQ(download_u32(0x2000, 0, 0x12, 1), 0);
+    clear();
+    after(1);
+    CHECK(FRAME_IS(last_id(TPDO1), 0x12, 0x33, 0x22));
+    pdo_node_x2001_u16_value = 0xBEEF;
+    clear();
+    after(1);
+    CHECK_EQ(count_id(TPDO1), 1);
+    CHECK(FRAME_IS(last_id(TPDO1), 0x12, 0xEF, 0xBE));
+    /* event timer (may change while the PDO is valid): every 100 ms */
+    CHECK_EQ(download_u32(0x1800, 5, 100, 2), 0);
+    clear();
+    run_ms(1000);
+    CHECK_EQ(count_id(TPDO1), 10); /* at once (reconfigured), then every 100 ms */
+    CHECK_EQ(download_u32(0x1800, 5, 0, 2), 0);
+    /* inhibit time: only while the PDO is not valid */
+    CHECK_EQ(download_u32(0x1800, 3, 500, 2), ODG_ABORT_VALUE_RANGE);
+    CHECK_EQ(download_u32(0x1800, 1, INVALID | TPDO1, 4), 0);
+    CHECK_EQ(download_u32(0x1800, 3, 500, 2), 0); /* 50 ms */
+    CHECK_EQ(download_u32(0x1800, 1, TPDO1, 4), 0);
+    clear();
+    after(1);
+    CHECK_EQ(count_id(TPDO1), 1);
+    pdo_node_x2000_u8_value = 1;
+    for (t = 1; t < 50u; t++) {
+        after(1);
+    }
+    CHECK_EQ(count_id(TPDO1), 1);
+    after(1);
+    CHECK_EQ(count_id(TPDO1), 2);
+    CHECK_EQ(last_id(TPDO1)->data[0], 1);
+    /* the application asks for a transmission: sent once the inhibit time is over */
+    after(20);
+    odg_node_tpdo_request(&node, 0);
+    CHECK_EQ(count_id(TPDO1), 2);
+    after(30);
+    CHECK_EQ(count_id(TPDO1), 3);
+    after(60);
+    odg_node_tpdo_request(&node, 0);
+    CHECK_EQ(count_id(TPDO1), 4); /* at once */
+    /* a busy transmit queue: the event stays pending */
+    pdo_node_x2000_u8_value = 2;
+    run_ms(200);
+    clear();
+    pdo_node_x2000_u8_value = 3;
+    send_fails = 1;
+    after(1);
+    CHECK_EQ(count_id(TPDO1), 0);
+    after(1);
+    CHECK_EQ(count_id(TPDO1), 1);
+    CHECK_EQ(last_id(TPDO1)->data[0], 3);
+}
+
+static void test_sync(void)
+{
+    unsigned i;
+    operational();
+    clear();
+    for (i = 1; i <= 9u; i++) {
+        sync0();
+        CHECK_EQ_AT(count_id(TPDO2), i / 3u, i);
+    }
+    CHECK(FRAME_IS(last_id(TPDO2), 0x77, 0x66, 0x55, 0x44));
+    run_ms(1000);
+    CHECK_EQ(count_id(TPDO2), 3); /* only SYNC sends it */
+    /* SYNC start value: with a counter in the SYNC, start at counter 2 */
+    CHECK_EQ(download_u32(0x1801, 6, 2, 1), ODG_ABORT_VALUE_RANGE);
+    CHECK_EQ(download_u32(0x1801, 1, INVALID | TPDO2, 4), 0);
+    CHECK_EQ(download_u32(0x1801, 6, 2, 1), 0);
+    CHECK_EQ(download_u32(0x1801, 1, TPDO2, 4), 0);
+    clear();
+    rx(0x80, 1);
+    CHECK_EQ(count_id(TPDO2), 0);
+    rx(0x80, 2);
+    CHECK_EQ(count_id(TPDO2), 1);
+    rx(0x80, 3);
+    rx(0x80, 4);
+    CHECK_EQ(count_id(TPDO2), 1);
+    rx(0x80, 5);
+    CHECK_EQ(count_id(TPDO2), 2);
+    /* type 1: every SYNC, once the start value came again */
+    CHECK_EQ(download_u32(0x1801, 2, 1, 1), 0);
+    clear();
+    rx(0x80, 6);
+    CHECK_EQ(count_id(TPDO2), 0);
+    rx(0x80, 2);
+    rx(0x80, 3);
+    CHECK_EQ(count_id(TPDO2), 2);
+
+    /* type 0 (acyclic synchronous): at a SYNC after a change; TPDO3 mapped from scratch */
+    CHECK_EQ(download_u32(0x1A02, 1, 0x20070008, 4), 0);
+    CHECK_EQ(download_u32(0x1A02, 0, 1, 1), 0);
+    CHECK_EQ(download_u32(0x1802, 1, TPDO3, 4), 0);
+    clear();
+    run_ms(10);
+    CHECK_EQ(count_id(TPDO3), 0);
+    sync0();
+    CHECK_EQ(count_id(TPDO3), 1);
+    CHECK(FRAME_IS(last_id(TPDO3), 0x5A));
+    sync0();
+    CHECK_EQ(count_id(TPDO3), 1);
+    pdo_node_x2007_status_input = 0x5B;
+    run_ms(10);
+    CHECK_EQ(count_id(TPDO3), 1);
+    sync0();
+    CHECK_EQ(count_id(TPDO3), 2);
+    CHECK(FRAME_IS(last_id(TPDO3), 0x5B));
+    odg_node_tpdo_request(&node, 2);
+    sync0();
+    CHECK_EQ(count_id(TPDO3), 3); /* an event without a change */
+
+    /* another SYNC COB-ID */
+    CHECK_EQ(download_u32(0x1005, 0, 0x81, 4), 0);
+    clear();
+    sync0();
+    CHECK_EQ(count_id(TPDO2), 0);
+    rx0(0x81);
+    CHECK_EQ(count_id(TPDO2), 1);
+}
+
+static void test_rpdo(void)
+{
+    operational();
+    /* event-driven RPDO: 0x2005 i16 in bits 0..15, flags in bits 16 and 17 */
+    rx(RPDO1, 0x32, 0x00, 0x02);
+    CHECK_EQ(pdo_node_x2005_limited_i16, 50);
+    CHECK_EQ(pdo_node_x2004_flags_s1_flag_1, 0);
+    CHECK_EQ(pdo_node_x2004_flags_s2_flag_2, 1);
+    rx(RPDO1, 0x9C, 0xFF, 0x01); /* -100 */
+    CHECK_EQ(pdo_node_x2005_limited_i16, -100);
+    CHECK_EQ(pdo_node_x2004_flags_s1_flag_1, 1);
+    CHECK_EQ(pdo_node_x2004_flags_s2_flag_2, 0);
+    /* a value beyond the limits is dropped, the others are written */
+    rx(RPDO1, 200, 0, 0x03);
+    CHECK_EQ(pdo_node_x2005_limited_i16, -100);
+    CHECK_EQ(pdo_node_x2004_flags_s2_flag_2, 1);
+    /* longer frames are processed */
+    rx(RPDO1, 7, 0, 0, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF);
+    CHECK_EQ(pdo_node_x2005_limited_i16, 7);
+    /* too short: not processed, EMCY 0x8210 once, error reset when it is right again */
+    clear();
+    rx(RPDO1, 9, 0);
+    CHECK_EQ(pdo_node_x2005_limited_i16, 7);
+    CHECK_EQ(count_id(EMCY), 1);
+    CHECK(FRAME_IS(last_id(EMCY), 0x10, 0x82, 0x11, 0, 0, 0, 0, 0));
+    CHECK_EQ(pdo_node_x1001_error_register, 0x11);
+    rx(RPDO1, 9, 0);
+    CHECK_EQ(count_id(EMCY), 1);
+    rx(RPDO1, 9, 0, 0);
+    CHECK_EQ(pdo_node_x2005_limited_i16, 9);
+    CHECK_EQ(count_id(EMCY), 2);
+    CHECK(FRAME_IS(last_id(EMCY), 0, 0, 0, 0, 0, 0, 0, 0));
+    CHECK_EQ(pdo_node_x1001_error_register, 0);
+
+    /* synchronous RPDO: applied at the next SYNC */
+    rx(RPDO2, 1, 2, 3, 4);
+    CHECK_EQ(pdo_node_x2002_u32_value, 0x44556677);
+    sync0();
+    CHECK_EQ(pdo_node_x2002_u32_value, 0x04030201);
+    sync0();
+    CHECK_EQ(pdo_node_x2002_u32_value, 0x04030201);
+    /* a frame received, then pre-operational: never applied */
+    rx(RPDO2, 9, 9, 9, 9);
+    nmt(ODG_NMT_ENTER_PREOP, NID);
+    nmt(ODG_NMT_START, NID);
+    sync0();
+    CHECK_EQ(pdo_node_x2002_u32_value, 0x04030201);
+}
+
+static void test_remap(void)
+{
+    operational();
+    /* the PDO is valid: no mapping change at all */
+    CHECK_EQ(download_u32(0x1A00, 1, 0x20030040, 4), ODG_ABORT_UNSUPPORTED);
+    CHECK_EQ(download_u32(0x1A00, 0, 0, 1), ODG_ABORT_UNSUPPORTED);
+    /* 1. invalidate */
+    CHECK_EQ(download_u32(0x1800, 1, INVALID | TPDO1, 4), 0);
+    clear();
+    pdo_node_x2000_u8_value = 0x55;
+    run_ms(100);
+    CHECK_EQ(count_id(TPDO1), 0);
+    /* entries only while sub 0 is 0 */
+    CHECK_EQ(download_u32(0x1A00, 1, 0x20030040, 4), ODG_ABORT_UNSUPPORTED);
+    /* 2. sub 0 = 0 */
+    CHECK_EQ(download_u32(0x1A00, 0, 0, 1), 0);
+    /* 3. entries: each checked as it is written */
+    CHECK_EQ(download_u32(0x1A00, 1, 0x20060020, 4), ODG_ABORT_NOT_MAPPABLE);
+    CHECK_EQ(download_u32(0x1A00, 1, 0x30000008, 4), ODG_ABORT_NO_OBJECT);
+    CHECK_EQ(download_u32(0x1A00, 1, 0x20040308, 4), ODG_ABORT_NO_SUB);
+    CHECK_EQ(download_u32(0x1A00, 1, 0x20000010, 4), ODG_ABORT_NOT_MAPPABLE); /* wrong length */
+    CHECK_EQ(download_u32(0x1A00, 1, 0x00050008, 4), ODG_ABORT_NO_OBJECT);   /* dummies: RPDO only */
+    CHECK_EQ(download_u32(0x1A00, 1, 0x20030040, 4), 0);
+    CHECK_EQ(download_u32(0x1A00, 2, 0x20000008, 4), 0);
+    CHECK_EQ(download_u32(0x1A00, 3, 0, 4), 0); /* clearing an entry */
+    /* 4. sub 0 = n: at most 64 bits and the entries there are */
+    CHECK_EQ(download_u32(0x1A00, 0, 2, 1), ODG_ABORT_PDO_LENGTH);
+    CHECK_EQ(download_u32(0x1A00, 0, 3, 1), ODG_ABORT_NO_OBJECT);
+    CHECK_EQ(download_u32(0x1A00, 0, 9, 1), ODG_ABORT_PDO_LENGTH);
+    CHECK_EQ(download_u32(0x1A00, 0, 1, 1), 0);
+    CHECK_EQ(upload_u32(0x1A00, 0), 1);
+    /* 5. valid again: sent with the new mapping */
+    clear();
+    CHECK_EQ(download_u32(0x1800, 1, TPDO1, 4), 0);
+    after(1);
+    CHECK_EQ(count_id(TPDO1), 1);
+    CHECK(FRAME_IS(last_id(TPDO1), 8, 7, 6, 5, 4, 3, 2, 1));
+
+    /* bit mapping: two 1-bit flags, then a byte at bit 2 */
+    CHECK_EQ(download_u32(0x1800, 1, INVALID | TPDO1, 4), 0);
+    CHECK_EQ(download_u32(0x1A00, 0, 0, 1), 0);
+    CHECK_EQ(download_u32(0x1A00, 1, 0x20040101, 4), 0);
+    CHECK_EQ(download_u32(0x1A00, 2, 0x20040201, 4), 0);
+    CHECK_EQ(download_u32(0x1A00, 3, 0x20000008, 4), 0);
+    CHECK_EQ(download_u32(0x1A00, 0, 3, 1), 0);
+    CHECK_EQ(download_u32(0x1800, 1, TPDO1, 4), 0);
+    pdo_node_x2004_flags_s1_flag_1 = 0;
+    pdo_node_x2004_flags_s2_flag_2 = 1;
+    pdo_node_x2000_u8_value = 0xFF;
+    clear();
+    after(1);
+    CHECK(FRAME_IS(last_id(TPDO1), 0xFE, 0x03));
+
+    /* COB-ID: no new CAN-ID while valid; no restricted or 29-bit ones */
+    CHECK_EQ(download_u32(0x1800, 1, TPDO1 + 1u, 4), ODG_ABORT_VALUE_RANGE);
+    CHECK_EQ(download_u32(0x1800, 1, INVALID | 0x701u, 4), 0);
+    CHECK_EQ(download_u32(0x1800, 1, 0x701, 4), ODG_ABORT_VALUE_RANGE);
+    CHECK_EQ(download_u32(0x1800, 1, 0x585, 4), ODG_ABORT_VALUE_RANGE);
+    CHECK_EQ(download_u32(0x1800, 1, 0x20000186, 4), ODG_ABORT_VALUE_RANGE);
+    CHECK_EQ(download_u32(0x1800, 1, 0x40000186, 4), 0); /* bit 30 (no RTR) is fine */
+    clear();
+    after(1);
+    CHECK_EQ(count_id(0x186), 1);
+    CHECK_EQ(download_u32(0x1800, 1, 0x186, 4), 0); /* only bit 30 changed */
+    /* transmission types 241..253 */
+    CHECK_EQ(download_u32(0x1800, 2, 241, 1), ODG_ABORT_VALUE_RANGE);
+    CHECK_EQ(download_u32(0x1800, 2, 252, 1), ODG_ABORT_VALUE_RANGE);
+    CHECK_EQ(download_u32(0x1400, 2, 253, 1), ODG_ABORT_VALUE_RANGE);
+    CHECK_EQ(download_u32(0x1800, 2, 254, 1), 0);
+    CHECK_EQ(download_u32(0x1400, 2, 240, 1), 0);
+    CHECK_EQ(download_u32(0x1400, 2, 255, 1), 0);
+
+    /* RPDO: only RPDO-mappable objects; dummies fill gaps */
+    CHECK_EQ(download_u32(0x1600, 0, 0, 1), ODG_ABORT_UNSUPPORTED);
+    CHECK_EQ(download_u32(0x1400, 1, INVALID | RPDO1, 4), 0);
+    CHECK_EQ(download_u32(0x1600, 0, 0, 1), 0);
+    CHECK_EQ(download_u32(0x1600, 1, 0x20070008, 4), ODG_ABORT_NOT_MAPPABLE); /* read-only */
+    CHECK_EQ(download_u32(0x1600, 1, 0x00050010, 4), ODG_ABORT_NOT_MAPPABLE); /* dummy size */
+    CHECK_EQ(download_u32(0x1600, 1, 0x00050008, 4), 0);
+    CHECK_EQ(download_u32(0x1600, 2, 0x20000008, 4), 0);
+    CHECK_EQ(download_u32(0x1600, 0, 2, 1), 0);
+    CHECK_EQ(download_u32(0x1400, 1, RPDO1, 4), 0);
+    rx(RPDO1, 0xEE, 0x42);
+    CHECK_EQ(pdo_node_x2000_u8_value, 0x42);
+}
+
+static void test_emcy_and_resets(void)
+{
+    operational();
+    clear();
+    CHECK_EQ(odg_node_emcy(&node, 0x5000, 0x81, (const uint8_t *)"\x01\x02", 2), 0);
+    CHECK(FRAME_IS(last_id(EMCY), 0x00, 0x50, 0x81, 1, 2, 0, 0, 0));
+    CHECK_EQ(upload_u32(0x1001, 0), 0x81);
+    CHECK_EQ(download_u32(0x1014, 0, 0x90, 4), 0);
+    clear();
+    CHECK_EQ(odg_node_emcy(&node, 0x5000, 0x81, NULL, 0), 0);
+    CHECK_EQ(count_id(0x90), 1);
+    CHECK_EQ(download_u32(0x1014, 0, INVALID | 0x90u, 4), 0);
+    clear();
+    CHECK_EQ(odg_node_emcy(&node, 0x5000, 0x81, NULL, 0), ODG_ABORT_DATA_STATE);
+    CHECK_EQ(n_sent, 0);
+    /* reset communication re-reads the entries (the values stay as written) */
+    CHECK_EQ(download_u32(0x1800, 1, INVALID | TPDO1, 4), 0);
+    clear();
+    nmt(ODG_NMT_RESET_COMM, 0);
+    CHECK_EQ(n_sent, 1);
+    CHECK_EQ(odg_node_state(&node), ODG_NMT_PRE_OPERATIONAL);
+    nmt(ODG_NMT_START, 0);
+    after(1);
+    CHECK_EQ(count_id(TPDO1), 0);
+    /* reset node: the defaults again */
+    nmt(ODG_NMT_RESET_NODE, NID);
+    CHECK_EQ(upload_u32(0x1001, 0), 0);
+    nmt(ODG_NMT_START, 0);
+    clear();
+    after(1);
+    CHECK_EQ(count_id(TPDO1), 1);
+    CHECK_EQ(odg_node_emcy(&node, 0x1000, 0x01, NULL, 0), 0);
+    CHECK_EQ(count_id(EMCY), 1);
+    /* the application changed a PDO directly: odg_node_reload picks it up */
+    pdo_node_ram.x1800_tpdo_communication_parameter_s1_cob_id_used_by_tpdo = INVALID | TPDO1;
+    odg_node_reload(&node);
+    clear();
+    pdo_node_x2000_u8_value = 0x77;
+    run_ms(10);
+    CHECK_EQ(count_id(TPDO1), 0);
+}
+
+int main(void)
+{
+    test_only_when_operational();
+    test_event_driven();
+    test_sync();
+    test_rpdo();
+    test_remap();
+    test_emcy_and_resets();
+    return done();
+}
