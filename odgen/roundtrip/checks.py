@@ -257,13 +257,9 @@ def check_nmt(s: Session) -> Check:
     return check
 
 
-def _state_seen(s: Session, state: int, timeout: float = 1.0) -> bool:
+def _state_seen(s: Session, state: int) -> bool:
     start = time.monotonic()
-    while time.monotonic() - start < timeout:
-        if any(t > start and b == state for t, b in list(s.heartbeats)):
-            return True
-        time.sleep(0.02)
-    return False
+    return _wait(lambda: any(t > start and b == state for t, b in list(s.heartbeats)))
 
 
 def _period(s: Session) -> float | None:
@@ -309,11 +305,21 @@ def _tpdo(s: Session, check: Check, e: Entry) -> None:
         return
     s.node.nmt.state = "OPERATIONAL"
     time.sleep(0.05)
+    before = pdo.timestamp
     s.network.sync.transmit()
-    got = pdo.wait_for_reception(timeout=1.0)
+    got = _wait(lambda: pdo.timestamp != before)  # the TPDO may arrive before any wait could start
     value, _ = s.upload(e.obj.index, e.sub.subindex)
-    check.expect(got is not None and value is not None and bytes(pdo.data) == value,
+    check.expect(got and value is not None and bytes(pdo.data) == value,
                  f"TPDO1 on SYNC carried {_hex(bytes(pdo.data) if got else None)}, SDO reads {_hex(value)}")
+
+
+def _wait(condition: Callable[[], bool], timeout: float = 1.0) -> bool:
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if condition():
+            return True
+        time.sleep(0.01)
+    return condition()
 
 
 def _rpdo(s: Session, check: Check, e: Entry) -> None:
