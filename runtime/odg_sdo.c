@@ -108,6 +108,13 @@ static void begin_download(odg_node_t *n, uint32_t total)
     }
 }
 
+/* Strings and domains are streamed; every other type is a number of at most 8 bytes. */
+static int variable_length(uint8_t type)
+{
+    return type == ODG_T_VISIBLE_STRING || type == ODG_T_OCTET_STRING || type == ODG_T_UNICODE_STRING ||
+           type == ODG_T_DOMAIN;
+}
+
 /* Take the next `len` bytes of a download. Without an indicated size the bytes are
  * collected, so at most 8 fit (a number): a longer value without a size cannot go to
  * odg_write_part, which needs the total first. */
@@ -164,6 +171,10 @@ static void download_initiate(odg_node_t *n, const uint8_t *d)
         return;
     }
     begin_download(n, (d[0] & 0x01u) ? get32(d + 4) : SIZE_UNKNOWN);
+    if ((s->flags & ODG_SDO_F_STREAM) && !variable_length(s->ref.sub->type)) {
+        fail(n, ODG_ABORT_TOO_LONG); /* a number announced longer than 8 bytes */
+        return;
+    }
     respond(n, 0x60, NULL, 0);
     s->state = ODG_SDO_DN_SEG;
 }
@@ -201,6 +212,10 @@ static void block_download_initiate(odg_node_t *n, const uint8_t *d)
     odg_sdo_t *s = &n->sdo;
     uint8_t blksize = ODG_NODE_SDO_BLKSIZE;
     begin_download(n, (d[0] & 0x02u) ? get32(d + 4) : SIZE_UNKNOWN);
+    if ((s->flags & ODG_SDO_F_STREAM) && !variable_length(s->ref.sub->type)) {
+        fail(n, ODG_ABORT_TOO_LONG);
+        return;
+    }
     if (d[0] & 0x04u) {
         s->flags |= ODG_SDO_F_CRC;
     }

@@ -80,8 +80,16 @@ def _value(sub: Sub) -> Value | None:
     return sub.default
 
 
-def expected_bytes(sub: Sub, dtype: DataType, node_id: int) -> bytes | None:
-    """The wire bytes an upload of `sub` must give on node `node_id` (None: not comparable)."""
+def expected_bytes(sub: Sub, dtype: DataType, node_id: int, capacity: int | None = None) -> bytes | None:
+    """The wire bytes an upload of `sub` must give on node `node_id` (None: not comparable).
+    An OCTET_STRING is as long as its capacity: the default padded with zero bytes."""
+    data = _described_bytes(sub, dtype, node_id)
+    if data is not None and dtype.kind == "ostring":
+        return data.ljust(capacity or 0, b"\0")
+    return data
+
+
+def _described_bytes(sub: Sub, dtype: DataType, node_id: int) -> bytes | None:
     value = _value(sub)
     if dtype.kind == "domain":
         return None  # domains are compared by length only in hooks/streams, not by text form
@@ -134,7 +142,7 @@ def _expect(obj: Obj, sub: Sub, placement: Placement, node_id: int) -> Expect | 
     dtype = BASIC_TYPES.get(sub.data_type or 0)
     if dtype is None or obj.index < 0x1000 or (obj.index in (STORE, RESTORE) and sub.subindex > 0):
         return None
-    expected = expected_bytes(sub, dtype, node_id)
+    expected = expected_bytes(sub, dtype, node_id, placement.capacity)
     label = f"0x{obj.index:04X}sub{sub.subindex}"
     exp = Expect(obj.index, sub.subindex, label, sub.readable, sub.writable,
                  c_bytes(expected or b""), len(expected or b""), expected is not None and dtype.kind != "domain",
