@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..codegen.placement import Placement
+from ..errors import OdgenError
 from ..codegen.selftest import expected_bytes, wire_bytes, write_cases
 from ..formats.eds_writer import write_eds
 from ..model import Obj, ObjectDictionary, Sub
@@ -83,7 +84,11 @@ class Session:
         self.network = canopen.Network()
         self.network.NOTIFIER_CYCLE = 0.1
         self.network.connect(interface="socketcan", channel=iface)
-        self.node = canopen.RemoteNode(node_id, str(eds))
+        try:
+            self.node = canopen.RemoteNode(node_id, str(eds))
+        except Exception as err:  # canopen's own import: not odgen's fault, report it per file
+            self.network.disconnect()
+            raise OdgenError(f"python canopen cannot load the description: {type(err).__name__}: {err}") from None
         self.network.add_node(self.node)
         self.node.sdo.RESPONSE_TIMEOUT = 1.0
         self.booted = threading.Event()
@@ -137,13 +142,16 @@ class Session:
 
 def client_eds(od: ObjectDictionary) -> str:
     """The description as EDS for python canopen, which stops on header numbers it cannot read
-    (`VendorNumber=` empty, `001`): those lines are left out, they play no part in the checks."""
+    (`VendorNumber=` empty, `001`) or sections it reads strictly (a sparse [DummyUsage]): those are
+    left out, they play no part in the checks."""
     lines, section = [], ""
     for line in write_eds(od).splitlines():
         if line.startswith("["):
             section = line.lower()
         key, _, value = line.partition("=")
         if section == "[deviceinfo]" and key in _CANOPEN_INT_KEYS and not _python_int(value):
+            continue
+        if section == "[dummyusage]":  # canopen needs all seven keys; the checks map no dummies
             continue
         lines.append(line)
     return "\n".join(lines) + "\n"
