@@ -17,6 +17,7 @@ import threading
 import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
+from copy import deepcopy
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -145,7 +146,7 @@ def client_eds(od: ObjectDictionary) -> str:
     (`VendorNumber=` empty, `001`) or sections it reads strictly (a sparse [DummyUsage]): those are
     left out, they play no part in the checks."""
     lines, section = [], ""
-    for line in write_eds(od).splitlines():
+    for line in write_eds(_expanded(od)).splitlines():
         if line.startswith("["):
             section = line.lower()
         key, _, value = line.partition("=")
@@ -155,6 +156,17 @@ def client_eds(od: ObjectDictionary) -> str:
             continue
         lines.append(line)
     return "\n".join(lines) + "\n"
+
+
+def _expanded(od: ObjectDictionary) -> ObjectDictionary:
+    """A copy with CompactSubObj written out as sub-sections: canopen expands only compact ARRAYs."""
+    copy = deepcopy(od)
+    for obj in copy.objects.values():
+        if obj.compact_sub_obj:
+            obj.compact_sub_obj, obj.sub_number = None, len(obj.subs)
+            for sub in obj.subs.values():
+                sub.compact = False
+    return copy
 
 
 _CANOPEN_INT_KEYS = {"VendorNumber", "ProductNumber", "RevisionNumber", "NrOfRXPDO", "NrOfTXPDO", "Granularity",
@@ -310,13 +322,19 @@ def check_pdos(s: Session) -> Check:
     check = Check("remap a TPDO and an RPDO by SDO, SYNC, compare values")
     tpdo_var = _mappable(s, tpdo=True)
     rpdo_var = _mappable(s, tpdo=False)
-    if 0x1800 in s.od.objects and 0x1A00 in s.od.objects and tpdo_var is not None:
+    if _remappable(s, 0x1800, 0x1A00) and tpdo_var is not None:
         _tpdo(s, check, tpdo_var)
-    if 0x1400 in s.od.objects and 0x1600 in s.od.objects and rpdo_var is not None:
+    if _remappable(s, 0x1400, 0x1600) and rpdo_var is not None:
         _rpdo(s, check, rpdo_var)
     if not check.passed and not check.failures:
-        check.skipped = "no PDO pair with a mappable entry"
+        check.skipped = "no remappable PDO pair with a mappable entry"
     return check
+
+
+def _remappable(s: Session, comm: int, mapping: int) -> bool:
+    """The description lets a client remap this PDO: COB-ID and mapping entries are writable."""
+    cob, count, first = s.od.find(comm, 1), s.od.find(mapping, 0), s.od.find(mapping, 1)
+    return all(x is not None and x.writable for x in (cob, count, first))
 
 
 def _mappable(s: Session, tpdo: bool) -> Entry | None:
@@ -330,8 +348,8 @@ def _mappable(s: Session, tpdo: bool) -> Entry | None:
 
 def _tpdo(s: Session, check: Check, e: Entry) -> None:
     try:
-        s.node.tpdo.read(from_od=False)
-        pdo = s.node.tpdo[1]
+        pdo = s.node.tpdo[1]  # only this map: canopen cannot read multiplexed (MPDO) maps
+        pdo.read(from_od=False)
         pdo.clear()
         pdo.add_variable(e.obj.index, e.sub.subindex)
         pdo.trans_type, pdo.enabled = 1, True
@@ -362,8 +380,8 @@ def _rpdo(s: Session, check: Check, e: Entry) -> None:
     data = write_cases(e.sub, e.dtype)[1][0]  # the high limit: a value other than the default
     try:
         s.node.nmt.state = "PRE-OPERATIONAL"
-        s.node.rpdo.read(from_od=False)
         pdo = s.node.rpdo[1]
+        pdo.read(from_od=False)
         pdo.clear()
         pdo.add_variable(e.obj.index, e.sub.subindex)
         pdo.trans_type, pdo.enabled = 255, True
@@ -428,6 +446,9 @@ def run_checks(s: Session) -> list[Check]:
                                            + (s.workdir / "node.log").read_text(errors="replace")[-500:]])]
     results = [Check("boot-up", passed=1)]
     for step in CHECKS:
-        s.node.nmt.state = "PRE-OPERATIONAL"
-        results.append(step(s))
+        try:
+            s.node.nmt.state = "PRE-OPERATIONAL"
+            results.append(step(s))
+        except Exception as err:  # a client-side failure is a failed check, and the others still run
+            results.append(Check(step.__name__, failures=[f"raised {type(err).__name__}: {err}"]))
     return results
