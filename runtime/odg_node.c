@@ -58,12 +58,14 @@ odg_abort_t odg_node_check_(odg_node_t *n, uint16_t index, uint8_t sub, const ui
     return odg_pdo_check_(n, index, sub, v);
 }
 
-/* COB-IDs of SYNC, EMCY and the SDO server; 0x1200 has the pre-defined ones when absent. */
+/* COB-IDs of SYNC, EMCY and the SDO server. The default SDO server (0x1200) always answers on
+ * the pre-defined connection set (CiA 301: its COB-IDs are 0x600/0x580 + node-id, read-only),
+ * whatever a description writes there: a bogus value must not make the node unreachable. */
 static void load_cobs(odg_node_t *n)
 {
     uint32_t id = n->cfg.node_id;
-    n->sdo_rx = odg_node_get_or_(n, 0x1200, 1, 0x600u + id);
-    n->sdo_tx = odg_node_get_or_(n, 0x1200, 2, 0x580u + id);
+    n->sdo_rx = 0x600u + id;
+    n->sdo_tx = 0x580u + id;
     n->sync_cob = odg_node_get_or_(n, 0x1005, 0, 0x80u);
     n->emcy_cob = odg_node_get_or_(n, 0x1014, 0, 0x80u + id);
 }
@@ -72,7 +74,7 @@ void odg_node_written_(odg_node_t *n, uint16_t index)
 {
     if (index >= 0x1400u && index < 0x1C00u) {
         odg_pdo_load_(n, index >= 0x1800u, (uint16_t)(index & 0x1FFu));
-    } else if (index == 0x1005u || index == 0x1014u || index == 0x1200u) {
+    } else if (index == 0x1005u || index == 0x1014u) {
         load_cobs(n);
     }
 }
