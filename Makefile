@@ -48,6 +48,8 @@ docs: setup
 bench: setup
 	$(BIN)/python benchmarks/lint_speed.py
 	$(BIN)/python benchmarks/footprint.py
+	bash tools/vcan/setup.sh
+	$(BIN)/python tools/vcan/run.py -- $(BIN)/python benchmarks/sdo_speed.py
 
 clean:
 	rm -rf build .pytest_cache

@@ -18,6 +18,7 @@ from ..model.datatypes import BASIC_TYPES, DataType
 from .names import comment, identifier, string_literal
 from .placement import RESTORE, STORE, Placement
 
+MAX_C_STRING = 4095
 DEFAULT_DOMAIN_CAPACITY = 0  # a DOMAIN holds its default unless the options give a capacity
 
 # type kind -> (C type by storage width)
@@ -451,6 +452,8 @@ def _string_init(dtype: DataType, value: Value | None, capacity: int | None) -> 
     if dtype.kind == "vstring":
         data = (text if isinstance(text, str) else "").encode("utf-8")
         cap = max(len(data), capacity or 0)
+        if len(data) > MAX_C_STRING:  # C99 compilers need only take string literals of 4095 characters
+            return f"[{cap + 1}]", "{" + ", ".join(f"0x{x:02X}" for x in data) + ", 0}", cap
         return f"[{cap + 1}]", string_literal(data), cap
     if dtype.kind == "ostring":
         data = text if isinstance(text, bytes) else b""
