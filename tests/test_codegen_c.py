@@ -119,7 +119,8 @@ def test_cmake_firmware_example_builds_and_runs(tmp_path: Path) -> None:
 
 
 def test_string_longer_than_c99_literal_limit(tmp_path: Path) -> None:
-    text = (GEN / "alltypes.eds").read_text().replace('DefaultValue=odgen "test" */ label', "DefaultValue=" + "x" * 5000)
+    label = 'DefaultValue=odgen "test" */ label'
+    text = (GEN / "alltypes.eds").read_text().replace(label, "DefaultValue=" + "x" * 5000)
     path = tmp_path / "longstring.eds"
     path.write_text(text, encoding="utf-8")
     _assert_passed(run_check(Request(path), cc=_compiler("gcc")))

@@ -13,15 +13,14 @@ User-Mode Linux guest). Everything is built in pytest's temporary directories.
 
 from __future__ import annotations
 
-import os
 import re
-import shutil
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
 
+from .cprog import BUILDS, EXTRA, STRICT, build, compiler, run
 from .conftest import FIXTURES, ROOT
 
 RUNTIME = ROOT / "runtime"
@@ -30,10 +29,6 @@ NODE_TESTS = ROOT / "tests" / "node"
 CHECK_H = ROOT / "tests" / "runtime"  # check.h
 VCAN_RUN = ROOT / "tools" / "vcan" / "run.py"
 
-STRICT = ("-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic")
-EXTRA = ("-Wconversion", "-Wsign-conversion", "-Wshadow", "-Wcast-qual", "-Wstrict-prototypes",
-         "-Wmissing-prototypes", "-Wundef")
-SANITIZE = ("-O1", "-g", "-fno-omit-frame-pointer", "-fsanitize=address,undefined", "-fno-sanitize-recover=all")
 CORE = tuple(RUNTIME / s for s in ("odg.c", "odg_persist.c"))
 NODE = tuple(RUNTIME / s for s in ("odg_node.c", "odg_sdo.c", "odg_pdo.c"))
 PROGRAM_SOURCES = (*CORE, *NODE, RUNTIME / "odg_nv_file.c", LINUX / "odg_socketcan.c", LINUX / "odg_node_main.c")
@@ -50,19 +45,7 @@ PROGRAMS: dict[str, tuple[str, tuple[Path, ...]]] = {
     "test_node_pdo": ("pdo_node", ()),
     "test_node_io": ("io_node", (RUNTIME / "odg_nv_file.c",)),
 }
-BUILDS: dict[str, tuple[str, tuple[str, ...]]] = {
-    "gcc": ("gcc", ("-O2",)),
-    "clang": ("clang", ("-O2",)),
-    "gcc-sanitize": ("gcc", SANITIZE),
-}
-RESULT = re.compile(r"(\d+) passed, (\d+) failed")
 
-
-def compiler(cc: str) -> str:
-    path = shutil.which(cc)
-    if path is None:
-        pytest.fail(f"{cc} is not installed; `make test` installs it (make sysdeps)")
-    return path
 
 
 def generate(name: str, out: Path, with_options: bool = True) -> Path:
@@ -86,21 +69,6 @@ def generated(tmp_path_factory: pytest.TempPathFactory) -> Path:
     return base
 
 
-def build(cc: str, flags: tuple[str, ...], sources: tuple[Path, ...], includes: tuple[Path, ...], out: Path) -> None:
-    cmd = [compiler(cc), *STRICT, *flags, *(f"-I{i}" for i in includes), *map(str, sources), "-o", str(out)]
-    done = subprocess.run(cmd, capture_output=True, text=True, check=False)
-    assert done.returncode == 0, f"compile failed: {' '.join(cmd)}\n{done.stdout}{done.stderr}"
-
-
-def run(exe: Path, workdir: Path) -> str:
-    done = subprocess.run([str(exe), str(workdir)], capture_output=True, text=True, check=False, timeout=600,
-                          cwd=workdir, env={**os.environ, "UBSAN_OPTIONS": "print_stacktrace=1"})
-    output = done.stdout + done.stderr
-    lines = done.stdout.strip().splitlines()
-    last = RESULT.fullmatch(lines[-1]) if lines else None
-    assert done.returncode == 0 and last is not None and last.group(2) == "0", output[-6000:]
-    assert int(last.group(1)) > 0
-    return output
 
 
 @pytest.mark.parametrize("build_name", list(BUILDS))

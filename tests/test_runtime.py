@@ -7,23 +7,17 @@ Everything is built in pytest's temporary directory, never in the repository.
 
 from __future__ import annotations
 
-import os
 import re
-import shutil
 import subprocess
 from pathlib import Path
 
 import pytest
 
+from .cprog import BUILDS, EXTRA, STRICT, build, compiler, run
 from .conftest import ROOT
 
 RUNTIME = ROOT / "runtime"
 CTESTS = ROOT / "tests" / "runtime"
-STRICT = ("-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic")
-# Warnings beyond STRICT that the runtime sources (not the tests) are kept free of.
-EXTRA = ("-Wconversion", "-Wsign-conversion", "-Wshadow", "-Wcast-qual", "-Wstrict-prototypes",
-         "-Wmissing-prototypes", "-Wundef")
-SANITIZE = ("-O1", "-g", "-fno-omit-frame-pointer", "-fsanitize=address,undefined", "-fno-sanitize-recover=all")
 
 CORE = ("odg.c", "odg_persist.c")
 PROGRAMS: dict[str, tuple[Path, ...]] = {
@@ -31,37 +25,9 @@ PROGRAMS: dict[str, tuple[Path, ...]] = {
     "test_persist": (CTESTS / "test_persist.c", CTESTS / "td.c", *(RUNTIME / s for s in CORE),
                      RUNTIME / "odg_nv_file.c"),
 }
-BUILDS: dict[str, tuple[str, tuple[str, ...]]] = {
-    "gcc": ("gcc", ("-O2",)),
-    "clang": ("clang", ("-O2",)),
-    "gcc-sanitize": ("gcc", SANITIZE),
-}
-RESULT = re.compile(r"(\d+) passed, (\d+) failed")
 
 
-def compiler(cc: str) -> str:
-    path = shutil.which(cc)
-    if path is None:
-        hint = "; `make test` installs it (make sysdeps: apt-get install clang)" if cc == "clang" else ""
-        pytest.fail(f"{cc} is not installed{hint}")
-    return path
 
-
-def build(cc: str, flags: tuple[str, ...], sources: tuple[Path, ...], out: Path) -> None:
-    cmd = [compiler(cc), *STRICT, *flags, f"-I{RUNTIME}", f"-I{CTESTS}", *map(str, sources), "-o", str(out)]
-    done = subprocess.run(cmd, capture_output=True, text=True, check=False)
-    assert done.returncode == 0, f"compile failed: {' '.join(cmd)}\n{done.stdout}{done.stderr}"
-
-
-def run(exe: Path, workdir: Path) -> str:
-    done = subprocess.run([str(exe), str(workdir)], capture_output=True, text=True, check=False, timeout=600,
-                          cwd=workdir, env={**os.environ, "UBSAN_OPTIONS": "print_stacktrace=1"})
-    output = done.stdout + done.stderr
-    lines = done.stdout.strip().splitlines()
-    last = RESULT.fullmatch(lines[-1]) if lines else None
-    assert done.returncode == 0 and last is not None and last.group(2) == "0", output[-6000:]
-    assert int(last.group(1)) > 0
-    return output
 
 
 @pytest.mark.parametrize("build_name", list(BUILDS))
@@ -69,14 +35,14 @@ def run(exe: Path, workdir: Path) -> str:
 def test_program(program: str, build_name: str, tmp_path: Path) -> None:
     cc, flags = BUILDS[build_name]
     exe = tmp_path / program
-    build(cc, flags, PROGRAMS[program], exe)
+    build(cc, flags, PROGRAMS[program], (RUNTIME, CTESTS), exe)
     run(exe, tmp_path)
 
 
 def test_without_abort_texts(tmp_path: Path) -> None:
     """-DODG_NO_ABORT_TEXT drops the text table: odg_abort_text returns ""."""
     exe = tmp_path / "test_core"
-    build("gcc", ("-O2", "-DODG_NO_ABORT_TEXT"), PROGRAMS["test_core"], exe)
+    build("gcc", ("-O2", "-DODG_NO_ABORT_TEXT"), PROGRAMS["test_core"], (RUNTIME, CTESTS), exe)
     run(exe, tmp_path)
 
 

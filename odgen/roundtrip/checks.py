@@ -346,16 +346,23 @@ def _mappable(s: Session, tpdo: bool) -> Entry | None:
     return None
 
 
-def _tpdo(s: Session, check: Check, e: Entry) -> None:
+def _remap(s: Session, check: Check, pdo, name: str, e: Entry, trans_type: int) -> bool:
+    """Map `e` alone into `pdo` by SDO (canopen writes it in the CiA 301 order)."""
     try:
-        pdo = s.node.tpdo[1]  # only this map: canopen cannot read multiplexed (MPDO) maps
-        pdo.read(from_od=False)
+        pdo.read(from_od=False)  # only this map: canopen cannot read multiplexed (MPDO) maps
         pdo.clear()
         pdo.add_variable(e.obj.index, e.sub.subindex)
-        pdo.trans_type, pdo.enabled = 1, True
+        pdo.trans_type, pdo.enabled = trans_type, True
         pdo.save()
+        return True
     except (s.canopen.SdoAbortedError, s.canopen.SdoCommunicationError) as err:
-        check.expect(False, f"TPDO1 remap to {e.label} failed: {err}")
+        check.expect(False, f"{name} remap to {e.label} failed: {err}")
+        return False
+
+
+def _tpdo(s: Session, check: Check, e: Entry) -> None:
+    pdo = s.node.tpdo[1]
+    if not _remap(s, check, pdo, "TPDO1", e, trans_type=1):
         return
     s.node.nmt.state = "OPERATIONAL"
     time.sleep(0.05)
@@ -378,16 +385,9 @@ def _wait(condition: Callable[[], bool], timeout: float = 1.0) -> bool:
 
 def _rpdo(s: Session, check: Check, e: Entry) -> None:
     data = write_cases(e.sub, e.dtype)[1][0]  # the high limit: a value other than the default
-    try:
-        s.node.nmt.state = "PRE-OPERATIONAL"
-        pdo = s.node.rpdo[1]
-        pdo.read(from_od=False)
-        pdo.clear()
-        pdo.add_variable(e.obj.index, e.sub.subindex)
-        pdo.trans_type, pdo.enabled = 255, True
-        pdo.save()
-    except (s.canopen.SdoAbortedError, s.canopen.SdoCommunicationError) as err:
-        check.expect(False, f"RPDO1 remap to {e.label} failed: {err}")
+    s.node.nmt.state = "PRE-OPERATIONAL"
+    pdo = s.node.rpdo[1]
+    if not _remap(s, check, pdo, "RPDO1", e, trans_type=255):
         return
     s.node.nmt.state = "OPERATIONAL"
     time.sleep(0.05)
