@@ -10,7 +10,7 @@ from __future__ import annotations
 import argparse
 import subprocess
 import sys
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from . import __version__
@@ -25,6 +25,7 @@ from .errors import OdgenError
 from .fileio import write_atomic
 from .formats import load_path
 from .formats.eds_writer import write_eds
+from .profiles import ds401 as ds401_profile
 from .lint import RuleFilter, exit_code, lint_path
 from .report import RENDERERS
 from .rules import LintOptions
@@ -104,9 +105,61 @@ def build_parser() -> argparse.ArgumentParser:
     rt.add_argument("--options", type=Path, metavar="OPTS")
     rt.add_argument("--report", type=Path, help="write the results as JSON")
 
+    add_profile_parser(commands)
+
     rules = commands.add_parser("rules", help="list the rule catalogue")
     rules.add_argument("--markdown", action="store_true", help="as docs/rules.md")
     return parser
+
+
+def _count(maximum: int) -> Callable[[str], int]:
+    def parse(text: str) -> int:
+        try:
+            value = int(text, 0)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"'{text}' is not a number") from None
+        if not 0 <= value <= maximum:
+            raise argparse.ArgumentTypeError(f"{value} is outside 0..{maximum}")
+        return value
+    return parse
+
+
+def add_profile_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    profile = commands.add_parser("profile", help="write a device-profile description from channel counts")
+    profiles = profile.add_subparsers(dest="profile", required=True)
+    ds401 = profiles.add_parser("ds401", help="CiA 401 generic I/O module (docs/ds401.md)")
+    for kind, maximum, what in (("di", ds401_profile.MAX_DIGITAL, "digital inputs (bits)"),
+                                ("do", ds401_profile.MAX_DIGITAL, "digital outputs (bits)"),
+                                ("ai", ds401_profile.MAX_ANALOG, "analog inputs"),
+                                ("ao", ds401_profile.MAX_ANALOG, "analog outputs")):
+        ds401.add_argument(f"--{kind}", type=_count(maximum), default=0, metavar="N", help=f"{what}, 0..{maximum}")
+    for kind in ("ai", "ao"):
+        ds401.add_argument(f"--{kind}-width", type=int, choices=ds401_profile.WIDTHS, default=16)
+    ds401.add_argument("--name", default=ds401_profile.Ds401.name, help="product name")
+    for key in ("vendor-id", "product-code", "revision"):
+        ds401.add_argument(f"--{key}", type=_count(0xFFFFFFFF), default=0, metavar="N")
+    ds401.add_argument("-o", "--output", type=Path, required=True, metavar="FILE.eds")
+    ds401.add_argument("--generate", type=Path, metavar="DIR", help="also generate the C dictionary into DIR")
+
+
+def cmd_profile(args: argparse.Namespace) -> int:
+    spec = ds401_profile.Ds401(args.di, args.do, args.ai, args.ao, args.ai_width, args.ao_width, args.name,
+                               args.vendor_id, args.product_code, args.revision)
+    problems = spec.problems() + ([] if args.output.suffix.lower() == ".eds" else ["-o must name a .eds file"])
+    if problems:
+        raise OdgenError("; ".join(problems))
+    ds401_profile.write(spec, args.output)
+    if args.generate is None:
+        return 0
+    result = generate(Request(args.output, defaults=ds401_profile.options_toml(spec)))
+    _print_findings(result.diags)
+    if not result.files:
+        print(f"odgen: {args.output}: errors found, nothing generated", file=sys.stderr)
+        return 1
+    args.generate.mkdir(parents=True, exist_ok=True)
+    for name, text in sorted(result.files.items()):
+        write_atomic(args.generate / name, text)
+    return 0
 
 
 def cmd_lint(args: argparse.Namespace) -> int:
@@ -234,7 +287,8 @@ def cmd_rules(args: argparse.Namespace) -> int:
 
 
 COMMANDS = {"lint": cmd_lint, "convert": cmd_convert, "generate": cmd_generate, "explain": cmd_explain,
-            "check": cmd_check, "node": cmd_node, "roundtrip": cmd_roundtrip, "rules": cmd_rules}
+            "check": cmd_check, "node": cmd_node, "roundtrip": cmd_roundtrip, "rules": cmd_rules,
+            "profile": cmd_profile}
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -1,0 +1,1 @@
+"""Device profiles odgen can generate descriptions for (`odgen profile ...`)."""
