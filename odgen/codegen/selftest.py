@@ -118,7 +118,7 @@ def _limits(sub: Sub, dtype: DataType) -> tuple[int | float, int | float] | None
 
 def write_cases(sub: Sub, dtype: DataType) -> list[tuple[bytes, str]]:
     """Downloads to try on a writable numeric entry: low, high and middle value, one byte too
-    many, and one past each limit that is narrower than the type; with the expected result."""
+    many and one too few, and one past each limit narrower than the type; with the expected result."""
     bounds = _limits(sub, dtype) if dtype.is_numeric else None
     if bounds is None:
         return []
@@ -126,6 +126,8 @@ def write_cases(sub: Sub, dtype: DataType) -> list[tuple[bytes, str]]:
     mid = (lo + hi) / 2 if dtype.kind == "real" else (int(lo) + int(hi)) // 2
     cases = [(wire_bytes(v, dtype), "ODG_OK") for v in (lo, hi, mid)]
     cases.append((wire_bytes(lo, dtype) + b"\x00", "ODG_ABORT_TOO_LONG"))
+    if len(wire_bytes(lo, dtype)) > 1:
+        cases.append((wire_bytes(lo, dtype)[:-1], "ODG_ABORT_TOO_SHORT"))
     if dtype.is_integer and dtype.min is not None and dtype.max is not None:
         if int(hi) < int(dtype.max):
             cases.append((wire_bytes(int(hi) + 1, dtype), "ODG_ABORT_VALUE_HIGH"))

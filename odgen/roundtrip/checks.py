@@ -28,7 +28,8 @@ from ..formats.eds_writer import write_eds
 from ..model import Obj, ObjectDictionary, Sub
 from ..model.datatypes import BASIC_TYPES, DataType
 
-ABORTS = {"ODG_OK": 0, "ODG_ABORT_TOO_LONG": 0x06070012, "ODG_ABORT_VALUE_HIGH": 0x06090031,
+ABORTS = {"ODG_OK": 0, "ODG_ABORT_TOO_LONG": 0x06070012, "ODG_ABORT_TOO_SHORT": 0x06070013,
+          "ODG_ABORT_VALUE_HIGH": 0x06090031,
           "ODG_ABORT_VALUE_LOW": 0x06090032, "ODG_ABORT_READ_ONLY": 0x06010002}
 WRITE_ONLY, NO_OBJECT, NO_SUB = 0x06010001, 0x06020000, 0x06090011
 # Objects whose writes change how the node talks (SDO/PDO/SYNC/EMCY/heartbeat) or act as
