@@ -3,7 +3,6 @@ PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
-CORPUS ?= ../shared/corpus/files
 
 .PHONY: setup sysdeps demo test lint-code docs bench clean
 
@@ -18,7 +17,7 @@ setup: $(STAMP)
 # The main job on the example: lint it, generate its C dictionary, compile it with the
 # runtime and run the self-test (which reports where each storage class landed and its
 # size), then write the lint findings as SARIF and convert the description back to EDS.
-demo: setup
+demo: setup sysdeps
 	$(BIN)/odgen lint examples/*/*.eds
 	mkdir -p build/demo
 	$(BIN)/odgen generate examples/io-node/io-node.eds --options examples/io-node/io-node.toml -o build/demo
@@ -31,13 +30,13 @@ lint-code: setup
 	$(BIN)/ruff check odgen tests benchmarks
 	$(BIN)/mypy
 
-# clang for the runtime tests (tests/test_runtime.py builds with gcc and clang).
 # System tools the tests compile and build with (Debian packages of the same names).
 SYSTOOLS := gcc clang cmake
 sysdeps:
 	@missing=""; for t in $(SYSTOOLS); do command -v $$t >/dev/null 2>&1 || missing="$$missing $$t"; done; \
 	if [ -n "$$missing" ]; then apt-get update -qq && apt-get install -y -qq $$missing; fi
 
+# The CAN tests set up tools/vcan themselves (host vcan, else a User-Mode Linux guest).
 test: setup lint-code sysdeps
 	$(BIN)/python -m pytest -q
 
