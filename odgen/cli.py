@@ -27,6 +27,7 @@ from .formats import load_path
 from .formats.eds_writer import write_eds
 from .profiles import ds401 as ds401_profile
 from .lint import RuleFilter, exit_code, lint_path
+from .network import lint_network
 from .report import RENDERERS
 from .rules import LintOptions
 from .rules.catalogue import render_markdown, render_table
@@ -53,7 +54,8 @@ def build_parser() -> argparse.ArgumentParser:
     commands = parser.add_subparsers(dest="command", required=True)
 
     lint = commands.add_parser("lint", help="check device descriptions against the rule catalogue")
-    lint.add_argument("files", nargs="+", type=Path, metavar="FILE")
+    lint.add_argument("files", nargs="*", type=Path, metavar="FILE")
+    lint.add_argument("--network", type=Path, metavar="NET.toml", help="lint a network's nodes and their PDOs")
     lint.add_argument("--format", choices=sorted(RENDERERS), default="text")
     lint.add_argument("--output", "-o", type=Path, help="write the report to a file instead of stdout")
     lint.add_argument("--strict", action="store_true", help="warnings fail too (exit 1)")
@@ -165,7 +167,9 @@ def cmd_profile(args: argparse.Namespace) -> int:
 def cmd_lint(args: argparse.Namespace) -> int:
     options = LintOptions(node_id=args.node_id, can_fd=args.can_fd)
     rule_filter = RuleFilter(tuple(args.select), tuple(args.ignore))
-    results, unreadable = [], False
+    if not args.files and args.network is None:
+        raise OdgenError("lint needs FILE arguments or --network NET.toml")
+    results, unreadable = lint_network(args.network, options, rule_filter) if args.network else ([], False)
     for path in args.files:
         try:
             results.append(lint_path(path, options, rule_filter))

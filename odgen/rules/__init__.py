@@ -30,7 +30,7 @@ def check(fn: Check) -> Check:
 
 
 # Reader-emitted rules first, then the semantic passes in pipeline order.
-FAMILIES = ("syntax", "xml", "header", "lists", "objects", "pdo", "comm", "gen")
+FAMILIES = ("syntax", "xml", "header", "lists", "objects", "pdo", "comm", "gen", "network")
 for _family in FAMILIES:
     importlib.import_module(f"{__name__}.{_family}")
 

@@ -13,6 +13,7 @@ FAMILIES = {
     "PDO": "PDO mapping",
     "COM": "Communication profile (CiA 301) semantics",
     "GEN": "Generation: options file, placement, C names (odgen generate)",
+    "NET": "Network of nodes: PDO producers, consumers and COB-IDs (odgen lint --network)",
 }
 
 

@@ -128,7 +128,7 @@ def mappings(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> 
         offset = 0
         misaligned = False
         contrary: list[Entry] = []
-        for entry in _entries(od, obj, diags):
+        for entry in mapping_entries(od, obj, diags):
             _target(od, obj, kind, entry, contrary, diags)
             if gran and gran > 0 and offset % gran and not misaligned:
                 misaligned = True
@@ -152,7 +152,7 @@ def _overflow(od: ObjectDictionary, obj: Obj, kind: str, offset: int, limit: int
               f"{kind} maps {offset} bits; a {frame} carries {limit}", obj.index, 0)
 
 
-def _entries(od: ObjectDictionary, obj: Obj, diags: Diagnostics) -> list[Entry]:
+def mapping_entries(od: ObjectDictionary, obj: Obj, diags: Diagnostics) -> list[Entry]:
     """The entries sub0 activates, reporting counted entries that are absent or empty."""
     sub0 = obj.subs.get(0)
     value, keyword = value_in_force(od, sub0) if sub0 is not None else (None, "")
