@@ -47,6 +47,7 @@ docs: setup
 bench: setup
 	$(BIN)/python benchmarks/lint_speed.py
 	$(BIN)/python benchmarks/footprint.py
+	$(BIN)/python benchmarks/lookup_cost.py
 	bash tools/vcan/setup.sh
 	$(BIN)/python tools/vcan/run.py -- $(BIN)/python benchmarks/sdo_speed.py
 
