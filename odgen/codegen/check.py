@@ -10,7 +10,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import OdgenError
-from .generate import Request, Result, _environment, generate
+from .generate import Request, Result, environment, generate
 from .selftest import build_selftest
 
 RUNTIME = Path(__file__).resolve().parents[2] / "runtime"
@@ -51,7 +51,7 @@ def run_check(request: Request, workdir: Path | None = None, cc: str | None = No
         for fname, text in result.files.items():
             (work / fname).write_text(text, encoding="utf-8")
         test = build_selftest(result.od, result.placements, result.view, request.node_id or DEFAULT_NODE_ID)
-        selftest = _environment().get_template("selftest.c.j2").render(t=test)
+        selftest = environment().get_template("selftest.c.j2").render(t=test)
         (work / f"{result.view.name}_selftest.c").write_text(selftest, encoding="utf-8")
         built = _compile(cc or compiler(), work, result.view.name, cflags)
         if built.returncode != 0:

@@ -46,7 +46,7 @@ def default_name(path: Path) -> str:
     return identifier(path.stem, "od")
 
 
-def _environment() -> jinja2.Environment:
+def environment() -> jinja2.Environment:
     return jinja2.Environment(loader=jinja2.FileSystemLoader(str(TEMPLATES)), undefined=jinja2.StrictUndefined,
                               trim_blocks=True, lstrip_blocks=True, keep_trailing_newline=True,
                               autoescape=False)
@@ -86,7 +86,7 @@ def generate(request: Request) -> Result:
                  lookup=request.lookup, diags=result.diags)
     if result.diags.count(Severity.ERROR):
         return result
-    env = _environment()
+    env = environment()
     result.view = view
     result.files = {f"{name}.h": env.get_template("dict.h.j2").render(v=view),
                     f"{name}.c": env.get_template("dict.c.j2").render(v=view)}

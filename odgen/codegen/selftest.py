@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 from ..model import Obj, ObjectDictionary, Sub, Value
 from ..model.datatypes import BASIC_TYPES, DataType
 from .placement import RESTORE, STORE, Placement
-from .viewmodel import DictView, initial_number
+from .viewmodel import DictView, generated_value, initial_number
 
 MAX_WRITE_CASES = 3
 
@@ -73,13 +73,6 @@ def c_bytes(data: bytes) -> str:
     return "{" + ", ".join(f"0x{b:02X}" for b in data) + "}" if data else "{0}"
 
 
-def _value(sub: Sub) -> Value | None:
-    pv = sub.parameter_value
-    if pv is not None and not pv.empty and pv.error is None:
-        return pv
-    return sub.default
-
-
 def expected_bytes(sub: Sub, dtype: DataType, node_id: int, capacity: int | None = None) -> bytes | None:
     """The wire bytes an upload of `sub` must give on node `node_id` (None: not comparable).
     An OCTET_STRING is as long as its capacity: the default padded with zero bytes."""
@@ -90,7 +83,7 @@ def expected_bytes(sub: Sub, dtype: DataType, node_id: int, capacity: int | None
 
 
 def _described_bytes(sub: Sub, dtype: DataType, node_id: int) -> bytes | None:
-    value = _value(sub)
+    value = generated_value(sub)
     if dtype.kind == "domain":
         return None  # domains are compared by length only in hooks/streams, not by text form
     if value is None or value.error is not None or value.parsed is None:

@@ -245,7 +245,7 @@ def limit_bits(value: int | float, dtype: DataType) -> int:
     return int(value) & 0xFFFFFFFFFFFFFFFF
 
 
-def _value_of(sub: Sub) -> Value | None:
+def generated_value(sub: Sub) -> Value | None:
     """A DCF's configured ParameterValue wins over the DefaultValue."""
     if sub.parameter_value is not None and not sub.parameter_value.empty and sub.parameter_value.error is None:
         return sub.parameter_value
@@ -380,7 +380,7 @@ def _attr_flags(sub: Sub, placement: Placement, dtype: DataType) -> str:
             flags.append("ODG_A_TPDO")
         if sub.access in ("wo", "rww", "rw"):
             flags.append("ODG_A_RPDO")
-    value = _value_of(sub)
+    value = generated_value(sub)
     if value is not None and value.nodeid and isinstance(value.parsed, int):
         flags.append("ODG_A_NODEID")
     if placement.hooks:
@@ -400,7 +400,7 @@ def _storage_code(placement: Placement, view: DictView) -> str:
 def _value_member(b: _Builder, view: DictView, obj: Obj, sub: Sub, dtype: DataType, placement: Placement,
                   member: str) -> tuple[str, int]:
     target = b.struct_for(placement.storage)
-    value = _value_of(sub)
+    value = generated_value(sub)
     ctype = ctype_of(dtype)
     note = comment(f"0x{obj.index:04X}sub{sub.subindex} {sub.name}")
     key = (obj.index, sub.subindex)
@@ -429,7 +429,7 @@ def _accessor(view: DictView, member: str, target: StorageStruct, note: str) -> 
 
 def initial_number(sub: Sub, dtype: DataType) -> int | float:
     """The value an entry starts with: its default, or without one 0 moved into its limits."""
-    value = _value_of(sub)
+    value = generated_value(sub)
     parsed = value.parsed if value is not None and value.error is None else None
     if isinstance(parsed, (int, float)) and not isinstance(parsed, bool):
         return float(parsed) if dtype.kind == "real" else int(parsed)
