@@ -204,10 +204,14 @@ def _print_findings(diags: Diagnostics) -> None:
             print(d.text(), file=sys.stderr)
 
 
-def cmd_generate(args: argparse.Namespace) -> int:
+def _generate_request(args: argparse.Namespace) -> Request:
     if args.name is not None and not valid_name(args.name):
         raise OdgenError(f"--name '{args.name}' must be a C identifier of at most 32 characters")
-    request = Request(args.input, args.name, args.options, args.node_id, args.lookup)
+    return Request(args.input, args.name, args.options, args.node_id, args.lookup)
+
+
+def cmd_generate(args: argparse.Namespace) -> int:
+    request = _generate_request(args)
     result = generate(request)
     _print_findings(result.diags)
     if not result.files:
@@ -245,9 +249,7 @@ def cmd_explain(args: argparse.Namespace) -> int:
 
 
 def cmd_check(args: argparse.Namespace) -> int:
-    if args.name is not None and not valid_name(args.name):
-        raise OdgenError(f"--name '{args.name}' must be a C identifier of at most 32 characters")
-    request = Request(args.input, args.name, args.options, args.node_id, args.lookup)
+    request = _generate_request(args)
     outcome = run_check(request, workdir=args.keep)
     _print_findings(outcome.result.diags)
     if not outcome.result.files:
