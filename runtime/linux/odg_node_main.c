@@ -13,6 +13,7 @@
  * must come from another source file on the command line. With --nv the persistence groups
  * live in that file (created when missing), so 0x1010 "save" survives a restart. Prints
  * nothing but errors (stderr); SIGTERM and SIGINT end it with status 0.
+ * With -DODG_APP it calls the application's odg_app_init/odg_app_tick (odg_app.h).
  */
 #if !defined(_POSIX_C_SOURCE) || _POSIX_C_SOURCE < 200809L
 #undef _POSIX_C_SOURCE
@@ -31,6 +32,12 @@
 #include "odg_node.h"
 #include "odg_nv_file.h"
 #include "odg_socketcan.h"
+#ifdef ODG_APP
+#include "odg_app.h"
+#else
+static void odg_app_init(odg_node_t *node) { (void)node; }
+static void odg_app_tick(odg_node_t *node, uint32_t elapsed_ms) { (void)node; (void)elapsed_ms; }
+#endif
 
 #ifndef ODG_DICT
 #error "define ODG_DICT to the dictionary's C name, e.g. -DODG_DICT=io_node"
@@ -104,6 +111,7 @@ static int run(int fd, odg_node_t *node)
         now = now_ms();
         if (now > last) {
             odg_node_tick(node, (uint32_t)(now - last));
+            odg_app_tick(node, (uint32_t)(now - last));
             last = now;
         }
     }
@@ -167,7 +175,12 @@ int main(int argc, char **argv)
         fprintf(stderr, "odg-node: init: 0x%08lX %s%s\n", (unsigned long)ac, odg_abort_text(ac),
                 ac == ODG_ABORT_HARDWARE ? " (NV failed: running on defaults)" : "");
     }
-    rc = ac == ODG_OK || ac == ODG_ABORT_HARDWARE ? run(fd, &node) : 1;
+    if (ac == ODG_OK || ac == ODG_ABORT_HARDWARE) {
+        odg_app_init(&node);
+        rc = run(fd, &node);
+    } else {
+        rc = 1;
+    }
     if (cfg.nv != NULL) {
         odg_nv_file_close(&nvf);
     }
