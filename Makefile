@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: setup sysdeps demo test lint-code docs bench clean
+.PHONY: setup sysdeps demo test lint-code docs bench fuzz clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -27,7 +27,7 @@ demo: setup sysdeps
 	@echo "demo: C dictionary in build/demo/io_node.[ch], SARIF in build/demo/examples.sarif"
 
 lint-code: setup
-	$(BIN)/ruff check odgen tests benchmarks
+	$(BIN)/ruff check odgen tests benchmarks $(wildcard fuzz)
 	$(BIN)/mypy
 
 # System tools the tests compile and build with (Debian packages of the same names).
@@ -50,6 +50,15 @@ bench: setup
 	$(BIN)/python benchmarks/lookup_cost.py
 	bash tools/vcan/setup.sh
 	$(BIN)/python tools/vcan/run.py -- $(BIN)/python benchmarks/sdo_speed.py
+
+# Fuzzing budgets (docs/robustness.md, which the last step regenerates): parser inputs,
+# runtime executions per libFuzzer harness. Findings fail the target.
+FUZZ_INPUTS ?= 1000000
+FUZZ_RUNS   ?= 10000000
+fuzz: setup sysdeps
+	$(BIN)/python fuzz/parsers.py --inputs $(FUZZ_INPUTS)
+	bash fuzz/runtime/run.sh $(FUZZ_RUNS)
+	$(BIN)/python fuzz/report.py
 
 clean:
 	rm -rf build .pytest_cache
