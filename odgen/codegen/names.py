@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import re
 
 C_KEYWORDS = frozenset(
@@ -16,6 +17,7 @@ MAX_IDENT = 48
 _IDENT_RE = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 
 
+@functools.lru_cache(maxsize=8192)  # generation asks for the same names many times over
 def identifier(text: str, fallback: str = "entry") -> str:
     """A lower-case C identifier from free text: `Vendor-ID` -> `vendor_id`."""
     words = re.findall(r"[A-Za-z0-9]+", text.encode("ascii", "ignore").decode())
@@ -31,11 +33,15 @@ def is_identifier(text: str) -> bool:
     return bool(_IDENT_RE.match(text)) and text not in C_KEYWORDS and not text.startswith("__")
 
 
+@functools.lru_cache(maxsize=8192)
 def comment(text: str, width: int = 60) -> str:
     """Text safe inside /* */: no comment terminators, no line breaks, printable ASCII."""
     flat = " ".join(text.split())
-    safe = "".join(c if 32 <= ord(c) < 127 else "?" for c in flat)
-    safe = safe.replace("*/", "* /").replace("/*", "/ *").replace("\\", "/")
+    if not (flat.isascii() and flat.isprintable()):  # the common case needs no per-character pass
+        flat = "".join(c if 32 <= ord(c) < 127 else "?" for c in flat)
+    safe = flat
+    if "*" in safe or "/" in safe or "\\" in safe:
+        safe = safe.replace("*/", "* /").replace("/*", "/ *").replace("\\", "/")
     return safe if len(safe) <= width else safe[: width - 3] + "..."
 
 
