@@ -6,6 +6,11 @@
  * write to its entries); mapped values are read and written through the dictionary at each
  * transmission or reception, so hooks and limits apply. Mapping is bit-granular (a BOOLEAN
  * may take 1 bit), at most ODG_NODE_MAX_MAP objects and 64 bits per PDO.
+ *
+ * ODG_NODE_TPDO_COS (default 1): event-driven (254/255) and acyclic synchronous (0) TPDOs are
+ * also sent when a mapped value changed. Define it to 0 when the application decides what is
+ * an event (device profiles such as CiA 401 with its interrupt masks) and asks for each
+ * transmission with odg_node_tpdo_request; event timers and SYNC still apply.
  */
 #include <string.h>
 
@@ -13,6 +18,10 @@
 
 #define TYPE_SYNC_MAX 240u /* 0: acyclic synchronous, 1..240: every n-th SYNC */
 #define TYPE_EVENT 254u    /* 254, 255: event-driven */
+
+#ifndef ODG_NODE_TPDO_COS
+#define ODG_NODE_TPDO_COS 1
+#endif
 
 static uint16_t comm_index(int tx, uint16_t k)
 {
@@ -250,12 +259,14 @@ void odg_pdo_request_(odg_node_t *n, uint16_t k)
     }
 }
 
-/* Event-driven TPDOs: sent when requested, when the event timer expires, or when a mapped
- * value changed (sampled every tick), but never within the inhibit time of the last one. */
+/* Event-driven TPDOs: sent when requested, when the event timer expires, or (ODG_NODE_TPDO_COS)
+ * when a mapped value changed (sampled every tick), but never within the inhibit time of the
+ * last one. */
 void odg_pdo_tick_(odg_node_t *n, uint32_t ms)
 {
     uint32_t ticks = ms > 0x19999999u ? 0xFFFFFFFFu : ms * 10u; /* in 100 us */
     uint16_t k;
+    int force;
     for (k = 0; k < ODG_NODE_MAX_TPDO; k++) {
         odg_pdo_t *p = &n->tpdo[k];
         if (!active(p) || p->type < TYPE_EVENT) {
@@ -263,8 +274,9 @@ void odg_pdo_tick_(odg_node_t *n, uint32_t ms)
         }
         p->inhibit_left = p->inhibit_left > ticks ? p->inhibit_left - ticks : 0u;
         p->event_left = (uint16_t)(p->event_left > ms ? p->event_left - ms : 0u);
-        if (p->inhibit_left == 0u) {
-            transmit(n, p, (p->flags & ODG_PDO_F_REQUEST) || (p->event != 0u && p->event_left == 0u));
+        force = (p->flags & ODG_PDO_F_REQUEST) || (p->event != 0u && p->event_left == 0u);
+        if (p->inhibit_left == 0u && (force || ODG_NODE_TPDO_COS)) {
+            transmit(n, p, force);
         }
     }
 }
@@ -365,7 +377,10 @@ void odg_pdo_sync_(odg_node_t *n, const odg_frame_t *f)
             continue;
         }
         if (p->type == 0u) {
-            transmit(n, p, (p->flags & ODG_PDO_F_REQUEST) != 0u); /* on an event or a change */
+            /* on an event (odg_node_tpdo_request), or a change unless the application decides */
+            if ((p->flags & ODG_PDO_F_REQUEST) || ODG_NODE_TPDO_COS) {
+                transmit(n, p, (p->flags & ODG_PDO_F_REQUEST) != 0u);
+            }
         } else if (sync_started(p, f) && ++p->count >= p->type) {
             p->count = 0;
             transmit(n, p, 1);

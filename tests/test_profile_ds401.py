@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import subprocess
 from pathlib import Path
 
 import pytest
@@ -12,9 +13,13 @@ from odgen.codegen.check import run_check
 from odgen.codegen.generate import Request
 from odgen.formats import load_path
 from odgen.model import ObjectDictionary
-from odgen.profiles.ds401 import MAX_ANALOG, MAX_DIGITAL, Ds401, build, mapping_layout, options_toml, write
+from odgen.profiles.ds401 import (MAX_ANALOG, MAX_DIGITAL, Ds401, build, generate_c, mapping_layout, options_toml,
+                                  write)
 
-from .conftest import CORPUS, lint
+from .conftest import CORPUS, ROOT, lint
+from .cprog import BUILDS, EXTRA, STRICT, build as build_c, compiler, run
+
+RUNTIME = ROOT / "runtime"
 
 GRID = {
     "none": Ds401(),
@@ -177,3 +182,49 @@ def test_cli_bad_arguments_exit_2(bad: list[str], tmp_path: Path) -> None:
 
 def test_cli_refuses_other_suffix(tmp_path: Path) -> None:
     assert main(["profile", "ds401", "-o", str(tmp_path / "x.xdd")]) == 2
+
+
+DS401_TESTS = ROOT / "tests" / "ds401"
+
+
+@pytest.fixture(scope="module")
+def io_16_16_4_4(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """`--generate` output for 16 DI / 16 DO / 4 AI / 4 AO: io.[ch] and ds401_app.[ch]."""
+    gen = tmp_path_factory.mktemp("ds401")
+    spec = GRID["16-16-4-4"]
+    write(spec, gen / "io.eds")
+    result = generate_c(spec, gen / "io.eds")
+    assert sorted(result.files) == ["ds401_app.c", "ds401_app.h", "io.c", "io.h"]
+    for name, text in result.files.items():
+        (gen / name).write_text(text, encoding="utf-8")
+    return gen
+
+
+@pytest.mark.parametrize("build_name", list(BUILDS))
+def test_glue_change_of_state_on_a_node(build_name: str, io_16_16_4_4: Path, tmp_path: Path) -> None:
+    """tests/ds401/test_ds401_app.c: hooks, polarity, 0x6005-0x6008 and 0x6421-0x6426 events,
+    remapped TPDOs and transmission type 0, over the fake transport."""
+    cc, flags = BUILDS[build_name]
+    gen = io_16_16_4_4
+    sources = (DS401_TESTS / "test_ds401_app.c", gen / "ds401_app.c", gen / "io.c",
+               *(RUNTIME / s for s in ("odg.c", "odg_persist.c", "odg_node.c", "odg_sdo.c", "odg_pdo.c")))
+    exe = tmp_path / "test_ds401_app"
+    build_c(cc, (*flags, "-DODG_NODE_TPDO_COS=0"), sources, (gen, RUNTIME, ROOT / "tests" / "node",
+                                                            ROOT / "tests" / "runtime"), exe)
+    run(exe, tmp_path)
+
+
+@pytest.mark.parametrize("name", list(GRID))
+@pytest.mark.parametrize("cc", ["gcc", "clang"])
+def test_glue_compiles_warning_free(name: str, cc: str, tmp_path: Path) -> None:
+    """The glue of every grid point, beside its dictionary, under the strict and extra warnings."""
+    spec = GRID[name]
+    write(spec, tmp_path / "io.eds")
+    result = generate_c(spec, tmp_path / "io.eds")
+    for file_name, text in result.files.items():
+        (tmp_path / file_name).write_text(text, encoding="utf-8")
+    cmd = [compiler(cc), *STRICT, *EXTRA, "-O1", f"-I{RUNTIME}", "-c", str(tmp_path / "ds401_app.c"), "-o",
+           str(tmp_path / "ds401_app.o")]
+    done = subprocess.run(cmd, capture_output=True, text=True, check=False)
+    assert done.returncode == 0, done.stderr
+    assert generate_c(spec, tmp_path / "io.eds").files == result.files  # deterministic

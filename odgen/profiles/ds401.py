@@ -12,6 +12,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
+from ..codegen.generate import Request, Result, environment, generate
 from ..fileio import write_atomic
 from ..formats.eds_writer import write_eds
 from ..model import ARRAY, RECORD, VAR, BASIC_TYPES, Obj, ObjectDictionary, Sub, parse_value
@@ -249,12 +250,36 @@ def options_toml(p: Ds401) -> str:
     if parameters:
         lines += ["[[entry]]", f"match = {_quoted(f'0x{i:04X}' for i in parameters)}",
                   'storage = "persist:app"', ""]
-    # Inputs are refreshed before every read (SDO upload or TPDO); outputs applied after every write.
+    # Inputs are refreshed before every read (SDO upload or TPDO); outputs applied after every write,
+    # and again when their polarity (0x6202) changes.
+    outputs += [0x6202] if p.channels("do") else []
     for indices, hook in ((inputs, "pre_read"), (outputs, "post_write")):
         if indices:
             lines += ["[[entry]]", f"match = {_quoted(f'0x{i:04X}sub1-fe' for i in indices)}",
                       f'hooks = ["{hook}"]', ""]
     return "\n".join(lines)
+
+
+C_INT = {8: "int8_t", 16: "int16_t", 32: "int32_t"}
+GLUE = ("ds401_app.h", "ds401_app.c")
+
+
+def glue_files(p: Ds401) -> dict[str, str]:
+    """The application glue (templates/ds401_app.*.j2): hooks, polarity, change-of-state TPDOs."""
+    env = environment()
+    values = {"arguments": _arguments(p), "di": p.channels("di"), "do": p.channels("do"), "ai": p.ai, "ao": p.ao,
+              "ai_index": PROCESS_OBJECTS[("ai", p.ai_width)], "ao_index": PROCESS_OBJECTS[("ao", p.ao_width)],
+              "ai_ctype": C_INT[p.ai_width], "ao_ctype": C_INT[p.ao_width], "ai_width": p.ai_width,
+              "ao_width": p.ao_width}
+    return {name: env.get_template(f"{name}.j2").render(**values) for name in GLUE}
+
+
+def generate_c(p: Ds401, eds: Path, name: str | None = None, node_id: int | None = None) -> Result:
+    """`--generate`: the dictionary C of the written EDS with the profile's options, plus the glue."""
+    result = generate(Request(eds, name=name, node_id=node_id, defaults=options_toml(p)))
+    if result.files:
+        result.files.update(glue_files(p))
+    return result
 
 
 def _quoted(items: Iterable[str]) -> str:
