@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from odgen.diagnostics import RULES
-from odgen.formats import load_path
+from odgen.formats import load_bytes, load_path
 from odgen.model.values import parse_value, split_nodeid
 from odgen.model.datatypes import BY_NAME
 
@@ -91,3 +91,11 @@ def test_compact_sub_obj_is_expanded(tmp_path: Path) -> None:
     assert obj.subs[2].name == "Second" and obj.subs[1].name == "Errors1"
     assert obj.subs[3].parameter_value.parsed == 0x10
     assert all(s.compact for s in obj.subs.values()) and not list(diags)
+
+
+@pytest.mark.parametrize("encoding", ["utf-16", "utf-16-le", "utf-16-be", "utf-32"])
+def test_wide_encodings_are_decoded_and_reported(encoding: str) -> None:
+    text = "[FileInfo]\nFileName=w.eds\n\n[1000]\nParameterName=Gr\u00f6\u00dfe\nDataType=0x0007\n"
+    od, diags = load_bytes(text.encode(encoding), "w.eds", "eds")
+    assert od is not None and od.objects[0x1000].name == "Gr\u00f6\u00dfe"
+    assert [d.rule for d in diags] == ["SYN004"]

@@ -2,7 +2,8 @@
 
 It keeps line numbers, the spelling of names, duplicates (reported, first wins),
 and `;Key=Value` comment lines (CANopenNode writes `;StorageLocation=RAM`).
-Decoding: UTF-8 with or without BOM, else Windows-1252 (reported).
+Decoding: UTF-8 with or without BOM; UTF-16/32 when a BOM or the NUL bytes of an
+ASCII start say so (reported); else Windows-1252 (reported).
 """
 
 from __future__ import annotations
@@ -45,7 +46,21 @@ class IniFile:
     sections: dict[str, IniSection] = field(default_factory=dict)  # lower-case name, in order
 
 
+_BOMS = ((b"\xff\xfe\x00\x00", "utf-32-le"), (b"\x00\x00\xfe\xff", "utf-32-be"),
+         (b"\xff\xfe", "utf-16-le"), (b"\xfe\xff", "utf-16-be"))
+
+
 def decode(data: bytes, source: str, diags: Diagnostics) -> str:
+    wide = _wide(data)
+    if wide is not None:
+        encoding, skip = wide
+        try:
+            text = data[skip:].decode(encoding)
+        except UnicodeDecodeError:
+            pass  # not what it looked like: read it as bytes below
+        else:
+            diags.add("SYN004", Loc(source, 1), f"file is {encoding.upper()}, not UTF-8; read as such")
+            return text
     if data.startswith(b"\xef\xbb\xbf"):
         data = data[3:]
     try:
@@ -55,6 +70,18 @@ def decode(data: bytes, source: str, diags: Diagnostics) -> str:
         diags.add("SYN004", Loc(source, line), "file is not UTF-8; read as Windows-1252")
     # cp1252 leaves five bytes undefined; read those as Latin-1 so decoding never fails
     return "".join(_cp1252_char(b) for b in data)
+
+
+def _wide(data: bytes) -> tuple[str, int] | None:
+    """UTF-16/32 by its BOM, or UTF-16 without one when an ASCII first character has a NUL beside it."""
+    for bom, encoding in _BOMS:
+        if data.startswith(bom):
+            return encoding, len(bom)
+    if len(data) >= 4 and data[0] and not data[1] and data[2] and not data[3]:
+        return "utf-16-le", 0
+    if len(data) >= 4 and not data[0] and data[1] and not data[2] and data[3]:
+        return "utf-16-be", 0
+    return None
 
 
 def _cp1252_char(byte: int) -> str:

@@ -33,7 +33,8 @@ define_rule(
 define_rule(
     "SYN004", W, "file is not UTF-8", ref="S1",
     why="Text with bytes that are not UTF-8 is read as Windows-1252, the usual encoding of old vendor "
-    "files. Names with such characters may reach generated C or other tools garbled.",
+    "files. Names with such characters may reach generated C or other tools garbled. UTF-16 and UTF-32 "
+    "files (by their BOM, or NUL bytes beside an ASCII start) are decoded as such and reported too.",
     example="ParameterName=Gr\\xf6\\xdfe  (Latin-1/Windows-1252 bytes)",
     fix="Save the file as UTF-8 (or plain ASCII).")
 define_rule(

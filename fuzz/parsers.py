@@ -1,0 +1,200 @@
+"""Fuzz the EDS/DCF and XDD readers, the linter and the EDS writer with structural mutants.
+
+    python fuzz/parsers.py --inputs 1000000 [--jobs 2] [--seed 1] [--no-corpus]
+
+Every mutant (fuzz/mutate.py) must yield diagnostics or a model, never an exception,
+within bounded CPU time. Afterwards the slowest inputs per byte are measured again and
+flagged when far above the median, and families of inputs grown 1x..64x check that the
+time per byte stays flat. Findings are minimised and saved under tests/fuzz/regressions/
+(which `make test` replays) and make the run exit 1. Results: fuzz/results/parsers.json
+and parsers-scaling.json, rendered into docs/robustness.md by fuzz/report.py.
+"""
+
+from __future__ import annotations
+
+import argparse
+import heapq
+import json
+import multiprocessing
+import os
+import random
+import statistics
+import sys
+import time
+from array import array
+from collections import Counter
+from dataclasses import dataclass, field
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from fuzz import mutate, scaling  # noqa: E402
+
+RESULTS = Path(__file__).resolve().parent / "results"
+CHUNK = 2000
+SLOW_KEEP = 8  # slowest inputs per byte each chunk hands back for measuring again
+SLOW_FACTOR = 20.0  # time per byte this many times the median, confirmed on re-measure, is a finding
+SLOW_FLOOR_NS = 50_000_000  # ... and the input took at least this long: below it, noise dominates
+MIN_SIZE = 256  # the median is over inputs at least this large (fixed costs dominate tiny ones)
+
+
+@dataclass
+class Tally:
+    inputs: int = 0
+    models: int = 0
+    bytes: int = 0
+    ns: int = 0
+    per_op: Counter = field(default_factory=Counter)
+    per_op_models: Counter = field(default_factory=Counter)
+    per_op_failures: Counter = field(default_factory=Counter)
+    per_byte: array = field(default_factory=lambda: array("d"))
+    slow: list = field(default_factory=list)  # (ns per byte, cpu ns, fmt, data, ops)
+    findings: dict = field(default_factory=dict)  # signature -> (fmt, data, ops, detail)
+
+    def merge(self, other: Tally) -> None:
+        self.inputs += other.inputs
+        self.models += other.models
+        self.bytes += other.bytes
+        self.ns += other.ns
+        for mine, theirs in ((self.per_op, other.per_op), (self.per_op_models, other.per_op_models),
+                             (self.per_op_failures, other.per_op_failures)):
+            mine.update(theirs)
+        self.per_byte.extend(other.per_byte)
+        self.slow = heapq.nlargest(4 * SLOW_KEEP, self.slow + other.slow, key=lambda s: s[0])
+        for sig, finding in other.findings.items():
+            self.findings.setdefault(sig, finding)
+
+
+_SEEDS: list[mutate.Seed] = []
+
+
+def _init(with_corpus: bool) -> None:
+    _SEEDS.extend(mutate.load_seeds(with_corpus))
+
+
+def run_chunk(task: tuple[int, int, int]) -> Tally:
+    base, chunk, count = task
+    rng = random.Random(f"{base}:{chunk}")
+    tally = Tally()
+    for mutant in mutate.mutants(_SEEDS, rng, count):
+        outcome = mutate.check(mutant.data, mutant.fmt)
+        _count(tally, mutant, outcome)
+    return tally
+
+
+def _count(tally: Tally, mutant: mutate.Mutant, outcome: mutate.Outcome) -> None:
+    size = len(mutant.data)
+    tally.inputs += 1
+    tally.models += outcome.model
+    tally.bytes += size
+    tally.ns += outcome.ns
+    ops = {f"format:{mutant.fmt}", *mutant.ops}
+    tally.per_op.update(ops)
+    if outcome.model:
+        tally.per_op_models.update(ops)
+    if outcome.failure:
+        tally.per_op_failures.update(ops)
+        tally.findings.setdefault(outcome.failure, (mutant.fmt, mutant.data, mutant.ops, outcome.detail))
+    if size >= MIN_SIZE:
+        per_byte = outcome.ns / size
+        tally.per_byte.append(per_byte)
+        item = (per_byte, outcome.ns, mutant.fmt, mutant.data, mutant.ops)
+        if len(tally.slow) < SLOW_KEEP:
+            heapq.heappush(tally.slow, item)
+        elif per_byte > tally.slow[0][0]:
+            heapq.heapreplace(tally.slow, item)
+
+
+def fuzz(inputs: int, jobs: int, seed: int, with_corpus: bool) -> tuple[Tally, float]:
+    tasks = [(seed, i, min(CHUNK, inputs - i * CHUNK)) for i in range((inputs + CHUNK - 1) // CHUNK)]
+    total, start = Tally(), time.monotonic()
+    with multiprocessing.Pool(jobs, initializer=_init, initargs=(with_corpus,)) as pool:
+        for done, tally in enumerate(pool.imap_unordered(run_chunk, tasks), start=1):
+            total.merge(tally)
+            if done % 25 == 0 or done == len(tasks):
+                _progress(total, inputs, time.monotonic() - start)
+    return total, time.monotonic() - start
+
+
+def _progress(total: Tally, inputs: int, wall: float) -> None:
+    rate = total.inputs / wall if wall else 0.0
+    eta = (inputs - total.inputs) / rate if rate else 0.0
+    print(f"parsers: {total.inputs}/{inputs} inputs, {rate:.0f}/s, {len(total.findings)} findings, "
+          f"eta {eta / 60:.1f} min", file=sys.stderr, flush=True)
+
+
+def confirm_slow(total: Tally, median: float) -> list[dict]:
+    """Measure the slowest inputs again (best of 3); those still far above the median are findings."""
+    slow = []
+    for _, _, fmt, data, ops in total.slow:
+        best = min(mutate.check(data, fmt).ns for _ in range(3))
+        again = best / len(data)
+        entry = {"size": len(data), "format": fmt, "ns_per_byte": round(again), "ops": ops,
+                 "factor": round(again / median, 1)}
+        if again > SLOW_FACTOR * median and best > SLOW_FLOOR_NS:
+            total.findings.setdefault("superlinear", (fmt, data, ops, f"{again / median:.0f}x the median time/byte"))
+        slow.append(entry)
+    return sorted(slow, key=lambda e: -e["factor"])
+
+
+def save_findings(total: Tally) -> list[dict]:
+    saved = []
+    for failure, (fmt, data, ops, detail) in sorted(total.findings.items()):
+        small = data if failure == "superlinear" else mutate.minimise(data, fmt, failure)
+        path = mutate.save_regression(small, fmt, failure)
+        print(f"parsers: FINDING {failure} ({' '.join(ops)}) -> {path}\n{detail}", file=sys.stderr)
+        saved.append({"failure": failure, "file": str(path.relative_to(mutate.ROOT)), "ops": ops})
+    return saved
+
+
+def table(total: Tally, wall: float, jobs: int, seed: int, slow: list[dict], saved: list[dict],
+          median: float) -> dict:
+    rows = []
+    for op in sorted(total.per_op, key=lambda o: (o.split(":")[0] if ":" in o else "", o)):
+        n = total.per_op[op]
+        rows.append([op, n, total.per_op_models[op], n - total.per_op_models[op], total.per_op_failures[op]])
+    notes = [
+        f"{total.inputs} inputs ({total.bytes / 1e6:.1f} MB) from {len(_SEEDS) or len(mutate.seed_files())} seed "
+        f"files, random seed {seed}, {jobs} processes, {wall / 60:.1f} min wall, {total.ns / 1e9 / 60:.1f} "
+        f"min CPU ({total.inputs / wall:.0f} inputs/s).",
+        f"{total.models} inputs gave a model, {total.inputs - total.models} diagnostics only; "
+        f"{len(saved)} findings{': ' + ', '.join(s['failure'] for s in saved) if saved else ''}.",
+        f"Median CPU time per byte (inputs >= {MIN_SIZE} bytes): {median:.0f} ns; slowest per byte, measured "
+        f"again: {slow[0]['ns_per_byte'] if slow else 0} ns ({slow[0]['factor'] if slow else 0}x the median, "
+        f"{slow[0]['size'] if slow else 0} bytes). A finding needs {SLOW_FACTOR:g}x and "
+        f"{SLOW_FLOOR_NS / 1e6:g} ms.",
+        "A row counts the inputs a mutation (or encoding, line end, format) took part in; one input "
+        "usually combines several.",
+    ]
+    return {"title": "Parser fuzzing: structural mutants of the seed files", "inputs": total.inputs,
+            "findings": saved, "slowest": slow[:10],
+            "columns": ["mutation", "inputs", "model", "diagnostics only", "findings"], "rows": rows, "notes": notes}
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--inputs", type=int, default=1_000_000)
+    parser.add_argument("--jobs", type=int, default=min(2, os.cpu_count() or 1))
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--no-corpus", action="store_true", help="seed from the repository's files only")
+    parser.add_argument("--results", type=Path, default=RESULTS)
+    args = parser.parse_args(argv)
+    total, wall = fuzz(args.inputs, args.jobs, args.seed, not args.no_corpus)
+    _init(not args.no_corpus)
+    median = statistics.median(total.per_byte) if total.per_byte else 0.0
+    slow = confirm_slow(total, median)
+    grown = scaling.run()
+    for row in grown["rows"]:
+        if row[-1] != "linear":
+            total.findings.setdefault(f"superlinear-{row[0]}", (row[1], scaling.largest(row[0]), [row[0]], row[-1]))
+    saved = save_findings(total)
+    args.results.mkdir(parents=True, exist_ok=True)
+    result = table(total, wall, args.jobs, args.seed, slow, saved, median)
+    (args.results / "parsers.json").write_text(json.dumps(result, indent=1, ensure_ascii=False) + "\n")
+    (args.results / "parsers-scaling.json").write_text(json.dumps(grown, indent=1, ensure_ascii=False) + "\n")
+    print(f"parsers: {total.inputs} inputs, {len(saved)} findings", file=sys.stderr)
+    return 1 if saved else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
