@@ -27,7 +27,7 @@ demo: setup sysdeps
 	@echo "demo: C dictionary in build/demo/io_node.[ch], SARIF in build/demo/examples.sarif"
 
 lint-code: setup
-	$(BIN)/ruff check odgen tests benchmarks $(wildcard fuzz)
+	$(BIN)/ruff check odgen tests benchmarks examples $(wildcard fuzz)
 	$(BIN)/mypy
 
 # System tools the tests compile and build with (Debian packages of the same names).
