@@ -9,6 +9,7 @@ from __future__ import annotations
 import hashlib
 import os
 import subprocess
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 from ..codegen.check import RUNTIME, compiler
@@ -44,10 +45,12 @@ def _stubs(functions: list[str]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _digest(result: Result, sources: list[Path], cc: str) -> str:
+def _digest(result: Result, sources: list[Path], cc: str, extra: Mapping[str, str] = {},
+            defines: Sequence[str] = ()) -> str:
     h = hashlib.sha256(cc.encode())
-    for name, text in sorted(result.files.items()):
+    for name, text in sorted({**result.files, **extra}.items()):
         h.update(name.encode() + text.encode())
+    h.update("|".join(defines).encode())
     for path in [*sources, NODE_MAIN, RUNTIME / "odg.h"]:
         h.update(path.read_bytes())
     for header in sorted(RUNTIME.glob("**/*.h")):
@@ -55,27 +58,35 @@ def _digest(result: Result, sources: list[Path], cc: str) -> str:
     return h.hexdigest()[:20]
 
 
-def build_node(request: Request) -> tuple[Path, Result]:
-    """Generate and compile; returns the program path. Raises OdgenError when it cannot be built."""
+def build_node(request: Request, extra: Mapping[str, str] | None = None, sources: Sequence[Path] = (),
+               defines: Sequence[str] = ()) -> tuple[Path, Result]:
+    """Generate and compile; returns the program path. Raises OdgenError when it cannot be built.
+
+    `extra`: more generated files (name -> text) written beside the dictionary, its .c files
+    compiled in; `sources`: application sources (e.g. odg_app_init/odg_app_tick, built with
+    "ODG_APP" among `defines`); `defines`: NAME or NAME=VALUE for every file.
+    """
+    extra = dict(extra or {})
     result = generate(request)
     if not result.files or result.view is None:
         raise OdgenError(f"{request.input}: errors found, no dictionary to build")
     if not NODE_MAIN.is_file():
         raise OdgenError(f"the node program source {NODE_MAIN} is missing")
     cc = compiler()
-    sources = runtime_sources()
-    out = cache_dir() / _digest(result, sources, cc)
+    runtime = runtime_sources()
+    out = cache_dir() / _digest(result, [*runtime, *sources], cc, extra, defines)
     program = out / "node"
     if program.is_file():
         return program, result
     out.mkdir(parents=True, exist_ok=True)
-    for name, text in result.files.items():
+    for name, text in {**result.files, **extra}.items():
         (out / name).write_text(text, encoding="utf-8")
     (out / "hook_stubs.c").write_text(_stubs(result.view.functions), encoding="utf-8")
     name = result.view.name
     cmd = [cc, *CFLAGS, f"-I{RUNTIME}", f"-I{RUNTIME / 'linux'}", f"-I{out}", f"-DODG_DICT={name}",
-           f'-DODG_DICT_HEADER="{name}.h"', str(out / f"{name}.c"), str(out / "hook_stubs.c"), str(NODE_MAIN),
-           *map(str, sources), "-lm", "-o", str(out / "node.tmp")]
+           f'-DODG_DICT_HEADER="{name}.h"', *(f"-D{d}" for d in defines), str(out / f"{name}.c"),
+           str(out / "hook_stubs.c"), *(str(out / n) for n in sorted(extra) if n.endswith(".c")), str(NODE_MAIN),
+           *map(str, [*runtime, *sources]), "-lm", "-o", str(out / "node.tmp")]
     built = subprocess.run(cmd, capture_output=True, text=True, check=False)
     if built.returncode != 0:
         raise OdgenError(f"building the node program failed:\n{built.stdout}{built.stderr}")
