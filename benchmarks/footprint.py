@@ -4,25 +4,21 @@ Compiles with `arm-none-eabi-gcc -mcpu=cortex-m4 -mthumb -Os -ffunction-sections
 -fdata-sections` (installed from apt when missing) and reads section and symbol sizes.
 FLASH = text + rodata + data, RAM = data + bss, as in ../shared/notes/peer-measurements.md,
 whose CANopenNode v4 figures (CANopenEditor's exporter, per object file) are the reference.
-Writes benchmarks/results/footprint-latest.md and .json.
+objdictgen's C is compiled too when CanFestival's headers are given (CANFESTIVAL_INCLUDE): its
+PyPI package ships none. run.py runs this part.
 """
 
 from __future__ import annotations
 
-import json
+import os
 import shutil
 import subprocess
-import sys
 from pathlib import Path
 
-from synth import synth_eds
+from common import BUILD as BENCH
+from common import ODGEN, PEER_VENV, ROOT, Target, failure
 
-HERE = Path(__file__).resolve().parent
-ROOT = HERE.parent
-BUILD = ROOT / "build" / "bench" / "footprint"
-RESULTS = HERE / "results"
-CORPUS = ROOT.parent / "shared" / "corpus" / "files"
-ODGEN = [sys.executable, "-m", "odgen"]
+BUILD = BENCH / "footprint"
 CFLAGS = ["-mcpu=cortex-m4", "-mthumb", "-Os", "-ffunction-sections", "-fdata-sections", "-std=c99",
           "-Wall", "-Wextra", "-Werror", "-pedantic"]
 
@@ -37,16 +33,6 @@ CANOPENNODE = {
     "synth_2000_common": (50400, 50172, 50172),
     "synth_4000_common": (101980, 100644, 100644),
 }
-CORPUS_INPUTS = {
-    "ds301_canopennode": "canopennode__DS301_profile.eds",
-    "demodevice_canopendemo": "canopendemo__demoDevice.eds",
-    "sample_canopen": "pycanopen__sample.eds",
-    "big_e35": "pycanopen__e35.eds",
-    "ds401_canfestival": "canfestival__DS401_Slave_Gui.eds",
-}
-SYNTH = {"synth_250_common": 250, "synth_1000_common": 1000, "synth_2000_common": 2000, "synth_4000_common": 4000}
-
-
 def ensure_toolchain() -> None:
     if shutil.which("arm-none-eabi-gcc"):
         return
@@ -97,8 +83,7 @@ def measure(label: str, eds: Path, lookup: str) -> dict[str, object]:
                          capture_output=True, text=True, check=False)
     row: dict[str, object] = {"input": label, "lookup": lookup}
     if gen.returncode != 0:
-        errors = sum(1 for line in gen.stderr.splitlines() if ": error[" in line)
-        row["refused"] = f"lint: {errors} error(s)"
+        row["refused"] = failure(gen.stderr)
         return row
     obj = compile_one(work / "od.c", work / "od.o")
     sec = sections(obj)
@@ -112,82 +97,140 @@ def measure(label: str, eds: Path, lookup: str) -> dict[str, object]:
     return row
 
 
-def runtime_sizes() -> dict[str, object]:
-    work = BUILD / "runtime"
-    work.mkdir(parents=True, exist_ok=True)
-    sizes = {}
-    for name in ("odg", "odg_persist"):
-        sec = sections(compile_one(ROOT / "runtime" / f"{name}.c", work / f"{name}.o"))
-        sizes[name] = sec["text"] + sec["rodata"] + sec["data"]
+def _core_path(work: Path, defines: list[str]) -> int:
+    """Bytes of runtime code the linker keeps for odg_find + odg_read + odg_write (libc not counted)."""
     core = work / "core.c"
     core.write_text('#include "odg.h"\nextern const odg_dict_t d;\nint main(void);\n'
                     "int main(void) { odg_ref_t r; unsigned char b[8]; uint32_t n;\n"
                     "  if (odg_find(&d, 0x1000, 0, &r)) return 1;\n"
                     "  if (odg_read(&r, 0, b, sizeof b, &n)) return 2;\n"
                     "  return (int)odg_write(&r, b, n); }\n")
-    out = work / "core.elf"
-    runtime_objs = []
+    tag = "-".join(d.lstrip("-D").lower() for d in defines) or "default"
+    objs = []
     for name in ("odg", "odg_persist"):
-        obj = work / f"{name}-notext.o"
-        subprocess.run(["arm-none-eabi-gcc", *CFLAGS, "-DODG_NO_ABORT_TEXT", f"-I{ROOT / 'runtime'}", "-c",
+        obj = work / f"{name}-{tag}.o"
+        subprocess.run(["arm-none-eabi-gcc", *CFLAGS, *defines, f"-I{ROOT / 'runtime'}", "-c",
                         str(ROOT / "runtime" / f"{name}.c"), "-o", str(obj)], check=True, capture_output=True)
-        runtime_objs.append(obj)
-    subprocess.run(["arm-none-eabi-gcc", *CFLAGS, f"-I{ROOT / 'runtime'}", str(core), *map(str, runtime_objs),
+        objs.append(obj)
+    out = work / f"core-{tag}.elf"
+    subprocess.run(["arm-none-eabi-gcc", *CFLAGS, *defines, f"-I{ROOT / 'runtime'}", str(core), *map(str, objs),
                     "--specs=nosys.specs", "-nostartfiles", "-Wl,--gc-sections", "-Wl,--defsym=d=0",
                     "-Wl,-e,main", "-o", str(out)], check=True, capture_output=True, text=True)
-    ours = set().union(*(symbols(obj).keys() for obj in runtime_objs))
-    # what the linker kept of the runtime: libc's memcpy/memset are not counted
-    sizes["core_find_read_write"] = sum(v for k, v in symbols(out).items() if k in ours)
+    ours = set().union(*(symbols(obj).keys() for obj in objs))
+    return sum(v for k, v in symbols(out).items() if k in ours)
+
+
+def runtime_sizes() -> dict[str, int]:
+    work = BUILD / "runtime"
+    work.mkdir(parents=True, exist_ok=True)
+    sizes = {}
+    for name in ("odg", "odg_persist"):
+        sec = sections(compile_one(ROOT / "runtime" / f"{name}.c", work / f"{name}.o"))
+        sizes[name] = sec["text"] + sec["rodata"] + sec["data"]
+    sizes["core"] = _core_path(work, ["-DODG_NO_ABORT_TEXT"])
+    sizes["core_no_persist"] = _core_path(work, ["-DODG_NO_ABORT_TEXT", "-DODG_NO_PERSIST"])
     return sizes
 
 
-def _markdown(rows: list[dict[str, object]], runtime: dict[str, object]) -> str:
-    lines = ["# Footprint on Cortex-M4 (arm-none-eabi-gcc -Os, per object file)", "",
+def objdictgen_sizes(labels: dict[str, Path]) -> tuple[str, list[dict[str, object]]]:
+    """objdictgen's C for the same inputs, compiled the same way when CanFestival's headers are at hand."""
+    include = [d for d in os.environ.get("CANFESTIVAL_INCLUDE", "").split(":") if d]
+    odg = PEER_VENV / "bin" / "odg"
+    if not odg.is_file():
+        return "objdictgen is not installed (build/bench-venv): its C was not measured.", []
+    if not include:
+        return ("objdictgen's C was not compiled: the objdictgen 3.5.5 package ships no CanFestival headers "
+                "(data.h, applicfg.h and the rest are not in the wheel) and CanFestival is not on any registry "
+                "this machine reaches. Set CANFESTIVAL_INCLUDE=dir1:dir2 to a CanFestival include/ and "
+                "include/<arch> to measure it."), []
+    rows = []
+    for label, eds in labels.items():
+        work = BUILD / f"{label}-objdictgen"
+        work.mkdir(parents=True, exist_ok=True)
+        source = work / f"{label}.c"
+        gen = subprocess.run([str(odg), "convert", str(eds), str(source)], capture_output=True, text=True, check=False)
+        if gen.returncode != 0:
+            rows.append({"input": label, "failed": "odg convert failed"})
+            continue
+        comp = subprocess.run(["arm-none-eabi-gcc", *CFLAGS[:5], *(f"-I{d}" for d in include), f"-I{work}", "-c",
+                               str(source), "-o", str(work / f"{label}.o")], capture_output=True, text=True)
+        if comp.returncode != 0:
+            first = next((ln for ln in comp.stderr.splitlines() if "error" in ln), "compile failed")
+            rows.append({"input": label, "failed": first.split("/")[-1][:100]})
+            continue
+        sec = sections(work / f"{label}.o")
+        rows.append({"input": label, **sec, "flash": sec["text"] + sec["rodata"] + sec["data"],
+                     "ram": sec["data"] + sec["bss"]})
+    return "objdictgen's generated C, compiled with the same flags against CANFESTIVAL_INCLUDE.", rows
+
+
+def targets(rows: list[dict[str, object]], runtime: dict[str, int]) -> list[Target]:
+    out = []
+    for label, (rom, ref_ram, data) in CANOPENNODE.items():
+        mine = {str(r["lookup"]): r for r in rows if r["input"] == label}
+        if not mine:
+            continue
+        if any("refused" in r for r in mine.values()):
+            why = f"odgen refuses the input ({mine['switch'].get('refused', '')})"
+            out += [Target(f"FLASH vs CANopenNode v4, {label}", "<= 100%", why, "-", None),
+                    Target(f"RAM vs CANopenNode v4, {label}", "<= 50%", why, "-", None)]
+            continue
+        sw, bs = mine["switch"], mine["bsearch"]
+        out.append(Target(f"FLASH vs CANopenNode v4, {label}", "<= 100%",
+                          f"bsearch {bs['flash']} B, switch {sw['flash']} B / {rom + data} B",
+                          f"bsearch {bs['flash_ratio']:.0%}, switch {sw['flash_ratio']:.0%}",
+                          float(bs["flash_ratio"]) <= 1.0))  # type: ignore[arg-type]
+        out.append(Target(f"RAM vs CANopenNode v4, {label}", "<= 50%", f"{sw['ram']} B / {ref_ram} B",
+                          f"{sw['ram_ratio']:.0%}", float(sw["ram_ratio"]) <= 0.5))  # type: ignore[arg-type]
+    out.append(Target("runtime core (odg_find + odg_read + odg_write), Cortex-M4", "<= 1024 B",
+                      f"{runtime['core']} B ({runtime['core_no_persist']} B with ODG_NO_PERSIST)",
+                      f"{runtime['core'] / 1024:.0%} ({runtime['core_no_persist'] / 1024:.0%})",
+                      runtime["core"] <= 1024))
+    return out
+
+
+def markdown(rows: list[dict[str, object]], runtime: dict[str, int], odg_note: str,
+             odg_rows: list[dict[str, object]]) -> str:
+    lines = ["## Footprint on Cortex-M4 (arm-none-eabi-gcc -Os, per object file)", "",
              "FLASH = text + rodata + data, RAM = data + bss. CANopenNode v4 figures from "
-             "../shared/notes/peer-measurements.md (its FLASH = ROM + data image). Targets: RAM <= 50%, "
-             "FLASH <= 100%.", "",
+             "../shared/notes/peer-measurements.md (CANopenEditor's exporter; its FLASH = ROM + data image).", "",
              "| input | lookup | text | rodata | data | bss | FLASH | RAM | CANopenNode FLASH / RAM "
              "| FLASH % | RAM % |",
              "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for r in rows:
         if "refused" in r:
-            lines.append(f"| {r['input']} | {r['lookup']} | {r['refused']} | | | | | | | | |")
+            lines.append(f"| {r['input']} | {r['lookup']} | refused: {r['refused']} | | | | | | | | |")
             continue
         ref = f"{r.get('cnn_flash', '-')} / {r.get('cnn_ram', '-')}"
-        fr = f"{100 * r['flash_ratio']:.0f}%" if "flash_ratio" in r else "-"
-        rr = f"{100 * r['ram_ratio']:.0f}%" if "ram_ratio" in r else "-"
+        fr = f"{r['flash_ratio']:.0%}" if "flash_ratio" in r else "-"
+        rr = f"{r['ram_ratio']:.0%}" if "ram_ratio" in r else "-"
         lines.append(f"| {r['input']} | {r['lookup']} | {r['text']} | {r['rodata']} | {r['data']} | {r['bss']} "
                      f"| {r['flash']} | {r['ram']} | {ref} | {fr} | {rr} |")
-    lines += ["", "## Where the bytes go (switch lookup)", "", "| input | " +
-              " | ".join(next(iter([r["classes"] for r in rows if "classes" in r]), {}).keys()) + " |"]
-    lines.append("|---|" + "---:|" * len(next(iter([r["classes"] for r in rows if "classes" in r]), {})))
+    classes = next((r["classes"] for r in rows if "classes" in r), {})
+    lines += ["", "### Bytes by storage class (switch lookup; the bsearch tables differ only in code)", "",
+              "| input | " + " | ".join(classes) + " |", "|---|" + "---:|" * len(classes)]  # type: ignore[arg-type]
     for r in rows:
         if "classes" in r and r["lookup"] == "switch":
-            lines.append(f"| {r['input']} | " + " | ".join(str(v) for v in r["classes"].values()) + " |")
-    lines += ["", "## Runtime", "",
+            lines.append(f"| {r['input']} | " + " | ".join(str(v) for v in r["classes"].values()) + " |")  # type: ignore[attr-defined]
+    lines += ["", "### objdictgen (CanFestival) generated C", "", odg_note]
+    if odg_rows:
+        lines += ["", "| input | text | rodata | data | bss | FLASH | RAM |", "|---|---:|---:|---:|---:|---:|---:|"]
+        lines += [f"| {r['input']} | FAIL: {r['failed']} | | | | | |" if "failed" in r else
+                  f"| {r['input']} | {r['text']} | {r['rodata']} | {r['data']} | {r['bss']} | {r['flash']} "
+                  f"| {r['ram']} |" for r in odg_rows]
+    lines += ["", "### Runtime", "",
               f"- odg.o: {runtime['odg']} bytes of FLASH; odg_persist.o: {runtime['odg_persist']} bytes",
               f"- core path (odg_find + odg_read + odg_write and what they call, linked with --gc-sections, "
-              f"no abort texts): {runtime['core_find_read_write']} bytes; target 1024 bytes: "
-              f"{'met' if int(runtime['core_find_read_write']) <= 1024 else 'NOT met'}"]
-    return "\n".join(lines) + "\n"
+              f"ODG_NO_ABORT_TEXT): {runtime['core']} bytes; with ODG_NO_PERSIST as well: "
+              f"{runtime['core_no_persist']} bytes", ""]
+    return "\n".join(lines)
 
 
-def main() -> None:
+def run(labels: dict[str, Path]) -> dict[str, object]:
     ensure_toolchain()
     BUILD.mkdir(parents=True, exist_ok=True)
-    RESULTS.mkdir(parents=True, exist_ok=True)
-    inputs = {label: CORPUS / name for label, name in CORPUS_INPUTS.items() if (CORPUS / name).is_file()}
-    for label, n in SYNTH.items():
-        path = BUILD / f"{label}.eds"
-        path.write_text(synth_eds(n), encoding="utf-8")
-        inputs[label] = path
-    rows = [measure(label, path, lookup) for label, path in inputs.items() for lookup in ("switch", "bsearch")]
+    rows = [measure(label, path, lookup) for label, path in labels.items() for lookup in ("switch", "bsearch")]
     runtime = runtime_sizes()
-    (RESULTS / "footprint-latest.json").write_text(json.dumps({"rows": rows, "runtime": runtime}, indent=2) + "\n")
-    report = _markdown(rows, runtime)
-    (RESULTS / "footprint-latest.md").write_text(report)
-    print(report)
-
-
-if __name__ == "__main__":
-    main()
+    odg_note, odg_rows = objdictgen_sizes(labels)
+    return {"rows": rows, "runtime": runtime, "objdictgen": {"note": odg_note, "rows": odg_rows},
+            "targets": targets(rows, runtime), "markdown": markdown(rows, runtime, odg_note, odg_rows)}

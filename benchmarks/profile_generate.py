@@ -1,0 +1,103 @@
+"""Where the time of `odgen generate` goes for 4000 objects: stage times (fresh process per run,
+median) and a cProfile summary by area of the code, so optimisation follows measurement.
+
+Run as a module by run.py; `python profile_generate.py --stages FILE` is the child that times
+one generation stage by stage and prints JSON.
+"""
+
+from __future__ import annotations
+
+import json
+import pstats
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+from common import BUILD, ROOT
+
+REPEAT = 5
+AREAS = (("odgen/formats", "parse (odgen/formats)"), ("odgen/rules", "lint rules (odgen/rules, lint.py)"),
+         ("odgen/lint", "lint rules (odgen/rules, lint.py)"), ("odgen/model", "model (odgen/model)"),
+         ("odgen/codegen", "view-model (odgen/codegen)"), ("dict.", "templates (render)"),
+         ("selftest.", "templates (render)"), ("jinja2", "jinja2 (template compile + runtime)"),
+         ("importlib", "imports"), ("<frozen", "imports"))
+
+
+def stages(path: Path) -> dict[str, float]:
+    """One generation, timed stage by stage (the steps odgen.codegen.generate takes)."""
+    marks = [time.perf_counter()]
+    from odgen.codegen import generate as gen
+    from odgen.codegen.options import Options
+    from odgen.codegen.placement import place
+    from odgen.codegen.viewmodel import build
+    from odgen.formats import load_path
+    from odgen.lint import lint_model
+    from odgen.rules import LintOptions
+    marks.append(time.perf_counter())
+    od, diags = load_path(path)
+    assert od is not None
+    marks.append(time.perf_counter())
+    lint_model(od, diags, LintOptions())
+    marks.append(time.perf_counter())
+    placements = place(od, Options(), diags)
+    marks.append(time.perf_counter())
+    view = build(od, placements, "od", version="bench", digest="bench", lookup="switch", diags=diags)
+    marks.append(time.perf_counter())
+    env = gen.environment()
+    header, source = env.get_template("dict.h.j2"), env.get_template("dict.c.j2")
+    marks.append(time.perf_counter())
+    header.render(v=view)
+    source.render(v=view)
+    marks.append(time.perf_counter())
+    names = ("import odgen", "parse", "lint", "place", "view-model", "template compile", "render")
+    return {name: marks[k + 1] - marks[k] for k, name in enumerate(names)}
+
+
+def _area(filename: str) -> str:
+    return next((label for key, label in AREAS if key in filename), "builtins + stdlib (called from every area), cli")
+
+
+def _cprofile(eds: Path) -> tuple[float, dict[str, float], list[tuple[str, int, float, float]]]:
+    work = BUILD / "profile"
+    work.mkdir(parents=True, exist_ok=True)
+    out = work / "generate.prof"
+    subprocess.run([sys.executable, "-m", "cProfile", "-o", str(out), "-m", "odgen", "generate", str(eds), "-o",
+                    str(work / "out"), "--name", "od"], check=True, capture_output=True, cwd=ROOT)
+    stats = pstats.Stats(str(out))
+    raw = stats.stats  # type: ignore[attr-defined]
+    areas: dict[str, float] = {}
+    for (filename, _, _), (_, _, tottime, _, _) in raw.items():
+        areas[_area(filename)] = areas.get(_area(filename), 0.0) + tottime
+    top = sorted(((f"{Path(fn).name}:{line}({name})", calls, tt, ct)
+                  for (fn, line, name), (_, calls, tt, ct, _) in raw.items()), key=lambda t: -t[2])[:12]
+    return stats.total_tt, areas, top  # type: ignore[attr-defined]
+
+
+def run(eds: Path) -> dict[str, object]:
+    child = [sys.executable, str(Path(__file__).resolve()), "--stages", str(eds)]
+    samples = [json.loads(subprocess.run(child, capture_output=True, text=True, check=True, cwd=ROOT).stdout)
+               for _ in range(REPEAT)]
+    medians = {k: statistics.median(s[k] for s in samples) for k in samples[0]}
+    total, areas, top = _cprofile(eds)
+    total_stages = sum(medians.values())
+    lines = [f"## Where `odgen generate` spends its time ({eds.name})", "",
+             f"Stages, in process, fresh interpreter per run, median of {REPEAT}:", "",
+             "| stage | seconds | share |", "|---|---:|---:|"]
+    lines += [f"| {k} | {v:.3f} | {v / total_stages:.0%} |" for k, v in medians.items()]
+    lines += [f"| total | {total_stages:.3f} | |", "",
+              f"cProfile of the whole command ({total:.2f} s under the profiler), own time by area:", "",
+              "| area | own time | share |", "|---|---:|---:|"]
+    lines += [f"| {k} | {v:.3f} s | {v / total:.0%} |" for k, v in sorted(areas.items(), key=lambda kv: -kv[1])]
+    lines += ["", "Top functions by own time:", "", "| function | calls | own | cumulative |", "|---|---:|---:|---:|"]
+    lines += [f"| `{name}` | {calls} | {tt:.3f} s | {ct:.3f} s |" for name, calls, tt, ct in top]
+    return {"stages_s": medians, "cprofile_total_s": total, "areas_s": areas,
+            "top": [list(t) for t in top], "markdown": "\n".join(lines) + "\n"}
+
+
+if __name__ == "__main__":
+    if len(sys.argv) == 3 and sys.argv[1] == "--stages":
+        print(json.dumps(stages(Path(sys.argv[2]))))
+    else:
+        sys.exit("usage: profile_generate.py --stages FILE (run.py runs the profile)")
