@@ -93,7 +93,7 @@ def decode(data: bytes) -> str:
 def split(name: str, fmt: str, text: str) -> Seed:
     if fmt in ("eds", "dcf"):
         starts = [m.start() for m in _EDS_SECTION.finditer(text)]
-        units = [text[a:b] for a, b in zip(starts, starts[1:] + [len(text)], strict=True)]
+        units = [text[a:b] for a, b in zip(starts, starts[1:] + [len(text)], strict=False)]
         return Seed(name, fmt, [text[: starts[0]] if starts else text, ""], [units])
     frame, groups, pos = [], [], 0
     for pattern in _XML_UNITS:

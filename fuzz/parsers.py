@@ -1,8 +1,10 @@
 """Fuzz the EDS/DCF and XDD readers, the linter and the EDS writer with structural mutants.
 
-    python fuzz/parsers.py --inputs 1000000 [--jobs 2] [--seed 1] [--no-corpus]
+    python fuzz/parsers.py --inputs 1000000 [--guided 100000] [--jobs 2] [--seed 1] [--no-corpus]
 
-Every mutant (fuzz/mutate.py) must yield diagnostics or a model, never an exception,
+Two engines: structural mutants drawn at random (--inputs), and coverage-guided
+libFuzzer runs through atheris (--guided executions, fuzz/guided.py). Every input
+(fuzz/mutate.py) must yield diagnostics or a model, never an exception,
 within bounded CPU time. Afterwards the slowest inputs per byte are measured again and
 flagged when far above the median, and families of inputs grown 1x..64x check that the
 time per byte stays flat. Findings are minimised and saved under tests/fuzz/regressions/
@@ -18,8 +20,12 @@ import json
 import multiprocessing
 import os
 import random
+import re
+import shutil
 import statistics
+import subprocess
 import sys
+import tempfile
 import time
 from array import array
 from collections import Counter
@@ -171,14 +177,82 @@ def table(total: Tally, wall: float, jobs: int, seed: int, slow: list[dict], sav
             "columns": ["mutation", "inputs", "model", "diagnostics only", "findings"], "rows": rows, "notes": notes}
 
 
+def guided(executions: int, jobs: int, seed: int) -> tuple[dict, list[dict]]:
+    """libFuzzer through atheris, `jobs` processes of executions/jobs runs each, from slices of the seeds."""
+    try:
+        from fuzz import guided as harness  # atheris is needed for this engine only
+    except ImportError as err:
+        print(f"parsers: coverage-guided fuzzing not run: {err}", file=sys.stderr)
+        return {"title": "Coverage-guided parser fuzzing (atheris, libFuzzer)", "executions": 0, "findings": [],
+                "columns": [], "rows": [], "notes": [f"Not run: {err} (atheris has wheels for Linux x86-64)."]}, []
+    rows, saved = [], []
+    with tempfile.TemporaryDirectory(prefix="odgen-guided-") as tmp:
+        log = Path(tmp) / "findings.jsonl"
+        procs = []
+        for job in range(jobs):
+            corpus = Path(tmp) / f"corpus{job}"
+            harness.write_corpus(corpus, random.Random(seed + job))
+            cmd = [sys.executable, str(Path(__file__).with_name("guided.py")), str(corpus),
+                   f"-runs={executions // jobs}", f"-seed={seed + job}", "-max_len=65536", "-timeout=60",
+                   "-print_final_stats=1"]
+            err = open(Path(tmp) / f"job{job}.log", "w+", encoding="utf-8")  # noqa: SIM115 (closed below)
+            env = dict(os.environ, ODGEN_FUZZ_FINDINGS=str(log))
+            procs.append((subprocess.Popen(cmd, stdout=err, stderr=subprocess.STDOUT, env=env), err, corpus))
+        start = time.monotonic()
+        for job, (proc, err, corpus) in enumerate(procs):
+            code = proc.wait()
+            err.seek(0)
+            rows.append(_guided_row(job, err.read(), code, time.monotonic() - start, corpus))
+            err.close()
+            if code != 0:
+                saved.append({"failure": f"guided job {job} exited {code}", "file": "", "ops": ["guided"]})
+        if log.exists():
+            saved += [json.loads(line) for line in log.read_text(encoding="utf-8").splitlines()]
+        shutil.rmtree(tmp, ignore_errors=True)
+    total = sum(r[1] for r in rows)
+    return {"title": "Coverage-guided parser fuzzing (atheris, libFuzzer)", "executions": total,
+            "findings": saved, "columns": ["job", "executions", "coverage (edges)", "features", "corpus files",
+                                           "exec/s", "exit"],
+            "rows": rows,
+            "notes": [f"{total} executions in {jobs} libFuzzer processes over odgen's instrumented Python code "
+                      "(odgen.formats, odgen.rules, odgen.lint, odgen.model), starting from slices of every seed "
+                      "file; half of the mutations are libFuzzer's byte mutations, half the structural ones.",
+                      f"{len(saved)} findings."]}, saved
+
+
+def _guided_row(job: int, log: str, code: int, wall: float, corpus: Path) -> list:
+    def stat(name: str) -> int:
+        found = re.findall(rf"stat::{name}:\s*(\d+)", log)
+        return int(found[-1]) if found else 0
+    cov = re.findall(r"cov: (\d+) ft: (\d+)", log)
+    executions = stat("number_of_executed_units")
+    edges, features = cov[-1] if cov else (0, 0)
+    files = len(list(corpus.iterdir())) if corpus.is_dir() else 0
+    if code != 0:
+        print(log[-4000:], file=sys.stderr)
+    return [job, executions, int(edges), int(features), files, round(executions / wall) if wall else 0, code]
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--inputs", type=int, default=1_000_000)
+    parser.add_argument("--guided", type=int, default=100_000, help="coverage-guided executions (0: none)")
     parser.add_argument("--jobs", type=int, default=min(2, os.cpu_count() or 1))
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--no-corpus", action="store_true", help="seed from the repository's files only")
     parser.add_argument("--results", type=Path, default=RESULTS)
     args = parser.parse_args(argv)
+    args.results.mkdir(parents=True, exist_ok=True)
+    found = structural(args) if args.inputs else 0
+    if args.guided:
+        table_guided, saved_guided = guided(args.guided, args.jobs, args.seed)
+        (args.results / "parsers-guided.json").write_text(json.dumps(table_guided, indent=1) + "\n")
+        found += len(saved_guided)
+    print(f"parsers: {found} findings", file=sys.stderr)
+    return 1 if found else 0
+
+
+def structural(args: argparse.Namespace) -> int:
     total, wall = fuzz(args.inputs, args.jobs, args.seed, not args.no_corpus)
     _init(not args.no_corpus)
     median = statistics.median(total.per_byte) if total.per_byte else 0.0
@@ -188,12 +262,11 @@ def main(argv: list[str] | None = None) -> int:
         if row[-1] != "linear":
             total.findings.setdefault(f"superlinear-{row[0]}", (row[1], scaling.largest(row[0]), [row[0]], row[-1]))
     saved = save_findings(total)
-    args.results.mkdir(parents=True, exist_ok=True)
     result = table(total, wall, args.jobs, args.seed, slow, saved, median)
     (args.results / "parsers.json").write_text(json.dumps(result, indent=1, ensure_ascii=False) + "\n")
     (args.results / "parsers-scaling.json").write_text(json.dumps(grown, indent=1, ensure_ascii=False) + "\n")
     print(f"parsers: {total.inputs} inputs, {len(saved)} findings", file=sys.stderr)
-    return 1 if saved else 0
+    return len(saved)
 
 
 if __name__ == "__main__":
