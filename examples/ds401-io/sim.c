@@ -14,15 +14,21 @@
 
 /* +1: no zero-length arrays when a function is absent */
 static uint8_t wires[DS401_DO_GROUPS + 1u];
+#if DS401_AI_CHANNELS > 0 || DS401_AO_CHANNELS > 0
 static ds401_ao_t analog_wires[DS401_AO_CHANNELS + 1u];
+#endif
+
+/* How many inputs have an output wired to them. */
+static uint16_t wired(uint16_t inputs, uint16_t outputs)
+{
+    return inputs < outputs ? inputs : outputs;
+}
 
 #if DS401_DI_GROUPS > 0
 void ds401_read_inputs(uint8_t *groups, uint16_t n)
 {
-    uint16_t g;
-    for (g = 0; g < n; g++) {
-        groups[g] = g < DS401_DO_GROUPS ? wires[g] : 0u;
-    }
+    memset(groups, 0, n);
+    memcpy(groups, wires, wired(n, (uint16_t)DS401_DO_GROUPS));
 }
 #endif
 
@@ -43,9 +49,9 @@ static ds401_ai_t to_input(int64_t v)
 
 void ds401_read_analog(ds401_ai_t *values, uint16_t n)
 {
-    uint16_t c;
+    uint16_t c, k = wired(n, (uint16_t)DS401_AO_CHANNELS);
     for (c = 0; c < n; c++) {
-        values[c] = c < DS401_AO_CHANNELS ? to_input(analog_wires[c]) : 0;
+        values[c] = c < k ? to_input(analog_wires[c]) : 0;
     }
 }
 #endif
@@ -59,6 +65,7 @@ void ds401_write_analog(const ds401_ao_t *values, uint16_t n)
 
 void odg_app_init(odg_node_t *node)
 {
+    (void)wired, (void)wires;
     odg_abort_t ac = ds401_init(node);
     if (ac != ODG_OK) {
         fprintf(stderr, "ds401-io: ds401_init: 0x%08lX %s\n", (unsigned long)ac, odg_abort_text(ac));
