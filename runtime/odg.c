@@ -567,6 +567,7 @@ odg_abort_t odg_init(const odg_dict_t *dict, uint8_t node_id, const odg_nv_drive
         return odg_persist_boot(dict, nv, boot);
     }
 #endif
+    dict->state->boot_seen = (uint8_t)(dict->n_groups > 0u ? 1u << ODG_BOOT_NV_ERROR : 0u);
     for (g = 0; boot != NULL && g < dict->n_groups; g++) {
         boot[g] = ODG_BOOT_NV_ERROR; /* no driver: defaults in RAM, NV untouched */
     }

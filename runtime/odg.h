@@ -217,14 +217,22 @@ typedef enum odg_boot_status {
     ODG_BOOT_LOADED = 0,     /* newest valid slot with a matching signature was loaded */
     ODG_BOOT_DEFAULTS = 1,   /* no valid image (or restore requested): defaults, written to NV */
     ODG_BOOT_SIGNATURE = 2,  /* an image of another layout was found: defaults, written to NV */
-    ODG_BOOT_NV_ERROR = 3    /* the driver failed: defaults in RAM, NV untouched */
+    ODG_BOOT_NV_ERROR = 3,   /* the driver failed: defaults in RAM, NV untouched */
+    ODG_BOOT_DAMAGED = 4     /* no valid image, but a slot was not erased either (bits flipped,
+                              * a torn write or erase): stored values lost; defaults, written to NV */
 } odg_boot_status_t;
+
+/* odg_state_t.boot_seen bits meaning that values stored in NV did not come back at boot. */
+#define ODG_BOOT_LOST_MASK \
+    (1u << ODG_BOOT_SIGNATURE | 1u << ODG_BOOT_NV_ERROR | 1u << ODG_BOOT_DAMAGED)
 
 /* ---- the dictionary ------------------------------------------------------------- */
 
 typedef struct odg_state {
     uint8_t node_id;            /* set by odg_init before dict->reset runs */
     const odg_nv_driver_t *nv;  /* set by odg_init; NULL: 0x1010/0x1011 abort with DATA_STORE */
+    uint8_t boot_seen;          /* set by odg_init: bit (1 << status) for each odg_boot_status_t
+                                 * a persistence group reported (0 without groups) */
 } odg_state_t;
 
 typedef struct odg_dict {

@@ -93,6 +93,18 @@ void odg_node_reload(odg_node_t *node)
 
 /* ---- NMT ------------------------------------------------------------------------------- */
 
+/* After the dictionary was initialised with an NV driver: when a persistence group did not get
+ * its stored values back (an image of another layout, a damaged image, a failing driver), an
+ * EMCY 0x5530 (data storage) with the generic error bit, and in byte 3 the boot statuses seen
+ * (bit 1 << odg_boot_status_t). The application learns the details from cfg.boot. */
+static void stored_values_lost(odg_node_t *n)
+{
+    uint8_t seen = n->cfg.dict->state->boot_seen;
+    if (n->cfg.nv != NULL && (seen & ODG_BOOT_LOST_MASK) != 0u) {
+        (void)odg_node_emcy(n, ODG_NODE_EMCY_STORAGE, (uint8_t)(n->error_register | 0x01u), &seen, 1);
+    }
+}
+
 /* Initialising: drop the SDO transfer, re-read the communication entries (after odg_init for
  * a reset of the node), send the boot-up frame, and go pre-operational. */
 static odg_abort_t boot(odg_node_t *n, int reset_node)
@@ -109,6 +121,9 @@ static odg_abort_t boot(odg_node_t *n, int reset_node)
     n->hb_timer = 0;
     (void)odg_node_send_(n, 0x700u + n->cfg.node_id, &bootup, 1);
     n->state = ODG_NMT_PRE_OPERATIONAL;
+    if (reset_node) {
+        stored_values_lost(n);
+    }
     return ac;
 }
 

@@ -51,6 +51,9 @@ extern "C" {
 #define ODG_NODE_SDO_BLKSIZE 127u
 #endif
 
+/* EMCY error code sent at boot when stored values were lost (see odg_node_init). */
+#define ODG_NODE_EMCY_STORAGE 0x5530u
+
 /* ---- frames ------------------------------------------------------------------------ */
 
 #define ODG_FRAME_RTR 0x01u /* remote request */
@@ -155,7 +158,9 @@ typedef struct odg_node {
 /* Copy `cfg`, odg_init the dictionary (with cfg->nv), read the communication entries, send
  * the boot-up frame and enter pre-operational. Returns odg_init's result (HARDWARE when NV
  * failed: the node runs on defaults), or ODG_ABORT_INCOMPATIBLE for a node-id outside
- * 1..127 or no `send` (then nothing is sent). */
+ * 1..127 or no `send` (then nothing is sent). With an NV driver, when a group's stored values
+ * did not come back (ODG_BOOT_SIGNATURE, ODG_BOOT_NV_ERROR, ODG_BOOT_DAMAGED), an EMCY
+ * ODG_NODE_EMCY_STORAGE follows the boot-up frame; likewise at every NMT reset node. */
 odg_abort_t odg_node_init(odg_node_t *node, const odg_node_config_t *cfg);
 
 /* Hand over every received frame (any identifier; the node picks its own). */

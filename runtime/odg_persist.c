@@ -125,6 +125,38 @@ static int newest(const odg_nv_driver_t *nv, const odg_group_t *g, uint8_t hdr[2
     return v[0] ? 0 : (v[1] ? 1 : -1);
 }
 
+/* Whether the slot at `addr` is erased (every byte 0xFF): 1 yes, 0 no, -1 the driver failed. */
+static int slot_blank(const odg_nv_driver_t *nv, uint32_t addr, uint32_t size)
+{
+    uint8_t chunk[CHUNK];
+    uint32_t off, n, i;
+    for (off = 0; off < size; off += n) {
+        n = size - off < CHUNK ? size - off : CHUNK;
+        if (nv->read(nv->ctx, addr + off, chunk, n) != 0) {
+            return -1;
+        }
+        for (i = 0; i < n; i++) {
+            if (chunk[i] != 0xFFu) {
+                return 0;
+            }
+        }
+    }
+    return 1;
+}
+
+/* No valid image: DEFAULTS when both slots are erased (first boot, after a restore), DAMAGED
+ * when something else is there, since then values once stored were lost. */
+static odg_boot_status_t no_image(const odg_nv_driver_t *nv, const odg_group_t *g)
+{
+    uint32_t size = ODG_PERSIST_SLOT_SIZE(g->size);
+    int a = slot_blank(nv, slot_addr(g, 0), size), b;
+    if (a < 0) {
+        return ODG_BOOT_NV_ERROR;
+    }
+    b = a ? slot_blank(nv, slot_addr(g, 1), size) : 0;
+    return b < 0 ? ODG_BOOT_NV_ERROR : (b ? ODG_BOOT_DEFAULTS : ODG_BOOT_DAMAGED);
+}
+
 /* Write the mirror of group `g` as the new newest image. */
 static odg_abort_t store(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
 {
@@ -214,7 +246,9 @@ static odg_boot_status_t boot_group(const odg_dict_t *d, const odg_nv_driver_t *
     int k = newest(nv, gr, hdr);
     if (k == -2) {
         st = ODG_BOOT_NV_ERROR;
-    } else if (k >= 0) {
+    } else if (k == -1) {
+        st = no_image(nv, gr);
+    } else {
         if (get32(hdr[k] + 8) != gr->signature || get32(hdr[k] + 12) != gr->size) {
             st = ODG_BOOT_SIGNATURE;
         } else if (slot_read(nv, slot_addr(gr, k), gr->size, h, (uint8_t *)gr->mirror) == 1 &&
@@ -236,8 +270,10 @@ odg_abort_t odg_persist_boot(const odg_dict_t *dict, const odg_nv_driver_t *nv,
 {
     odg_abort_t ac = nv != NULL ? ODG_OK : ODG_ABORT_DATA_STORE;
     uint8_t g;
+    dict->state->boot_seen = 0;
     for (g = 0; g < dict->n_groups; g++) {
         odg_boot_status_t st = nv != NULL ? boot_group(dict, nv, g) : ODG_BOOT_NV_ERROR;
+        dict->state->boot_seen = (uint8_t)(dict->state->boot_seen | 1u << st);
         if (st == ODG_BOOT_NV_ERROR && ac == ODG_OK) {
             ac = ODG_ABORT_HARDWARE;
         }
