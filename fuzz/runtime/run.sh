@@ -32,11 +32,13 @@ mkdir -p "$OUT/gen" "$RESULTS"
 rows=$OUT/rows.tsv
 : >"$rows"
 findings_total=0
-for h in $HARNESSES; do
+for h in $HARNESSES; do  # every harness is built before any runs
     d=${DICT[$h]}
-    exe=$OUT/fuzz_$h
     "$CC" "${FLAGS[@]}" -I"$OUT/gen/$d" -I"$ROOT/runtime" -I"$HERE" "$HERE/fuzz_$h.c" "$OUT/gen/$d/$d.c" \
-        "${RUNTIME[@]/#/$ROOT/runtime/}" -o "$exe"
+        "${RUNTIME[@]/#/$ROOT/runtime/}" -o "$OUT/fuzz_$h"
+done
+for h in $HARNESSES; do
+    exe=$OUT/fuzz_$h
     mkdir -p "$OUT/corpus/$h" "$OUT/artifacts/$h"
     log=$OUT/fuzz_$h.log
     start=$(date +%s.%N)
