@@ -153,7 +153,7 @@ def cmd_profile(args: argparse.Namespace) -> int:
     ds401_profile.write(spec, args.output)
     if args.generate is None:
         return 0
-    result = generate(Request(args.output, defaults=ds401_profile.options_toml(spec)))
+    result = ds401_profile.generate_c(spec, args.output)
     _print_findings(result.diags)
     if not result.files:
         print(f"odgen: {args.output}: errors found, nothing generated", file=sys.stderr)

@@ -166,7 +166,7 @@ def test_cli_writes_eds_and_c(tmp_path: Path) -> None:
     args = ["profile", "ds401", "--di", "16", "--do", "16", "--ai", "4", "--ao", "4", "--vendor-id", "0x1234",
             "--name", "Test I/O", "-o", str(out), "--generate", str(gen)]
     assert main(args) == 0
-    assert sorted(p.name for p in gen.iterdir()) == ["io.c", "io.h"]
+    assert sorted(p.name for p in gen.iterdir()) == ["ds401_app.c", "ds401_app.h", "io.c", "io.h"]
     assert out.read_text(encoding="utf-8") == write(Ds401(16, 16, 4, 4, name="Test I/O", vendor_id=0x1234), out)
     assert main(["lint", "--strict", str(out)]) == 0
 
