@@ -7,6 +7,7 @@ Everything is built in pytest's temporary directory, never in the repository.
 
 from __future__ import annotations
 
+import json
 import re
 import subprocess
 from pathlib import Path
@@ -24,6 +25,7 @@ PROGRAMS: dict[str, tuple[Path, ...]] = {
     "test_core": (CTESTS / "test_core.c", CTESTS / "td.c", *(RUNTIME / s for s in CORE)),
     "test_persist": (CTESTS / "test_persist.c", CTESTS / "td.c", *(RUNTIME / s for s in CORE),
                      RUNTIME / "odg_nv_file.c"),
+    "test_faults": (CTESTS / "test_faults.c", CTESTS / "nv_fault.c", CTESTS / "td.c", *(RUNTIME / s for s in CORE)),
 }
 
 
@@ -37,6 +39,23 @@ def test_program(program: str, build_name: str, tmp_path: Path) -> None:
     exe = tmp_path / program
     build(cc, flags, PROGRAMS[program], (RUNTIME, CTESTS), exe)
     run(exe, tmp_path)
+
+
+def test_fault_figures(tmp_path: Path) -> None:
+    """test_faults writes its figures (as fuzz/runtime/run.sh asks for fuzz/results/faults.json):
+    every cut point, write failure, flip and cycle accounted for, and no mixed image."""
+    exe = tmp_path / "test_faults"
+    build("gcc", ("-O2",), PROGRAMS["test_faults"], (RUNTIME, CTESTS), exe)
+    out = tmp_path / "faults.json"
+    done = subprocess.run([str(exe), str(tmp_path), "--json", str(out)], capture_output=True, text=True, check=False,
+                          timeout=300)
+    assert done.returncode == 0, done.stdout[-4000:]
+    data = json.loads(out.read_text(encoding="utf-8"))
+    assert data["columns"][0] == "fault" and len(data["rows"]) == 4
+    for row in data["rows"]:
+        assert len(row) == len(data["columns"])
+        assert row[1] == sum(row[2:6]) and row[1] > 0, row  # every boot has one outcome
+        assert row[6] == 0, row  # no mixed image
 
 
 def test_without_abort_texts(tmp_path: Path) -> None:
