@@ -45,6 +45,7 @@ class Rule:
 
 
 RULES: dict[str, Rule] = {}
+MAX_PER_RULE = 500  # findings of one rule listed per file; the rest are counted in one line
 
 
 def define_rule(
@@ -92,6 +93,8 @@ class Diagnostics:
     """Collects diagnostics; readers and rules append, reporters read."""
 
     items: list[Diagnostic] = field(default_factory=list)
+    counts: dict[str, int] = field(default_factory=dict)  # findings per rule, listed or not
+    summaries: dict[str, int] = field(default_factory=dict)  # rule -> position of its "N more" line
 
     def add(
         self,
@@ -102,21 +105,41 @@ class Diagnostics:
         sub: int | None = None,
     ) -> None:
         rule = RULES[rule_id]
-        self.items.append(Diagnostic(rule_id, rule.severity, message, loc, index, sub))
+        count = self.counts[rule_id] = self.counts.get(rule_id, 0) + 1
+        if count <= MAX_PER_RULE:
+            self.items.append(Diagnostic(rule_id, rule.severity, message, loc, index, sub))
+            return
+        # A hostile file can repeat one mistake millions of times: list the first ones, count the rest
+        # in one line whose message _settle writes when the diagnostics are read.
+        if rule_id not in self.summaries:
+            self.summaries[rule_id] = len(self.items)
+            self.items.append(Diagnostic(rule_id, rule.severity, "", loc, index, sub))
+
+    def _settle(self) -> None:
+        for rule_id, at in self.summaries.items():
+            more = self.counts[rule_id] - MAX_PER_RULE
+            message = f"{more} more {rule_id} findings not listed (at most {MAX_PER_RULE} per rule and file)"
+            if self.items[at].message != message:
+                self.items[at] = replace(self.items[at], message=message)
 
     def collapse(self, rule_id: str) -> None:
         """Keep the first finding of a rule that repeats line after line, with a count of the rest."""
+        self._settle()
         hits = [d for d in self.items if d.rule == rule_id]
         if len(hits) < 2:
             return
         first = hits[0]
-        summary = replace(first, message=f"{first.message} (and {len(hits) - 1} more lines like it)")
+        more = self.counts.get(rule_id, len(hits)) - 1
+        others = {rule: self.items[at] for rule, at in self.summaries.items() if rule != rule_id}
+        summary = replace(first, message=f"{first.message} (and {more} more lines like it)")
         self.items = [summary if d is first else d for d in self.items if d.rule != rule_id or d is first]
+        self.summaries = {d.rule: at for at, d in enumerate(self.items) if others.get(d.rule) is d}
 
     def extend(self, other: Iterable[Diagnostic]) -> None:
         self.items.extend(other)
 
     def sorted(self) -> list[Diagnostic]:
+        self._settle()
         return sorted(
             self.items,
             key=lambda d: (d.loc.file, d.loc.line, d.rule, d.index or 0, d.sub or 0, d.message),
@@ -126,6 +149,7 @@ class Diagnostics:
         return sum(1 for d in self.items if d.severity == severity)
 
     def __iter__(self):
+        self._settle()
         return iter(self.items)
 
     def __len__(self) -> int:

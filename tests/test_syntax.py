@@ -28,7 +28,8 @@ def test_fixture_reports_its_rule(fixture: Path) -> None:
 
 def test_every_syn_rule_has_a_fixture() -> None:
     have = {p.stem for p in SYNTAX.glob("SYN*.eds")}
-    assert {r for r in RULES if r.startswith("SYN")} == have
+    too_large = {"SYN018"}  # a fixture would be 16 MiB: tests/test_hostile.py makes one in a temporary folder
+    assert {r for r in RULES if r.startswith("SYN")} - too_large == have
 
 
 def test_crlf_bom_tabs_and_case_insensitive_names(tmp_path: Path) -> None:

@@ -10,10 +10,11 @@ from __future__ import annotations
 from pathlib import Path
 
 from .. import rules  # noqa: F401  (defines the rule catalogue readers report against)
-from ..diagnostics import Diagnostics
+from ..diagnostics import Diagnostics, Loc
 from ..errors import OdgenError
 from ..model import ObjectDictionary
 
+MAX_BYTES = 16 * 1024 * 1024  # larger files are refused unread (SYN018): memory stays bounded
 FORMATS = {".eds": "eds", ".dcf": "dcf", ".xdd": "xdd", ".xpd": "xdd", ".xdc": "xdc"}
 
 
@@ -25,15 +26,20 @@ def detect_format(path: Path, data: bytes) -> str:
     return "xdd" if head.startswith(b"<") else "eds"
 
 
-def read_bytes(path: Path) -> bytes:
+def read_bytes(path: Path, limit: int | None = None) -> bytes:
+    """The file's bytes; with a limit, at most limit + 1 of them (enough to tell it is too large)."""
     try:
-        return path.read_bytes()
+        with path.open("rb") as src:
+            return src.read(-1 if limit is None else limit + 1)
     except OSError as err:
         raise OdgenError(f"{path}: cannot read: {err.strerror or err}") from None
 
 
 def load_bytes(data: bytes, source: str, fmt: str) -> tuple[ObjectDictionary | None, Diagnostics]:
     diags = Diagnostics()
+    if len(data) > MAX_BYTES:
+        diags.add("SYN018", Loc(source), f"file is larger than {MAX_BYTES >> 20} MiB; not read")
+        return None, diags
     if fmt in ("xdd", "xdc"):
         from .xdd import load_xdd
 
@@ -45,5 +51,5 @@ def load_bytes(data: bytes, source: str, fmt: str) -> tuple[ObjectDictionary | N
 
 def load_path(path: str | Path) -> tuple[ObjectDictionary | None, Diagnostics]:
     path = Path(path)
-    data = read_bytes(path)
+    data = read_bytes(path, MAX_BYTES)
     return load_bytes(data, str(path), detect_format(path, data))

@@ -112,6 +112,12 @@ define_rule(
     why="Object sections are `[XXXX]` or `[XXXXsubY]` with a 4-digit hex index and hex sub-index 0..FE.",
     example="[2000sub1FF]",
     fix="Use a sub-index 0..FE written in hex without 0x.")
+define_rule(
+    "SYN018", E, "file too large", ref="S1",
+    why="Device descriptions are kilobytes to a few megabytes (the largest known XDD is 0.6 MB). A file "
+    "above 16 MiB is refused unread, so a hostile or corrupt file cannot exhaust memory or time.",
+    example="(a 100 MB file)",
+    fix="Check that the file is a device description; split modules into separate files.")
 
 
 @check
