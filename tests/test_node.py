@@ -44,6 +44,7 @@ PROGRAMS: dict[str, tuple[str, tuple[Path, ...]]] = {
     "test_node_sdo": ("alltypes", ()),
     "test_node_pdo": ("pdo_node", ()),
     "test_node_io": ("io_node", (RUNTIME / "odg_nv_file.c",)),
+    "test_node_robust": ("alltypes", ()),
 }
 
 

@@ -24,10 +24,14 @@ static odg_frame_t sent[MAX_SENT];
 static unsigned n_sent;
 static int send_fails; /* the next n sends fail */
 static odg_node_t node;
+static void (*on_send)(const odg_frame_t *f); /* optional: sees every frame the node sends */
 
 static int fake_send(void *ctx, const odg_frame_t *f)
 {
     (void)ctx;
+    if (on_send != NULL) {
+        on_send(f);
+    }
     if (send_fails > 0) {
         send_fails--;
         return -1;
