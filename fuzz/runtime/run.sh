@@ -43,7 +43,7 @@ for h in $HARNESSES; do
     log=$OUT/fuzz_$h.log
     start=$(date +%s.%N)
     status=0
-    nice -n 10 "$exe" -runs="$RUNS" -seed=1 -max_len=4096 -timeout=10 -rss_limit_mb=2048 \
+    nice -n 10 "$exe" -runs="$RUNS" -seed=1 -max_len=1024 -timeout=10 -rss_limit_mb=2048 \
         -print_final_stats=1 -artifact_prefix="$OUT/artifacts/$h/" \
         "$OUT/corpus/$h" "$HERE/seeds/$h" >"$log" 2>&1 || status=$?
     end=$(date +%s.%N)
@@ -77,7 +77,7 @@ data = {
     "columns": ["harness", "executions", "seconds", "exec/s", "coverage (cov)", "findings"],
     "rows": rows,
     "notes": [
-        f"budget: {int(budget):,} executions per harness, one harness at a time, seed 1, from fuzz/runtime/seeds/",
+        f"budget: {int(budget):,} executions per harness, one harness at a time, seed 1, inputs up to 1024 bytes, from fuzz/runtime/seeds/",
         f"compiler: {cc} -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all",
         "sdo: the SDO server fed frame sequences (expedited, segmented, block, aborts, short frames, "
         "any COB-ID, NMT, time, a busy controller) on the alltypes dictionary",
