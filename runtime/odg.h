@@ -215,7 +215,7 @@ typedef struct odg_group {
 /* Outcome of odg_persist_boot for one group. */
 typedef enum odg_boot_status {
     ODG_BOOT_LOADED = 0,     /* newest valid slot with a matching signature was loaded */
-    ODG_BOOT_DEFAULTS = 1,   /* no valid image (or restore requested): defaults, written to NV */
+    ODG_BOOT_DEFAULTS = 1,   /* both slots erased (first boot, restore requested): defaults, written to NV */
     ODG_BOOT_SIGNATURE = 2,  /* an image of another layout was found: defaults, written to NV */
     ODG_BOOT_NV_ERROR = 3,   /* the driver failed: defaults in RAM, NV untouched */
     ODG_BOOT_DAMAGED = 4     /* no valid image, but a slot was not erased either (bits flipped,
