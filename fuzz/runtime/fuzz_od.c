@@ -22,6 +22,7 @@
 #define DICT alltypes
 
 static uint8_t nv_booted[sizeof nv_mem];
+static odg_hook_slot_t slots_booted[64];
 static int have_nv;
 
 static int is_number(const odg_sub_t *s)
@@ -76,13 +77,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         memset(nv_mem, 0xFF, sizeof nv_mem);
         REQUIRE(odg_init(&DICT, NID, &nv_ram, NULL) == ODG_OK);
         memcpy(nv_booted, nv_mem, sizeof nv_mem);
+        REQUIRE(DICT.n_hooks <= 64u);
+        memcpy(slots_booted, DICT.hook_slots, DICT.n_hooks * sizeof *slots_booted);
         have_nv = 1;
     }
+    /* every input starts from the same state: NV as after the first boot, hooks as generated */
     memcpy(nv_mem, nv_booted, sizeof nv_mem);
+    memcpy(DICT.hook_slots, slots_booted, DICT.n_hooks * sizeof *slots_booted);
     REQUIRE(odg_init(&DICT, NID, &nv_ram, NULL) == ODG_OK);
-    (void)odg_hook_register(&DICT, 0x2101, 0, NULL, NULL);
-    (void)odg_hook_register(&DICT, 0x2005, 0, NULL, NULL);
-    (void)odg_hook_register(&DICT, 0x2103, 4, NULL, NULL);
     while (in.n > 0u) {
         uint8_t op = take(&in), buf[80];
         odg_ref_t r;
