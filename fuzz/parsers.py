@@ -177,6 +177,20 @@ def table(total: Tally, wall: float, jobs: int, seed: int, slow: list[dict], sav
             "columns": ["mutation", "inputs", "model", "diagnostics only", "findings"], "rows": rows, "notes": notes}
 
 
+def grown(results: Path) -> int:
+    """The scaling families; one that is not linear is a finding, saved at its smallest size."""
+    table_scaling = scaling.run()
+    saved = []
+    for row in table_scaling["rows"]:
+        if row[-1] != "linear":
+            path = mutate.save_regression(scaling.smallest(row[0]), row[1], f"superlinear-{row[0]}")
+            print(f"parsers: FINDING {row[0]}: {row[-1]} -> {path}", file=sys.stderr)
+            saved.append(row[0])
+    table_scaling["findings"] = saved
+    (results / "parsers-scaling.json").write_text(json.dumps(table_scaling, indent=1) + "\n")
+    return len(saved)
+
+
 def guided(executions: int, jobs: int, seed: int) -> tuple[dict, list[dict]]:
     """libFuzzer through atheris, `jobs` processes of executions/jobs runs each, from slices of the seeds."""
     try:
@@ -239,11 +253,14 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--guided", type=int, default=100_000, help="coverage-guided executions (0: none)")
     parser.add_argument("--jobs", type=int, default=min(2, os.cpu_count() or 1))
     parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--no-scaling", action="store_true", help="skip the inputs grown 1x..256x")
     parser.add_argument("--no-corpus", action="store_true", help="seed from the repository's files only")
     parser.add_argument("--results", type=Path, default=RESULTS)
     args = parser.parse_args(argv)
     args.results.mkdir(parents=True, exist_ok=True)
     found = structural(args) if args.inputs else 0
+    if not args.no_scaling:
+        found += grown(args.results)
     if args.guided:
         table_guided, saved_guided = guided(args.guided, args.jobs, args.seed)
         (args.results / "parsers-guided.json").write_text(json.dumps(table_guided, indent=1) + "\n")
@@ -257,14 +274,9 @@ def structural(args: argparse.Namespace) -> int:
     _init(not args.no_corpus)
     median = statistics.median(total.per_byte) if total.per_byte else 0.0
     slow = confirm_slow(total, median)
-    grown = scaling.run()
-    for row in grown["rows"]:
-        if row[-1] != "linear":
-            total.findings.setdefault(f"superlinear-{row[0]}", (row[1], scaling.largest(row[0]), [row[0]], row[-1]))
     saved = save_findings(total)
     result = table(total, wall, args.jobs, args.seed, slow, saved, median)
     (args.results / "parsers.json").write_text(json.dumps(result, indent=1, ensure_ascii=False) + "\n")
-    (args.results / "parsers-scaling.json").write_text(json.dumps(grown, indent=1, ensure_ascii=False) + "\n")
     print(f"parsers: {total.inputs} inputs, {len(saved)} findings", file=sys.stderr)
     return len(saved)
 
