@@ -173,6 +173,8 @@ def table(total: Tally, wall: float, jobs: int, seed: int, slow: list[dict], sav
         "usually combines several.",
     ]
     return {"title": "Parser fuzzing: structural mutants of the seed files", "inputs": total.inputs,
+            "summary": f"{total.inputs} inputs, {total.models} with a model, {len(saved)} findings; median "
+                       f"{median:.0f} ns per byte, slowest {slow[0]['factor'] if slow else 0}x the median.",
             "findings": saved, "slowest": slow[:10],
             "columns": ["mutation", "inputs", "model", "diagnostics only", "findings"], "rows": rows, "notes": notes}
 
@@ -187,6 +189,9 @@ def grown(results: Path) -> int:
             print(f"parsers: FINDING {row[0]}: {row[-1]} -> {path}", file=sys.stderr)
             saved.append(row[0])
     table_scaling["findings"] = saved
+    worst = max(row[-2] for row in table_scaling["rows"])
+    table_scaling["summary"] = (f"{len(table_scaling['rows'])} families grown {scaling.FACTORS[-1]}x, "
+                                f"{len(table_scaling['rows']) - len(saved)} linear; largest exponent k = {worst:.2f}.")
     (results / "parsers-scaling.json").write_text(json.dumps(table_scaling, indent=1) + "\n")
     return len(saved)
 
@@ -224,7 +229,9 @@ def guided(executions: int, jobs: int, seed: int) -> tuple[dict, list[dict]]:
             saved += [json.loads(line) for line in log.read_text(encoding="utf-8").splitlines()]
         shutil.rmtree(tmp, ignore_errors=True)
     total = sum(r[1] for r in rows)
+    edges = max((r[2] for r in rows), default=0)
     return {"title": "Coverage-guided parser fuzzing (atheris, libFuzzer)", "executions": total,
+            "summary": f"{total} executions, {len(saved)} findings, {edges} Python branch edges reached.",
             "findings": saved, "columns": ["job", "executions", "coverage (edges)", "features", "corpus files",
                                            "exec/s", "exit"],
             "rows": rows,
