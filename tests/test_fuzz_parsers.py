@@ -8,6 +8,7 @@ own description files with a fixed seed.
 
 from __future__ import annotations
 
+import json
 import random
 from pathlib import Path
 
@@ -64,3 +65,16 @@ def test_encodings_round_the_text() -> None:
         seen.add(label.split()[0])
         assert data
     assert {"enc:utf-16", "enc:latin-1", "enc:utf-8-sig"} <= seen
+
+
+def test_report_renders_tables_and_what_did_not_run(tmp_path: Path) -> None:
+    from fuzz import report
+
+    (tmp_path / "parsers.json").write_text(json.dumps({
+        "title": "T", "summary": "12 inputs", "columns": ["a", "b|c"], "rows": [[1, "x|y"]], "notes": ["n1"]}))
+    (tmp_path / "extra.json").write_text(json.dumps({"title": "E", "columns": ["k"], "rows": [[2]], "notes": []}))
+    text = report.build("{{summary}}\n\n{{table parsers.json}}\n\n{{table runtime.json}}\n\n{{others}}\n", tmp_path)
+    assert "- T: 12 inputs" in text and "- runtime.json: not run." in text
+    assert "| a | b\\|c |\n| --- | --- |\n| 1 | x\\|y |\n\n- n1" in text
+    assert "Not run: fuzz/results/runtime.json is missing." in text
+    assert "## Other results" in text and "| 2 |" in text

@@ -100,3 +100,13 @@ def test_wide_encodings_are_decoded_and_reported(encoding: str) -> None:
     od, diags = load_bytes(text.encode(encoding), "w.eds", "eds")
     assert od is not None and od.objects[0x1000].name == "Gr\u00f6\u00dfe"
     assert [d.rule for d in diags] == ["SYN004"]
+
+
+def test_capped_rule_keeps_its_count_when_another_rule_collapses() -> None:
+    text = "[FileInfo]\n" + "junk\n" * 600 + "".join(f"K{i}=1 ; note\n" for i in range(3))
+    od, diags = load_bytes(text.encode(), "c.eds", "eds")
+    messages = [d.message for d in diags.sorted()]
+    assert sum(d.rule == "SYN001" for d in diags) == 501
+    assert "100 more SYN001 findings not listed (at most 500 per rule and file)" in messages
+    assert [d.message for d in diags if d.rule == "SYN014"] == [
+        "inline comment '; note' after the value of 'K0' is dropped (and 2 more lines like it)"]
