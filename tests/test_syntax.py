@@ -110,3 +110,10 @@ def test_capped_rule_keeps_its_count_when_another_rule_collapses() -> None:
     assert "100 more SYN001 findings not listed (at most 500 per rule and file)" in messages
     assert [d.message for d in diags if d.rule == "SYN014"] == [
         "inline comment '; note' after the value of 'K0' is dropped (and 2 more lines like it)"]
+
+
+def test_lines_end_at_cr_and_lf_only() -> None:
+    text = "[2000]\nParameterName=a\x0cb\x85c\u2028d\r\nDataType=0x0007\rAccessType=rw\n"
+    od, diags = load_bytes(text.encode(), "l.eds", "eds")
+    assert od is not None and od.objects[0x2000].name == "a\x0cb\x85c\u2028d"
+    assert od.objects[0x2000].subs[0].access == "rw" and not [d for d in diags if d.rule == "SYN001"]

@@ -35,7 +35,17 @@ def write_eds(od: ObjectDictionary) -> str:
     for key, section in od.sections.items():
         if section.name not in _LEADING_SECTIONS:
             _header(out, od, key)
-    return "\n".join(out).rstrip("\n") + "\n"
+    return "\n".join(map(_one_line, out)).rstrip("\n") + "\n"
+
+
+def _one_line(line: str) -> str:
+    """A line break inside a value (an XDD can hold one) would start a new key or section: a space instead."""
+    return line.replace("\r\n", " ").replace("\r", " ").replace("\n", " ") if "\r" in line or "\n" in line else line
+
+
+def _hex(number: int, width: int = 0) -> str:
+    """0x form for the reader's numbers; a negative one (read from a hostile file) in decimal, as read."""
+    return f"0x{number:0{width}X}" if number >= 0 else str(number)
 
 
 def _header(out: list[str], od: ObjectDictionary, name: str) -> None:
@@ -60,7 +70,7 @@ def _object(out: list[str], obj: Obj) -> None:
     out.append(f"[{obj.index:04X}]")
     out.append(f"ParameterName={obj.name}")
     if obj.object_code_written or obj.object_code != VAR:
-        out.append(f"ObjectType=0x{obj.object_code:X}")
+        out.append(f"ObjectType={_hex(obj.object_code)}")
     if obj.is_var and 0 in obj.subs:
         _value_keys(out, obj.subs[0])
         if obj.count_label is not None:
@@ -78,14 +88,14 @@ def _object(out: list[str], obj: Obj) -> None:
 
 def _container_keys(out: list[str], obj: Obj) -> None:
     if obj.sub_number is not None:
-        out.append(f"SubNumber=0x{obj.sub_number:X}")
+        out.append(f"SubNumber={_hex(obj.sub_number)}")
     if obj.compact_sub_obj is not None:
         out.append(f"CompactSubObj={obj.compact_sub_obj}")
         template = obj.subs.get(1)
         if template is not None and template.compact:
             _typed_keys(out, template)
     if obj.obj_flags is not None:
-        out.append(f"ObjFlags=0x{obj.obj_flags:X}")
+        out.append(f"ObjFlags={_hex(obj.obj_flags)}")
     if obj.count_label is not None:
         out.append(f";CountLabel={obj.count_label}")
     if obj.storage is not None:
@@ -97,14 +107,14 @@ def _sub_section(out: list[str], obj: Obj, sub: Sub) -> None:
     out.append(f"[{obj.index:04X}sub{sub.subindex:X}]")
     out.append(f"ParameterName={sub.name}")
     if sub.object_type is not None:
-        out.append(f"ObjectType=0x{sub.object_type:X}")
+        out.append(f"ObjectType={_hex(sub.object_type)}")
     _value_keys(out, sub)
     out.append("")
 
 
 def _typed_keys(out: list[str], sub: Sub) -> None:
     if sub.data_type is not None:
-        out.append(f"DataType=0x{sub.data_type:04X}")
+        out.append(f"DataType={_hex(sub.data_type, 4)}")
     if sub.access is not None:
         out.append(f"AccessType={sub.access}")
     for key, value in (("DefaultValue", sub.default), ("LowLimit", sub.low), ("HighLimit", sub.high)):
@@ -116,7 +126,7 @@ def _typed_keys(out: list[str], sub: Sub) -> None:
 def _value_keys(out: list[str], sub: Sub) -> None:
     _typed_keys(out, sub)
     if sub.obj_flags is not None:
-        out.append(f"ObjFlags=0x{sub.obj_flags:X}")
+        out.append(f"ObjFlags={_hex(sub.obj_flags)}")
     if sub.parameter_value is not None:
         out.append(f"ParameterValue={sub.parameter_value.text}")
     for key, text in (("Denotation", sub.denotation), ("UploadFile", sub.upload_file),

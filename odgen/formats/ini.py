@@ -16,6 +16,9 @@ from ..diagnostics import Diagnostics, Loc
 _SECTION_RE = re.compile(r"^\[([^\]]*)\]\s*(?:[;#].*)?$")
 _COMMENT_KEY_RE = re.compile(r"^;\s*([A-Za-z_][A-Za-z0-9_]*)\s*=(.*)$")
 _INLINE_COMMENT_RE = re.compile(r"\s+;.*$")
+# Lines end at CR LF, LF or CR only: str.splitlines() would also split at form feeds, U+0085,
+# U+2028 and others that other EDS readers keep inside a value.
+_LINE_END = re.compile(r"\r\n|\r|\n")
 
 
 @dataclass(slots=True)
@@ -95,7 +98,7 @@ def parse(text: str, source: str, diags: Diagnostics, comment_keys: frozenset[st
     """Read INI text; `;Key=Value` lines are kept as entries for the lower-case `comment_keys`."""
     ini = IniFile()
     current: IniSection | None = None
-    for number, raw in enumerate(text.splitlines(), start=1):
+    for number, raw in enumerate(_LINE_END.split(text), start=1):
         line = raw.strip()
         if not line:
             continue
