@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import gc
 import hashlib
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -77,7 +80,25 @@ def prepare(request: Request) -> Result:
     return result
 
 
+@contextmanager
+def _no_cyclic_gc() -> Iterator[None]:
+    """Generation builds many long-lived objects and leaves no cycles to free: full collections
+    only cost time (a third of it at 16000 objects, and growing faster than the input)."""
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()
+
+
 def generate(request: Request) -> Result:
+    with _no_cyclic_gc():
+        return _generate(request)
+
+
+def _generate(request: Request) -> Result:
     name = request.name or default_name(request.input)
     result = prepare(request)
     if result.od is None or result.placements is None or result.diags.count(Severity.ERROR):
