@@ -57,6 +57,11 @@ def symbols(obj: Path) -> dict[str, int]:
     return {p[3]: int(p[1], 16) for p in (line.split() for line in out.splitlines()) if len(p) == 4}
 
 
+def _first_error(stderr: str) -> str:
+    line = next((ln for ln in stderr.splitlines() if "error" in ln), "compile failed")
+    return line.split("/")[-1][:140]
+
+
 def compile_one(source: Path, out: Path) -> Path:
     subprocess.run(["arm-none-eabi-gcc", *CFLAGS, f"-I{ROOT / 'runtime'}", "-c", str(source), "-o", str(out)],
                    check=True, capture_output=True, text=True)
@@ -85,7 +90,12 @@ def measure(label: str, eds: Path, lookup: str) -> dict[str, object]:
     if gen.returncode != 0:
         row["refused"] = failure(gen.stderr)
         return row
-    obj = compile_one(work / "od.c", work / "od.o")
+    comp = subprocess.run(["arm-none-eabi-gcc", *CFLAGS, f"-I{ROOT / 'runtime'}", "-c", str(work / "od.c"), "-o",
+                           str(work / "od.o")], capture_output=True, text=True, check=False)
+    if comp.returncode != 0:
+        row["compile_failed"] = _first_error(comp.stderr)
+        return row
+    obj = work / "od.o"
     sec = sections(obj)
     flash, ram = sec["text"] + sec["rodata"] + sec["data"], sec["data"] + sec["bss"]
     row.update(sec, flash=flash, ram=ram, classes=by_class(symbols(obj)))
@@ -155,8 +165,7 @@ def objdictgen_sizes(labels: dict[str, Path]) -> tuple[str, list[dict[str, objec
         comp = subprocess.run(["arm-none-eabi-gcc", *CFLAGS[:5], *(f"-I{d}" for d in include), f"-I{work}", "-c",
                                str(source), "-o", str(work / f"{label}.o")], capture_output=True, text=True)
         if comp.returncode != 0:
-            first = next((ln for ln in comp.stderr.splitlines() if "error" in ln), "compile failed")
-            rows.append({"input": label, "failed": first.split("/")[-1][:100]})
+            rows.append({"input": label, "failed": _first_error(comp.stderr)})
             continue
         sec = sections(work / f"{label}.o")
         rows.append({"input": label, **sec, "flash": sec["text"] + sec["rodata"] + sec["data"],
@@ -176,6 +185,11 @@ def targets(rows: list[dict[str, object]], runtime: dict[str, int]) -> list[Targ
                     Target(f"RAM vs CANopenNode v4, {label}", "<= 50%", why, "-", None)]
             continue
         sw, bs = mine["switch"], mine["bsearch"]
+        if "compile_failed" in sw or "compile_failed" in bs:
+            why = f"generated C does not compile: {sw.get('compile_failed') or bs.get('compile_failed')}"
+            out += [Target(f"FLASH vs CANopenNode v4, {label}", "<= 100%", why, "-", False),
+                    Target(f"RAM vs CANopenNode v4, {label}", "<= 50%", why, "-", False)]
+            continue
         out.append(Target(f"FLASH vs CANopenNode v4, {label}", "<= 100%",
                           f"bsearch {bs['flash']} B, switch {sw['flash']} B / {rom + data} B",
                           f"bsearch {bs['flash_ratio']:.0%}, switch {sw['flash_ratio']:.0%}",
@@ -198,8 +212,9 @@ def markdown(rows: list[dict[str, object]], runtime: dict[str, int], odg_note: s
              "| FLASH % | RAM % |",
              "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for r in rows:
-        if "refused" in r:
-            lines.append(f"| {r['input']} | {r['lookup']} | refused: {r['refused']} | | | | | | | | |")
+        if "refused" in r or "compile_failed" in r:
+            why = f"refused: {r['refused']}" if "refused" in r else f"C does not compile: {r['compile_failed']}"
+            lines.append(f"| {r['input']} | {r['lookup']} | {why} | | | | | | | | |")
             continue
         ref = f"{r.get('cnn_flash', '-')} / {r.get('cnn_ram', '-')}"
         fr = f"{r['flash_ratio']:.0%}" if "flash_ratio" in r else "-"

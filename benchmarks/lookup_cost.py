@@ -83,9 +83,13 @@ def measure(label: str, eds: Path, lookup: str) -> dict[str, object]:
         return {"input": label, "lookup": lookup, "refused": True}
     (work / "driver.c").write_text(DRIVER)
     exe = work / "driver"
-    subprocess.run(["gcc", "-std=gnu99", "-O2", f"-DREPEAT={REPEAT}", f"-I{ROOT / 'runtime'}", f"-I{work}",
-                    str(work / "driver.c"), str(work / "od.c"), str(ROOT / "runtime" / "odg.c"),
-                    str(ROOT / "runtime" / "odg_persist.c"), "-lm", "-o", str(exe)], check=True)
+    comp = subprocess.run(["gcc", "-std=gnu99", "-O2", f"-DREPEAT={REPEAT}", f"-I{ROOT / 'runtime'}", f"-I{work}",
+                           str(work / "driver.c"), str(work / "od.c"), str(ROOT / "runtime" / "odg.c"),
+                           str(ROOT / "runtime" / "odg_persist.c"), "-lm", "-o", str(exe)],
+                          capture_output=True, text=True, check=False)
+    if comp.returncode != 0:
+        first = next((ln for ln in comp.stderr.splitlines() if "error" in ln), "compile failed")
+        return {"input": label, "lookup": lookup, "compile_failed": first.split("/")[-1][:140]}
     counts = _callgrind(exe, work / "callgrind.out")
     found = re.search(r"odg_entry_t od_entries\[(\d+)\]", (work / "od.c").read_text())
     entries = int(found.group(1)) if found else 0
@@ -104,6 +108,10 @@ def targets(rows: list[dict[str, object]]) -> list[Target]:
                               "odgen refuses the input", "-", None))
             continue
         sw, bs = mine["switch"], mine["bsearch"]
+        if "compile_failed" in sw or "compile_failed" in bs:
+            out.append(Target(f"lookup cost vs plain binary search, {label}", f"<= {TARGET:.0%}",
+                              "generated C does not compile", "-", False))
+            continue
         out.append(Target(f"lookup cost vs plain binary search, {label} ({sw['entries']} entries)",
                           f"<= {TARGET:.0%}",
                           f"switch {sw['odg_find']:.0f}, bsearch {bs['odg_find']:.0f}, plain "
@@ -119,8 +127,9 @@ def markdown(rows: list[dict[str, object]]) -> str:
              "and the call; the plain binary search over the same sorted const table finds the index only.", "",
              "| input | entries | --lookup | odg_find | plain bsearch | ratio |", "|---|---:|---|---:|---:|---:|"]
     for r in rows:
-        if "refused" in r:
-            lines.append(f"| {r['input']} | - | {r['lookup']} | refused | | |")
+        if "refused" in r or "compile_failed" in r:
+            why = "refused" if "refused" in r else f"does not compile: {r['compile_failed']}"
+            lines.append(f"| {r['input']} | - | {r['lookup']} | {why} | | |")
             continue
         lines.append(f"| {r['input']} | {r['entries']} | {r['lookup']} | {r['odg_find']:.1f} "
                      f"| {r['plain_bsearch']:.1f} | {float(r['ratio']):.0%} |")  # type: ignore[arg-type]
