@@ -61,7 +61,10 @@ NEWLINES = ("\n", "\n", "\r\n", "\r", "mixed")
 
 _EDS_SECTION = re.compile(r"^[ \t]*\[", re.M)
 _XML_UNITS = (re.compile(r"<(?:\w+:)?CANopenObject\b[^>]*?(?:/>|>.*?</(?:\w+:)?CANopenObject>)\s*", re.S),
-              re.compile(r"<(?:\w+:)?parameter\b[^>]*?(?:/>|>.*?</(?:\w+:)?parameter>)\s*", re.S))
+              re.compile(r"<(?:\w+:)?parameter\b[^>]*?(?:/>|>.*?</(?:\w+:)?parameter>)\s*", re.S),
+              re.compile(r"<(?:\w+:)?struct\b[^>]*?(?:/>|>.*?</(?:\w+:)?struct>)\s*", re.S))
+_ID_DEF = re.compile(r"\buniqueID=\"([^\"]*)\"")
+_ID_REF = re.compile(r"\buniqueIDRef=\"([^\"]*)\"")
 _NUMBER = re.compile(r"0[xX][0-9A-Fa-f]+|-?\b\d+\b")
 _ATTR = re.compile(r"\s(\w+)=\"([^\"]*)\"")
 _KEY_LINE = re.compile(r"^([^\[;#\n=][^=\n]*)=([^\n]*)$", re.M)
@@ -97,14 +100,15 @@ def split(name: str, fmt: str, text: str) -> Seed:
         starts = [m.start() for m in _EDS_SECTION.finditer(text)]
         units = [text[a:b] for a, b in zip(starts, starts[1:] + [len(text)], strict=False)]
         return Seed(name, fmt, [text[: starts[0]] if starts else text, ""], [units])
+    runs = sorted((found for found in (list(p.finditer(text)) for p in _XML_UNITS) if found),
+                  key=lambda found: found[0].start())
     frame, groups, pos = [], [], 0
-    for pattern in _XML_UNITS:
-        found = list(pattern.finditer(text, pos))
-        if not found:
-            continue
-        frame.append(text[pos: found[0].start()])
-        groups.append([m.group(0) for m in found])
-        pos = found[-1].end()
+    for found in runs:  # parameters come before the objects in most files, but not in all
+        found = [m for m in found if m.start() >= pos]
+        if found:
+            frame.append(text[pos: found[0].start()])
+            groups.append([m.group(0) for m in found])
+            pos = found[-1].end()
     frame.append(text[pos:])
     return Seed(name, fmt, frame, groups)
 
@@ -126,15 +130,32 @@ Units = list[list[str]]
 
 
 def slice_units(groups: Units, rng: random.Random) -> Units:
-    """A few units of each group, in their order: small inputs, many of them."""
-    out = []
-    for units in groups:
-        if len(units) <= 12:
-            out.append(list(units))
-            continue
-        keep = sorted(rng.sample(range(len(units)), rng.randint(1, 12)))
-        out.append([units[i] for i in keep])
+    """A few units of each group, in their order: small inputs, many of them. XDD parameters
+    are kept when a kept object refers to them (plus a few others), so slices still read."""
+    out = [_sample(units, rng) if not _defines_ids(units) else units for units in groups]
+    kept = "".join(u for units, mine in zip(out, groups, strict=True) if not _defines_ids(mine) for u in units)
+    referenced = set(_ID_REF.findall(kept))
+    for _ in range(2):  # objects name parameters, parameters name data types
+        for i, units in enumerate(groups):
+            if _defines_ids(units) and len(units) > 12:
+                out[i] = [u for u in units if _unique_id(u) in referenced or rng.random() < 0.02]
+                referenced.update(r for u in out[i] for r in _ID_REF.findall(u))
     return out
+
+
+def _sample(units: list[str], rng: random.Random) -> list[str]:
+    if len(units) <= 12:
+        return list(units)
+    return [units[i] for i in sorted(rng.sample(range(len(units)), rng.randint(1, 12)))]
+
+
+def _defines_ids(units: list[str]) -> bool:
+    return bool(units) and _unique_id(units[0]) is not None
+
+
+def _unique_id(unit: str) -> str | None:
+    match = _ID_DEF.search(unit, 0, 300)
+    return match.group(1) if match else None
 
 
 def _pick(groups: Units, rng: random.Random) -> list[str] | None:

@@ -111,14 +111,24 @@ def _count(tally: Tally, mutant: mutate.Mutant, outcome: mutate.Outcome) -> None
             heapq.heapreplace(tally.slow, item)
 
 
-def fuzz(inputs: int, jobs: int, seed: int, with_corpus: bool) -> tuple[Tally, float]:
+def fuzz(inputs: int, jobs: int, seed: int, with_corpus: bool, minutes: float) -> tuple[Tally, float]:
+    """Run the chunks; a new finding is written at once (unminimised) so a cut run keeps it."""
     tasks = [(seed, i, min(CHUNK, inputs - i * CHUNK)) for i in range((inputs + CHUNK - 1) // CHUNK)]
     total, start = Tally(), time.monotonic()
     with multiprocessing.Pool(jobs, initializer=_init, initargs=(with_corpus,)) as pool:
         for done, tally in enumerate(pool.imap_unordered(run_chunk, tasks), start=1):
+            for failure, (fmt, data, ops, detail) in tally.findings.items():
+                if failure not in total.findings:
+                    path = mutate.save_regression(data, fmt, failure)
+                    print(f"parsers: FINDING {failure} ({' '.join(ops)}) -> {path}\n{detail}", file=sys.stderr)
             total.merge(tally)
+            wall = time.monotonic() - start
             if done % 25 == 0 or done == len(tasks):
-                _progress(total, inputs, time.monotonic() - start)
+                _progress(total, inputs, wall)
+            if minutes and wall > minutes * 60:
+                print(f"parsers: time budget of {minutes:g} min spent after {total.inputs} inputs", file=sys.stderr)
+                pool.terminate()
+                break
     return total, time.monotonic() - start
 
 
@@ -145,16 +155,18 @@ def confirm_slow(total: Tally, median: float) -> list[dict]:
 
 def save_findings(total: Tally) -> list[dict]:
     saved = []
-    for failure, (fmt, data, ops, detail) in sorted(total.findings.items()):
+    for failure, (fmt, data, ops, _detail) in sorted(total.findings.items()):
         small = data if failure == "superlinear" else mutate.minimise(data, fmt, failure)
         path = mutate.save_regression(small, fmt, failure)
-        print(f"parsers: FINDING {failure} ({' '.join(ops)}) -> {path}\n{detail}", file=sys.stderr)
+        if small != data:  # the minimised input replaces the one saved when it was found
+            mutate.save_regression(data, fmt, failure).unlink()
+        print(f"parsers: {failure} minimised to {len(small)} bytes -> {path}", file=sys.stderr)
         saved.append({"failure": failure, "file": str(path.relative_to(mutate.ROOT)), "ops": ops})
     return saved
 
 
 def table(total: Tally, wall: float, jobs: int, seed: int, slow: list[dict], saved: list[dict],
-          median: float) -> dict:
+          median: float, requested: int) -> dict:
     rows = []
     for op in sorted(total.per_op, key=lambda o: (o.split(":")[0] if ":" in o else "", o)):
         n = total.per_op[op]
@@ -172,6 +184,8 @@ def table(total: Tally, wall: float, jobs: int, seed: int, slow: list[dict], sav
         "A row counts the inputs a mutation (or encoding, line end, format) took part in; one input "
         "usually combines several.",
     ]
+    if total.inputs < requested:
+        notes.insert(1, f"Cut by the time budget: {total.inputs} of the {requested} inputs asked for ran.")
     return {"title": "Parser fuzzing: structural mutants of the seed files", "inputs": total.inputs,
             "summary": f"{total.inputs} inputs, {total.models} with a model, {len(saved)} findings; median "
                        f"{median:.0f} ns per byte, slowest {slow[0]['factor'] if slow else 0}x the median.",
@@ -260,6 +274,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--guided", type=int, default=100_000, help="coverage-guided executions (0: none)")
     parser.add_argument("--jobs", type=int, default=min(2, os.cpu_count() or 1))
     parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--max-minutes", type=float, default=0.0,
+                        help="stop the structural engine after this long and report the inputs run (0: no limit)")
     parser.add_argument("--no-scaling", action="store_true", help="skip the inputs grown 1x..256x")
     parser.add_argument("--no-corpus", action="store_true", help="seed from the repository's files only")
     parser.add_argument("--results", type=Path, default=RESULTS)
@@ -277,12 +293,12 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def structural(args: argparse.Namespace) -> int:
-    total, wall = fuzz(args.inputs, args.jobs, args.seed, not args.no_corpus)
+    total, wall = fuzz(args.inputs, args.jobs, args.seed, not args.no_corpus, args.max_minutes)
     _init(not args.no_corpus)
     median = statistics.median(total.per_byte) if total.per_byte else 0.0
     slow = confirm_slow(total, median)
     saved = save_findings(total)
-    result = table(total, wall, args.jobs, args.seed, slow, saved, median)
+    result = table(total, wall, args.jobs, args.seed, slow, saved, median, args.inputs)
     (args.results / "parsers.json").write_text(json.dumps(result, indent=1, ensure_ascii=False) + "\n")
     print(f"parsers: {total.inputs} inputs, {len(saved)} findings", file=sys.stderr)
     return len(saved)

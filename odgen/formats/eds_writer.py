@@ -7,7 +7,9 @@ that named them, else to the list their index range implies.
 
 from __future__ import annotations
 
-from ..model import Obj, ObjectDictionary, Sub
+from collections.abc import Iterable
+
+from ..model import Field, Obj, ObjectDictionary, Sub
 from ..model.od import VAR
 from .eds import OBJECT_LISTS
 
@@ -36,6 +38,18 @@ def write_eds(od: ObjectDictionary) -> str:
         if section.name not in _LEADING_SECTIONS:
             _header(out, od, key)
     return "\n".join(map(_one_line, out)).rstrip("\n") + "\n"
+
+
+def _extra(out: list[str], fields: Iterable[Field]) -> None:
+    """Keys odgen does not interpret. One the section already has (an XDD's PDOmapping="TPDO" beside
+    PDOMapping=1 when the access does not say the direction) is left out: EDS has no place for it,
+    and readers ignore a repeated key (SYN003)."""
+    start = next(i for i in range(len(out) - 1, -1, -1) if out[i].startswith("["))
+    have = {line.lstrip(";").partition("=")[0].lower() for line in out[start + 1:]}
+    for f in fields:
+        if f.key.lower() not in have:
+            out.append(f"{f.key}={f.text}")
+            have.add(f.key.lower())
 
 
 def _one_line(line: str) -> str:
@@ -100,7 +114,7 @@ def _container_keys(out: list[str], obj: Obj) -> None:
         out.append(f";CountLabel={obj.count_label}")
     if obj.storage is not None:
         out.append(f";StorageLocation={obj.storage}")
-    out.extend(f"{f.key}={f.text}" for f in obj.extra.values())
+    _extra(out, obj.extra.values())
 
 
 def _sub_section(out: list[str], obj: Obj, sub: Sub) -> None:
@@ -135,7 +149,7 @@ def _value_keys(out: list[str], sub: Sub) -> None:
             out.append(f"{key}={text}")
     if sub.storage is not None:
         out.append(f";StorageLocation={sub.storage}")
-    out.extend(f"{f.key}={f.text}" for f in sub.extra.values())
+    _extra(out, sub.extra.values())
 
 
 def _compact_sections(out: list[str], obj: Obj) -> None:
