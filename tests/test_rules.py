@@ -7,7 +7,6 @@ it must produce. `clean.eds` is a complete, realistic device that must produce n
 
 from __future__ import annotations
 
-import time
 from pathlib import Path
 
 import pytest
@@ -167,8 +166,8 @@ def test_defined_types_are_not_undefined() -> None:
     assert not [r for r in _rules(od) if r.startswith("OBJ012")]
 
 
-def test_large_file_lints_in_linear_time(tmp_path: Path) -> None:
-    """4000 objects: a quadratic check would take seconds here."""
+def test_large_file_lints(tmp_path: Path) -> None:
+    """4000 objects (that the time stays linear in the size is measured by `make fuzz`, fuzz/scaling.py)."""
     text = (RULE_FIXTURES / "clean.eds").read_text(encoding="utf-8")
     indices = [0x2100 + i for i in range(4000)]
     entries = "\n".join(f"{n}=0x{index:04X}" for n, index in enumerate(indices, 3))
@@ -178,9 +177,7 @@ def test_large_file_lints_in_linear_time(tmp_path: Path) -> None:
                     f"AccessType=rw\nDefaultValue=5\nLowLimit=0\nHighLimit=100\n" for index in indices)
     path = tmp_path / "large.eds"
     path.write_text(text, encoding="utf-8")
-    start = time.perf_counter()
     result = lint(path)
-    assert time.perf_counter() - start < 1.5
     assert result.od is not None and len(result.od.objects) == 4016 and rendered(result) == []
 
 
@@ -191,10 +188,8 @@ def test_rules_run_on_real_files(path: Path) -> None:
     od, diags = load_path(path)
     if od is None:
         return
-    start = time.perf_counter()
     run_rules(od, diags, LintOptions())
     run_rules(od, Diagnostics(), LintOptions(node_id=1, can_fd=True))
-    assert time.perf_counter() - start < 1.0
     ours = [d for d in diags if d.rule.startswith(FAMILIES)]
     # no rule floods a file: aggregated reports keep each rule readable
     per_rule: dict[str, int] = {}

@@ -60,6 +60,7 @@ from ..diagnostics import Diagnostics, Loc
 from ..model import ARRAY, DEFSTRUCT, RECORD, VAR, Field, Obj, ObjectDictionary, Sub, Value, lookup, parse_value
 from ..model.datatypes import BASIC_TYPES, DataType
 from ..model.od import OBJECT_CODES
+from ..model.values import bounded_int
 
 NS = "http://www.canopen.org/xml/1.1"
 CANOPEN_NAMESPACES = (NS, "http://www.canopen.org/xml/1.0")
@@ -754,7 +755,7 @@ def _bound(el: etree._Element | None) -> _Found | None:
 
 def _hex_number(text: str) -> int | None:
     match = re.fullmatch(r"\s*(?:0[xX])?([0-9A-Fa-f]+)\s*", text)
-    return int(match.group(1), 16) if match else None
+    return bounded_int(match.group(1), 16) if match else None
 
 
 # Access words that already imply a PDO direction: read-only entries go to TPDOs, write-only to RPDOs.
@@ -769,7 +770,7 @@ def _integer(text: str) -> int | None:
     match = re.fullmatch(r"\s*(?:0[xX]([0-9A-Fa-f]+)|(\d+))\s*", text)
     if match is None:
         return None
-    return int(match.group(1), 16) if match.group(1) else int(match.group(2))
+    return bounded_int(match.group(1), 16) if match.group(1) else bounded_int(match.group(2))
 
 
 def _word(text: str, words) -> str | None:

@@ -18,6 +18,7 @@ from .datatypes import DataType
 # (rule id, message) pairs a reader turns into located diagnostics.
 Note = tuple[str, str]
 
+MAX_DIGITS = 64  # significant digits of an integer literal; 64-bit values need 20 decimal or 16 hex
 _INT_RE = re.compile(r"^([+-]?)(0[xX][0-9a-fA-F]+|[0-9]+)$")
 _NODEID_RE = re.compile(r"\$nodeid", re.IGNORECASE)
 _PREFIX_FORM = re.compile(r"^\$NODEID(\+.+)?$")
@@ -50,6 +51,13 @@ class Value:
         return self.text.strip() == ""
 
 
+def bounded_int(digits: str, base: int = 10) -> int | None:
+    """int(digits, base), or None past MAX_DIGITS significant digits: no CiA 301 type holds such a
+    number, and Python refuses to convert decimals of more than 4300 digits either way."""
+    significant = digits.lstrip("0")
+    return int(significant or "0", base) if len(significant) <= MAX_DIGITS else None
+
+
 def parse_int_literal(text: str) -> tuple[int | None, list[Note]]:
     """Read one integer literal; None when it is not one."""
     m = _INT_RE.match(text.strip())
@@ -58,20 +66,24 @@ def parse_int_literal(text: str) -> tuple[int | None, list[Note]]:
     sign, digits = m.groups()
     notes: list[Note] = []
     if digits[:2] in ("0x", "0X"):
-        value = int(digits, 16)
+        value = bounded_int(digits[2:], 16)
     elif len(digits) > 1 and digits[0] == "0":
         value, notes = _leading_zero(digits)
     else:
-        value = int(digits)
+        value = bounded_int(digits)
+    if value is None:
+        return None, []
     return (-value if sign == "-" else value), notes
 
 
-def _leading_zero(digits: str) -> tuple[int, list[Note]]:
+def _leading_zero(digits: str) -> tuple[int | None, list[Note]]:
     """`001` is octal in CiA 306 (strtoul base 0); say so when it matters."""
-    decimal = int(digits, 10)
+    decimal = bounded_int(digits)
+    if decimal is None:
+        return None, []
     if any(c in "89" for c in digits):
         return decimal, [("SYN006", f"'{digits}' has a leading zero but is not octal; read as {decimal}")]
-    octal = int(digits, 8)
+    octal = int(digits.lstrip("0") or "0", 8)  # as long as the decimal, which is bounded
     if octal != decimal:
         return octal, [("SYN006", f"'{digits}' is octal ({octal}) under CiA 306, not {decimal}")]
     return octal, []
@@ -121,8 +133,8 @@ def _read_time(value: Value, text: str, dtype: DataType) -> None:
     if pair is None:
         _read_integer(value, text, dtype)
         return
-    days, ms = int(pair.group(1)), int(pair.group(2))
-    if ms >= 1 << 28 or days >= 1 << 16:
+    days, ms = bounded_int(pair.group(1)), bounded_int(pair.group(2))
+    if days is None or ms is None or ms >= 1 << 28 or days >= 1 << 16:
         value.error = f"'{text}' is not <days 0..65535> <ms 0..268435455>"
         return
     value.parsed = (days << 32) | ms  # ms in the low 28 bits, days in bytes 4-5
