@@ -229,7 +229,10 @@ def test_100_mb_file_is_refused_unread(tmp_path: Path, suffix: str) -> None:
         for _ in range(100 * 1024 * 1024 // len(unit) + 1):
             out.write(unit)
     assert path.stat().st_size >= 100 * 1024 * 1024
-    got = _lint_in_subprocess(path)
+    try:
+        got = _lint_in_subprocess(path)
+    finally:
+        path.unlink()  # pytest keeps the temporary folders of recent runs
     assert got["rules"] == {"SYN018": 1} and not got["model"]
     assert got["rss_mb"] < _baseline_mb() + 64, got
 
