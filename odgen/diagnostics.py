@@ -46,6 +46,7 @@ class Rule:
 
 RULES: dict[str, Rule] = {}
 MAX_PER_RULE = 500  # findings of one rule listed per file; the rest are counted in one line
+MAX_MESSAGE = 400  # characters of a message
 
 
 def define_rule(
@@ -107,6 +108,8 @@ class Diagnostics:
         rule = RULES[rule_id]
         count = self.counts[rule_id] = self.counts.get(rule_id, 0) + 1
         if count <= MAX_PER_RULE:
+            if len(message) > MAX_MESSAGE:  # a message quoting a hostile 5000-digit value
+                message = message[: MAX_MESSAGE - 3] + "..."
             self.items.append(Diagnostic(rule_id, rule.severity, message, loc, index, sub))
             return
         # A hostile file can repeat one mistake millions of times: list the first ones, count the rest
