@@ -136,8 +136,11 @@ def markdown(rows: list[dict[str, object]]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def run(labels: dict[str, Path]) -> dict[str, object]:
+def run(labels: dict[str, Path], broken: dict[tuple[str, str], str] | None = None) -> dict[str, object]:
+    """`broken`: (input, mode) whose generated C is known not to compile (gcc can take minutes to say so)."""
     ensure_valgrind()
     BUILD.mkdir(parents=True, exist_ok=True)
-    rows = [measure(label, path, mode) for label, path in labels.items() for mode in MODES]
+    broken = broken or {}
+    rows = [{"input": label, "lookup": mode, "compile_failed": broken[(label, mode)]} if (label, mode) in broken
+            else measure(label, path, mode) for label, path in labels.items() for mode in MODES]
     return {"rows": rows, "targets": targets(rows), "markdown": markdown(rows)}

@@ -93,7 +93,10 @@ def main() -> None:
     if "footprint" in parts:
         results["footprint"] = footprint.run(labels)
     if "lookup" in parts:
-        results["lookup"] = lookup_cost.run(labels)
+        rows = results.get("footprint", {}).get("rows", [])
+        broken = {(str(r["input"]), str(r["lookup"])): str(r["compile_failed"])
+                  for r in rows if "compile_failed" in r}  # type: ignore[attr-defined]
+        results["lookup"] = lookup_cost.run(labels, broken)
     wall = time.time() - started
     info["load_average_end"] = os.getloadavg()
     targets: list[Target] = [t for r in results.values() for t in r.get("targets", [])]  # type: ignore[attr-defined]
