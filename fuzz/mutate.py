@@ -397,8 +397,9 @@ def _property(data: bytes, fmt: str) -> tuple[bool, str | None, str]:
             lint_model(od, diags, LintOptions())
             written = write_eds(od)
         texts = [d.text() for d in diags.sorted()]
-        if written is not None and not _stable(written):
-            return True, "convert-not-stable", written[-2000:]
+        unstable = _unstable_key(written) if written is not None else None
+        if unstable is not None:
+            return True, f"convert-not-stable:{unstable}", (written or "")[-2000:]
     except Exception as err:  # the property under test: no exception escapes
         return False, signature(err), "".join(traceback.format_exception(err))[-3000:]
     if od is None and not any(d.severity >= Severity.ERROR for d in diags):
@@ -408,13 +409,20 @@ def _property(data: bytes, fmt: str) -> tuple[bool, str | None, str]:
     return od is not None, None, ""
 
 
-def _stable(written: str) -> bool:
-    """What `odgen convert` writes reads back to the same model: writing it again gives the same text.
+def _unstable_key(written: str) -> str | None:
+    """What `odgen convert` writes must read back to the same model: writing it again gives the same
+    text. None when it does, else the key of the first line that differs.
 
     Blanks at either end of a value are the exception: INI has no quoting, so readers drop them
     (an XDD string padded with spaces loses the padding in EDS form)."""
     again, _ = load_bytes(written.encode("utf-8"), "converted.eds", "eds")
-    return again is not None and _trimmed(write_eds(again)) == _trimmed(written)
+    if again is None:
+        return "unreadable"
+    first, second = _trimmed(written), _trimmed(write_eds(again))
+    if first == second:
+        return None
+    diff = next((a or b for a, b in zip(first, second, strict=False) if a != b), "length")
+    return re.sub(r"[^A-Za-z]+", "", diff.partition("=")[0])[:20] or "section"
 
 
 def _trimmed(text: str) -> list[str]:

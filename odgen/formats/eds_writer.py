@@ -11,9 +11,10 @@ from collections.abc import Iterable
 
 from ..model import Field, Obj, ObjectDictionary, Sub
 from ..model.od import VAR
-from .eds import OBJECT_LISTS
+from .eds import KEYWORDS, OBJECT_LISTS
 
 MANDATORY = (0x1000, 0x1001, 0x1018)
+_KEYWORDS = {k.lower() for k in KEYWORDS}
 _LEADING_SECTIONS = ("FileInfo", "DeviceInfo", "DeviceComissioning", "DummyUsage", "Comments")
 
 
@@ -42,10 +43,11 @@ def write_eds(od: ObjectDictionary) -> str:
 
 def _extra(out: list[str], fields: Iterable[Field]) -> None:
     """Keys odgen does not interpret. One the section already has (an XDD's PDOmapping="TPDO" beside
-    PDOMapping=1 when the access does not say the direction) is left out: EDS has no place for it,
-    and readers ignore a repeated key (SYN003)."""
+    PDOMapping=1 when the access does not say the direction), or that spells a CiA 306 keyword in
+    other letters (an XDD attribute obJectType), is left out: EDS has no place for it, and readers
+    would take it for the keyword or ignore it as a repeat (SYN003)."""
     start = next(i for i in range(len(out) - 1, -1, -1) if out[i].startswith("["))
-    have = {line.lstrip(";").partition("=")[0].lower() for line in out[start + 1:]}
+    have = {line.lstrip(";").partition("=")[0].lower() for line in out[start + 1:]} | _KEYWORDS
     for f in fields:
         if f.key.lower() not in have:
             out.append(f"{f.key}={f.text}")
