@@ -296,7 +296,34 @@ def build(od: ObjectDictionary, placements: dict[tuple[int, int], Placement], na
     view.structs = [_sorted_struct(s) for _, s in sorted(b.structs.items(), key=lambda kv: _struct_order(kv[0]))]
     view.groups = _groups(od, view)
     _check_functions(b, view)
+    for block in view.structs:
+        _check_block_size(b, block)
     return view
+
+
+BLOCK_LIMIT = 0xFFFF  # odg_sub_t.offset is 16-bit: one value block addresses at most 64 KiB
+
+
+def _check_block_size(b: _Builder, struct: StorageStruct) -> None:
+    """A value block the 16-bit sub-entry offsets cannot address is refused (GEN007) at the
+    first value that lies beyond it, instead of C that fails its own size check."""
+    end = 0
+    for m in struct.members:
+        count = int(m.array[1:-1]) if m.array else 1
+        end = -(-end // m.align) * m.align + _ALIGN[m.ctype] * count
+        if end > BLOCK_LIMIT:
+            index, sub = m.key
+            obj = b.od.objects.get(index)
+            line = obj.subs[sub].line if obj is not None and sub in obj.subs else 0
+            total = _block_bytes(struct)
+            b.diags.add("GEN007", Loc(b.od.source, line),
+                        f"{struct.name} needs {total}+ bytes; a storage class's block is at most {BLOCK_LIMIT} "
+                        f"bytes (16-bit offsets), exceeded from 0x{index:04X}sub{sub} on", index)
+            return
+
+
+def _block_bytes(struct: StorageStruct) -> int:
+    return sum(_ALIGN[m.ctype] * (int(m.array[1:-1]) if m.array else 1) for m in struct.members)
 
 
 def _generated_symbols(view: DictView) -> set[str]:

@@ -45,3 +45,12 @@ define_rule(
     "placed in the generated dictionary.",
     example="[0020]\nParameterName=PDO_COMMUNICATION_PARAMETER\nObjectType=0x6",
     fix="Nothing to do; this is a note.")
+define_rule(
+    "GEN007", E, "value block too large", ref="odgen generate",
+    why="Sub-entry descriptors are 8 bytes with a 16-bit offset into their storage class's value "
+    "block (FLASH, RAM, or one persistence group), so one block holds at most 65535 bytes; C "
+    "generated beyond that would not compile.",
+    example="16000 RAM objects with long string defaults",
+    fix="Spread the values over storage classes with an options file (constant entries to rom, "
+    "parameters into persistence groups, each its own block), shorten string or domain "
+    "capacities, or split the device.")
