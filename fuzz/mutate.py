@@ -66,6 +66,7 @@ _XML_UNITS = (re.compile(r"<(?:\w+:)?CANopenObject\b[^>]*?(?:/>|>.*?</(?:\w+:)?C
               re.compile(r"<(?:\w+:)?struct\b[^>]*?(?:/>|>.*?</(?:\w+:)?struct>)\s*", re.S))
 _ID_DEF = re.compile(r"\buniqueID=\"([^\"]*)\"")
 _ID_REF = re.compile(r"\buniqueIDRef=\"([^\"]*)\"")
+_COMMENT = re.compile(r"\s;.*$")
 _NUMBER = re.compile(r"0[xX][0-9A-Fa-f]+|-?\b\d+\b")
 _ATTR = re.compile(r"\s(\w+)=\"([^\"]*)\"")
 _KEY_LINE = re.compile(r"^([^\[;#\n=][^=\n]*)=([^\n]*)$", re.M)
@@ -413,8 +414,9 @@ def _unstable_key(written: str) -> str | None:
     """What `odgen convert` writes must read back to the same model: writing it again gives the same
     text. None when it does, else the key of the first line that differs.
 
-    Blanks at either end of a value are the exception: INI has no quoting, so readers drop them
-    (an XDD string padded with spaces loses the padding in EDS form)."""
+    Two limits of INI, which has no quoting, are the exception: readers drop blanks at either end
+    of a value (an XDD string padded with spaces loses the padding in EDS form) and take ` ;` and
+    what follows for a comment (an XDD name `a ;b` is `a` in EDS form, reported as SYN014)."""
     again, _ = load_bytes(written.encode("utf-8"), "converted.eds", "eds")
     if again is None:
         return "unreadable"
@@ -426,7 +428,8 @@ def _unstable_key(written: str) -> str | None:
 
 
 def _trimmed(text: str) -> list[str]:
-    return [key.strip() + eq + value.strip() for key, eq, value in (line.partition("=") for line in text.split("\n"))]
+    return [key.strip() + eq + _COMMENT.sub("", value).strip()
+            for key, eq, value in (line.partition("=") for line in text.split("\n"))]
 
 
 def signature(err: BaseException) -> str:
