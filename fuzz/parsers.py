@@ -174,7 +174,7 @@ def table(total: Tally, wall: float, jobs: int, seed: int, slow: list[dict], sav
     notes = [
         f"{total.inputs} inputs ({total.bytes / 1e6:.1f} MB) from {len(_SEEDS) or len(mutate.seed_files())} seed "
         f"files, random seed {seed}, {jobs} processes, {wall / 60:.1f} min wall, {total.ns / 1e9 / 60:.1f} "
-        f"min CPU ({total.inputs / wall:.0f} inputs/s).",
+        f"min summed over the inputs ({total.inputs / wall:.0f} inputs/s).",
         f"{total.models} inputs gave a model, {total.inputs - total.models} diagnostics only; "
         f"{len(saved)} findings{': ' + ', '.join(s['failure'] for s in saved) if saved else ''}.",
         f"Median CPU time per byte (inputs >= {MIN_SIZE} bytes): {median:.0f} ns; slowest per byte, measured "
