@@ -105,10 +105,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         } else if (op < 0xC0u) {
             odg_node_tick(&node, take(&in));
         } else if (op < 0xE0u) {
+            static const uint8_t abort_[8] = {0x80, 0, 0, 0, 0, 0, 0, 0};
             uint32_t m = n_mappable ? mappable[take(&in) % n_mappable] : 0u;
             uint32_t v = take32(&in);
             uint8_t len = (uint8_t)((m & 0xFFu) / 8u);
             if (len >= 1u && len <= 4u) {
+                /* a foreign frame to the server may have begun a transfer (in a block download
+                 * this request would be a segment, rightly unanswered): end it first */
+                frame(SDO_RX, 0, abort_, 8);
                 (void)sdo_write((uint16_t)(m >> 16), (uint8_t)(m >> 8), v, len);
             }
         } else if (op < 0xF0u) {
