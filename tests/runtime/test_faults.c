@@ -284,9 +284,8 @@ static void stress(void)
         if (odg_persist_store(&td, g) == ODG_OK) {
             memcpy(img[g][PREV], img[g][CUR], msize(g));
             memcpy(img[g][CUR], img[g][ATT], msize(g));
-        } else {
-            has_att[g] = 1;
         }
+        has_att[g] = 1; /* counted as "the image being stored" when it loads */
         if (nv_fault_rand(&nv) % 4u == 0u) { /* a bit flips at rest, in either slot of either group */
             uint8_t fg = (uint8_t)(nv_fault_rand(&nv) & 1u);
             int k = (int)(nv_fault_rand(&nv) & 1u);
