@@ -19,6 +19,9 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
+from odgen.formats import load_bytes
+from odgen.formats.eds_writer import write_eds
+
 Mapped = tuple[int, int, int, str]  # index, sub, bits, what it carries
 
 
@@ -145,8 +148,7 @@ def _process_objects(dev: Device) -> dict[int, dict[int, str]]:
 
 
 def _header(dev: Device) -> list[str]:
-    return ["; " + dev.product + ": written by describe.py (plasma-equipment example)",
-            "[FileInfo]", f"FileName={dev.file}", "FileVersion=1", "FileRevision=0", "EDSVersion=4.0",
+    return ["[FileInfo]", f"FileName={dev.file}", "FileVersion=1", "FileRevision=0", "EDSVersion=4.0",
             f"Description={dev.product}", "", "[DeviceInfo]", "VendorName=odgen examples", "VendorNumber=0x00000000",
             f"ProductName={dev.product}", "BaudRate_125=1", "BaudRate_250=1", "BaudRate_500=1",
             "SimpleBootUpMaster=0", "SimpleBootUpSlave=1", "Granularity=8", "DynamicChannelsSupported=0",
@@ -197,7 +199,11 @@ def _array(index: int, access: str, subs: dict[int, str]) -> list[str]:
 def main(argv: list[str]) -> int:
     outdir = Path(argv[1]) if len(argv) > 1 else Path(__file__).parent
     for dev in devices():
-        (outdir / dev.file).write_text(eds(dev), encoding="ascii")
+        od, _diags = load_bytes(eds(dev).encode("ascii"), dev.file, "eds")
+        if od is None:
+            print(f"describe.py: {dev.file} does not read back", file=sys.stderr)
+            return 1
+        (outdir / dev.file).write_text(write_eds(od), encoding="ascii")  # in odgen's canonical EDS form
     return 0
 
 
