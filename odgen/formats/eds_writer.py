@@ -14,7 +14,7 @@ from ..model.od import VAR
 from .eds import KEYWORDS, OBJECT_LISTS
 
 MANDATORY = (0x1000, 0x1001, 0x1018)
-_KEYWORDS = {k.lower() for k in KEYWORDS}
+_KEYWORDS = {k.lower(): k for k in KEYWORDS}
 _LEADING_SECTIONS = ("FileInfo", "DeviceInfo", "DeviceComissioning", "DummyUsage", "Comments")
 
 
@@ -47,9 +47,10 @@ def _extra(out: list[str], fields: Iterable[Field]) -> None:
     other letters (an XDD attribute obJectType), is left out: EDS has no place for it, and readers
     would take it for the keyword or ignore it as a repeat (SYN003)."""
     start = next(i for i in range(len(out) - 1, -1, -1) if out[i].startswith("["))
-    have = {line.lstrip(";").partition("=")[0].lower() for line in out[start + 1:]} | _KEYWORDS
+    have = {line.lstrip(";").partition("=")[0].lower() for line in out[start + 1:]}
     for f in fields:
-        if f.key.lower() not in have:
+        respelled = _KEYWORDS.get(f.key.lower(), f.key) != f.key
+        if f.key.lower() not in have and not respelled:
             out.append(f"{f.key}={f.text}")
             have.add(f.key.lower())
 
