@@ -10,7 +10,7 @@ from collections.abc import Iterator
 
 from ..diagnostics import Diagnostics, Loc, Severity, define_rule
 from ..model import Field, ObjectDictionary, ObjectList
-from ..model.values import parse_int_literal
+from ..model.values import bounded_int, parse_int_literal
 from . import LintOptions, check
 from .common import gaps
 
@@ -217,10 +217,18 @@ def _entry(od: ObjectDictionary, key: str, name: str, fld: Field, seen: dict[int
 
 def _decimal_hint(od: ObjectDictionary, text: str) -> str:
     """`1=1018` is decimal 1018 = 0x03FA; say so when the hex reading names an object."""
-    text = text.strip()
-    if text.isdigit() and text[0] != "0" and int(text, 16) in od.objects:
-        return f" ({text} is decimal; 0x{int(text, 16):04X} was probably meant)"
+    index = _hex_reading(text)
+    if index is not None and index in od.objects:
+        return f" ({text.strip()} is decimal; 0x{index:04X} was probably meant)"
     return ""
+
+
+def _hex_reading(text: str) -> int | None:
+    """The hex value of ASCII decimal digits without a leading zero (isdigit() alone takes '²' and '١')."""
+    text = text.strip()
+    if not (text.isascii() and text.isdigit()) or text[0] == "0":
+        return None
+    return bounded_int(text, 16)
 
 
 def _misread_decimals(od: ObjectDictionary) -> set[int]:
@@ -228,8 +236,9 @@ def _misread_decimals(od: ObjectDictionary) -> set[int]:
     found = set()
     for olist in od.object_lists.values():
         for fld in olist.entries:
-            if _decimal_hint(od, fld.text) and int(fld.text.strip()) not in od.objects:
-                found.add(int(fld.text.strip(), 16))
+            index = _hex_reading(fld.text)
+            if index is not None and index in od.objects and bounded_int(fld.text.strip()) not in od.objects:
+                found.add(index)
     return found
 
 
