@@ -228,9 +228,9 @@ typedef enum odg_boot_status {
 
 /* ---- the dictionary ------------------------------------------------------------- */
 
-typedef struct odg_state {
-    uint8_t node_id;            /* set by odg_init before dict->reset runs */
+typedef struct odg_state { /* pointer first: no padding between the bytes */
     const odg_nv_driver_t *nv;  /* set by odg_init; NULL: 0x1010/0x1011 abort with DATA_STORE */
+    uint8_t node_id;            /* set by odg_init before dict->reset runs */
     uint8_t boot_seen;          /* set by odg_init: bit (1 << status) for each odg_boot_status_t
                                  * a persistence group reported (0 without groups) */
 } odg_state_t;

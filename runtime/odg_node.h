@@ -180,7 +180,9 @@ odg_abort_t odg_node_emcy(odg_node_t *node, uint16_t code, uint8_t error_registe
                           const uint8_t *vendor, uint8_t n_vendor);
 
 /* Ask TPDO `n` (0-based: 0x1800 + n) to be sent: at once (inhibit time permitting) for
- * event-driven types 254/255, at the next SYNC for type 0. Ignored when not operational. */
+ * event-driven types 254/255, at the next SYNC for type 0. Ignored when not operational.
+ * With -DODG_NODE_TPDO_COS=0 such requests (and event timers) are the only events: a changed
+ * mapped value alone sends nothing (NODE.md). */
 void odg_node_tpdo_request(odg_node_t *node, uint16_t n);
 
 /* Re-read every communication entry (0x1005, 0x1014, 0x1200, PDOs) after the application
