@@ -38,7 +38,7 @@ VALUE_KEYS = {"datatype", "accesstype", "defaultvalue", "lowlimit", "highlimit",
               "storagelocation", "parametername", "objecttype", "countlabel"}
 TEMPLATE_KEYS = {"datatype", "accesstype", "defaultvalue", "lowlimit", "highlimit", "pdomapping"}
 _STRINGLIKE = ("vstring", "ustring", "domain")
-_HASH_COMMENT = re.compile(r"\s+#.*$")
+HASH_COMMENT = re.compile(r"\s+#.*$")
 
 
 def load_eds(data: bytes, source: str, diags: Diagnostics, fmt: str = "eds") -> ObjectDictionary:
@@ -183,7 +183,7 @@ class _Reader:
         return parse_value(text, dtype, entry.line)
 
     def _strip_hash_comment(self, entry: ini.IniEntry) -> str:
-        match = _HASH_COMMENT.search(entry.value) if "#" in entry.value else None
+        match = HASH_COMMENT.search(entry.value) if "#" in entry.value else None
         if match is None:
             return entry.value
         self.diags.add("SYN014", self.loc(entry.line),

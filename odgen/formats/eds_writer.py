@@ -11,7 +11,7 @@ from collections.abc import Iterable
 
 from ..model import Field, Obj, ObjectDictionary, Sub
 from ..model.od import VAR
-from .eds import KEYWORDS, OBJECT_LISTS
+from .eds import HASH_COMMENT, KEYWORDS, OBJECT_LISTS
 
 MANDATORY = (0x1000, 0x1001, 0x1018)
 _KEYWORDS = {k.lower(): k for k in KEYWORDS}
@@ -50,7 +50,7 @@ def _extra(out: list[str], fields: Iterable[Field]) -> None:
     have = {line.lstrip(";").partition("=")[0].lower() for line in out[start + 1:]}
     for f in fields:
         respelled = _KEYWORDS.get(f.key.lower(), f.key) != f.key
-        if f.key.lower() not in have and not respelled:
+        if f.key.lower() not in have and not respelled and _ini_key(f.key):
             out.append(f"{f.key}={f.text}")
             have.add(f.key.lower())
 
@@ -70,7 +70,7 @@ def _header(out: list[str], od: ObjectDictionary, name: str) -> None:
     if section is None:
         return
     out.append(f"[{section.name}]")
-    out.extend(f"{f.key}={f.text}" for f in section.fields.values())
+    out.extend(f"{f.key}={f.text}" for f in section.fields.values() if _ini_key(f.key))
     out.append("")
 
 
@@ -129,11 +129,17 @@ def _sub_section(out: list[str], obj: Obj, sub: Sub) -> None:
     out.append("")
 
 
+def _ini_key(key: str) -> bool:
+    """A key an INI reader reads back as a key (an XDD attribute or dummy entry may be named
+    anything; ;Key=Value comments are the writer's own)."""
+    return bool(key.strip()) and key.lstrip()[0] not in ";#[" and "=" not in key
+
+
 def _typed_keys(out: list[str], sub: Sub) -> None:
     if sub.data_type is not None:
         out.append(f"DataType={_hex(sub.data_type, 4)}")
-    if sub.access is not None:
-        out.append(f"AccessType={sub.access}")
+    if sub.access is not None:  # the EDS reader drops a ' #...' tail of AccessType: so does the writer
+        out.append(f"AccessType={HASH_COMMENT.sub('', sub.access)}")
     for key, value in (("DefaultValue", sub.default), ("LowLimit", sub.low), ("HighLimit", sub.high)):
         if value is not None:
             out.append(f"{key}={value.text}")
