@@ -1,4 +1,4 @@
-"""Command line: `odgen lint`, `convert`, `generate`, `explain`, `rules`.
+"""Command line: `odgen lint`, `convert`, `generate`, `explain`, `rules`, `diff`.
 
 Exit codes: 0 clean, 1 findings (errors, or warnings under --strict),
 2 usage error or unreadable input. Only odgen's own bugs raise past main(),
@@ -23,6 +23,8 @@ from .codegen.options import parse_pattern
 from .diagnostics import Diagnostics, Severity
 from .errors import OdgenError
 from .fileio import write_atomic
+from .diff import diff_paths, fails
+from .diff.report import RENDERERS as DIFF_RENDERERS
 from .formats import load_path
 from .formats.eds_writer import write_eds
 from .profiles import ds401 as ds401_profile
@@ -108,6 +110,7 @@ def build_parser() -> argparse.ArgumentParser:
     rt.add_argument("--report", type=Path, help="write the results as JSON")
 
     add_profile_parser(commands)
+    add_diff_parser(commands)
 
     rules = commands.add_parser("rules", help="list the rule catalogue")
     rules.add_argument("--markdown", action="store_true", help="as docs/rules.md")
@@ -142,6 +145,31 @@ def add_profile_parser(commands: argparse._SubParsersAction[argparse.ArgumentPar
         ds401.add_argument(f"--{key}", type=_count(0xFFFFFFFF), default=0, metavar="N")
     ds401.add_argument("-o", "--output", type=Path, required=True, metavar="FILE.eds")
     ds401.add_argument("--generate", type=Path, metavar="DIR", help="also generate the C dictionary into DIR")
+
+
+def add_diff_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    diff = commands.add_parser("diff", help="what an update of a description breaks or changes (docs/diff.md)")
+    diff.add_argument("old", type=Path, metavar="OLD")
+    diff.add_argument("new", type=Path, metavar="NEW")
+    diff.add_argument("--options", type=Path, metavar="OPTS", help="options file (persistence groups) of both")
+    diff.add_argument("--old-options", type=Path, metavar="OPTS", help="options file of OLD")
+    diff.add_argument("--new-options", type=Path, metavar="OPTS", help="options file of NEW")
+    diff.add_argument("--format", choices=sorted(DIFF_RENDERERS), default="text")
+    diff.add_argument("--output", "-o", type=Path, help="write the report to a file instead of stdout")
+    diff.add_argument("--fail-on", choices=("breaking", "stored", "compatible", "none"), default="breaking",
+                      help="exit 1 on changes of this class or a more severe one (default: breaking)")
+
+
+def cmd_diff(args: argparse.Namespace) -> int:
+    result = diff_paths(args.old, args.new, args.old_options or args.options, args.new_options or args.options)
+    for d in result.read_errors:
+        print(d.text(), file=sys.stderr)
+    report = DIFF_RENDERERS[args.format](result)
+    if args.output:
+        write_atomic(args.output, report)
+    else:
+        sys.stdout.write(report)
+    return 1 if fails(result, args.fail_on) else 0
 
 
 def cmd_profile(args: argparse.Namespace) -> int:
@@ -294,7 +322,7 @@ def cmd_rules(args: argparse.Namespace) -> int:
 
 COMMANDS = {"lint": cmd_lint, "convert": cmd_convert, "generate": cmd_generate, "explain": cmd_explain,
             "check": cmd_check, "node": cmd_node, "roundtrip": cmd_roundtrip, "rules": cmd_rules,
-            "profile": cmd_profile}
+            "profile": cmd_profile, "diff": cmd_diff}
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -1,0 +1,60 @@
+"""Class (b): what boot migration does to each persistent entry, group by group."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from ..codegen.options import load_options
+from ..codegen.placement import place
+from ..diagnostics import Diagnostics, Severity
+from ..errors import OdgenError
+from ..model import ObjectDictionary
+from ..persist.layout import group_layouts
+from ..persist.migration import CONVERT, DEFAULT, DROP, KEEP, RESIZE, GroupLayout, Step, plan
+from .changes import Change
+
+KINDS = {CONVERT: "DIF201", RESIZE: "DIF202", DROP: "DIF203", DEFAULT: "DIF204", KEEP: "DIF205"}
+
+
+def layouts(od: ObjectDictionary, options: Path | None) -> dict[str, GroupLayout]:
+    """The persistence groups of a description placed with an options file (or none)."""
+    diags = Diagnostics()
+    placements = place(od, load_options(options, diags), diags)
+    errors = [d for d in diags.sorted() if d.rule == "GEN001" and d.severity == Severity.ERROR]
+    if errors:
+        raise OdgenError(f"{errors[0].text()}; fix the options file")
+    return group_layouts(od, placements)
+
+
+def plans(old: dict[str, GroupLayout], new: dict[str, GroupLayout]) -> dict[str, list[Step]]:
+    return {name: plan(old.get(name), new.get(name)) for name in sorted(set(old) | set(new))}
+
+
+def stored_changes(group_plans: dict[str, list[Step]], old_od: ObjectDictionary,
+                   new_od: ObjectDictionary) -> list[Change]:
+    out = []
+    for group, steps in group_plans.items():
+        for step in steps:
+            if step.action == KEEP and not step.checked:
+                continue
+            new_sub, old_sub = new_od.find(step.index, step.sub), old_od.find(step.index, step.sub)
+            obj = new_od.objects.get(step.index) or old_od.objects.get(step.index)
+            sub = None if obj is not None and obj.is_var else step.sub
+            out.append(Change(KINDS[step.action], f"in group '{group}': {_message(step)}", step.index, sub,
+                              new_sub.line if new_sub else 0, old_sub.line if old_sub else 0))
+    return out
+
+
+def _message(step: Step) -> str:
+    limits = ""
+    if step.checked and step.new is not None:
+        low, high = step.new.low, step.new.high
+        limits = f"; a stored value outside {_limit(low)}..{_limit(high)} becomes the default"
+    if step.action == KEEP:
+        return "kept" + limits
+    what = {CONVERT: "converted", RESIZE: "resized, what fits kept", DROP: "dropped", DEFAULT: "the default"}
+    return f"{what[step.action]} at boot ({step.reason}){limits}"
+
+
+def _limit(value: int | float | None) -> str:
+    return "" if value is None else str(value)

@@ -1,0 +1,1 @@
+"""Stored parameters: the layout of each persistence group and how a stored image migrates."""
