@@ -18,7 +18,7 @@ from ..persist.migration import Step
 from .changes import CLASSES, Change, worst
 from .compare import object_changes
 from .stored import layouts, plans, stored_changes
-from .version import version_changes
+from .version import version_changes, versions
 
 __all__ = ["CLASSES", "Change", "DiffResult", "diff_models", "diff_paths", "fails"]
 
@@ -30,6 +30,7 @@ class DiffResult:
     changes: list[Change] = field(default_factory=list)
     groups: dict[str, list[Step]] = field(default_factory=dict)  # boot migration per persistence group
     read_errors: list[Diagnostic] = field(default_factory=list)  # errors the readers found in OLD or NEW
+    versions: dict[str, str] = field(default_factory=dict)  # "revision" / "file version": "OLD -> NEW"
 
     def count(self, cls: str) -> int:
         return sum(1 for c in self.changes if c.change_class == cls)
@@ -46,11 +47,12 @@ def diff_paths(old: Path, new: Path, old_options: Path | None = None, new_option
 def diff_models(old: ObjectDictionary, new: ObjectDictionary, old_options: Path | None = None,
                 new_options: Path | None = None) -> DiffResult:
     group_plans = plans(layouts(old, old_options), layouts(new, new_options))
-    stored_keys = {(s.index, s.sub) for steps in group_plans.values() for s in steps if s.new is not None}
+    # entries stored before and after: a new default does not reach devices that stored a value
+    stored_keys = {(s.index, s.sub) for steps in group_plans.values() for s in steps if s.old and s.new}
     changes = object_changes(old, new, stored_keys) + stored_changes(group_plans, old, new)
     changes += version_changes(old, new, changes)
     changes.sort(key=lambda c: (CLASSES.index(c.change_class), -1 if c.index is None else c.index, c.sub or 0, c.kind))
-    return DiffResult(old.source, new.source, changes, group_plans)
+    return DiffResult(old.source, new.source, changes, group_plans, versions=versions(old, new))
 
 
 def fails(result: DiffResult, fail_on: str) -> bool:

@@ -21,7 +21,8 @@ def summary(result: DiffResult) -> dict[str, int]:
 def render_text(result: DiffResult) -> str:
     lines = [c.text(result.new, result.old) for c in result.changes]
     counts = ", ".join(f"{n} {cls}" for cls, n in summary(result).items())
-    lines.append(f"{result.old} -> {result.new}: {len(result.changes)} change(s): {counts}")
+    shown = "; ".join(f"{what} {change}" for what, change in result.versions.items())
+    lines.append(f"{result.old} -> {result.new}: {len(result.changes)} change(s): {counts} ({shown})")
     return "\n".join(lines) + "\n"
 
 
@@ -45,6 +46,7 @@ def render_json(result: DiffResult) -> str:
         "changes": [_change(c, result) for c in result.changes],
         "migration": {group: [_step(s) for s in steps if s.action != KEEP or s.checked]
                       for group, steps in result.groups.items()},
+        "versions": result.versions,
         "summary": summary(result),
     }
     return json.dumps(doc, indent=2) + "\n"

@@ -22,6 +22,14 @@ def version_changes(old: ObjectDictionary, new: ObjectDictionary, changes: list[
     return [c for c in (_revision_change(old, new, cls), _file_change(old, new, cls)) if c is not None]
 
 
+def versions(old: ObjectDictionary, new: ObjectDictionary) -> dict[str, str]:
+    """The identity revision and file version of both files, as shown in reports ("?" when unknown)."""
+    revisions = [_revision(od) for od in (old, new)]
+    files = [file_version(od) for od in (old, new)]
+    return {"revision": " -> ".join("?" if r is None else f"0x{r:08X}" for r in revisions),
+            "file version": " -> ".join("?" if f is None else _shown(f) for f in files)}
+
+
 def _revision_change(old: ObjectDictionary, new: ObjectDictionary, cls: str) -> Change | None:
     before, after = _revision(old), _revision(new)
     if before is None or after is None:
