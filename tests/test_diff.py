@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 from importlib import resources
 from pathlib import Path
 
@@ -76,6 +77,20 @@ def test_options_of_each_side_say_what_migration_does() -> None:
     assert {kind for kind, _ in found} - EXPECTED[COMPATIBLE] == {"DIF204", "DIF401", "DIF402"}
 
 
+def test_group_that_moves_in_nv_loses_its_stored_values(tmp_path: Path) -> None:
+    """`comm` outgrows its region when v2 also stores TPDO 1: `app`, placed after it, moves."""
+    grown = tmp_path / "options.toml"
+    grown.write_text(OPTIONS.read_text(encoding="utf-8").replace('match = "0x1017"', 'match = ["0x1017", "0x1800"]'),
+                     encoding="utf-8")
+    result = diff_paths(BASE, BASE, OPTIONS, grown)
+    moved = [c for c in result.changes if c.kind == "DIF207"]
+    assert [c.message.split(",")[0] for c in moved] == ["group 'app' moves in NV"]
+    offsets = re.findall(r"offset 0x([0-9A-F]+) \(\d+ bytes\)", moved[0].message)
+    assert len(offsets) == 2 and int(offsets[1], 16) > int(offsets[0], 16) and moved[0].line > 0
+    assert {s.action for s in result.groups["app"].steps} == {"default"}
+    assert {(c.kind, c.index) for c in result.changes if c.kind == "DIF204"} == {("DIF204", 0x1800)}
+
+
 def _variant(tmp_path: Path, source: Path, **edits: str) -> Path:
     text = source.read_text(encoding="utf-8")
     for old, new in edits.items():
@@ -120,9 +135,9 @@ def test_json_report_matches_the_text(capsys: pytest.CaptureFixture[str]) -> Non
     text = capsys.readouterr().out.splitlines()
     assert [c["text"] for c in doc["changes"]] == text[:-1]
     assert doc["summary"] == {BREAKING: 0, STORED: 3, COMPATIBLE: 0}
-    assert doc["migration"]["app"] == [{"index": 0x2003, "sub": 0, "action": "resize", "checked": False,
-                                        "reason": "capacity grown from 4 to 12 bytes", "old_type": 9,
-                                        "old_length": 4, "new_type": 9, "new_length": 12}]
+    assert doc["migration"]["app"] == {"moved": "", "steps": [
+        {"index": 0x2003, "sub": 0, "action": "resize", "checked": False, "reason": "capacity grown from 4 to 12 bytes",
+         "old_type": 9, "old_length": 4, "new_type": 9, "new_length": 12}]}
 
 
 def test_user_mistakes_exit_two(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
@@ -170,12 +185,13 @@ def _storage_group(od: ObjectDictionary, index: int, sub: int | None) -> str | N
 
 def _format_only(c: Change, eds: ObjectDictionary, xdd: ObjectDictionary) -> bool:
     """A change only the file formats explain: an object CANopenEditor disabled (left out of the EDS), a
-    storage group the EDS does not carry, and the version findings these cause (class b)."""
+    storage group the EDS does not carry, and what these cause: groups placed after a group the EDS does
+    not have move in NV, and the version findings (class b)."""
     if c.kind == "DIF301" and c.index is not None:
         return disabled(xdd.objects[c.index])
     if c.kind == "DIF204" and c.index is not None:
         return _storage_group(eds, c.index, c.sub) is None and _storage_group(xdd, c.index, c.sub) is not None
-    return c.kind in ("DIF401", "DIF402") and c.change_class == STORED
+    return c.kind in ("DIF207", "DIF401", "DIF402") and c.change_class == STORED
 
 
 @pytest.mark.parametrize("xdd_name,eds_name", TWINS, ids=[t[0] for t in TWINS])
@@ -189,6 +205,8 @@ def test_eds_and_its_xdd_twin_differ_only_in_what_the_formats_cannot_both_say(xd
     assert eds is not None and xdd is not None
     result = diff_models(eds, xdd)
     unexplained = [c.text(result.new, result.old) for c in result.changes if not _format_only(c, eds, xdd)]
+    if any(c.kind == "DIF207" for c in result.changes):  # caused by groups only the XDD states
+        assert any(c.kind == "DIF204" for c in result.changes)
     assert unexplained == []
     assert result.count(BREAKING) == 0
 

@@ -13,6 +13,7 @@ from odgen.diagnostics import Diagnostics
 from odgen.formats import load_path
 from odgen.model.datatypes import BASIC_TYPES
 from odgen.persist.layout import group_layouts
+from odgen.persist.nvmap import nv_map, slot_bytes
 from odgen.persist.migration import (
     CONVERT, DEFAULT, DESCRIPTOR_BYTES, DROP, KEEP, RESIZE, EntryLayout, GroupLayout, decode, descriptor, encode,
     entry_action, migrate, parse_descriptor, plan, value_size, widens,
@@ -157,3 +158,21 @@ def test_layouts_of_a_description_follow_the_options_file() -> None:
     assert [(e.index, e.data_type, e.length, e.low, e.high) for e in base["app"].entries] == [
         (0x2001, U8, 1, None, None), (0x2002, U8, 1, 0, 100), (0x2003, VSTR, 4, None, None)]
     assert [e.length for e in layouts["stored"]["app"].entries] == [1, 1, len("pump-station")]
+
+
+def test_a_group_keeps_its_nv_region_when_another_changes() -> None:
+    comm = GroupLayout("comm", (entry(0x1017, U16),))
+    app = GroupLayout("app", (entry(0x2001, U8), entry(0x2002, U32)))
+    before = nv_map({"app": app, "comm": comm})
+    assert [(r.group, r.offset) for r in before.values()] == [("comm", 0), ("app", before["comm"].size)]
+    grown_app = GroupLayout("app", app.entries + (entry(0x2003, U32), entry(0x2004, U32)))
+    grown_comm = GroupLayout("comm", (entry(0x1017, U32),))  # grows inside its region's step
+    for layouts, unchanged in (({"app": grown_app, "comm": comm}, "comm"), ({"app": app, "comm": grown_comm}, "app")):
+        after = nv_map(layouts)
+        assert after[unchanged] == before[unchanged]
+        assert all(r.size // 2 >= slot_bytes(layouts[g]) for g, r in after.items())
+    crossing = nv_map({"app": app, "comm": GroupLayout("comm", comm.entries + (entry(0x1800, U8, sub=2),))})
+    assert crossing["comm"].offset == 0 and crossing["comm"].size > before["comm"].size  # grows in place
+    assert crossing["app"].offset > before["app"].offset  # moves: reported by odgen diff (DIF207)
+    extra = nv_map({"app": app, "comm": comm, "calib": GroupLayout("calib", (entry(0x3000, U32),))})
+    assert (extra["comm"], extra["app"]) == (before["comm"], before["app"])

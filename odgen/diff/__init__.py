@@ -14,10 +14,9 @@ from ..diagnostics import Diagnostic, Severity
 from ..errors import OdgenError
 from ..formats import load_path
 from ..model import ObjectDictionary
-from ..persist.migration import Step
 from .changes import CLASSES, Change, worst
 from .compare import object_changes
-from .stored import layouts, plans, stored_changes
+from .stored import GroupPlan, layouts, plans, stored_changes
 from .version import version_changes, versions
 
 __all__ = ["CLASSES", "Change", "DiffResult", "diff_models", "diff_paths", "fails"]
@@ -28,7 +27,7 @@ class DiffResult:
     old: str
     new: str
     changes: list[Change] = field(default_factory=list)
-    groups: dict[str, list[Step]] = field(default_factory=dict)  # boot migration per persistence group
+    groups: dict[str, GroupPlan] = field(default_factory=dict)  # boot migration per persistence group
     read_errors: list[Diagnostic] = field(default_factory=list)  # errors the readers found in OLD or NEW
     versions: dict[str, str] = field(default_factory=dict)  # "revision" / "file version": "OLD -> NEW"
 
@@ -48,7 +47,7 @@ def diff_models(old: ObjectDictionary, new: ObjectDictionary, old_options: Path 
                 new_options: Path | None = None) -> DiffResult:
     group_plans = plans(layouts(old, old_options), layouts(new, new_options))
     # entries stored before and after: a new default does not reach devices that stored a value
-    stored_keys = {(s.index, s.sub) for steps in group_plans.values() for s in steps if s.old and s.new}
+    stored_keys = {(s.index, s.sub) for p in group_plans.values() for s in p.steps if s.old and s.new}
     changes = object_changes(old, new, stored_keys) + stored_changes(group_plans, old, new)
     changes += version_changes(old, new, changes)
     changes.sort(key=lambda c: (CLASSES.index(c.change_class), -1 if c.index is None else c.index, c.sub or 0, c.kind))

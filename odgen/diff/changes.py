@@ -38,6 +38,8 @@ KINDS: dict[str, Kind] = {k.id: k for k in (
          "A stored value outside the new limits is replaced by the default at boot."),
     Kind("DIF206", STORED, "default of a stored parameter changed",
          "Devices that stored the parameter keep their value; only the others see the new default."),
+    Kind("DIF207", STORED, "persistence group moves in NV",
+         "The runtime looks for the group's image at its new place and does not find it."),
     Kind("DIF301", COMPATIBLE, "object added", "Nothing a master configured before refers to it."),
     Kind("DIF302", COMPATIBLE, "sub-entry added", "Nothing a master configured before refers to it."),
     Kind("DIF303", COMPATIBLE, "name changed", "Names are documentation; masters address by index and sub-index."),

@@ -44,8 +44,8 @@ def render_json(result: DiffResult) -> str:
         "old": result.old,
         "new": result.new,
         "changes": [_change(c, result) for c in result.changes],
-        "migration": {group: [_step(s) for s in steps if s.action != KEEP or s.checked]
-                      for group, steps in result.groups.items()},
+        "migration": {group: {"moved": p.moved, "steps": [_step(s) for s in p.steps if s.action != KEEP or s.checked]}
+                      for group, p in result.groups.items()},
         "versions": result.versions,
         "summary": summary(result),
     }

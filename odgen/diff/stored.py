@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from ..codegen.options import load_options
@@ -11,6 +12,7 @@ from ..errors import OdgenError
 from ..model import ObjectDictionary
 from ..persist.layout import group_layouts
 from ..persist.migration import CONVERT, DEFAULT, DROP, KEEP, RESIZE, GroupLayout, Step, plan
+from ..persist.nvmap import nv_map
 from .changes import Change
 
 KINDS = {CONVERT: "DIF201", RESIZE: "DIF202", DROP: "DIF203", DEFAULT: "DIF204", KEEP: "DIF205"}
@@ -26,15 +28,36 @@ def layouts(od: ObjectDictionary, options: Path | None) -> dict[str, GroupLayout
     return group_layouts(od, placements)
 
 
-def plans(old: dict[str, GroupLayout], new: dict[str, GroupLayout]) -> dict[str, list[Step]]:
-    return {name: plan(old.get(name), new.get(name)) for name in sorted(set(old) | set(new))}
+@dataclass
+class GroupPlan:
+    steps: list[Step]
+    moved: str = ""  # how the group's NV region moved, if it did: then nothing stored is found
 
 
-def stored_changes(group_plans: dict[str, list[Step]], old_od: ObjectDictionary,
+def plans(old: dict[str, GroupLayout], new: dict[str, GroupLayout]) -> dict[str, GroupPlan]:
+    before, after = nv_map(old), nv_map(new)
+    out = {}
+    for name in sorted(set(old) | set(new)):
+        steps = plan(old.get(name), new.get(name))
+        a, b = before.get(name), after.get(name)
+        if a is None or b is None or a.offset == b.offset:  # a region grown in place is found again
+            out[name] = GroupPlan(steps)
+            continue
+        moved = f"offset 0x{a.offset:X} ({a.size} bytes) -> offset 0x{b.offset:X} ({b.size} bytes)"
+        lost = [replace(s, action=DEFAULT, reason="the group's NV region moved", checked=False)
+                for s in steps if s.new is not None]
+        out[name] = GroupPlan(lost, moved)
+    return out
+
+
+def stored_changes(group_plans: dict[str, GroupPlan], old_od: ObjectDictionary,
                    new_od: ObjectDictionary) -> list[Change]:
     out = []
-    for group, steps in group_plans.items():
-        for step in steps:
+    for group, group_plan in group_plans.items():
+        if group_plan.moved:
+            out.append(_moved(group, group_plan, new_od))
+            continue
+        for step in group_plan.steps:
             if step.action == KEEP and not step.checked:
                 continue
             new_sub, old_sub = new_od.find(step.index, step.sub), old_od.find(step.index, step.sub)
@@ -43,6 +66,14 @@ def stored_changes(group_plans: dict[str, list[Step]], old_od: ObjectDictionary,
             out.append(Change(KINDS[step.action], f"in group '{group}': {_message(step)}", step.index, sub,
                               new_sub.line if new_sub else 0, old_sub.line if old_sub else 0))
     return out
+
+
+def _moved(group: str, group_plan: GroupPlan, new_od: ObjectDictionary) -> Change:
+    first = group_plan.steps[0]
+    sub = new_od.find(first.index, first.sub)
+    return Change("DIF207", f"group '{group}' moves in NV, {group_plan.moved}: its {len(group_plan.steps)} "
+                  "stored value(s) are not found at boot (pin the regions in the options file)",
+                  line=sub.line if sub is not None else 0)
 
 
 def _message(step: Step) -> str:

@@ -1,0 +1,50 @@
+"""The NV map: one fixed region per persistence group (docs/persistence.md, section 1).
+
+Groups are placed comm, app, then the others by name; a region holds slot A at its start and slot
+B at its middle; a slot names the region size it was written for, so a group whose region grows
+in place still finds its slot B. A region is its need (two slots of the current image) plus
+half, rounded up to the next power of two, at least MIN_REGION bytes: a group keeps its region
+while its need stays inside that step, and crossing a step moves the groups after it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .migration import DESCRIPTOR_BYTES, GroupLayout, value_size
+
+HEADER_BYTES = 24  # slot header: magic, sequence, group id, region size, image length, CRC-32
+COUNT_BYTES = 2  # the image's entry count before the descriptor
+MIN_REGION = 64
+FIRST = ("comm", "app")
+
+
+@dataclass(frozen=True)
+class Region:
+    group: str
+    offset: int  # from NAME_NV_BASE
+    size: int  # both slots; slot B starts at offset + size // 2
+    need: int  # two slots of the current image
+
+
+def image_bytes(layout: GroupLayout) -> int:
+    return COUNT_BYTES + DESCRIPTOR_BYTES * len(layout.entries) + sum(value_size(e) for e in layout.entries)
+
+
+def slot_bytes(layout: GroupLayout, align: int = 8) -> int:
+    return _round_up(HEADER_BYTES + image_bytes(layout), align)
+
+
+def nv_map(layouts: dict[str, GroupLayout], align: int = 8) -> dict[str, Region]:
+    order = [g for g in FIRST if g in layouts] + sorted(g for g in layouts if g not in FIRST)
+    regions, offset = {}, 0
+    for group in order:
+        need = 2 * slot_bytes(layouts[group], align)
+        size = max(MIN_REGION, 1 << (need + need // 2 - 1).bit_length(), align)
+        regions[group] = Region(group, offset, size, need)
+        offset = _round_up(offset + size, align)
+    return regions
+
+
+def _round_up(value: int, align: int) -> int:
+    return (value + align - 1) // align * align
