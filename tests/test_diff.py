@@ -210,3 +210,10 @@ def test_eds_and_its_xdd_twin_differ_only_in_what_the_formats_cannot_both_say(xd
     assert unexplained == []
     assert result.count(BREAKING) == 0
 
+
+
+def test_docs_list_every_kind_with_its_class_and_title() -> None:
+    text = (FIXTURES.parents[1] / "docs" / "diff.md").read_text(encoding="utf-8")
+    for kind in KINDS.values():
+        cls = kind.cls if not kind.id.startswith("DIF4") else "(a) or (b)"
+        assert f"| {kind.id} | {cls} | {kind.title} | {kind.why} |" in text

@@ -43,7 +43,7 @@ KINDS: dict[str, Kind] = {k.id: k for k in (
     Kind("DIF301", COMPATIBLE, "object added", "Nothing a master configured before refers to it."),
     Kind("DIF302", COMPATIBLE, "sub-entry added", "Nothing a master configured before refers to it."),
     Kind("DIF303", COMPATIBLE, "name changed", "Names are documentation; masters address by index and sub-index."),
-    Kind("DIF304", COMPATIBLE, "access widened", "Every access a master made before still works."),
+    Kind("DIF304", COMPATIBLE, "access widened or respelled", "Every access a master made before still works."),
     Kind("DIF305", COMPATIBLE, "now PDO-mappable", "Every mapping a master made before still works."),
     Kind("DIF306", COMPATIBLE, "limits widened", "Every value a master wrote before is still accepted."),
     Kind("DIF307", COMPATIBLE, "default changed", "The device starts differently; a master's writes still work."),
