@@ -217,3 +217,16 @@ def test_docs_list_every_kind_with_its_class_and_title() -> None:
     for kind in KINDS.values():
         cls = kind.cls if not kind.id.startswith("DIF4") else "(a) or (b)"
         assert f"| {kind.id} | {cls} | {kind.title} | {kind.why} |" in text
+
+
+def test_retyped_and_tightened_stored_entries_show_in_both_classes(tmp_path: Path) -> None:
+    """The issue's v3 (HighLimit 100 -> 50 on a stored parameter) and a widened stored integer."""
+    text = BASE.read_text(encoding="utf-8")
+    gain, threshold = text.index("[2001]"), text.index("[2002]")
+    text = (text[:gain] + text[gain:threshold].replace("DataType=0x0005", "DataType=0x0006")
+            + text[threshold:].replace("HighLimit=100", "HighLimit=50", 1))
+    new = tmp_path / "v3.eds"
+    new.write_text(text, encoding="utf-8")
+    found = {(c.kind, c.index) for c in diff_paths(BASE, new, OPTIONS, OPTIONS).changes}
+    assert found == {("DIF103", 0x2001), ("DIF201", 0x2001), ("DIF108", 0x2002), ("DIF205", 0x2002),
+                     ("DIF401", 0x1018), ("DIF402", None)}
