@@ -35,7 +35,8 @@ def _revision_change(old: ObjectDictionary, new: ObjectDictionary, cls: str) -> 
     if before is None or after is None:
         return None
     sub = new.find(IDENTITY, REVISION)
-    line = sub.line_of("defaultvalue") if sub is not None else 0
+    written = "parametervalue" if sub is not None and _number(sub.parameter_value) is not None else "defaultvalue"
+    line = sub.line_of(written) if sub is not None else 0
     shown = f"revision number 0x{before:08X} -> 0x{after:08X}"
     if cls == BREAKING and after >> 16 <= before >> 16:
         return Change("DIF401", f"{shown}: raise the major revision (upper 16 bits) for changes of class (a)",
