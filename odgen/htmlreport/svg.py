@@ -44,7 +44,7 @@ def ruler_bits(pdo: Pdo) -> int:
 
 
 def scale_of(bits: int) -> int:
-    return min(8, max(1, 1024 // bits))
+    return min(12, max(1, 1024 // bits))
 
 
 def _ruler(bits: int, scale: int, bottom: int) -> list[str]:
