@@ -33,6 +33,13 @@ def add_report_parser(commands: argparse._SubParsersAction[argparse.ArgumentPars
     report.add_argument("--can-fd", action="store_true", help="PDOs of up to 512 bits")
 
 
+def _make_folder(folder: Path) -> None:
+    try:
+        folder.mkdir(exist_ok=True)  # the Markdown form's SVG folder; OUT's own folder exists
+    except OSError as err:
+        raise OdgenError(f"{folder}: cannot create: {err.strerror or err}") from None
+
+
 def cmd_report(args: argparse.Namespace) -> int:
     fmt = args.format or ("md" if args.output.suffix.lower() == ".md" else "html")
     report, diags = build_report(args.input, args.options, args.node_id, args.can_fd)
@@ -45,9 +52,11 @@ def cmd_report(args: argparse.Namespace) -> int:
         report.network = build_network(args.network, args.input, args.can_fd)
     if args.output.is_dir():
         raise OdgenError(f"{args.output} is a folder: give the report's file name with -o")
+    if not args.output.parent.is_dir():
+        raise OdgenError(f"{args.output.parent} does not exist: create it, or write the report elsewhere")
     files = render_markdown(report, args.output) if fmt == "md" else {args.output: render_html(report)}
     for path, text in files.items():
-        path.parent.mkdir(parents=True, exist_ok=True)
+        _make_folder(path.parent)
         write_atomic(path, text)
     errors = sum(1 for d in diags if d.severity == Severity.ERROR)
     print(f"odgen report: {args.output}: {len(report.rows)} entries, {len(report.pdos)} PDOs, "

@@ -54,9 +54,9 @@ def render_html(report: Report) -> str:
 
 
 def render_markdown(report: Report, output: Path) -> dict[Path, str]:
-    """The Markdown file and its SVG files (in OUTPUT's stem + `-svg/`), by path."""
+    """The SVG files (in OUTPUT's stem + `-svg/`) and then the Markdown file that shows them, by path."""
     folder = output.with_name(output.stem + "-svg")
     pictures = _pictures(report)
     links = {name: f"{folder.name}/{name}.svg" for name in pictures}
     text = _environment(False).get_template("report.md.j2").render(r=report, svg=links, rules=_rules(report))
-    return {output: text, **{folder / f"{name}.svg": svg for name, svg in pictures.items()}}
+    return {**{folder / f"{name}.svg": svg for name, svg in pictures.items()}, output: text}
