@@ -42,6 +42,11 @@ class Finding:
     link: str
     index: int | None = None
     sub: int | None = None
+    row: str = ""  # Row.key of the entry it is shown at ("" when at none)
+
+    @property
+    def address(self) -> str:
+        return where(self.index, self.sub)
 
 
 @dataclass
@@ -121,6 +126,7 @@ class Report:
     pdos: list[Pdo]
     memory: list[MemoryRow] | None  # None when the dictionary cannot be generated
     memory_note: str
+    storage_note: str  # why the storage column is empty, if it is
     can_fd: bool
     counts: dict[str, int]
     network: NetworkView | None = None  # with --network
@@ -182,6 +188,7 @@ def _place_findings(od: ObjectDictionary, rows: list[Row], diags: list[Diagnosti
             row = by_key.get(row_key(obj.index, sub))
         if row is not None and d.loc.file == od.source:
             row.findings.append(finding(d))
+            row.findings[-1].row = row.key
         else:
             general.append(finding(d))
     return general
@@ -277,8 +284,10 @@ def build_report(path: Path, options: Path | None = None, node_id: int | None = 
         pdo.findings = [f for r in rows if r.index in (pdo.comm, pdo.mapping) for f in r.findings]
     memory = memory_rows(result.view) if result.view is not None else None
     note = "" if memory is not None else "Not generated: the description has errors (see the findings)."
+    undecided = "" if result.placements is not None else \
+        "Storage and hooks are not decided: the description has errors (see the findings)."
     counts = {s.label: sum(1 for d in diags if d.severity == s) for s in reversed(Severity)}
     device = od.section("DeviceInfo")
     product = device.text("ProductName").strip() if device is not None else ""
     return Report(product or path.name, str(path), od.format.upper(), _identity(od), _sections(od), rows,
-                  general, pdos, memory, note, can_fd, counts), diags
+                  general, pdos, memory, note, undecided, can_fd, counts), diags
