@@ -1,6 +1,6 @@
 """`odgen report`: pages rendered by headless Chromium and checked in the DOM it builds.
 
-A sample of the corpus (every k-th file, about ten) is reported, loaded by Chromium with the
+A sample of the corpus (every k-th file, about ten, and a file of each format) is reported, loaded by Chromium with the
 network cut off, dumped as DOM and photographed into build/test-reports/report/. The DOM must
 have a row per entry, a box per mapped entry at its bit offset and width (decoded here from
 the raw mapping values), every lint finding in its entry's row, and nothing that fetches.
@@ -45,7 +45,10 @@ def _sample() -> list:
     if not files:
         return [pytest.param(None, marks=pytest.mark.skip(reason="../shared/corpus is absent"))]
     step = max(1, len(files) // SAMPLE_SIZE)
-    return [pytest.param(p, id=p.name) for p in files[::step]]
+    sample = files[::step]
+    sample += [next(p for p in files if p.suffix == suffix) for suffix in sorted({p.suffix for p in files})
+               if all(q.suffix != suffix for q in sample)]  # every format at least once
+    return [pytest.param(p, id=p.name) for p in sample]
 
 
 def chromium(page: Path, *args: str) -> str:
