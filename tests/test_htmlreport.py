@@ -270,10 +270,12 @@ def test_markdown_has_the_same_content(tmp_path: Path) -> None:
 
 def test_cli_refuses_what_it_cannot_write(tmp_path: Path) -> None:
     base = [sys.executable, "-m", "odgen", "report", str(EXAMPLE)]
-    for out in (tmp_path, tmp_path / "missing" / "r.html"):
-        done = subprocess.run([*base, "-o", str(out)], capture_output=True, text=True, check=False)
+    wrong = ([tmp_path], [tmp_path / "missing" / "r.html"], [tmp_path / "r.html", "--options", tmp_path / "no.toml"],
+             [tmp_path / "r.html", "--network", tmp_path / "no.toml"])
+    for out, *more in wrong:
+        done = subprocess.run([*base, "-o", str(out), *map(str, more)], capture_output=True, text=True, check=False)
         assert done.returncode == 2 and done.stderr.count("\n") == 1, done.stderr
-    assert not (tmp_path / "missing").exists()
+    assert not (tmp_path / "missing").exists() and not (tmp_path / "r.html").exists()
 
 
 def test_can_fd_draws_a_512_bit_ruler() -> None:

@@ -42,6 +42,12 @@ def _make_folder(folder: Path) -> None:
 
 def cmd_report(args: argparse.Namespace) -> int:
     fmt = args.format or ("md" if args.output.suffix.lower() == ".md" else "html")
+    if args.output.is_dir():
+        raise OdgenError(f"{args.output} is a folder: give the report's file name with -o")
+    if not args.output.parent.is_dir():
+        raise OdgenError(f"{args.output.parent} does not exist: create it, or write the report elsewhere")
+    if args.options is not None and not args.options.is_file():
+        raise OdgenError(f"{args.options}: no such options file (check the --options path)")
     report, diags = build_report(args.input, args.options, args.node_id, args.can_fd)
     if report is None:
         for d in diags:
@@ -50,10 +56,6 @@ def cmd_report(args: argparse.Namespace) -> int:
         return 1
     if args.network is not None:
         report.network = build_network(args.network, args.input, args.can_fd)
-    if args.output.is_dir():
-        raise OdgenError(f"{args.output} is a folder: give the report's file name with -o")
-    if not args.output.parent.is_dir():
-        raise OdgenError(f"{args.output.parent} does not exist: create it, or write the report elsewhere")
     files = render_markdown(report, args.output) if fmt == "md" else {args.output: render_html(report)}
     for path, text in files.items():
         _make_folder(path.parent)
