@@ -11,7 +11,7 @@ from __future__ import annotations
 from html import escape
 
 from ..codegen.memory import MemoryRow
-from .view import Box, Pdo
+from .view import Box, Lane, Pdo
 
 LEFT, TOP, LANE, GAP = 120, 26, 44, 8
 CHAR = 6  # px per character of the 10 px font, for deciding what fits in a box
@@ -62,16 +62,34 @@ def _ruler(bits: int, scale: int, bottom: int) -> list[str]:
 def _box(b: Box, y: int, scale: int, fill: str) -> list[str]:
     x, width = LEFT + b.bit * scale, b.bits * scale
     title = f"{b.address} {b.name}: bits {b.bit}..{b.bit + b.bits - 1} ({b.bits} bit)"
-    rect = _attrs(class_="box dummy" if b.dummy else "box", x=x, y=y, width=width, height=LANE,
-                  fill="#eeeeee" if b.dummy else fill, stroke="#555",
-                  data_bit=b.bit, data_bits=b.bits, data_target=b.target)
-    dash = ' stroke-dasharray="4 3"' if b.dummy else ""
-    out = [f"<g><title>{escape(title)}</title><rect {rect}{dash}/>"]
+    look = {"fill": "#eeeeee", "stroke_dasharray": "4 3"} if b.dummy else {"fill": fill}
+    rect = _el("rect", class_="box dummy" if b.dummy else "box", x=x, y=y, width=width, height=LANE,
+               stroke="#555", data_bit=b.bit, data_bits=b.bits, data_target=b.target, **look)
+    out = [f"<g><title>{escape(title)}</title>{rect}"]
     name = _fit(b.name, width)
     if name:
         out.append(_text(x + 3, y + 16, name, 10, weight="bold"))
         out.append(_text(x + 3, y + 32, _fit(f"{b.address} · {b.bits}b", width), 9))
     out.append("</g>")
+    return out
+
+
+def _lane(lane: Lane, y: int, frame: int, scale: int) -> list[str]:
+    """The lane's label, its boxes, the unused bits of the frame (dashed) and bits past it (red)."""
+    out = [_text(4, y + LANE // 2 + 4, lane.label, 10, weight="bold")]
+    used = max((b.bit + b.bits for b in lane.boxes), default=0)
+    if used < frame:
+        gap = _el("rect", class_="gap", x=LEFT + used * scale, y=y, width=(frame - used) * scale,
+                  height=LANE, fill="#ffffff", stroke="#999", stroke_dasharray="2 2")
+        label = _text(LEFT + used * scale + 3, y + LANE // 2 + 4, _fit(f"unused {frame - used} bit",
+                                                                      (frame - used) * scale), 9)
+        out.append(f"<g><title>unused: bits {used}..{frame - 1}</title>{gap}{label}</g>")
+    if used > frame:
+        out.append(_el("rect", class_="overflow", x=LEFT + frame * scale, y=y - 3, width=(used - frame) * scale,
+                       height=LANE + 6, fill="#f8c4c4"))
+    fill = FILL["RPDO" if "RPDO" in lane.label else "TPDO"]
+    for b in lane.boxes:
+        out += _box(b, y, scale, fill)
     return out
 
 
@@ -85,21 +103,7 @@ def pdo_svg(pdo: Pdo) -> str:
            f"<title>{escape(pdo.kind)}{pdo.number} bit layout</title>"]
     out += _ruler(bits, scale, height - GAP)
     for n, lane in enumerate(pdo.lanes):
-        y = TOP + GAP + n * (LANE + GAP)
-        out.append(_text(4, y + LANE // 2 + 4, lane.label, 10, weight="bold"))
-        used = max((b.bit + b.bits for b in lane.boxes), default=0)
-        if used < pdo.frame_bits:
-            gap = _el("rect", class_="gap", x=LEFT + used * scale, y=y, width=(pdo.frame_bits - used) * scale,
-                      height=LANE, fill="#ffffff", stroke="#999", stroke_dasharray="2 2")
-            out.append(f"<g><title>unused: bits {used}..{pdo.frame_bits - 1}</title>{gap}")
-            out.append(_text(LEFT + used * scale + 3, y + LANE // 2 + 4,
-                             _fit(f"unused {pdo.frame_bits - used} bit", (pdo.frame_bits - used) * scale), 9))
-            out.append("</g>")
-        if used > pdo.frame_bits:
-            out.append(_el("rect", class_="overflow", x=LEFT + pdo.frame_bits * scale, y=y - 3,
-                           width=(used - pdo.frame_bits) * scale, height=LANE + 6, fill="#f8c4c4"))
-        for b in lane.boxes:
-            out += _box(b, y, scale, FILL.get(lane.label.split()[-1][:4], "#cfe3ff"))
+        out += _lane(lane, TOP + GAP + n * (LANE + GAP), pdo.frame_bits, scale)
     out.append("</svg>")
     return "\n".join(out) + "\n"
 
