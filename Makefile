@@ -30,8 +30,8 @@ lint-code: setup
 	$(BIN)/ruff check odgen tests benchmarks examples $(wildcard fuzz)
 	$(BIN)/mypy
 
-# System tools the tests compile and build with (Debian packages of the same names).
-SYSTOOLS := gcc clang cmake
+# System tools the tests compile, build and render reports with (Debian packages of the same names).
+SYSTOOLS := gcc clang cmake chromium
 sysdeps:
 	@missing=""; for t in $(SYSTOOLS); do command -v $$t >/dev/null 2>&1 || missing="$$missing $$t"; done; \
 	if [ -n "$$missing" ]; then apt-get update -qq && apt-get install -y -qq $$missing; fi

@@ -29,6 +29,7 @@ from .formats import load_path
 from .formats.eds_writer import write_eds
 from .profiles import ds401 as ds401_profile
 from .lint import RuleFilter, exit_code, lint_path
+from .htmlreport import add_report_parser, cmd_report
 from .network import lint_network
 from .report import RENDERERS
 from .rules import LintOptions
@@ -111,6 +112,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     add_profile_parser(commands)
     add_diff_parser(commands)
+    add_report_parser(commands, _node_id)
 
     rules = commands.add_parser("rules", help="list the rule catalogue")
     rules.add_argument("--markdown", action="store_true", help="as docs/rules.md")
@@ -322,7 +324,7 @@ def cmd_rules(args: argparse.Namespace) -> int:
 
 COMMANDS = {"lint": cmd_lint, "convert": cmd_convert, "generate": cmd_generate, "explain": cmd_explain,
             "check": cmd_check, "node": cmd_node, "roundtrip": cmd_roundtrip, "rules": cmd_rules,
-            "profile": cmd_profile, "diff": cmd_diff}
+            "profile": cmd_profile, "diff": cmd_diff, "report": cmd_report}
 
 
 def main(argv: Sequence[str] | None = None) -> int:

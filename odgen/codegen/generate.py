@@ -34,6 +34,7 @@ class Request:
     node_id: int | None = None
     lookup: str = "switch"
     defaults: str = ""  # options (TOML) applied before the options file, e.g. by `odgen roundtrip`
+    can_fd: bool = False  # lint PDOs against a CAN FD frame (512 bits)
 
 
 @dataclass
@@ -69,7 +70,7 @@ def prepare(request: Request) -> Result:
     result = Result(diags, {}, od)
     if od is None:
         return result
-    lint_model(od, diags, LintOptions(node_id=request.node_id))
+    lint_model(od, diags, LintOptions(node_id=request.node_id, can_fd=request.can_fd))
     options = parse_options(request.defaults, "(built-in defaults)", diags) if request.defaults else Options()
     if request.options:
         user = load_options(request.options, diags)

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 
 from ..model import Obj, ObjectDictionary, Sub, Value
 from ..model.datatypes import BASIC_TYPES, DataType
+from .memory import value_rows
 from .placement import RESTORE, STORE, Placement
 from .viewmodel import DictView, generated_value, initial_number
 
@@ -160,8 +161,7 @@ def build_selftest(od: ObjectDictionary, placements: dict[tuple[int, int], Place
             if exp is not None:
                 expects.append(exp)
     missing = next(i for i in range(0x5FFF, 0x1FFF, -1) if i not in od.objects)
-    structs = [(s.name.removeprefix(view.name + "_"), s.name,
-                "FLASH" if s.const else "RAM, and as much FLASH for its defaults") for s in view.structs]
+    structs = [(row.label, row.var, row.where) for row in value_rows(view)]
     store = od.objects.get(STORE)
     return SelfTest(view.name, node_id, expects, view.functions, missing, len(view.groups),
                     store is not None and 1 in store.subs and RESTORE in od.objects, structs)

@@ -309,19 +309,19 @@ def _check_block_size(b: _Builder, struct: StorageStruct) -> None:
     first value that lies beyond it, instead of C that fails its own size check."""
     end = 0
     for m in struct.members:
-        end = -(-end // m.align) * m.align + _member_bytes(m)
+        end = -(-end // m.align) * m.align + member_bytes(m)
         if end > BLOCK_LIMIT:
             index, sub = m.key
             obj = b.od.objects.get(index)
             line = obj.subs[sub].line if obj is not None and sub in obj.subs else 0
-            total = sum(map(_member_bytes, struct.members))
+            total = sum(map(member_bytes, struct.members))
             b.diags.add("GEN007", Loc(b.od.source, line),
                         f"{struct.name} needs {total}+ bytes; a storage class's block is at most {BLOCK_LIMIT} "
                         f"bytes (16-bit offsets), exceeded from 0x{index:04X}sub{sub} on", index)
             return
 
 
-def _member_bytes(m: Member) -> int:
+def member_bytes(m: Member) -> int:
     return _ALIGN[m.ctype] * (int(m.array[1:-1]) if m.array else 1)
 
 

@@ -1,0 +1,66 @@
+"""`odgen report`: a description as one self-contained HTML page (or Markdown with SVG files):
+identity, the object dictionary with storage, hooks and findings at their entries, a bit picture
+per PDO, the memory map and, with --network, who sends which PDO bits to whom.
+
+Stages: view.py (and network.py) decide what is shown, svg.py draws, render.py lays it out
+through templates/report.html.j2 and report.md.j2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections.abc import Callable
+from pathlib import Path
+
+from ..diagnostics import Severity
+from ..errors import OdgenError
+from ..fileio import write_atomic
+from .network import build_network
+from .render import FORMATS, render_html, render_markdown
+from .view import build_report
+
+
+def add_report_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser],
+                      node_id: Callable[[str], int]) -> None:
+    report = commands.add_parser("report", help="write an HTML (or Markdown) report of a description")
+    report.add_argument("input", type=Path, metavar="FILE")
+    report.add_argument("-o", "--output", type=Path, required=True, metavar="OUT")
+    report.add_argument("--format", choices=FORMATS, help="html (default) or md; default from OUT's suffix")
+    report.add_argument("--options", type=Path, metavar="OPTS", help="options file (TOML): placement, hooks")
+    report.add_argument("--network", type=Path, metavar="NET.toml", help="add the network's PDO matrix")
+    report.add_argument("--node-id", type=node_id, help="check $NODEID values for this node-id")
+    report.add_argument("--can-fd", action="store_true", help="PDOs of up to 512 bits")
+
+
+def _make_folder(folder: Path) -> None:
+    try:
+        folder.mkdir(exist_ok=True)  # the Markdown form's SVG folder; OUT's own folder exists
+    except OSError as err:
+        raise OdgenError(f"{folder}: cannot create: {err.strerror or err}") from None
+
+
+def cmd_report(args: argparse.Namespace) -> int:
+    fmt = args.format or ("md" if args.output.suffix.lower() == ".md" else "html")
+    if args.output.is_dir():
+        raise OdgenError(f"{args.output} is a folder: give the report's file name with -o")
+    if not args.output.parent.is_dir():
+        raise OdgenError(f"{args.output.parent} does not exist: create it, or write the report elsewhere")
+    if args.options is not None and not args.options.is_file():
+        raise OdgenError(f"{args.options}: no such options file (check the --options path)")
+    report, diags = build_report(args.input, args.options, args.node_id, args.can_fd)
+    if report is None:
+        for d in diags:
+            print(d.text(), file=sys.stderr)
+        print(f"odgen: {args.input}: cannot be read, no report written", file=sys.stderr)
+        return 1
+    if args.network is not None:
+        report.network = build_network(args.network, args.input, args.can_fd)
+    files = render_markdown(report, args.output) if fmt == "md" else {args.output: render_html(report)}
+    for path, text in files.items():
+        _make_folder(path.parent)
+        write_atomic(path, text)
+    errors = sum(1 for d in diags if d.severity == Severity.ERROR)
+    print(f"odgen report: {args.output}: {len(report.rows)} entries, {len(report.pdos)} PDOs, "
+          f"{errors} error(s) found", file=sys.stderr)
+    return 0
