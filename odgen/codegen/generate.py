@@ -12,6 +12,7 @@ from pathlib import Path
 import jinja2
 
 from .. import __version__
+from ..assets import templates_dir
 from ..diagnostics import Diagnostics, Severity
 from ..formats import load_path, read_bytes
 from ..lint import lint_model
@@ -22,7 +23,6 @@ from .options import Options, load_options, parse_options
 from .placement import Placement, place
 from .viewmodel import DictView, build
 
-TEMPLATES = Path(__file__).resolve().parents[2] / "templates"
 LOOKUPS = ("switch", "bsearch")
 
 
@@ -50,7 +50,7 @@ def default_name(path: Path) -> str:
 
 
 def environment() -> jinja2.Environment:
-    return jinja2.Environment(loader=jinja2.FileSystemLoader(str(TEMPLATES)), undefined=jinja2.StrictUndefined,
+    return jinja2.Environment(loader=jinja2.FileSystemLoader(str(templates_dir())), undefined=jinja2.StrictUndefined,
                               trim_blocks=True, lstrip_blocks=True, keep_trailing_newline=True,
                               autoescape=False)
 
