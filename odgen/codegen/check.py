@@ -7,6 +7,7 @@ import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
+from ..fileio import output_dir, write_files
 from ..toolchain import CFLAGS, compiler, core_sources, include_dirs
 from .generate import Request, Result, environment, generate
 from .selftest import build_selftest
@@ -36,12 +37,12 @@ def run_check(request: Request, workdir: Path | None = None, cc: str | None = No
         return CheckOutcome(False, "", result)
     with tempfile.TemporaryDirectory(prefix="odgen-check-") as tmp:
         work = workdir or Path(tmp)
-        work.mkdir(parents=True, exist_ok=True)
-        for fname, text in result.files.items():
-            (work / fname).write_text(text, encoding="utf-8")
+        output_dir(work)
         test = build_selftest(result.od, result.placements, result.view, request.node_id or DEFAULT_NODE_ID)
         selftest = environment().get_template("selftest.c.j2").render(t=test)
-        (work / f"{result.view.name}_selftest.c").write_text(selftest, encoding="utf-8")
+        # Renamed into place, as `generate` writes: a symlink in --keep DIR is replaced, not written through.
+        write_files({work / name: text for name, text in
+                     {**result.files, f"{result.view.name}_selftest.c": selftest}.items()})
         built = _compile(cc or compiler(), work, result.view.name, cflags)
         if built.returncode != 0:
             return CheckOutcome(False, "compile failed:\n" + built.stdout + built.stderr, result)

@@ -34,6 +34,7 @@ class Request:
     node_id: int | None = None
     lookup: str = "switch"
     defaults: str = ""  # options (TOML) applied before the options file, e.g. by `odgen roundtrip`
+    input_format: str | None = None  # eds/dcf/xdd/xdc when the suffix does not say
 
 
 @dataclass
@@ -65,7 +66,7 @@ def digest(request: Request, name: str) -> str:
 
 def prepare(request: Request) -> Result:
     """Load, lint, read options and place; stops early when errors were found."""
-    od, diags = load_path(request.input)
+    od, diags = load_path(request.input, request.input_format)
     result = Result(diags, {}, od)
     if od is None:
         return result

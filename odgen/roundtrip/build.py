@@ -15,6 +15,7 @@ from pathlib import Path
 from ..assets import runtime_dir
 from ..codegen.generate import Request, Result, generate
 from ..errors import OdgenError
+from ..fileio import output_dir, write_files
 from ..toolchain import CFLAGS, NODE_MAIN, compiler, include_dirs, node_sources
 
 
@@ -70,10 +71,10 @@ def build_node(request: Request, extra: Mapping[str, str] | None = None, sources
     program = out / "node"
     if program.is_file():
         return program, result
-    out.mkdir(parents=True, exist_ok=True)
-    for name, text in {**result.files, **extra}.items():
-        (out / name).write_text(text, encoding="utf-8")
-    (out / "hook_stubs.c").write_text(_stubs(result.view.functions), encoding="utf-8")
+    output_dir(out)
+    # Renamed into place: a symlink planted in the cache is replaced, not written through.
+    write_files({out / name: text for name, text in
+                 {**result.files, **extra, "hook_stubs.c": _stubs(result.view.functions)}.items()})
     name = result.view.name
     cmd = [cc, *CFLAGS, "-O2", *(f"-I{d}" for d in include_dirs(node=True)), f"-I{out}", f"-DODG_DICT={name}",
            f'-DODG_DICT_HEADER="{name}.h"', *(f"-D{d}" for d in defines), str(out / f"{name}.c"),
