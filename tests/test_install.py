@@ -12,7 +12,6 @@ import shutil
 import subprocess
 import sys
 import tomllib
-import venv
 import zipfile
 from pathlib import Path
 
@@ -37,7 +36,8 @@ def _oldest_python() -> str:
     return found.stdout.strip()
 
 
-def run(cmd: list[str], cwd: Path, env: dict[str, str] | None = None, ok: bool = True) -> subprocess.CompletedProcess[str]:
+def run(cmd: list[str], cwd: Path, env: dict[str, str] | None = None,
+        ok: bool = True) -> subprocess.CompletedProcess[str]:
     done = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, env=env, check=False, timeout=600)
     if ok:
         assert done.returncode == 0, f"{cmd}: {done.returncode}\n{done.stdout}{done.stderr}"
