@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import argparse
 import signal
-import subprocess
 import sys
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -402,6 +401,8 @@ def cmd_node(args: argparse.Namespace) -> int:
     program, result = build_node(Request(args.input, name="od", options=args.options, node_id=args.node_id,
                                          input_format=args.input_format))
     _print_findings(result.diags)
+    import subprocess
+
     cmd = [str(program), "--iface", args.iface, "--node-id", str(args.node_id)]
     if args.nv is not None:
         cmd += ["--nv", str(args.nv)]

@@ -11,7 +11,6 @@ checks off.
 
 from __future__ import annotations
 
-import difflib
 import sys
 from collections.abc import Iterable
 from dataclasses import dataclass, field
@@ -21,11 +20,6 @@ from pathlib import Path
 from typing import Any
 
 from .errors import OdgenError
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - exercised by the wheel test under the oldest Python
-    import tomli as tomllib
 
 KEYS = ("select", "ignore", "per-file-ignores", "strict", "node-id")
 
@@ -65,6 +59,8 @@ def check_rule_ids(ids: Iterable[str], origin: str) -> None:
     for rule in ids:
         if any(k.startswith(rule) for k in known):
             continue
+        import difflib
+
         families = sorted({k.rstrip("0123456789") for k in known})
         close = difflib.get_close_matches(rule, known + families, n=3, cutoff=0.5)
         hint = f"; did you mean {', '.join(close)}?" if close else "; `odgen rules` lists them"
@@ -84,6 +80,11 @@ def find_config(start: Path) -> Path | None:
 
 @cache
 def _read(path: Path) -> dict[str, Any]:
+    # tomllib (and its datetime) only when a pyproject.toml or odgen.toml is there
+    if sys.version_info >= (3, 11):
+        import tomllib
+    else:  # exercised by the wheel test under the oldest Python
+        import tomli as tomllib
     try:
         return tomllib.loads(path.read_text(encoding="utf-8"))
     except (OSError, UnicodeDecodeError) as err:

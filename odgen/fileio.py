@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import contextlib
 import os
-import tempfile
 from collections.abc import Mapping
 from pathlib import Path
 
@@ -28,6 +27,8 @@ def _cannot(path: Path, err: OSError) -> OdgenError:
 
 
 def _write_temp(path: Path, text: str) -> str:
+    import tempfile  # with shutil, bz2 and lzma: not paid by a lint that writes nothing
+
     try:
         fd, tmp = tempfile.mkstemp(prefix=temp_prefix(path.name), suffix=TMP_SUFFIX, dir=path.parent or ".")
     except OSError as err:

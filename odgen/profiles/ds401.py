@@ -14,7 +14,6 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..fileio import write_atomic
-from ..formats.eds_writer import write_eds
 from ..model import ARRAY, RECORD, VAR, BASIC_TYPES, Obj, ObjectDictionary, Sub, parse_value
 
 if TYPE_CHECKING:
@@ -295,6 +294,8 @@ def _quoted(items: Iterable[str]) -> str:
 
 def write(p: Ds401, path: Path) -> str:
     """The EDS text for `p`, written atomically to `path`."""
+    from ..formats.eds_writer import write_eds  # the readers and rules: not needed to build the parser
+
     text = write_eds(build(p, path.name))
     write_atomic(path, text)
     return text
