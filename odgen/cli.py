@@ -236,7 +236,7 @@ def _lint_settings(args: argparse.Namespace, path: Path) -> tuple[RuleFilter, Li
 
 def cmd_lint(args: argparse.Namespace) -> int:
     from .config import check_rule_ids
-    from .lint import exit_code
+    from .lint import exit_code, lint_path
 
     if not args.files and args.network is None:
         raise OdgenError("lint needs FILE arguments or --network NET.toml")
@@ -251,8 +251,6 @@ def cmd_lint(args: argparse.Namespace) -> int:
         results, unreadable = lint_network(args.network, options, rule_filter)
         failed = exit_code(results, strict) != 0
     for path in args.files:
-        from .lint import lint_path
-
         rule_filter, options, strict = _lint_settings(args, path)
         try:
             result = lint_path(path, options, rule_filter, args.input_format)
