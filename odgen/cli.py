@@ -28,6 +28,8 @@ if TYPE_CHECKING:
 LOOKUPS = ("switch", "bsearch")  # codegen.generate.LOOKUPS, checked equal by a test
 REPORT_FORMATS = ("github", "json", "sarif", "text")  # report.RENDERERS, checked equal by a test
 INPUT_FORMATS = ("eds", "dcf", "xdd", "xdc")  # formats.INPUT_FORMATS, checked equal by a test
+# profiles.ds401's MAX_DIGITAL, MAX_ANALOG, WIDTHS and default name, checked equal by a test
+DS401_MAX_DIGITAL, DS401_MAX_ANALOG, DS401_WIDTHS, DS401_NAME = 2032, 254, (8, 16, 32), "DS401 I/O module"
 
 
 def _node_id(text: str) -> int:
@@ -180,19 +182,17 @@ def _count(maximum: int) -> Callable[[str], int]:
 
 
 def add_profile_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    from .profiles import ds401 as ds401_profile
-
     profile = commands.add_parser("profile", help="write a device-profile description from channel counts")
     profiles = profile.add_subparsers(dest="profile", required=True)
     ds401 = profiles.add_parser("ds401", help="CiA 401 generic I/O module (docs/ds401.md)")
-    for kind, maximum, what in (("di", ds401_profile.MAX_DIGITAL, "digital inputs (bits)"),
-                                ("do", ds401_profile.MAX_DIGITAL, "digital outputs (bits)"),
-                                ("ai", ds401_profile.MAX_ANALOG, "analog inputs"),
-                                ("ao", ds401_profile.MAX_ANALOG, "analog outputs")):
+    for kind, maximum, what in (("di", DS401_MAX_DIGITAL, "digital inputs (bits)"),
+                                ("do", DS401_MAX_DIGITAL, "digital outputs (bits)"),
+                                ("ai", DS401_MAX_ANALOG, "analog inputs"),
+                                ("ao", DS401_MAX_ANALOG, "analog outputs")):
         ds401.add_argument(f"--{kind}", type=_count(maximum), default=0, metavar="N", help=f"{what}, 0..{maximum}")
     for kind in ("ai", "ao"):
-        ds401.add_argument(f"--{kind}-width", type=int, choices=ds401_profile.WIDTHS, default=16)
-    ds401.add_argument("--name", default=ds401_profile.Ds401.name, help="product name")
+        ds401.add_argument(f"--{kind}-width", type=int, choices=DS401_WIDTHS, default=16)
+    ds401.add_argument("--name", default=DS401_NAME, help="product name")
     for key in ("vendor-id", "product-code", "revision"):
         ds401.add_argument(f"--{key}", type=_count(0xFFFFFFFF), default=0, metavar="N")
     ds401.add_argument("-o", "--output", type=Path, required=True, metavar="FILE.eds")

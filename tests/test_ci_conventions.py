@@ -27,6 +27,10 @@ def test_cli_choices_match_their_modules() -> None:
     assert set(cli.REPORT_FORMATS) == set(report.RENDERERS)
     assert cli.LOOKUPS == generate_module.LOOKUPS
     assert cli.INPUT_FORMATS == formats.INPUT_FORMATS
+    from odgen.profiles import ds401
+
+    assert (ds401.MAX_DIGITAL, ds401.MAX_ANALOG, ds401.WIDTHS, ds401.Ds401.name) == \
+        (cli.DS401_MAX_DIGITAL, cli.DS401_MAX_ANALOG, cli.DS401_WIDTHS, cli.DS401_NAME)
 
 
 def test_github_annotations(capsys: pytest.CaptureFixture[str]) -> None:
