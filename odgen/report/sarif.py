@@ -19,7 +19,7 @@ LEVELS = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "
 SRCROOT = "%SRCROOT%"
 # Where a finding about the file as a whole points: the sections its rule family reads.
 FAMILY_SECTIONS = {"HDR": ("fileinfo", "deviceinfo"), "LST": ("mandatoryobjects", "optionalobjects",
-                   "manufacturerobjects"), "COM": ("deviceinfo",), "PDO": ("deviceinfo",)}
+                   "manufacturerobjects"), "COM": ("mandatoryobjects", "deviceinfo"), "PDO": ("deviceinfo",)}
 
 
 def _artifact(file: str) -> dict[str, str]:
