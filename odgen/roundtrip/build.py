@@ -80,6 +80,7 @@ def build_node(request: Request, extra: Mapping[str, str] | None = None, sources
            f'-DODG_DICT_HEADER="{name}.h"', *(f"-D{d}" for d in defines), str(out / f"{name}.c"),
            str(out / "hook_stubs.c"), *(str(out / n) for n in sorted(extra) if n.endswith(".c")), str(node_main),
            *map(str, [*runtime, *sources]), "-lm", "-o", str(out / "node.tmp")]
+    (out / "node.tmp").unlink(missing_ok=True)  # the compiler would write through a planted link
     built = subprocess.run(cmd, capture_output=True, text=True, check=False)
     if built.returncode != 0:
         raise OdgenError(f"building the node program failed:\n{built.stdout}{built.stderr}")
