@@ -37,8 +37,10 @@ sysdeps:
 	if [ -n "$$missing" ]; then apt-get update -qq && apt-get install -y -qq $$missing; fi
 
 # The CAN tests set up tools/vcan themselves (host vcan, else a User-Mode Linux guest).
+# tests/test_install.py installs the wheel under the oldest Python pyproject.toml declares
+# (tools/oldest-python.sh finds it, or installs it from the package sources).
 test: setup lint-code sysdeps
-	$(BIN)/python -m pytest -q
+	oldest=$$(tools/oldest-python.sh) && ODGEN_OLDEST_PYTHON=$$oldest $(BIN)/python -m pytest -q
 
 # docs/rules.md is generated from the rule catalogue (a test checks it is current).
 docs: setup

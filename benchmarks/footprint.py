@@ -16,11 +16,14 @@ import subprocess
 from pathlib import Path
 
 from common import BUILD as BENCH
-from common import ODGEN, PEER_VENV, ROOT, Target, failure
+from common import ODGEN, PEER_VENV, Target, failure
+
+from odgen import toolchain
 
 BUILD = BENCH / "footprint"
-CFLAGS = ["-mcpu=cortex-m4", "-mthumb", "-Os", "-ffunction-sections", "-fdata-sections", "-std=c99",
-          "-Wall", "-Wextra", "-Werror", "-pedantic"]
+# The Cortex-M4 target's flags (the first five, used alone for peers' C), then odgen's own C flags.
+CFLAGS = ["-mcpu=cortex-m4", "-mthumb", "-Os", "-ffunction-sections", "-fdata-sections", *toolchain.CFLAGS]
+RUNTIME = toolchain.include_dirs()[0]
 
 # CANopenNode v4 per input, from the notes: (ROM = text + rodata, RAM = data + bss, data).
 CANOPENNODE = {
@@ -63,7 +66,7 @@ def _first_error(stderr: str) -> str:
 
 
 def compile_one(source: Path, out: Path) -> Path:
-    subprocess.run(["arm-none-eabi-gcc", *CFLAGS, f"-I{ROOT / 'runtime'}", "-c", str(source), "-o", str(out)],
+    subprocess.run(["arm-none-eabi-gcc", *CFLAGS, f"-I{RUNTIME}", "-c", str(source), "-o", str(out)],
                    check=True, capture_output=True, text=True)
     return out
 
@@ -90,7 +93,7 @@ def measure(label: str, eds: Path, lookup: str) -> dict[str, object]:
     if gen.returncode != 0:
         row["refused"] = failure(gen.stderr)
         return row
-    comp = subprocess.run(["arm-none-eabi-gcc", *CFLAGS, f"-I{ROOT / 'runtime'}", "-c", str(work / "od.c"), "-o",
+    comp = subprocess.run(["arm-none-eabi-gcc", *CFLAGS, f"-I{RUNTIME}", "-c", str(work / "od.c"), "-o",
                            str(work / "od.o")], capture_output=True, text=True, check=False)
     if comp.returncode != 0:
         row["compile_failed"] = _first_error(comp.stderr)
@@ -117,13 +120,13 @@ def _core_path(work: Path, defines: list[str]) -> int:
                     "  return (int)odg_write(&r, b, n); }\n")
     tag = "-".join(d.lstrip("-D").lower() for d in defines) or "default"
     objs = []
-    for name in ("odg", "odg_persist"):
-        obj = work / f"{name}-{tag}.o"
-        subprocess.run(["arm-none-eabi-gcc", *CFLAGS, *defines, f"-I{ROOT / 'runtime'}", "-c",
-                        str(ROOT / "runtime" / f"{name}.c"), "-o", str(obj)], check=True, capture_output=True)
+    for source in toolchain.core_sources():
+        obj = work / f"{source.stem}-{tag}.o"
+        subprocess.run(["arm-none-eabi-gcc", *CFLAGS, *defines, f"-I{RUNTIME}", "-c",
+                        str(source), "-o", str(obj)], check=True, capture_output=True)
         objs.append(obj)
     out = work / f"core-{tag}.elf"
-    subprocess.run(["arm-none-eabi-gcc", *CFLAGS, *defines, f"-I{ROOT / 'runtime'}", str(core), *map(str, objs),
+    subprocess.run(["arm-none-eabi-gcc", *CFLAGS, *defines, f"-I{RUNTIME}", str(core), *map(str, objs),
                     "--specs=nosys.specs", "-nostartfiles", "-Wl,--gc-sections", "-Wl,--defsym=d=0",
                     "-Wl,-e,main", "-o", str(out)], check=True, capture_output=True, text=True)
     ours = set().union(*(symbols(obj).keys() for obj in objs))
@@ -134,9 +137,9 @@ def runtime_sizes() -> dict[str, int]:
     work = BUILD / "runtime"
     work.mkdir(parents=True, exist_ok=True)
     sizes = {}
-    for name in ("odg", "odg_persist"):
-        sec = sections(compile_one(ROOT / "runtime" / f"{name}.c", work / f"{name}.o"))
-        sizes[name] = sec["text"] + sec["rodata"] + sec["data"]
+    for source in toolchain.core_sources():
+        sec = sections(compile_one(source, work / f"{source.stem}.o"))
+        sizes[source.stem] = sec["text"] + sec["rodata"] + sec["data"]
     sizes["core"] = _core_path(work, ["-DODG_NO_ABORT_TEXT"])
     sizes["core_no_persist"] = _core_path(work, ["-DODG_NO_ABORT_TEXT", "-DODG_NO_PERSIST"])
     return sizes

@@ -14,7 +14,9 @@ import subprocess
 from pathlib import Path
 
 from common import BUILD as BENCH
-from common import ODGEN, ROOT, Target
+from common import ODGEN, Target
+
+from odgen import toolchain
 
 BUILD = BENCH / "lookup"
 REPEAT = 20
@@ -83,9 +85,9 @@ def measure(label: str, eds: Path, lookup: str) -> dict[str, object]:
         return {"input": label, "lookup": lookup, "refused": True}
     (work / "driver.c").write_text(DRIVER)
     exe = work / "driver"
-    comp = subprocess.run(["gcc", "-std=gnu99", "-O2", f"-DREPEAT={REPEAT}", f"-I{ROOT / 'runtime'}", f"-I{work}",
-                           str(work / "driver.c"), str(work / "od.c"), str(ROOT / "runtime" / "odg.c"),
-                           str(ROOT / "runtime" / "odg_persist.c"), "-lm", "-o", str(exe)],
+    includes = [f"-I{d}" for d in [*toolchain.include_dirs(), work]]
+    comp = subprocess.run(["gcc", "-std=gnu99", "-O2", f"-DREPEAT={REPEAT}", *includes, str(work / "driver.c"),
+                           str(work / "od.c"), *map(str, toolchain.core_sources()), "-lm", "-o", str(exe)],
                           capture_output=True, text=True, check=False)
     if comp.returncode != 0:
         first = next((ln for ln in comp.stderr.splitlines() if "error" in ln), "compile failed")

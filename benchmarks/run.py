@@ -1,6 +1,7 @@
 """`make bench`: runs every benchmark part and writes results/latest.md, latest.json and growth.svg.
 
-Parts (each its own module): speed (whole-process generation speed against the peers),
+Parts (each its own module): startup (whole-process `odgen --version` and `odgen lint` of a
+small EDS against the bare interpreter), speed (whole-process generation speed against the peers),
 profile (where `odgen generate` spends its time), footprint (Cortex-M4 sizes against
 CANopenNode v4), lookup (callgrind instructions per lookup). Every target of the benchmark
 issue is listed at the top of the results with the ratio this run measured, met or not.
@@ -22,9 +23,10 @@ import footprint
 import lookup_cost
 import profile_generate
 import speed
+import startup
 from common import PEER_PYTHON, RESULTS, SYNTH_SIZES, Target, inputs, synth_label, targets_json
 
-PARTS = ("speed", "profile", "footprint", "lookup")
+PARTS = ("startup", "speed", "profile", "footprint", "lookup")
 BUDGET_S = 600
 
 
@@ -86,6 +88,8 @@ def main() -> None:
     info = machine()
     labels = inputs([int(n) for n in args.sizes.split(",")])
     results: dict[str, dict[str, object]] = {}
+    if "startup" in parts:
+        results["startup"] = startup.run()
     if "speed" in parts:
         results["speed"] = speed.run(labels)
     if "profile" in parts and synth_label(4000) in labels:

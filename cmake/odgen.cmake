@@ -1,28 +1,64 @@
-# odgen.cmake - generate a CANopen object dictionary at build time.
+# odgen.cmake - generate a CANopen object dictionary at build time with the installed odgen.
 #
-#   include(path/to/odgen/cmake/odgen.cmake)
+#   find_program(ODGEN_EXECUTABLE odgen)            # pip install odgen (any venv on PATH)
+#   execute_process(COMMAND "${ODGEN_EXECUTABLE}" --cmake-dir
+#                   OUTPUT_VARIABLE ODGEN_CMAKE_DIR OUTPUT_STRIP_TRAILING_WHITESPACE)
+#   include("${ODGEN_CMAKE_DIR}/odgen.cmake")
 #   odgen_add_object_dictionary(my_od NAME my_od EDS device.eds
 #                               [OPTIONS device.toml] [NODE_ID 5] [LOOKUP switch|bsearch])
-#   target_link_libraries(firmware PRIVATE my_od)
+#   target_link_libraries(firmware PRIVATE my_od)     # brings odgen::runtime along
 #
-# The dictionary is regenerated when the description, the options file, the odgen
-# templates or odgen itself change. The library carries the generated NAME.c and the
-# odg runtime; its users get the include directories of both.
+# odgen::runtime is the C runtime built from the sources packaged with odgen; the source
+# list and warning flags come from `odgen --toolchain cmake`, the definition odgen's own
+# builds use. A dictionary is regenerated when its description, its options file, its
+# arguments or the installed odgen version change. odgen writes only files whose content
+# changed, so touching the description without changing it recompiles nothing.
 
-set(ODGEN_ROOT "${CMAKE_CURRENT_LIST_DIR}/.." CACHE PATH "odgen source tree (runtime/, templates/)")
-find_program(ODGEN_EXECUTABLE odgen HINTS "${ODGEN_ROOT}/.venv/bin" DOC "the odgen command")
+cmake_minimum_required(VERSION 3.16)
+
+# The odgen that owns this file: the venv's bin/ beside site-packages/odgen/cmake, or a
+# source checkout's .venv; else PATH.
+find_program(ODGEN_EXECUTABLE odgen
+             HINTS "${CMAKE_CURRENT_LIST_DIR}/../../../../bin" "${CMAKE_CURRENT_LIST_DIR}/../.venv/bin"
+             DOC "the odgen command")
 if(NOT ODGEN_EXECUTABLE)
-  message(FATAL_ERROR "odgen not found: run `make setup` in ${ODGEN_ROOT} or put odgen on PATH")
+  message(FATAL_ERROR "odgen not found: pip install odgen, or set ODGEN_EXECUTABLE")
 endif()
 
-file(GLOB_RECURSE _odgen_sources CONFIGURE_DEPENDS
-     "${ODGEN_ROOT}/odgen/*.py" "${ODGEN_ROOT}/templates/*.j2")
-
-if(NOT TARGET odg_runtime)
-  add_library(odg_runtime STATIC "${ODGEN_ROOT}/runtime/odg.c" "${ODGEN_ROOT}/runtime/odg_persist.c")
-  target_include_directories(odg_runtime PUBLIC "${ODGEN_ROOT}/runtime")
-  set_target_properties(odg_runtime PROPERTIES C_STANDARD 99 C_STANDARD_REQUIRED ON)
+# Re-read the toolchain (and so the version) whenever odgen is reinstalled: pip rewrites its command.
+set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS "${ODGEN_EXECUTABLE}")
+execute_process(COMMAND "${ODGEN_EXECUTABLE}" --toolchain cmake
+                OUTPUT_VARIABLE _odgen_toolchain RESULT_VARIABLE _odgen_status)
+if(NOT _odgen_status EQUAL 0)
+  message(FATAL_ERROR "${ODGEN_EXECUTABLE} --toolchain cmake failed (${_odgen_status})")
 endif()
+file(WRITE "${CMAKE_BINARY_DIR}/odgen-toolchain.cmake" "${_odgen_toolchain}")
+include("${CMAKE_BINARY_DIR}/odgen-toolchain.cmake")  # ODGEN_VERSION, ODGEN_RUNTIME_DIR/_SOURCES, ODGEN_C_WARNINGS
+
+function(_odgen_strict target)
+  set_target_properties(${target} PROPERTIES C_STANDARD 99 C_STANDARD_REQUIRED ON C_EXTENSIONS OFF)
+  if(CMAKE_C_COMPILER_ID MATCHES "GNU|Clang")
+    target_compile_options(${target} PRIVATE ${ODGEN_C_WARNINGS})
+  endif()
+endfunction()
+
+if(NOT TARGET odgen_runtime)
+  add_library(odgen_runtime STATIC ${ODGEN_RUNTIME_SOURCES})
+  target_include_directories(odgen_runtime PUBLIC "${ODGEN_RUNTIME_DIR}")
+  _odgen_strict(odgen_runtime)
+  add_library(odgen::runtime ALIAS odgen_runtime)
+endif()
+
+# A file written only when its content changes (its mtime is what make and ninja compare).
+function(_odgen_write_if_changed path content)
+  if(EXISTS "${path}")
+    file(READ "${path}" old)
+    if(old STREQUAL content)
+      return()
+    endif()
+  endif()
+  file(WRITE "${path}" "${content}")
+endfunction()
 
 function(odgen_add_object_dictionary target)
   cmake_parse_arguments(ARG "" "NAME;EDS;OPTIONS;NODE_ID;LOOKUP" "" ${ARGN})
@@ -32,7 +68,7 @@ function(odgen_add_object_dictionary target)
   get_filename_component(eds "${ARG_EDS}" ABSOLUTE)
   set(out "${CMAKE_CURRENT_BINARY_DIR}/odgen/${ARG_NAME}")
   set(args generate "${eds}" -o "${out}" --name "${ARG_NAME}")
-  set(deps "${eds}" ${_odgen_sources})
+  set(deps "${eds}")
   if(ARG_OPTIONS)
     get_filename_component(options "${ARG_OPTIONS}" ABSOLUTE)
     list(APPEND args --options "${options}")
@@ -44,14 +80,24 @@ function(odgen_add_object_dictionary target)
   if(ARG_LOOKUP)
     list(APPEND args --lookup "${ARG_LOOKUP}")
   endif()
+  # The key of everything else the output depends on: odgen's version and the arguments.
+  set(key "${out}.key")
+  _odgen_write_if_changed("${key}" "odgen ${ODGEN_VERSION}\n${args}\n")
+  # The stamp is the rule's output; the sources are byproducts, left untouched when unchanged
+  # (ninja restats them; make compares their kept mtimes with the objects').
+  set(stamp "${out}.stamp")
   add_custom_command(
-    OUTPUT "${out}/${ARG_NAME}.c" "${out}/${ARG_NAME}.h"
+    OUTPUT "${stamp}"
+    BYPRODUCTS "${out}/${ARG_NAME}.c" "${out}/${ARG_NAME}.h"
     COMMAND "${ODGEN_EXECUTABLE}" ${args}
-    DEPENDS ${deps}
-    COMMENT "odgen: generating object dictionary ${ARG_NAME} from ${ARG_EDS}"
+    COMMAND "${CMAKE_COMMAND}" -E touch "${stamp}"
+    DEPENDS ${deps} "${key}"
+    COMMENT "odgen: object dictionary ${ARG_NAME} from ${ARG_EDS}"
     VERBATIM)
+  add_custom_target(${target}_generate DEPENDS "${stamp}")
   add_library(${target} STATIC "${out}/${ARG_NAME}.c" "${out}/${ARG_NAME}.h")
+  add_dependencies(${target} ${target}_generate)
   target_include_directories(${target} PUBLIC "${out}")
-  target_link_libraries(${target} PUBLIC odg_runtime)
-  set_target_properties(${target} PROPERTIES C_STANDARD 99 C_STANDARD_REQUIRED ON)
+  target_link_libraries(${target} PUBLIC odgen::runtime)
+  _odgen_strict(${target})
 endfunction()

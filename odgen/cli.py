@@ -8,32 +8,30 @@ and then as one line unless --debug asks for the traceback.
 from __future__ import annotations
 
 import argparse
-import subprocess
+import signal
 import sys
 from collections.abc import Callable, Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from . import __version__
-from .codegen.check import run_check
-from .roundtrip import FileOutcome, roundtrip_file, summary_lines, write_report
-from .roundtrip.build import build_node
-from .codegen.explain import explain_lines
-from .codegen.generate import LOOKUPS, Request, generate, prepare, valid_name
-from .codegen.options import parse_pattern
-from .diagnostics import Diagnostics, Severity
 from .errors import OdgenError
-from .fileio import write_atomic
-from .diff import diff_paths, fails
-from .diff.report import RENDERERS as DIFF_RENDERERS
-from .formats import load_path
-from .formats.eds_writer import write_eds
-from .profiles import ds401 as ds401_profile
-from .lint import RuleFilter, exit_code, lint_path
-from .htmlreport import add_report_parser, cmd_report
-from .network import lint_network
-from .report import RENDERERS
-from .rules import LintOptions
-from .rules.catalogue import render_markdown, render_table
+
+if TYPE_CHECKING:
+    from .codegen.generate import Request
+    from .diagnostics import Diagnostics
+    from .lint import FileResult, RuleFilter
+    from .rules import LintOptions
+
+# Commands import what they use when they run: `odgen lint` of an EDS and `odgen --version`
+# start without jinja2, lxml or canopen (a pre-commit hook pays the start-up on every commit).
+LOOKUPS = ("switch", "bsearch")  # codegen.generate.LOOKUPS, checked equal by a test
+REPORT_FORMATS = ("github", "json", "sarif", "text")  # report.RENDERERS, checked equal by a test
+INPUT_FORMATS = ("eds", "dcf", "xdd", "xdc")  # formats.INPUT_FORMATS, checked equal by a test
+DIFF_FORMATS = ("json", "sarif", "text")  # diff.report.RENDERERS, checked equal by a test
+PAGE_FORMATS = ("html", "md")  # htmlreport.render.FORMATS, checked equal by a test
+# profiles.ds401's MAX_DIGITAL, MAX_ANALOG, WIDTHS and default name, checked equal by a test
+DS401_MAX_DIGITAL, DS401_MAX_ANALOG, DS401_WIDTHS, DS401_NAME = 2032, 254, (8, 16, 32), "DS401 I/O module"
 
 
 def _node_id(text: str) -> int:
@@ -50,16 +48,59 @@ def _rule_list(text: str) -> list[str]:
     return [part.strip().upper() for part in text.split(",") if part.strip()]
 
 
+def _existing_file(what: str) -> Callable[[str], Path]:
+    """An argument naming a file that must exist: a missing one is the user's mistake (exit 2), named."""
+    def check(text: str) -> Path:
+        path = Path(text)
+        if not path.is_file():
+            raise argparse.ArgumentTypeError(f"{what} {text} {'is not a file' if path.exists() else 'does not exist'}")
+        return path
+    return check
+
+
+class _PrintAndExit(argparse.Action):
+    """--cmake-dir, --runtime-dir, --toolchain cmake: what a firmware build asks the installed odgen."""
+
+    def __init__(self, option_strings: list[str], dest: str, what: str, nargs: int | None = 0, **kw: object) -> None:
+        self.what = what
+        super().__init__(option_strings, dest, nargs=nargs, **kw)  # type: ignore[arg-type]
+
+    def __call__(self, parser: argparse.ArgumentParser, namespace: argparse.Namespace, values: object,
+                 option_string: str | None = None) -> None:
+        from . import assets, toolchain
+
+        texts = {"cmake-dir": lambda: f"{assets.cmake_dir()}\n", "runtime-dir": lambda: f"{assets.runtime_dir()}\n",
+                 "toolchain": toolchain.cmake_script}
+        sys.stdout.write(texts[self.what]())
+        parser.exit(0)
+
+
+def _add_location_options(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--cmake-dir", action=_PrintAndExit, what="cmake-dir",
+                        help="print the folder of odgen.cmake (include it from a CMake project)")
+    parser.add_argument("--runtime-dir", action=_PrintAndExit, what="runtime-dir",
+                        help="print the folder of the C runtime's sources and headers")
+    parser.add_argument("--toolchain", action=_PrintAndExit, what="toolchain", nargs=1, choices=["cmake"],
+                        help="print the runtime's sources and C flags as CMake variables")
+
+
+def _input_format(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--input-format", choices=INPUT_FORMATS,
+                        help="read the input as this format (needed when its suffix is not .eds/.dcf/.xdd/.xpd/.xdc)")
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="odgen", description="CANopen EDS/DCF/XDD linter and C generator")
     parser.add_argument("--version", action="version", version=f"odgen {__version__}")
     parser.add_argument("--debug", action="store_true", help="show tracebacks of internal errors")
+    _add_location_options(parser)
     commands = parser.add_subparsers(dest="command", required=True)
 
     lint = commands.add_parser("lint", help="check device descriptions against the rule catalogue")
     lint.add_argument("files", nargs="*", type=Path, metavar="FILE")
     lint.add_argument("--network", type=Path, metavar="NET.toml", help="lint a network's nodes and their PDOs")
-    lint.add_argument("--format", choices=sorted(RENDERERS), default="text")
+    lint.add_argument("--format", choices=REPORT_FORMATS, default="text",
+                      help="github: workflow annotations for GitHub Actions")
     lint.add_argument("--output", "-o", type=Path, help="write the report to a file instead of stdout")
     lint.add_argument("--strict", action="store_true", help="warnings fail too (exit 1)")
     lint.add_argument("--node-id", type=_node_id, help="check $NODEID values for this node-id only")
@@ -68,51 +109,64 @@ def build_parser() -> argparse.ArgumentParser:
                       help="report only these rule ids or prefixes (comma-separated)")
     lint.add_argument("--ignore", type=_rule_list, action="extend", default=[], metavar="RULES",
                       help="do not report these rule ids or prefixes (comma-separated)")
+    lint.add_argument("--statistics", action="store_true", help="print the number of findings per rule instead")
+    lint.add_argument("--config", type=_existing_file("config file"), metavar="TOML",
+                      help="settings file (default: odgen.toml or [tool.odgen] in pyproject.toml, found upward)")
+    _input_format(lint)
 
     convert = commands.add_parser("convert", help="write a description as EDS (or DCF)")
     convert.add_argument("input", type=Path, metavar="IN")
     convert.add_argument("output", type=Path, metavar="OUT")
+    convert.add_argument("--force", action="store_true", help="allow OUT to be IN (rewrite the input in place)")
+    _input_format(convert)
 
     gen = commands.add_parser("generate", help="generate the C object dictionary (NAME.h, NAME.c)")
     gen.add_argument("input", type=Path, metavar="FILE")
     gen.add_argument("-o", "--output", type=Path, required=True, metavar="DIR")
     gen.add_argument("--name", help="C name of the dictionary (default: from the file name)")
-    gen.add_argument("--options", type=Path, metavar="OPTS", help="options file (TOML): placement, hooks")
+    gen.add_argument("--options", type=_existing_file("options file"), metavar="OPTS",
+                     help="options file (TOML): placement, hooks")
     gen.add_argument("--node-id", type=_node_id, help="check $NODEID values for this node-id")
     gen.add_argument("--lookup", choices=LOOKUPS, default="switch", help="index lookup (default: switch)")
-    gen.add_argument("--check", action="store_true", help="exit 1 if DIR differs from what would be generated")
+    gen.add_argument("--check", action="store_true",
+                     help="write nothing; exit 1 listing missing, changed and extra files if DIR is not up to date")
+    _input_format(gen)
 
     explain = commands.add_parser("explain", help="show placement and hooks of an entry and their origin")
     explain.add_argument("input", type=Path, metavar="FILE")
     explain.add_argument("index", metavar="INDEX", help="e.g. 0x6040 or 0x6200sub1")
-    explain.add_argument("--options", type=Path, metavar="OPTS")
+    explain.add_argument("--options", type=_existing_file("options file"), metavar="OPTS")
+    _input_format(explain)
 
     chk = commands.add_parser("check", help="generate, compile and run a self-test of the dictionary")
     chk.add_argument("input", type=Path, metavar="FILE")
     chk.add_argument("--name", help="C name of the dictionary")
-    chk.add_argument("--options", type=Path, metavar="OPTS")
+    chk.add_argument("--options", type=_existing_file("options file"), metavar="OPTS")
     chk.add_argument("--node-id", type=_node_id, help="node-id the self-test runs with (default 5)")
     chk.add_argument("--lookup", choices=LOOKUPS, default="switch")
     chk.add_argument("--keep", type=Path, metavar="DIR", help="build in DIR and keep the files")
     chk.add_argument("--verbose", "-v", action="store_true", help="print the whole self-test output")
+    _input_format(chk)
 
     node = commands.add_parser("node", help="build a CANopen node from a description and run it on SocketCAN")
     node.add_argument("input", type=Path, metavar="FILE")
     node.add_argument("--iface", default="vcan0")
     node.add_argument("--node-id", type=_node_id, default=5)
     node.add_argument("--nv", type=Path, help="file that keeps stored parameters (default: none)")
-    node.add_argument("--options", type=Path, metavar="OPTS")
+    node.add_argument("--options", type=_existing_file("options file"), metavar="OPTS")
+    _input_format(node)
 
     rt = commands.add_parser("roundtrip", help="check a node built from FILE with python canopen on a CAN bus")
     rt.add_argument("files", nargs="+", type=Path, metavar="FILE")
     rt.add_argument("--iface", default="vcan0")
     rt.add_argument("--node-id", type=_node_id, default=5)
-    rt.add_argument("--options", type=Path, metavar="OPTS")
+    rt.add_argument("--options", type=_existing_file("options file"), metavar="OPTS")
     rt.add_argument("--report", type=Path, help="write the results as JSON")
+    _input_format(rt)
 
     add_profile_parser(commands)
     add_diff_parser(commands)
-    add_report_parser(commands, _node_id)
+    add_report_parser(commands)
 
     rules = commands.add_parser("rules", help="list the rule catalogue")
     rules.add_argument("--markdown", action="store_true", help="as docs/rules.md")
@@ -135,14 +189,14 @@ def add_profile_parser(commands: argparse._SubParsersAction[argparse.ArgumentPar
     profile = commands.add_parser("profile", help="write a device-profile description from channel counts")
     profiles = profile.add_subparsers(dest="profile", required=True)
     ds401 = profiles.add_parser("ds401", help="CiA 401 generic I/O module (docs/ds401.md)")
-    for kind, maximum, what in (("di", ds401_profile.MAX_DIGITAL, "digital inputs (bits)"),
-                                ("do", ds401_profile.MAX_DIGITAL, "digital outputs (bits)"),
-                                ("ai", ds401_profile.MAX_ANALOG, "analog inputs"),
-                                ("ao", ds401_profile.MAX_ANALOG, "analog outputs")):
+    for kind, maximum, what in (("di", DS401_MAX_DIGITAL, "digital inputs (bits)"),
+                                ("do", DS401_MAX_DIGITAL, "digital outputs (bits)"),
+                                ("ai", DS401_MAX_ANALOG, "analog inputs"),
+                                ("ao", DS401_MAX_ANALOG, "analog outputs")):
         ds401.add_argument(f"--{kind}", type=_count(maximum), default=0, metavar="N", help=f"{what}, 0..{maximum}")
     for kind in ("ai", "ao"):
-        ds401.add_argument(f"--{kind}-width", type=int, choices=ds401_profile.WIDTHS, default=16)
-    ds401.add_argument("--name", default=ds401_profile.Ds401.name, help="product name")
+        ds401.add_argument(f"--{kind}-width", type=int, choices=DS401_WIDTHS, default=16)
+    ds401.add_argument("--name", default=DS401_NAME, help="product name")
     for key in ("vendor-id", "product-code", "revision"):
         ds401.add_argument(f"--{key}", type=_count(0xFFFFFFFF), default=0, metavar="N")
     ds401.add_argument("-o", "--output", type=Path, required=True, metavar="FILE.eds")
@@ -156,13 +210,17 @@ def add_diff_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser
     diff.add_argument("--options", type=Path, metavar="OPTS", help="options file (persistence groups) of both")
     diff.add_argument("--old-options", type=Path, metavar="OPTS", help="options file of OLD")
     diff.add_argument("--new-options", type=Path, metavar="OPTS", help="options file of NEW")
-    diff.add_argument("--format", choices=sorted(DIFF_RENDERERS), default="text")
+    diff.add_argument("--format", choices=DIFF_FORMATS, default="text")
     diff.add_argument("--output", "-o", type=Path, help="write the report to a file instead of stdout")
     diff.add_argument("--fail-on", choices=("breaking", "stored", "compatible", "none"), default="breaking",
                       help="exit 1 on changes of this class or a more severe one (default: breaking)")
 
 
 def cmd_diff(args: argparse.Namespace) -> int:
+    from .diff import diff_paths, fails
+    from .diff.report import RENDERERS as DIFF_RENDERERS
+    from .fileio import write_atomic
+
     result = diff_paths(args.old, args.new, args.old_options or args.options, args.new_options or args.options)
     for d in result.read_errors:
         print(d.text(), file=sys.stderr)
@@ -174,7 +232,27 @@ def cmd_diff(args: argparse.Namespace) -> int:
     return 1 if fails(result, args.fail_on) else 0
 
 
+def add_report_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    report = commands.add_parser("report", help="write an HTML (or Markdown) report of a description")
+    report.add_argument("input", type=Path, metavar="FILE")
+    report.add_argument("-o", "--output", type=Path, required=True, metavar="OUT")
+    report.add_argument("--format", choices=PAGE_FORMATS, help="html (default) or md; default from OUT's suffix")
+    report.add_argument("--options", type=Path, metavar="OPTS", help="options file (TOML): placement, hooks")
+    report.add_argument("--network", type=Path, metavar="NET.toml", help="add the network's PDO matrix")
+    report.add_argument("--node-id", type=_node_id, help="check $NODEID values for this node-id")
+    report.add_argument("--can-fd", action="store_true", help="PDOs of up to 512 bits")
+
+
+def cmd_report(args: argparse.Namespace) -> int:
+    from .htmlreport import write_report as write_page
+
+    return write_page(args)
+
+
 def cmd_profile(args: argparse.Namespace) -> int:
+    from .fileio import output_dir, write_files
+    from .profiles import ds401 as ds401_profile
+
     spec = ds401_profile.Ds401(args.di, args.do, args.ai, args.ao, args.ai_width, args.ao_width, args.name,
                                args.vendor_id, args.product_code, args.revision)
     problems = spec.problems() + ([] if args.output.suffix.lower() == ".eds" else ["-o must name a .eds file"])
@@ -188,36 +266,89 @@ def cmd_profile(args: argparse.Namespace) -> int:
     if not result.files:
         print(f"odgen: {args.output}: errors found, nothing generated", file=sys.stderr)
         return 1
-    args.generate.mkdir(parents=True, exist_ok=True)
-    for name, text in sorted(result.files.items()):
-        write_atomic(args.generate / name, text)
+    out = output_dir(args.generate)
+    write_files({out / name: text for name, text in result.files.items()}, only_changed=True)
     return 0
 
 
+def _lint_settings(args: argparse.Namespace, path: Path) -> tuple[RuleFilter, LintOptions, bool]:
+    """The rule filter, lint options and strictness for one file: its config file, then the command line."""
+    from .config import config_for
+    from .lint import RuleFilter
+    from .rules import LintOptions
+
+    config = config_for(path, args.config)
+    select = tuple(args.select) or config.select
+    rule_filter = RuleFilter(select, config.ignores_for(path) + tuple(args.ignore))
+    node_id = args.node_id if args.node_id is not None else config.node_id
+    return rule_filter, LintOptions(node_id=node_id, can_fd=args.can_fd), args.strict or config.strict
+
+
 def cmd_lint(args: argparse.Namespace) -> int:
-    options = LintOptions(node_id=args.node_id, can_fd=args.can_fd)
-    rule_filter = RuleFilter(tuple(args.select), tuple(args.ignore))
+    from .config import check_rule_ids
+    from .lint import exit_code, lint_path
+
     if not args.files and args.network is None:
         raise OdgenError("lint needs FILE arguments or --network NET.toml")
-    results, unreadable = lint_network(args.network, options, rule_filter) if args.network else ([], False)
+    check_rule_ids(args.select, "--select")
+    check_rule_ids(args.ignore, "--ignore")
+    results: list[FileResult] = []
+    unreadable = failed = False
+    if args.network:
+        from .network import lint_network
+
+        rule_filter, options, strict = _lint_settings(args, args.network)
+        results, unreadable = lint_network(args.network, options, rule_filter)
+        failed = exit_code(results, strict) != 0
     for path in args.files:
+        rule_filter, options, strict = _lint_settings(args, path)
         try:
-            results.append(lint_path(path, options, rule_filter))
+            result = lint_path(path, options, rule_filter, args.input_format)
         except OdgenError as err:
             print(f"odgen: {err}", file=sys.stderr)
             unreadable = True
-    report = RENDERERS[args.format](results)
+            continue
+        results.append(result)
+        failed = failed or exit_code([result], strict) != 0
+    _write_report(args, results)
+    return 2 if unreadable else int(failed)
+
+
+def _write_report(args: argparse.Namespace, results: list[FileResult]) -> None:
+    from .fileio import write_atomic
+
+    if args.statistics:
+        from .report.statistics import render_statistics
+
+        report = render_statistics(results)
+    else:
+        from .report import RENDERERS
+
+        report = RENDERERS[args.format](results)
     if args.output:
         write_atomic(args.output, report)
     else:
         sys.stdout.write(report)
-    return 2 if unreadable else exit_code(results, args.strict)
+
+
+def _same_file(a: Path, b: Path) -> bool:
+    try:
+        return b.exists() and a.samefile(b)
+    except OSError:
+        return False
 
 
 def cmd_convert(args: argparse.Namespace) -> int:
+    from .diagnostics import Severity
+    from .fileio import write_atomic
+    from .formats import load_path
+    from .formats.eds_writer import write_eds
+
     if args.output.suffix.lower() not in (".eds", ".dcf"):
         raise OdgenError(f"{args.output}: convert writes .eds or .dcf files")
-    od, diags = load_path(args.input)
+    if _same_file(args.input, args.output) and not args.force:
+        raise OdgenError(f"{args.output} is the input file: name another output, or add --force to rewrite it")
+    od, diags = load_path(args.input, args.input_format)
     for d in diags.sorted():
         if d.severity >= Severity.WARNING:
             print(d.text(), file=sys.stderr)
@@ -229,45 +360,59 @@ def cmd_convert(args: argparse.Namespace) -> int:
 
 
 def _print_findings(diags: Diagnostics) -> None:
+    from .diagnostics import Severity
+
     for d in diags.sorted():
         if d.severity >= Severity.WARNING:
             print(d.text(), file=sys.stderr)
 
 
 def _generate_request(args: argparse.Namespace) -> Request:
+    from .codegen.generate import Request, valid_name
+
     if args.name is not None and not valid_name(args.name):
         raise OdgenError(f"--name '{args.name}' must be a C identifier of at most 32 characters")
-    return Request(args.input, args.name, args.options, args.node_id, args.lookup)
+    return Request(args.input, args.name, args.options, args.node_id, args.lookup, input_format=args.input_format)
 
 
 def cmd_generate(args: argparse.Namespace) -> int:
-    request = _generate_request(args)
-    result = generate(request)
+    from .codegen.generate import generate
+    from .fileio import output_dir, write_files
+
+    result = generate(_generate_request(args))
     _print_findings(result.diags)
     if not result.files:
         print(f"odgen: {args.input}: errors found, nothing written", file=sys.stderr)
         return 1
     if args.check:
-        return _check_outputs(args.output, result.files)
-    args.output.mkdir(parents=True, exist_ok=True)
-    for name, text in sorted(result.files.items()):
-        write_atomic(args.output / name, text)
+        from .codegen.outcheck import check_outputs
+
+        return check_outputs(args.output, result.files, args.argv)
+    out = output_dir(args.output)
+    write_files({out / name: text for name, text in result.files.items()}, only_changed=True)
+    _remove_stale_temps(out, result.files)
     return 0
 
 
-def _check_outputs(out: Path, files: dict[str, str]) -> int:
-    stale = [name for name, text in sorted(files.items())
-             if not (out / name).is_file() or (out / name).read_text(encoding="utf-8") != text]
-    for name in stale:
-        print(f"odgen: {out / name} is not what odgen would generate", file=sys.stderr)
-    return 1 if stale else 0
+def _remove_stale_temps(out: Path, files: dict[str, str]) -> None:
+    """Temporary files a killed run left beside these outputs (a run that ends otherwise removes its own)."""
+    from .codegen.outcheck import extra_files
+    from .fileio import TMP_SUFFIX
+
+    for path in extra_files(out, files):
+        if path.name.endswith(TMP_SUFFIX):
+            path.unlink(missing_ok=True)
 
 
 def cmd_explain(args: argparse.Namespace) -> int:
+    from .codegen.explain import explain_lines
+    from .codegen.generate import Request, prepare
+    from .codegen.options import parse_pattern
+
     pattern = parse_pattern(args.index)
     if pattern is None:
         raise OdgenError(f"'{args.index}' is not an index (0x6040) or sub-entry (0x6040sub1)")
-    result = prepare(Request(args.input, options=args.options))
+    result = prepare(Request(args.input, options=args.options, input_format=args.input_format))
     _print_findings(result.diags)
     if result.od is None or result.placements is None:
         return 1
@@ -279,6 +424,8 @@ def cmd_explain(args: argparse.Namespace) -> int:
 
 
 def cmd_check(args: argparse.Namespace) -> int:
+    from .codegen.check import run_check
+
     request = _generate_request(args)
     outcome = run_check(request, workdir=args.keep)
     _print_findings(outcome.result.diags)
@@ -293,8 +440,17 @@ def cmd_check(args: argparse.Namespace) -> int:
 
 
 def cmd_node(args: argparse.Namespace) -> int:
-    program, result = build_node(Request(args.input, name="od", options=args.options, node_id=args.node_id))
+    from .codegen.generate import Request
+    from .hostneeds import require_can_extra, require_socketcan
+    from .roundtrip.build import build_node
+
+    require_can_extra("node")
+    require_socketcan(args.iface)
+    program, result = build_node(Request(args.input, name="od", options=args.options, node_id=args.node_id,
+                                         input_format=args.input_format))
     _print_findings(result.diags)
+    import subprocess
+
     cmd = [str(program), "--iface", args.iface, "--node-id", str(args.node_id)]
     if args.nv is not None:
         cmd += ["--nv", str(args.nv)]
@@ -302,10 +458,16 @@ def cmd_node(args: argparse.Namespace) -> int:
 
 
 def cmd_roundtrip(args: argparse.Namespace) -> int:
+    from .hostneeds import require_can_extra, require_socketcan
+
+    require_can_extra("roundtrip")
+    require_socketcan(args.iface)
+    from .roundtrip import FileOutcome, roundtrip_file, summary_lines, write_report
+
     outcomes = []
     for path in args.files:
         try:
-            outcome = roundtrip_file(path, args.iface, args.node_id, args.options)
+            outcome = roundtrip_file(path, args.iface, args.node_id, args.options, args.input_format)
         except OdgenError as err:
             outcome = FileOutcome(str(path), [], str(err))
         outcomes.append(outcome)
@@ -318,6 +480,9 @@ def cmd_roundtrip(args: argparse.Namespace) -> int:
 
 
 def cmd_rules(args: argparse.Namespace) -> int:
+    from . import rules  # noqa: F401  (fills the catalogue)
+    from .rules.catalogue import render_markdown, render_table
+
     sys.stdout.write(render_markdown() if args.markdown else render_table())
     return 0
 
@@ -327,9 +492,16 @@ COMMANDS = {"lint": cmd_lint, "convert": cmd_convert, "generate": cmd_generate, 
             "profile": cmd_profile, "diff": cmd_diff, "report": cmd_report}
 
 
+def _terminate(signum: int, frame: object) -> None:
+    """SIGTERM ends odgen as Ctrl-C does, so half-written temporary files are removed on the way out."""
+    raise KeyboardInterrupt
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
+    args.argv = list(sys.argv[1:] if argv is None else argv)  # for the command `generate --check` suggests
+    previous = signal.signal(signal.SIGTERM, _terminate)
     try:
         return COMMANDS[args.command](args)
     except OdgenError as err:
@@ -343,3 +515,5 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"odgen: internal error: {type(err).__name__}: {err} (run with --debug for the traceback)",
               file=sys.stderr)
         return 3
+    finally:
+        signal.signal(signal.SIGTERM, previous)

@@ -39,8 +39,9 @@ def lint_model(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -
     run_rules(od, diags, options)
 
 
-def lint_path(path: str | Path, options: LintOptions, rule_filter: RuleFilter = RuleFilter()) -> FileResult:
-    od, diags = load_path(path)
+def lint_path(path: str | Path, options: LintOptions, rule_filter: RuleFilter = RuleFilter(),
+              fmt: str | None = None) -> FileResult:
+    od, diags = load_path(path, fmt)
     if od is not None:
         lint_model(od, diags, options)
     kept = [d for d in diags.sorted() if rule_filter.keeps(d.rule)]

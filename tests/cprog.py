@@ -10,7 +10,9 @@ from pathlib import Path
 
 import pytest
 
-STRICT = ("-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic")
+from odgen.toolchain import CFLAGS
+
+STRICT = CFLAGS  # the flags odgen check, the node build and the CMake module use
 # Warnings beyond STRICT that the runtime sources (not the tests) are kept free of.
 EXTRA = ("-Wconversion", "-Wsign-conversion", "-Wshadow", "-Wcast-qual", "-Wstrict-prototypes",
          "-Wmissing-prototypes", "-Wundef")

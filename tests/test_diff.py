@@ -16,6 +16,7 @@ from odgen.codegen.placement import storage_from_description
 from odgen.diff.changes import BREAKING, COMPATIBLE, KINDS, STORED, Change
 from odgen.formats import load_path
 from odgen.formats.eds_writer import write_eds
+from odgen.report.sarif import artifact_location
 from odgen.model import ObjectDictionary
 
 from .conftest import CORPUS, FIXTURES, corpus_params
@@ -123,7 +124,8 @@ def test_sarif_is_valid_and_located_in_new(tmp_path: Path) -> None:
     assert {r["id"] for r in run["tool"]["driver"]["rules"]} == set(KINDS)
     results = run["results"]
     assert {r["ruleId"] for r in results} == EXPECTED[BREAKING] and {r["level"] for r in results} == {"error"}
-    assert {r["locations"][0]["physicalLocation"]["artifactLocation"]["uri"] for r in results} == {new.as_uri()}
+    located = {json.dumps(r["locations"][0]["physicalLocation"]["artifactLocation"]) for r in results}
+    assert located == {json.dumps(artifact_location(str(new)))}  # %SRCROOT%-relative under the working directory
     assert all(run["tool"]["driver"]["rules"][r["ruleIndex"]]["id"] == r["ruleId"] for r in results)
 
 

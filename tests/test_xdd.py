@@ -9,7 +9,8 @@ from lxml import etree
 
 from odgen.diagnostics import RULES, Diagnostics, Severity
 from odgen.formats import load_path
-from odgen.formats.xdd import SCHEMA_PATH, load_xdd
+from odgen.assets import schema_path
+from odgen.formats.xdd import load_xdd
 from odgen.model import Obj, ObjectDictionary, Sub, Value
 
 from .conftest import FIXTURES, expectations, lint, rendered
@@ -236,7 +237,7 @@ def test_format_from_content_then_suffix() -> None:
 
 
 def test_schema_validates_a_plain_file_as_it_is() -> None:
-    schema = etree.XMLSchema(etree.parse(str(SCHEMA_PATH)))
+    schema = etree.XMLSchema(etree.parse(str(schema_path())))
     assert schema.validate(etree.parse(str(XDD / "valid.xdd"))), schema.error_log
 
 

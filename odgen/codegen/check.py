@@ -2,20 +2,16 @@
 
 from __future__ import annotations
 
-import os
-import shutil
 import subprocess
 import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..errors import OdgenError
+from ..fileio import output_dir, write_files
+from ..toolchain import CFLAGS, compiler, core_sources, include_dirs
 from .generate import Request, Result, environment, generate
 from .selftest import build_selftest
 
-RUNTIME = Path(__file__).resolve().parents[2] / "runtime"
-RUNTIME_SOURCES = ("odg.c", "odg_persist.c")
-CFLAGS = ("-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-O1")
 DEFAULT_NODE_ID = 5
 
 
@@ -26,17 +22,11 @@ class CheckOutcome:
     result: Result
 
 
-def compiler() -> str:
-    cc = os.environ.get("CC") or shutil.which("cc") or shutil.which("gcc") or shutil.which("clang")
-    if not cc:
-        raise OdgenError("no C compiler found (set CC, or install gcc)")
-    return cc
-
-
 def _compile(cc: str, workdir: Path, name: str, extra: tuple[str, ...]) -> subprocess.CompletedProcess[str]:
     sources = [str(workdir / f"{name}.c"), str(workdir / f"{name}_selftest.c")]
-    sources += [str(RUNTIME / s) for s in RUNTIME_SOURCES]
-    cmd = [cc, *CFLAGS, *extra, f"-I{RUNTIME}", f"-I{workdir}", *sources, "-lm", "-o", str(workdir / "selftest")]
+    sources += [str(p) for p in core_sources()]
+    includes = [f"-I{d}" for d in [*include_dirs(), workdir]]
+    cmd = [cc, *CFLAGS, "-O1", *extra, *includes, *sources, "-lm", "-o", str(workdir / "selftest")]
     return subprocess.run(cmd, capture_output=True, text=True, check=False)
 
 
@@ -47,12 +37,12 @@ def run_check(request: Request, workdir: Path | None = None, cc: str | None = No
         return CheckOutcome(False, "", result)
     with tempfile.TemporaryDirectory(prefix="odgen-check-") as tmp:
         work = workdir or Path(tmp)
-        work.mkdir(parents=True, exist_ok=True)
-        for fname, text in result.files.items():
-            (work / fname).write_text(text, encoding="utf-8")
+        output_dir(work)
         test = build_selftest(result.od, result.placements, result.view, request.node_id or DEFAULT_NODE_ID)
         selftest = environment().get_template("selftest.c.j2").render(t=test)
-        (work / f"{result.view.name}_selftest.c").write_text(selftest, encoding="utf-8")
+        # Renamed into place, as `generate` writes: a symlink in --keep DIR is replaced, not written through.
+        write_files({work / name: text for name, text in
+                     {**result.files, f"{result.view.name}_selftest.c": selftest}.items()})
         built = _compile(cc or compiler(), work, result.view.name, cflags)
         if built.returncode != 0:
             return CheckOutcome(False, "compile failed:\n" + built.stdout + built.stderr, result)

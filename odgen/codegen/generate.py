@@ -12,6 +12,7 @@ from pathlib import Path
 import jinja2
 
 from .. import __version__
+from ..assets import templates_dir
 from ..diagnostics import Diagnostics, Severity
 from ..formats import load_path, read_bytes
 from ..lint import lint_model
@@ -22,7 +23,6 @@ from .options import Options, load_options, parse_options
 from .placement import Placement, place
 from .viewmodel import DictView, build
 
-TEMPLATES = Path(__file__).resolve().parents[2] / "templates"
 LOOKUPS = ("switch", "bsearch")
 
 
@@ -35,6 +35,7 @@ class Request:
     lookup: str = "switch"
     defaults: str = ""  # options (TOML) applied before the options file, e.g. by `odgen roundtrip`
     can_fd: bool = False  # lint PDOs against a CAN FD frame (512 bits)
+    input_format: str | None = None  # eds/dcf/xdd/xdc when the suffix does not say
 
 
 @dataclass
@@ -51,7 +52,7 @@ def default_name(path: Path) -> str:
 
 
 def environment() -> jinja2.Environment:
-    return jinja2.Environment(loader=jinja2.FileSystemLoader(str(TEMPLATES)), undefined=jinja2.StrictUndefined,
+    return jinja2.Environment(loader=jinja2.FileSystemLoader(str(templates_dir())), undefined=jinja2.StrictUndefined,
                               trim_blocks=True, lstrip_blocks=True, keep_trailing_newline=True,
                               autoescape=False)
 
@@ -66,7 +67,7 @@ def digest(request: Request, name: str) -> str:
 
 def prepare(request: Request) -> Result:
     """Load, lint, read options and place; stops early when errors were found."""
-    od, diags = load_path(request.input)
+    od, diags = load_path(request.input, request.input_format)
     result = Result(diags, {}, od)
     if od is None:
         return result

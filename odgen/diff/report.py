@@ -7,7 +7,7 @@ from collections.abc import Callable
 
 from .. import __version__
 from ..persist.migration import KEEP, Step
-from ..report.sarif import SCHEMA_URI, _uri
+from ..report.sarif import SCHEMA_URI, artifact_location, uri_base_ids
 from . import DiffResult
 from .changes import BREAKING, CLASS_TITLES, CLASSES, COMPATIBLE, KINDS, STORED, Change, Kind
 
@@ -59,9 +59,8 @@ def _rule(kind: Kind) -> dict[str, object]:
 
 
 def _result(c: Change, result: DiffResult, rule_index: dict[str, int]) -> dict[str, object]:
-    physical: dict[str, object] = {"artifactLocation": {"uri": _uri(result.new)}}
-    if c.line > 0:
-        physical["region"] = {"startLine": c.line}
+    physical: dict[str, object] = {"artifactLocation": artifact_location(result.new),
+                                   "region": {"startLine": max(c.line, 1)}}  # a file-level change: line 1
     location: dict[str, object] = {"physicalLocation": physical}
     if c.index is not None:
         location["logicalLocations"] = [{"name": c.subject, "kind": "member"}]
@@ -76,7 +75,8 @@ def render_sarif(result: DiffResult) -> str:
     rule_index = {k.id: i for i, k in enumerate(kinds)}
     run = {
         "tool": {"driver": {"name": "odgen", "version": __version__, "rules": [_rule(k) for k in kinds]}},
-        "artifacts": [{"location": {"uri": _uri(f)}} for f in dict.fromkeys((result.new, result.old))],
+        "originalUriBaseIds": uri_base_ids(),
+        "artifacts": [{"location": artifact_location(f)} for f in dict.fromkeys((result.new, result.old))],
         "results": [_result(c, result, rule_index) for c in result.changes],
         "columnKind": "unicodeCodePoints",
     }

@@ -1,6 +1,7 @@
 """Readers: one per input format, all producing the same model.
 
-`load_path` picks the reader by file suffix (sniffing XML for unknown ones) and
+`load_path` picks the reader by file suffix (another suffix, such as .txt or .ini, needs the
+format named: `--input-format`, since guessing would lint a file that is no description) and
 returns the model, or None when the file could not be understood at all, with
 the diagnostics found while reading.
 """
@@ -16,14 +17,18 @@ from ..model import ObjectDictionary
 
 MAX_BYTES = 16 * 1024 * 1024  # larger files are refused unread (SYN018): memory stays bounded
 FORMATS = {".eds": "eds", ".dcf": "dcf", ".xdd": "xdd", ".xpd": "xdd", ".xdc": "xdc"}
+INPUT_FORMATS = ("eds", "dcf", "xdd", "xdc")
 
 
-def detect_format(path: Path, data: bytes) -> str:
-    fmt = FORMATS.get(path.suffix.lower())
+def detect_format(path: Path, fmt: str | None = None) -> str:
     if fmt is not None:
         return fmt
-    head = data[:64].lstrip(b"\xef\xbb\xbf \t\r\n")
-    return "xdd" if head.startswith(b"<") else "eds"
+    known = FORMATS.get(path.suffix.lower())
+    if known is None:
+        suffix = f"'{path.suffix}'" if path.suffix else "no suffix"
+        raise OdgenError(f"{path}: {suffix} is not a description's suffix ({', '.join(FORMATS)}); "
+                         f"name the format with --input-format {'|'.join(INPUT_FORMATS)}")
+    return known
 
 
 def read_bytes(path: Path, limit: int | None = None) -> bytes:
@@ -49,7 +54,7 @@ def load_bytes(data: bytes, source: str, fmt: str) -> tuple[ObjectDictionary | N
     return load_eds(data, source, diags, fmt), diags
 
 
-def load_path(path: str | Path) -> tuple[ObjectDictionary | None, Diagnostics]:
+def load_path(path: str | Path, fmt: str | None = None) -> tuple[ObjectDictionary | None, Diagnostics]:
     path = Path(path)
-    data = read_bytes(path, MAX_BYTES)
-    return load_bytes(data, str(path), detect_format(path, data))
+    fmt = detect_format(path, fmt)
+    return load_bytes(read_bytes(path, MAX_BYTES), str(path), fmt)

@@ -50,12 +50,12 @@ import datetime
 import re
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any, cast
 
 from lxml import etree
 
 from .. import rules  # noqa: F401  (defines the XML rules this reader reports)
+from ..assets import schema_path
 from ..diagnostics import Diagnostics, Loc
 from ..model import ARRAY, DEFSTRUCT, RECORD, VAR, Field, Obj, ObjectDictionary, Sub, Value, lookup, parse_value
 from ..model.datatypes import BASIC_TYPES, DataType
@@ -65,7 +65,6 @@ from ..model.values import bounded_int
 NS = "http://www.canopen.org/xml/1.1"
 CANOPEN_NAMESPACES = (NS, "http://www.canopen.org/xml/1.0")
 XSI = "http://www.w3.org/2001/XMLSchema-instance"
-SCHEMA_PATH = Path(__file__).resolve().parents[2] / "schemas" / "cia311-odgen.xsd"
 ROOT = "ISO15745ProfileContainer"
 
 # IEC 61131 type names of device-profile parameters -> CiA 301 data type codes.
@@ -810,7 +809,7 @@ _MISSING = re.compile(r"The attribute '([^']+)' is required but missing")
 
 def _validate(doc: etree._Element, source: str, diags: Diagnostics, reader: _Reader) -> None:
     """Report schema violations, once per distinct message, dropping what the reader reported."""
-    schema = etree.XMLSchema(etree.parse(str(SCHEMA_PATH)))
+    schema = etree.XMLSchema(etree.parse(str(schema_path())))
     if schema.validate(doc):
         return
     groups: dict[str, list[int]] = {}

@@ -10,27 +10,14 @@ from __future__ import annotations
 
 import argparse
 import sys
-from collections.abc import Callable
 from pathlib import Path
 
 from ..diagnostics import Severity
 from ..errors import OdgenError
 from ..fileio import write_atomic
 from .network import build_network
-from .render import FORMATS, render_html, render_markdown
+from .render import render_html, render_markdown
 from .view import build_report
-
-
-def add_report_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser],
-                      node_id: Callable[[str], int]) -> None:
-    report = commands.add_parser("report", help="write an HTML (or Markdown) report of a description")
-    report.add_argument("input", type=Path, metavar="FILE")
-    report.add_argument("-o", "--output", type=Path, required=True, metavar="OUT")
-    report.add_argument("--format", choices=FORMATS, help="html (default) or md; default from OUT's suffix")
-    report.add_argument("--options", type=Path, metavar="OPTS", help="options file (TOML): placement, hooks")
-    report.add_argument("--network", type=Path, metavar="NET.toml", help="add the network's PDO matrix")
-    report.add_argument("--node-id", type=node_id, help="check $NODEID values for this node-id")
-    report.add_argument("--can-fd", action="store_true", help="PDOs of up to 512 bits")
 
 
 def _make_folder(folder: Path) -> None:
@@ -40,7 +27,8 @@ def _make_folder(folder: Path) -> None:
         raise OdgenError(f"{folder}: cannot create: {err.strerror or err}") from None
 
 
-def cmd_report(args: argparse.Namespace) -> int:
+def write_report(args: argparse.Namespace) -> int:
+    """`odgen report` (its parser is in odgen.cli, which imports this module only when it runs)."""
     fmt = args.format or ("md" if args.output.suffix.lower() == ".md" else "html")
     if args.output.is_dir():
         raise OdgenError(f"{args.output} is a folder: give the report's file name with -o")

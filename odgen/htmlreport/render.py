@@ -7,7 +7,7 @@ from pathlib import Path
 import jinja2
 from markupsafe import Markup
 
-from ..codegen.generate import TEMPLATES  # the one place that says where templates/ is
+from ..assets import templates_dir
 from ..diagnostics import RULES
 from .svg import memory_svg, pdo_svg
 from .view import RULES_DOC, Pdo, Report, rule_anchor
@@ -16,7 +16,7 @@ FORMATS = ("html", "md")
 
 
 def _environment(autoescape: bool) -> jinja2.Environment:
-    env = jinja2.Environment(loader=jinja2.FileSystemLoader(str(TEMPLATES)), undefined=jinja2.StrictUndefined,
+    env = jinja2.Environment(loader=jinja2.FileSystemLoader(str(templates_dir())), undefined=jinja2.StrictUndefined,
                              trim_blocks=True, lstrip_blocks=True, keep_trailing_newline=True,
                              autoescape=autoescape)
     env.filters["hex"] = lambda n, width=4: f"0x{n:0{width}X}"

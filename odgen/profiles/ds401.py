@@ -11,11 +11,13 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from ..codegen.generate import Request, Result, environment, generate
 from ..fileio import write_atomic
-from ..formats.eds_writer import write_eds
 from ..model import ARRAY, RECORD, VAR, BASIC_TYPES, Obj, ObjectDictionary, Sub, parse_value
+
+if TYPE_CHECKING:
+    from ..codegen.generate import Result
 
 U8, U16, U32, BOOL = 0x0005, 0x0006, 0x0007, 0x0001
 INT_OF_WIDTH = {8: 0x0002, 16: 0x0003, 32: 0x0004}
@@ -266,6 +268,8 @@ GLUE = ("ds401_app.h", "ds401_app.c")
 
 def glue_files(p: Ds401) -> dict[str, str]:
     """The application glue (templates/ds401_app.*.j2): hooks, polarity, change-of-state TPDOs."""
+    from ..codegen.generate import environment  # jinja2: only when C is generated
+
     env = environment()
     values = {"arguments": _arguments(p), "di": p.channels("di"), "do": p.channels("do"), "ai": p.ai, "ao": p.ao,
               "ai_index": PROCESS_OBJECTS[("ai", p.ai_width)], "ao_index": PROCESS_OBJECTS[("ao", p.ao_width)],
@@ -276,6 +280,8 @@ def glue_files(p: Ds401) -> dict[str, str]:
 
 def generate_c(p: Ds401, eds: Path, name: str | None = None, node_id: int | None = None) -> Result:
     """`--generate`: the dictionary C of the written EDS with the profile's options, plus the glue."""
+    from ..codegen.generate import Request, generate
+
     result = generate(Request(eds, name=name, node_id=node_id, defaults=options_toml(p)))
     if result.files:
         result.files.update(glue_files(p))
@@ -288,6 +294,8 @@ def _quoted(items: Iterable[str]) -> str:
 
 def write(p: Ds401, path: Path) -> str:
     """The EDS text for `p`, written atomically to `path`."""
+    from ..formats.eds_writer import write_eds  # the readers and rules: not needed to build the parser
+
     text = write_eds(build(p, path.name))
     write_atomic(path, text)
     return text

@@ -10,14 +10,44 @@ from urllib.parse import quote
 from .. import __version__
 from ..diagnostics import RULES, Diagnostic, Rule, Severity, where
 from ..lint import FileResult
+from ..model import ObjectDictionary
 
 SCHEMA_URI = "https://json.schemastore.org/sarif-2.1.0.json"
 LEVELS = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "note"}
 
 
-def _uri(file: str) -> str:
+SRCROOT = "%SRCROOT%"
+# Where a finding about the file as a whole points: the sections its rule family reads.
+FAMILY_SECTIONS = {"HDR": ("fileinfo", "deviceinfo"), "LST": ("mandatoryobjects", "optionalobjects",
+                   "manufacturerobjects"), "COM": ("mandatoryobjects", "deviceinfo"), "PDO": ("deviceinfo",)}
+
+
+def artifact_location(file: str) -> dict[str, str]:
+    """Inputs under the working directory are relative to %SRCROOT% (the checkout, for code scanning)."""
     path = Path(file)
-    return path.resolve().as_uri() if path.is_absolute() else quote(path.as_posix())
+    try:
+        rel = path.resolve().relative_to(Path.cwd().resolve())
+    except (ValueError, OSError):
+        return {"uri": path.resolve().as_uri()}
+    return {"uri": quote(rel.as_posix()), "uriBaseId": SRCROOT}
+
+
+def _line(d: Diagnostic, od: ObjectDictionary | None) -> int:
+    """The finding's line, else its object's or sub-object's, else its family's section, else line 1."""
+    if d.loc.line > 0:
+        return d.loc.line
+    if od is not None and d.index is not None and d.index in od.objects:
+        obj = od.objects[d.index]
+        sub = obj.subs.get(d.sub) if d.sub is not None else None
+        line = (sub.line if sub is not None else 0) or obj.line
+        if line:
+            return line
+    if od is not None:
+        for name in FAMILY_SECTIONS.get(d.rule.rstrip("0123456789"), ()):
+            section = od.section(name)
+            if section is not None and section.line > 0:
+                return section.line
+    return 1
 
 
 def _rule(rule: Rule) -> dict[str, object]:
@@ -32,10 +62,9 @@ def _rule(rule: Rule) -> dict[str, object]:
     }
 
 
-def _result(d: Diagnostic, rule_index: dict[str, int]) -> dict[str, object]:
-    physical: dict[str, object] = {"artifactLocation": {"uri": _uri(d.loc.file)}}
-    if d.loc.line > 0:
-        physical["region"] = {"startLine": d.loc.line}
+def _result(d: Diagnostic, rule_index: dict[str, int], od: ObjectDictionary | None) -> dict[str, object]:
+    physical: dict[str, object] = {"artifactLocation": artifact_location(d.loc.file),
+                                   "region": {"startLine": _line(d, od)}}
     location: dict[str, object] = {"physicalLocation": physical}
     if d.index is not None:
         location["logicalLocations"] = [{"name": where(d.index, d.sub), "kind": "member"}]
@@ -49,6 +78,10 @@ def _result(d: Diagnostic, rule_index: dict[str, int]) -> dict[str, object]:
     }
 
 
+def uri_base_ids() -> dict[str, dict[str, str]]:
+    return {SRCROOT: {"uri": Path.cwd().resolve().as_uri() + "/"}}
+
+
 def render_sarif(results: Sequence[FileResult]) -> str:
     rules = [RULES[k] for k in sorted(RULES)]
     rule_index = {r.id: i for i, r in enumerate(rules)}
@@ -58,8 +91,10 @@ def render_sarif(results: Sequence[FileResult]) -> str:
             "version": __version__,
             "rules": [_rule(r) for r in rules],
         }},
-        "artifacts": [{"location": {"uri": _uri(r.source)}} for r in results],
-        "results": [_result(d, rule_index) for r in results for d in r.diagnostics],
+        "originalUriBaseIds": uri_base_ids(),
+        "artifacts": [{"location": artifact_location(r.source)} for r in results],
+        "results": [_result(d, rule_index, r.od if d.loc.file == r.source else None)
+                    for r in results for d in r.diagnostics],
         "columnKind": "unicodeCodePoints",
     }
     doc = {"$schema": SCHEMA_URI, "version": "2.1.0", "runs": [run]}

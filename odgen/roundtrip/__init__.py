@@ -35,10 +35,12 @@ class FileOutcome:
         return not self.error and all(int(str(c["failed"])) == 0 for c in self.checks)
 
 
-def roundtrip_file(path: Path, iface: str, node_id: int, options: Path | None) -> FileOutcome:
+def roundtrip_file(path: Path, iface: str, node_id: int, options: Path | None,
+                   input_format: str | None = None) -> FileOutcome:
     from .checks import run_checks, session  # needs python canopen and a CAN interface
 
-    request = Request(path, name="od", options=options, node_id=node_id, defaults=ROUNDTRIP_DEFAULTS)
+    request = Request(path, name="od", options=options, node_id=node_id, defaults=ROUNDTRIP_DEFAULTS,
+                      input_format=input_format)
     program, result = build_node(request)
     assert result.od is not None and result.placements is not None
     with session(result.od, result.placements, program, iface, node_id) as s:

@@ -12,25 +12,17 @@ import subprocess
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
-from ..codegen.check import RUNTIME, compiler
+from ..assets import runtime_dir
 from ..codegen.generate import Request, Result, generate
 from ..errors import OdgenError
-
-CFLAGS = ("-std=c99", "-O2", "-Wall", "-Wextra", "-Werror", "-pedantic")
-NODE_MAIN = RUNTIME / "linux" / "odg_node_main.c"
+from ..fileio import output_dir, write_files
+from ..toolchain import CFLAGS, NODE_MAIN, compiler, include_dirs, node_sources
 
 
 def cache_dir() -> Path:
     base = os.environ.get("ODGEN_CACHE") or os.path.join(os.environ.get("XDG_CACHE_HOME", str(Path.home() / ".cache")),
                                                         "odgen")
     return Path(base) / "node"
-
-
-def runtime_sources() -> list[Path]:
-    """The core runtime, the node layer and the Linux adapter (the node main is added by name)."""
-    core = sorted(p for p in RUNTIME.glob("odg*.c"))
-    linux = sorted(p for p in (RUNTIME / "linux").glob("*.c") if p != NODE_MAIN)
-    return core + linux
 
 
 def _stubs(functions: list[str]) -> str:
@@ -51,9 +43,9 @@ def _digest(result: Result, sources: list[Path], cc: str, extra: Mapping[str, st
     for name, text in sorted({**result.files, **extra}.items()):
         h.update(name.encode() + text.encode())
     h.update("|".join(defines).encode())
-    for path in [*sources, NODE_MAIN, RUNTIME / "odg.h"]:
+    for path in [*sources, runtime_dir() / NODE_MAIN]:
         h.update(path.read_bytes())
-    for header in sorted(RUNTIME.glob("**/*.h")):
+    for header in sorted(runtime_dir().glob("**/*.h")):
         h.update(header.read_bytes())
     return h.hexdigest()[:20]
 
@@ -70,23 +62,25 @@ def build_node(request: Request, extra: Mapping[str, str] | None = None, sources
     result = generate(request)
     if not result.files or result.view is None:
         raise OdgenError(f"{request.input}: errors found, no dictionary to build")
-    if not NODE_MAIN.is_file():
-        raise OdgenError(f"the node program source {NODE_MAIN} is missing")
+    node_main = runtime_dir() / NODE_MAIN
+    if not node_main.is_file():
+        raise OdgenError(f"the node program source {node_main} is missing")
     cc = compiler()
-    runtime = runtime_sources()
+    runtime = node_sources()
     out = cache_dir() / _digest(result, [*runtime, *sources], cc, extra, defines)
     program = out / "node"
     if program.is_file():
         return program, result
-    out.mkdir(parents=True, exist_ok=True)
-    for name, text in {**result.files, **extra}.items():
-        (out / name).write_text(text, encoding="utf-8")
-    (out / "hook_stubs.c").write_text(_stubs(result.view.functions), encoding="utf-8")
+    output_dir(out)
+    # Renamed into place: a symlink planted in the cache is replaced, not written through.
+    write_files({out / name: text for name, text in
+                 {**result.files, **extra, "hook_stubs.c": _stubs(result.view.functions)}.items()})
     name = result.view.name
-    cmd = [cc, *CFLAGS, f"-I{RUNTIME}", f"-I{RUNTIME / 'linux'}", f"-I{out}", f"-DODG_DICT={name}",
+    cmd = [cc, *CFLAGS, "-O2", *(f"-I{d}" for d in include_dirs(node=True)), f"-I{out}", f"-DODG_DICT={name}",
            f'-DODG_DICT_HEADER="{name}.h"', *(f"-D{d}" for d in defines), str(out / f"{name}.c"),
-           str(out / "hook_stubs.c"), *(str(out / n) for n in sorted(extra) if n.endswith(".c")), str(NODE_MAIN),
+           str(out / "hook_stubs.c"), *(str(out / n) for n in sorted(extra) if n.endswith(".c")), str(node_main),
            *map(str, [*runtime, *sources]), "-lm", "-o", str(out / "node.tmp")]
+    (out / "node.tmp").unlink(missing_ok=True)  # the compiler would write through a planted link
     built = subprocess.run(cmd, capture_output=True, text=True, check=False)
     if built.returncode != 0:
         raise OdgenError(f"building the node program failed:\n{built.stdout}{built.stderr}")

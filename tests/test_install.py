@@ -1,0 +1,136 @@
+"""The installed package is the product: build the sdist and the wheel from it, install the wheel
+into a fresh venv outside the source tree (under the oldest Python pyproject.toml declares, from
+$ODGEN_OLDEST_PYTHON, which `make test` sets with tools/oldest-python.sh), and use it as a user
+would from a temporary folder: lint, generate, check, profile, and a CMake firmware project.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+try:
+    import tomllib
+except ModuleNotFoundError:  # Python 3.10
+    import tomli as tomllib
+import zipfile
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLES = ROOT / "examples"
+XDD = ROOT / "tests" / "fixtures" / "xdd"
+
+
+def _oldest_python() -> str:
+    declared = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["requires-python"]
+    wanted = re.fullmatch(r">=(\d+)\.(\d+)", declared)
+    assert wanted, declared
+    given = os.environ.get("ODGEN_OLDEST_PYTHON")
+    if given:
+        return given
+    found = subprocess.run([str(ROOT / "tools" / "oldest-python.sh")], capture_output=True, text=True, check=False)
+    if found.returncode != 0:
+        pytest.skip(f"no Python {wanted.group(1)}.{wanted.group(2)} here ({found.stderr.strip()}); "
+                    "`make test` installs it")
+    return found.stdout.strip()
+
+
+def run(cmd: list[str], cwd: Path, env: dict[str, str] | None = None,
+        ok: bool = True) -> subprocess.CompletedProcess[str]:
+    done = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, env=env, check=False, timeout=600)
+    if ok:
+        assert done.returncode == 0, f"{cmd}: {done.returncode}\n{done.stdout}{done.stderr}"
+    return done
+
+
+@pytest.fixture(scope="module")
+def dist(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """sdist, then the wheel built from that sdist (python -m build does both)."""
+    out = tmp_path_factory.mktemp("dist")
+    run([sys.executable, "-m", "build", "--outdir", str(out), str(ROOT)], cwd=out)
+    return out
+
+
+@pytest.fixture(scope="module")
+def installed(dist: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A venv of the oldest declared Python with the wheel installed (no [can] extra); its bin/."""
+    env_dir = tmp_path_factory.mktemp("venv")
+    run([_oldest_python(), "-m", "venv", str(env_dir)], cwd=env_dir)
+    wheel = next(dist.glob("odgen-*.whl"))
+    run([str(env_dir / "bin" / "python"), "-m", "pip", "install", "-q", str(wheel)], cwd=env_dir)
+    return env_dir / "bin"
+
+
+def test_wheel_carries_templates_schemas_runtime_and_cmake(dist: Path) -> None:
+    names = set(zipfile.ZipFile(next(dist.glob("odgen-*.whl"))).namelist())
+    expected = {f"odgen/templates/{p.name}" for p in (ROOT / "templates").glob("*.j2")}
+    expected |= {f"odgen/schemas/{p.name}" for p in (ROOT / "schemas").glob("*.xsd")}
+    expected |= {f"odgen/runtime/{p.relative_to(ROOT / 'runtime').as_posix()}"
+                 for p in (ROOT / "runtime").rglob("*") if p.suffix in (".c", ".h")}
+    expected |= {"odgen/cmake/odgen.cmake"}
+    expected |= {p.relative_to(ROOT).as_posix() for p in (ROOT / "odgen").rglob("*.py")}
+    assert expected - names == set(), "missing from the wheel"
+
+
+def test_installed_odgen_works_outside_the_source_tree(installed: Path, tmp_path: Path) -> None:
+    odgen = str(installed / "odgen")
+    version = run([odgen, "--version"], tmp_path).stdout
+    assert version.startswith("odgen ")
+    eds = shutil.copy(EXAMPLES / "io-node" / "io-node.eds", tmp_path)
+    toml = shutil.copy(EXAMPLES / "io-node" / "io-node.toml", tmp_path)
+    xdd = shutil.copy(XDD / "valid.xdd", tmp_path)
+    assert "file(s) checked" in run([odgen, "lint", "io-node.eds"], tmp_path).stdout
+    assert "file(s) checked" in run([odgen, "lint", Path(xdd).name], tmp_path).stdout  # the schema is found
+    run([odgen, "generate", eds, "--options", toml, "-o", "out"], tmp_path)
+    assert (tmp_path / "out" / "io_node.c").is_file() and (tmp_path / "out" / "io_node.h").is_file()
+    run([odgen, "generate", eds, "--options", toml, "-o", "out", "--check"], tmp_path)
+    assert "ok" in run([odgen, "check", eds, "--options", toml], tmp_path).stdout
+    run([odgen, "profile", "ds401", "--di", "8", "--do", "8", "-o", "io.eds", "--generate", "gen"], tmp_path)
+    assert sorted(p.name for p in (tmp_path / "gen").iterdir()) == ["ds401_app.c", "ds401_app.h", "io.c", "io.h"]
+    runtime = Path(run([odgen, "--runtime-dir"], tmp_path).stdout.strip())
+    assert (runtime / "odg.h").is_file() and installed.parent in runtime.parents
+
+
+def test_can_commands_name_the_extra(installed: Path, tmp_path: Path) -> None:
+    eds = shutil.copy(EXAMPLES / "io-node" / "io-node.eds", tmp_path)
+    for command in (["node", eds], ["roundtrip", eds]):
+        done = run([str(installed / "odgen"), *command], tmp_path, ok=False)
+        assert done.returncode == 2 and "odgen[can]" in done.stderr, done.stderr
+
+
+def _build(build: Path) -> str:
+    done = run(["cmake", "--build", str(build)], build)
+    return done.stdout
+
+
+def test_cmake_firmware_outside_the_repository(installed: Path, tmp_path: Path) -> None:
+    """find odgen on PATH, include its module, build odgen::runtime; regenerate only when needed."""
+    if shutil.which("cmake") is None:
+        pytest.fail("cmake is missing: `make sysdeps` installs it")
+    project = tmp_path / "fw"
+    shutil.copytree(EXAMPLES / "cmake-firmware", project)
+    for name in ("io-node.eds", "io-node.toml"):
+        shutil.copy(EXAMPLES / "io-node" / name, project)
+    env = dict(os.environ, PATH=f"{installed}{os.pathsep}{os.environ['PATH']}")
+    build = tmp_path / "build"
+    run(["cmake", "-S", str(project), "-B", str(build), f"-DIO_NODE_DIR={project}"], tmp_path, env=env)
+    assert str(installed) in (build / "CMakeCache.txt").read_text(), "the installed odgen was used"
+    first = _build(build)
+    assert "odgen: object dictionary io_node" in first
+    assert "looped back" in run([str(build / "firmware")], tmp_path).stdout
+    assert "odgen:" not in (noop := _build(build)) and "Building C object" not in noop, noop
+    (project / "io-node.eds").touch()
+    touched = _build(build)
+    assert "odgen: object dictionary" in touched and "Building C object" not in touched, touched
+    eds = project / "io-node.eds"
+    eds.write_text(eds.read_text().replace("ProductName=", "ProductName=New "), encoding="utf-8")
+    changed = _build(build)
+    assert "odgen: object dictionary" in changed and "io_node.c.o" in changed, changed
+    options = project / "io-node.toml"
+    options.write_text(options.read_text() + "\n", encoding="utf-8")
+    assert "odgen: object dictionary" in _build(build)
+    assert "looped back" in run([str(build / "firmware")], tmp_path).stdout
