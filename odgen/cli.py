@@ -30,7 +30,7 @@ from .lint import RuleFilter, exit_code, lint_path
 from .network import lint_network
 from .report import RENDERERS
 from .rules import LintOptions
-from .rules.catalogue import render_markdown, render_table
+from .catalogue.render import render_markdown, render_table
 
 
 def _node_id(text: str) -> int:

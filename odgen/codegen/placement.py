@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..catalogue.gen import GEN002, GEN003
 from ..diagnostics import Diagnostics, Loc
 from ..model import Obj, ObjectDictionary, Sub
 from .names import identifier
@@ -76,7 +77,7 @@ def place(od: ObjectDictionary, options: Options, diags: Diagnostics) -> dict[tu
     for entry in options.entries:
         if not entry.used:
             patterns = ", ".join(p.text for p in entry.patterns)
-            diags.add("GEN002", Loc(entry.source, entry.line), f"match {patterns} selects no entry")
+            diags.add(GEN002, Loc(entry.source, entry.line), f"match {patterns} selects no entry")
     for (index, subindex), placement in result.items():
         _validate(od, index, subindex, placement, diags)
     return result
@@ -123,6 +124,6 @@ def _validate(od: ObjectDictionary, index: int, subindex: int, placement: Placem
     if sub.data_type == 0x000F:
         reasons.append("a DOMAIN keeps its buffer and length in RAM")
     if reasons:
-        diags.add("GEN003", Loc(od.source, sub.line),
+        diags.add(GEN003, Loc(od.source, sub.line),
                   f"is placed in rom ({placement.storage_from}) but {' and '.join(reasons)}",
                   index, None if obj.is_var else subindex)

@@ -12,6 +12,7 @@ import struct
 import zlib
 from dataclasses import dataclass, field
 
+from ..catalogue.gen import GEN004, GEN005, GEN006, GEN007
 from ..diagnostics import Diagnostics, Loc
 from ..model import Obj, ObjectDictionary, Sub, Value
 from ..model.datatypes import BASIC_TYPES, DataType
@@ -279,7 +280,7 @@ class _Builder:
         name = base if obj.is_var else f"{base}_s{sub.subindex}_" + identifier(sub.name, "sub")
         key = (obj.index, sub.subindex)
         if self.member_names.setdefault(name, key) != key:
-            self.diags.add("GEN004", Loc(self.od.source, sub.line), f"C name {name} is used twice", obj.index)
+            self.diags.add(GEN004, Loc(self.od.source, sub.line), f"C name {name} is used twice", obj.index)
         return name
 
 
@@ -290,7 +291,7 @@ def build(od: ObjectDictionary, placements: dict[tuple[int, int], Placement], na
                     source=comment(od.source.rsplit("/", 1)[-1]), lookup=lookup)
     for obj in od.sorted_objects():
         if obj.index < 0x1000:
-            diags.add("GEN006", Loc(od.source, obj.line), "defines a data type; not generated", obj.index)
+            diags.add(GEN006, Loc(od.source, obj.line), "defines a data type; not generated", obj.index)
             continue
         _entry(b, view, obj)
     view.structs = [_sorted_struct(s) for _, s in sorted(b.structs.items(), key=lambda kv: _struct_order(kv[0]))]
@@ -315,7 +316,7 @@ def _check_block_size(b: _Builder, struct: StorageStruct) -> None:
             obj = b.od.objects.get(index)
             line = obj.subs[sub].line if obj is not None and sub in obj.subs else 0
             total = sum(map(_member_bytes, struct.members))
-            b.diags.add("GEN007", Loc(b.od.source, line),
+            b.diags.add(GEN007, Loc(b.od.source, line),
                         f"{struct.name} needs {total}+ bytes; a storage class's block is at most {BLOCK_LIMIT} "
                         f"bytes (16-bit offsets), exceeded from 0x{index:04X}sub{sub} on", index)
             return
@@ -339,7 +340,7 @@ def _check_functions(b: _Builder, view: DictView) -> None:
         fn = placement.function
         if fn and (fn in taken or fn.startswith("odg_")) and placement.function_loc is not None:
             clash = f"hook function {fn} clashes with a generated or runtime name"
-            b.diags.add("GEN004", placement.function_loc, clash)
+            b.diags.add(GEN004, placement.function_loc, clash)
             taken.discard(fn)  # report each clash once
 
 
@@ -368,7 +369,7 @@ def _sub(b: _Builder, view: DictView, obj: Obj, sub: Sub) -> None:
     placement = b.placements[(obj.index, sub.subindex)]
     dtype = BASIC_TYPES.get(sub.data_type or 0)
     if dtype is None:
-        b.diags.add("GEN005", Loc(b.od.source, sub.line_of("datatype")),
+        b.diags.add(GEN005, Loc(b.od.source, sub.line_of("datatype")),
                     f"has DataType 0x{sub.data_type or 0:04X}, not a basic type", obj.index,
                     None if obj.is_var else sub.subindex)
         return
