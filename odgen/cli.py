@@ -18,9 +18,10 @@ from .codegen.check import run_check
 from .roundtrip import FileOutcome, roundtrip_file, summary_lines, write_report
 from .roundtrip.build import build_node
 from .codegen.explain import explain_lines
-from .codegen.generate import LOOKUPS, Request, generate, prepare, valid_name
+from .codegen.generate import LOOKUPS, Request, generate, prepare, reported, valid_name
 from .codegen.options import parse_pattern
-from .diagnostics import Diagnostics, Severity
+from .catalogue import is_selector
+from .diagnostics import Diagnostic, Diagnostics, Severity
 from .errors import OdgenError
 from .fileio import write_atomic
 from .formats import load_path
@@ -44,7 +45,20 @@ def _node_id(text: str) -> int:
 
 
 def _rule_list(text: str) -> list[str]:
-    return [part.strip().upper() for part in text.split(",") if part.strip()]
+    parts = [part.strip().upper() for part in text.split(",") if part.strip()]
+    unknown = [part for part in parts if not is_selector(part)]
+    if unknown:
+        raise argparse.ArgumentTypeError(f"no rule is named {', '.join(unknown)}; `odgen rules` lists them")
+    return parts
+
+
+def _add_generation_policy(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--strict", action="store_true", help="refuse on any error or warning, not only on "
+                        "findings that block generation")
+    parser.add_argument("--select", type=_rule_list, action="extend", default=[], metavar="RULES",
+                        help="report only these rule ids or prefixes (findings that block are always reported)")
+    parser.add_argument("--ignore", type=_rule_list, action="extend", default=[], metavar="RULES",
+                        help="do not report these rule ids or prefixes (findings that block still refuse)")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -78,6 +92,7 @@ def build_parser() -> argparse.ArgumentParser:
     gen.add_argument("--node-id", type=_node_id, help="check $NODEID values for this node-id")
     gen.add_argument("--lookup", choices=LOOKUPS, default="switch", help="index lookup (default: switch)")
     gen.add_argument("--check", action="store_true", help="exit 1 if DIR differs from what would be generated")
+    _add_generation_policy(gen)
 
     explain = commands.add_parser("explain", help="show placement and hooks of an entry and their origin")
     explain.add_argument("input", type=Path, metavar="FILE")
@@ -92,6 +107,7 @@ def build_parser() -> argparse.ArgumentParser:
     chk.add_argument("--lookup", choices=LOOKUPS, default="switch")
     chk.add_argument("--keep", type=Path, metavar="DIR", help="build in DIR and keep the files")
     chk.add_argument("--verbose", "-v", action="store_true", help="print the whole self-test output")
+    _add_generation_policy(chk)
 
     node = commands.add_parser("node", help="build a CANopen node from a description and run it on SocketCAN")
     node.add_argument("input", type=Path, metavar="FILE")
@@ -198,24 +214,30 @@ def cmd_convert(args: argparse.Namespace) -> int:
     return 0
 
 
-def _print_findings(diags: Diagnostics) -> None:
-    for d in diags.sorted():
-        if d.severity >= Severity.WARNING:
-            print(d.text(), file=sys.stderr)
+def _print_findings(diags: Diagnostics, request: Request | None = None) -> None:
+    for d in reported(diags, request or Request(Path())):
+        print(d.text(), file=sys.stderr)
 
 
 def _generate_request(args: argparse.Namespace) -> Request:
     if args.name is not None and not valid_name(args.name):
         raise OdgenError(f"--name '{args.name}' must be a C identifier of at most 32 characters")
-    return Request(args.input, args.name, args.options, args.node_id, args.lookup)
+    rule_filter = RuleFilter(tuple(getattr(args, "select", ())), tuple(getattr(args, "ignore", ())))
+    return Request(args.input, args.name, args.options, args.node_id, args.lookup,
+                   strict=getattr(args, "strict", False), rule_filter=rule_filter)
+
+
+def _refusal(args: argparse.Namespace, refused: list[Diagnostic]) -> str:
+    why = "blocking findings" if any(d.blocks for d in refused) else "findings (--strict)"
+    return f"odgen: {args.input}: {len(refused)} {why}, nothing written"
 
 
 def cmd_generate(args: argparse.Namespace) -> int:
     request = _generate_request(args)
     result = generate(request)
-    _print_findings(result.diags)
+    _print_findings(result.diags, request)
     if not result.files:
-        print(f"odgen: {args.input}: errors found, nothing written", file=sys.stderr)
+        print(_refusal(args, result.refused), file=sys.stderr)
         return 1
     if args.check:
         return _check_outputs(args.output, result.files)
@@ -251,9 +273,9 @@ def cmd_explain(args: argparse.Namespace) -> int:
 def cmd_check(args: argparse.Namespace) -> int:
     request = _generate_request(args)
     outcome = run_check(request, workdir=args.keep)
-    _print_findings(outcome.result.diags)
+    _print_findings(outcome.result.diags, request)
     if not outcome.result.files:
-        print(f"odgen: {args.input}: errors found, nothing generated", file=sys.stderr)
+        print(_refusal(args, outcome.result.refused).replace("nothing written", "nothing generated"), file=sys.stderr)
         return 1
     lines = outcome.output.splitlines()
     shown = lines if args.verbose or not outcome.ok else [x for x in lines if not x.startswith("FAIL")]

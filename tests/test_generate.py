@@ -48,8 +48,8 @@ def test_gen_fixture(rule: str, eds: Path, options: Path | None) -> None:
     got = _rendered(result)
     for line in wanted:
         assert line in got, f"expected {line!r}, got {got}"
-    if RULES[rule].severity.label == "error":
-        assert result.files == {}, "generation must stop on an error"
+    if RULES[rule].blocks:
+        assert result.files == {}, "generation must stop on a blocking finding"
 
 
 def test_every_gen_rule_has_a_fixture() -> None:
@@ -60,6 +60,42 @@ def test_refuses_on_lint_errors_and_writes_nothing(tmp_path: Path) -> None:
     bad = FIXTURES / "syntax" / "SYN003.eds"
     assert main(["generate", str(bad), "-o", str(tmp_path / "out")]) == 1
     assert not (tmp_path / "out").exists()
+
+
+NOT_LISTED = FIXTURES / "rules" / "LST007.eds"  # an error that does not block generation
+
+
+def test_goes_on_past_findings_that_do_not_block_and_lists_them_in_the_header(tmp_path: Path, capsys) -> None:
+    assert main(["generate", str(NOT_LISTED), "-o", str(tmp_path), "--name", "od"]) == 0
+    assert f"{NOT_LISTED}:68: error[LST007]: 0x2000 is in no object list" in capsys.readouterr().err
+    header = (tmp_path / "od.h").read_text()
+    assert " *   LST007.eds:68: error[LST007]: 0x2000 is in no object list (belongs in [ManufacturerObjects])" in header
+    assert str(NOT_LISTED.parent) not in header, "the header names the file, not the path it was read from"
+
+
+def test_strict_refuses_on_any_error_or_warning(tmp_path: Path, capsys) -> None:
+    assert main(["generate", str(NOT_LISTED), "-o", str(tmp_path / "out"), "--strict"]) == 1
+    assert "1 findings (--strict), nothing written" in capsys.readouterr().err
+    assert not (tmp_path / "out").exists()
+
+
+def test_ignored_findings_are_neither_printed_nor_listed(tmp_path: Path, capsys) -> None:
+    assert main(["generate", str(NOT_LISTED), "-o", str(tmp_path), "--name", "od", "--ignore", "LST",
+                 "--strict"]) == 0
+    assert "LST007" not in capsys.readouterr().err and "[LST007]" not in (tmp_path / "od.h").read_text()
+
+
+def test_blocking_findings_refuse_even_when_ignored(tmp_path: Path, capsys) -> None:
+    bad = FIXTURES / "syntax" / "SYN003.eds"
+    assert main(["generate", str(bad), "-o", str(tmp_path / "out"), "--ignore", "SYN003"]) == 1
+    err = capsys.readouterr().err
+    assert "error[SYN003]" in err and "1 blocking findings, nothing written" in err
+
+
+def test_a_misspelt_rule_id_is_a_usage_error(tmp_path: Path, capsys) -> None:
+    with pytest.raises(SystemExit) as stop:
+        main(["generate", str(PLAIN), "-o", str(tmp_path), "--select", "PDO001,XYZ12"])
+    assert stop.value.code == 2 and "no rule is named XYZ12" in capsys.readouterr().err
 
 
 def test_output_is_deterministic_and_hash_tracks_options(tmp_path: Path) -> None:

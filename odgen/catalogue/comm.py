@@ -18,7 +18,8 @@ COM002 = define(
     "transmission types UNSIGNED8, times UNSIGNED16, ...). Masters access them by that size, so a "
     "different DataType breaks SDO transfers and generated code.",
     example="[1017]\nDataType=0x0007  (Producer heartbeat time is UNSIGNED16)",
-    fix="Use the CiA 301 data type named in the message.")
+    fix="Use the CiA 301 data type named in the message.",
+    blocks=True)
 
 COM003 = define(
     "COM003", W, "identity information is writable", ref="CiA 301 communication profile objects",
@@ -46,7 +47,8 @@ COM005 = define(
     "TIME, SDO, heartbeat and LSS (0x000-0x07F, 0x101-0x180, 0x581-0x5FF, 0x601-0x67F, 0x6E0-0x6FF, "
     "0x701-0x7FF), and an 11-bit COB-ID (bit 29 clear) has no bits set in 11-28.",
     example="[1800sub1]\nDefaultValue=$NODEID+0x700",
-    fix="Use a free CAN-ID, or set bit 31 (0x80000000) to disable the PDO.")
+    fix="Use a free CAN-ID, or set bit 31 (0x80000000) to disable the PDO.",
+    blocks=True)
 
 COM006 = define(
     "COM006", W, "identity object without Vendor-ID",
@@ -86,7 +88,8 @@ COM010 = define(
     "records need sub1 and sub2 (COB-IDs), SDO client records also sub3 (server node-ID). "
     "Stacks cannot set up the channel without them.",
     example="[1800]\nObjectType=0x9\nSubNumber=2\n[1800sub0]\n[1800sub1]",
-    fix="Add the missing sub-object.")
+    fix="Add the missing sub-object.",
+    blocks=True)
 
 COM011 = define(
     "COM011", W, "reserved PDO transmission type", ref="CiA 301 PDO communication parameter",

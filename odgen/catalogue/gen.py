@@ -9,7 +9,8 @@ GEN001 = define(
     why="The options file decides placement, hooks and capacities; a key or value odgen does not "
     "understand would silently change the generated dictionary.",
     example='[[entry]]\nmatch = "0x2000"\nstorag = "rom"',
-    fix="Use the keys match, storage, hooks, function, capacity (see docs/generate.md).")
+    fix="Use the keys match, storage, hooks, function, capacity (see docs/generate.md).",
+    blocks=True)
 
 GEN002 = define(
     "GEN002", W, "options pattern matches nothing", ref="odgen options",
@@ -22,7 +23,8 @@ GEN003 = define(
     why="A `rom` value lives in FLASH and can never change: it cannot be writable, $NODEID-relative "
     "(resolved at run time) or refreshed by a pre-read hook.",
     example='AccessType=rw\n# options: storage = "rom"',
-    fix="Use ram or persist for the entry, or make it const/ro without hooks.")
+    fix="Use ram or persist for the entry, or make it const/ro without hooks.",
+    blocks=True)
 
 GEN004 = define(
     "GEN004", E, "C identifier collision", ref="odgen names",
@@ -30,14 +32,16 @@ GEN004 = define(
     "made unique by their index and sub-index, but a hook function named in the options file can clash "
     "with a generated symbol or the odg_ runtime prefix.",
     example='[[entry]]\nmatch = "0x6200sub1"\nhooks = ["post_write"]\nfunction = "io_node_reset"',
-    fix="Name the hook function outside the dictionary's prefix and outside odg_.")
+    fix="Name the hook function outside the dictionary's prefix and outside odg_.",
+    blocks=True)
 
 GEN005 = define(
     "GEN005", E, "entry cannot be generated", ref="odgen generate",
     why="The generated runtime handles the CiA 301 basic types 0x0001-0x001B; other data types "
     "(DEFSTRUCT records used as a type, vendor types) have no defined memory layout.",
     example="DataType=0x0040",
-    fix="Describe the entry with a basic data type, or exclude it with an options entry.")
+    fix="Describe the entry with a basic data type, or exclude it with an options entry.",
+    blocks=True)
 
 GEN006 = define(
     "GEN006", INFO, "object not generated", ref="odgen generate",
@@ -54,4 +58,5 @@ GEN007 = define(
     example="16000 RAM objects with long string defaults",
     fix="Spread the values over storage classes with an options file (constant entries to rom, "
     "parameters into persistence groups, each its own block), shorten string or domain "
-    "capacities, or split the device.")
+    "capacities, or split the device.",
+    blocks=True)

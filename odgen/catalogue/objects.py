@@ -16,28 +16,32 @@ OBJ002 = define(
     why="ObjectType is a CiA 301 object code: 0x2 DOMAIN, 0x5 DEFTYPE, 0x6 DEFSTRUCT, 0x7 VAR, "
     "0x8 ARRAY, 0x9 RECORD (absent means VAR). A sub-object is always a VAR (0x7), or a DOMAIN (0x2).",
     example="[2000]\nObjectType=0x3",
-    fix="Write the object code of the entry (`0x7` for a single value, `0x8`/`0x9` for sub-objects).")
+    fix="Write the object code of the entry (`0x7` for a single value, `0x8`/`0x9` for sub-objects).",
+    blocks=True)
 
 OBJ003 = define(
     "OBJ003", E, "DataType missing", ref="CiA 306 table row O3",
     why="A VAR or DEFTYPE object, a sub-object and a CompactSubObj header need a `DataType`; without "
     "it the value has no size or range. Lely and CANopenEditor refuse the file.",
     example="[2000]\nParameterName=Speed\nObjectType=0x7\nAccessType=rw",
-    fix="Add `DataType=0x....` (e.g. 0x0007 for UNSIGNED32).")
+    fix="Add `DataType=0x....` (e.g. 0x0007 for UNSIGNED32).",
+    blocks=True)
 
 OBJ004 = define(
     "OBJ004", E, "AccessType missing", ref="CiA 306 table row O3",
     why="A VAR, DOMAIN or DEFTYPE object, a sub-object and a CompactSubObj header need an "
     "`AccessType`; without it nobody knows whether the entry may be read or written.",
     example="[2000]\nParameterName=Speed\nDataType=0x0007",
-    fix="Add `AccessType=ro|wo|rw|rwr|rww|const`.")
+    fix="Add `AccessType=ro|wo|rw|rwr|rww|const`.",
+    blocks=True)
 
 OBJ005 = define(
     "OBJ005", E, "invalid AccessType", ref="CiA 306 table row O7",
     why="AccessType is one of ro, wo, rw, rwr (read/write, TPDO-mappable), rww (read/write, "
     "RPDO-mappable) or const. Other values are refused by Lely, CANopenEditor and objdictgen.",
     example="AccessType=readonly",
-    fix="Use one of `ro`, `wo`, `rw`, `rwr`, `rww`, `const`.")
+    fix="Use one of `ro`, `wo`, `rw`, `rwr`, `rww`, `const`.",
+    blocks=True)
 
 OBJ006 = define(
     "OBJ006", E, "ARRAY/RECORD needs exactly one of SubNumber and CompactSubObj",
@@ -46,14 +50,16 @@ OBJ006 = define(
     "(followed by `[XXXXsubY]` sections) or with `CompactSubObj` (sub-objects implied). With neither, "
     "or both, readers disagree on its sub-objects.",
     example="[1003]\nParameterName=Pre-defined error field\nObjectType=0x8\n(no SubNumber)",
-    fix="Add `SubNumber=<count of sub-object sections>`, or keep only one of the two keywords.")
+    fix="Add `SubNumber=<count of sub-object sections>`, or keep only one of the two keywords.",
+    blocks=True)
 
 OBJ007 = define(
     "OBJ007", E, "SubNumber or CompactSubObj on a single-value object", ref="CiA 306 table row O3",
     why="`SubNumber` and `CompactSubObj` belong to ARRAY/RECORD objects. On a VAR, DOMAIN or DEFTYPE "
     "they contradict the object type; CANopenEditor refuses the file.",
     example="[2000]\nObjectType=0x7\nSubNumber=2",
-    fix="Remove the keyword, or make the object an ARRAY (0x8) or RECORD (0x9) with sub-objects.")
+    fix="Remove the keyword, or make the object an ARRAY (0x8) or RECORD (0x9) with sub-objects.",
+    blocks=True)
 
 OBJ008 = define(
     "OBJ008", E, "value keywords on an ARRAY/RECORD header", ref="CiA 306 table row O3",
@@ -75,7 +81,8 @@ OBJ010 = define(
     why="Sub-index 0 of an ARRAY or RECORD holds its highest sub-index as UNSIGNED8. Without it, or "
     "with another type, masters cannot enumerate the object; Lely refuses the file.",
     example="[2000sub0]\nDataType=0x0007",
-    fix="Add `[XXXXsub0]` with `DataType=0x0005`, `AccessType=ro` and the highest sub-index as DefaultValue.")
+    fix="Add `[XXXXsub0]` with `DataType=0x0005`, `AccessType=ro` and the highest sub-index as DefaultValue.",
+    blocks=True)
 
 OBJ011 = define(
     "OBJ011", E, "sub0 differs from the highest sub-index",
@@ -84,7 +91,8 @@ OBJ011 = define(
     "sub-objects from masters, a larger one announces sub-objects that do not exist. "
     "(0x1003 counts errors and PDO mapping objects count mapped entries instead; they are not checked here.)",
     example="[2000sub0]\nDefaultValue=2\n[2000sub3]",
-    fix="Set sub0's DefaultValue to the highest sub-index present.")
+    fix="Set sub0's DefaultValue to the highest sub-index present.",
+    blocks=True)
 
 OBJ012 = define(
     "OBJ012", E, "undefined DataType", ref="CiA 306 table row O9",
@@ -92,7 +100,8 @@ OBJ012 = define(
     "type defined in the file by a DEFTYPE/DEFSTRUCT object at that index. Python canopen turns "
     "unknown types into DOMAIN; generated code cannot size the value.",
     example="DataType=0x0040 (no [0040] section)",
-    fix="Use a basic type, or add the DEFTYPE/DEFSTRUCT definition.")
+    fix="Use a basic type, or add the DEFTYPE/DEFSTRUCT definition.",
+    blocks=True)
 
 OBJ013 = define(
     "OBJ013", E, "limits on a non-numeric entry", ref="CiA 306 table row O10",
@@ -106,27 +115,31 @@ OBJ014 = define(
     why="A LowLimit or HighLimit the data type cannot hold is a typo or a wrong DataType; Lely reports "
     "it as overflow. `$NODEID+v` limits are checked for node-ids 1..127 (or the given node-id).",
     example="DataType=0x0006\nHighLimit=65536",
-    fix="Use a limit within the type (UNSIGNED16: 0..65535) or a wider DataType.")
+    fix="Use a limit within the type (UNSIGNED16: 0..65535) or a wider DataType.",
+    blocks=True)
 
 OBJ015 = define(
     "OBJ015", E, "LowLimit above HighLimit", ref="CiA 306 table row O10",
     why="No value satisfies LowLimit > HighLimit, so every write is refused.",
     example="LowLimit=100\nHighLimit=10",
-    fix="Swap or correct the limits.")
+    fix="Swap or correct the limits.",
+    blocks=True)
 
 OBJ016 = define(
     "OBJ016", E, "value outside the data type's range", ref="CiA 306 table row O11",
     why="A DefaultValue or ParameterValue the data type cannot hold is truncated differently by every "
     "tool. `$NODEID+v` values are checked for node-ids 1..127 (or the node-id given to odgen).",
     example="DataType=0x0005\nDefaultValue=300",
-    fix="Correct the value, or widen the DataType.")
+    fix="Correct the value, or widen the DataType.",
+    blocks=True)
 
 OBJ017 = define(
     "OBJ017", E, "value outside LowLimit..HighLimit", ref="CiA 306 table row O11",
     why="The device would refuse to be written its own default: a DefaultValue or ParameterValue must "
     "lie within [LowLimit, HighLimit].",
     example="LowLimit=1\nHighLimit=10\nDefaultValue=0",
-    fix="Correct the value or the limits.")
+    fix="Correct the value or the limits.",
+    blocks=True)
 
 OBJ018 = define(
     "OBJ018", INFO, "PDO-mappable rw entry without a direction", ref="CiA 306 table row O8",

@@ -11,14 +11,16 @@ PDO001 = define(
     "(0xIIIISSLL) of an existing entry, or of a data type index 0x0001-0x001B enabled as a dummy in "
     "[DummyUsage]. Devices refuse such a mapping at start-up (abort 0x06020000), leaving the PDO dead.",
     example="[1A00sub1]\nDefaultValue=0x60000108\n(no [6000] section)",
-    fix="Map an existing entry, add the object, or enable the dummy with `DummyXXXX=1`.")
+    fix="Map an existing entry, add the object, or enable the dummy with `DummyXXXX=1`.",
+    blocks=True)
 
 PDO002 = define(
     "PDO002", E, "mapped entry is not PDO-mappable", ref="CiA 306 table row C2",
     why="Only entries with `PDOMapping=1` may be mapped; devices refuse the mapping with SDO abort "
     "0x06040041 and CANopenEditor reports a \"not mappable OD entry\".",
     example="[6000sub1]\nPDOMapping=0\n[1A00sub1]\nDefaultValue=0x60000108",
-    fix="Set `PDOMapping=1` on the entry, or map another one.")
+    fix="Set `PDOMapping=1` on the entry, or map another one.",
+    blocks=True)
 
 PDO003 = define(
     "PDO003", E, "mapping length differs from the entry's size", ref="CiA 306 table row C3",
@@ -26,7 +28,8 @@ PDO003 = define(
     "size (0x08 for UNSIGNED8, 0x20 for UNSIGNED32; BOOLEAN 1 or 8). Otherwise the receiver "
     "decodes every later field at the wrong offset; CANopenNode refuses it at run time.",
     example="[6000sub1]\nDataType=0x0005\n[1A00sub1]\nDefaultValue=0x60000110",
-    fix="Write the entry's bit size in the low byte (`0x60000108`).")
+    fix="Write the entry's bit size in the low byte (`0x60000108`).",
+    blocks=True)
 
 PDO004 = define(
     "PDO004", E, "mapped entry cannot be accessed in the PDO's direction",
@@ -34,20 +37,23 @@ PDO004 = define(
     why="An RPDO writes its entries, so they must be writable (wo, rw, rww); a TPDO reads them, so "
     "they must be readable (ro, const, rw, rwr). CANopenEditor and Lely's dcfgen refuse the mapping.",
     example="[6000sub1]\nAccessType=ro\n[1600sub1]\nDefaultValue=0x60000108",
-    fix="Map the entry in the other PDO direction, or correct its AccessType.")
+    fix="Map the entry in the other PDO direction, or correct its AccessType.",
+    blocks=True)
 
 PDO005 = define(
     "PDO005", E, "PDO maps more than a frame carries", ref="CiA 306 table row C4",
     why="A CAN frame carries 64 bits of data (CAN FD: 512, with --can-fd). A longer mapping is "
     "refused by the device (abort 0x06040042); Lely's dcfgen reports \"mapping exceeds 64 bits\".",
     example="[1A00sub0]\nDefaultValue=3\n3 entries of 32 bits",
-    fix="Move entries to another PDO.")
+    fix="Move entries to another PDO.",
+    blocks=True)
 
 PDO006 = define(
     "PDO006", E, "more than 64 mapping entries", ref="CiA 301 PDO mapping parameter",
     why="A mapping object has at most 64 entries (sub-index 1..0x40); sub0 cannot count more.",
     example="[1A00sub0]\nDefaultValue=65",
-    fix="Map at most 64 entries.")
+    fix="Map at most 64 entries.",
+    blocks=True)
 
 PDO007 = define(
     "PDO007", E, "mapping offset not a multiple of Granularity", ref="CiA 306 table row H5",
@@ -63,7 +69,8 @@ PDO008 = define(
     "without the other is a PDO that cannot be configured or has no data. (With CompactPDO the "
     "missing objects up to NrOfRXPDO/NrOfTXPDO are implied.)",
     example="[1800]\n(no [1A00] section)",
-    fix="Add the missing object, or remove the half PDO.")
+    fix="Add the missing object, or remove the half PDO.",
+    blocks=True)
 
 PDO009 = define(
     "PDO009", W, "NrOfRXPDO/NrOfTXPDO differs from the PDOs present", ref="CiA 306 table row H6",

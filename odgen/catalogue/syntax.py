@@ -9,20 +9,23 @@ SYN001 = define(
     why="CiA 306 files are INI: every non-blank line is `[section]`, `key=value` or a `;` comment. "
     "Other tools stop or silently drop such lines, so their meaning is lost.",
     example="[1000]\nParameterName Device type\n",
-    fix="Add the missing `=` or turn the line into a `;` comment.")
+    fix="Add the missing `=` or turn the line into a `;` comment.",
+    blocks=True)
 
 SYN002 = define(
     "SYN002", E, "duplicate section", ref="S1",
     why="A section may appear once. Python canopen refuses the file, other tools keep one copy or "
     "the other; odgen keeps the first and ignores the repeat.",
     example="[1000]\nParameterName=Device type\n...\n[1000]\nParameterName=Again\n",
-    fix="Merge the two sections into one.")
+    fix="Merge the two sections into one.",
+    blocks=True)
 
 SYN003 = define(
     "SYN003", E, "duplicate key in a section", ref="S1",
     why="A key may appear once per section; readers disagree on which copy wins. odgen keeps the first.",
     example="[ManufacturerObjects]\nSupportedObjects=2\n1=0x2000\n1=0x2001\n",
-    fix="Remove or renumber the repeated key.")
+    fix="Remove or renumber the repeated key.",
+    blocks=True)
 
 SYN004 = define(
     "SYN004", W, "file is not UTF-8", ref="S1",
@@ -77,7 +80,8 @@ SYN011 = define(
     why="A DefaultValue, ParameterValue or limit that does not parse as the entry's data type cannot be "
     "checked, generated or downloaded.",
     example="DataType=0x0007\nDefaultValue=Profile-specific",
-    fix="Write a number (decimal or 0x hex), a `$NODEID+<number>`, or hex bytes for OCTET_STRING.")
+    fix="Write a number (decimal or 0x hex), a `$NODEID+<number>`, or hex bytes for OCTET_STRING.",
+    blocks=True)
 
 SYN012 = define(
     "SYN012", INFO, "keyword spelled with unusual letter case", ref="S2",
@@ -91,7 +95,8 @@ SYN013 = define(
     why="`[XXXXsubY]` belongs to object XXXX, which has no `[XXXX]` section or is not an ARRAY/RECORD. "
     "Python canopen crashes on this; odgen ignores the sub-object.",
     example="[2000sub1]\nParameterName=Orphan\n(no [2000] section)",
-    fix="Add the `[XXXX]` section with ObjectType=0x8 or 0x9, or remove the sub-object.")
+    fix="Add the `[XXXX]` section with ObjectType=0x8 or 0x9, or remove the sub-object.",
+    blocks=True)
 
 SYN014 = define(
     "SYN014", W, "inline comment after a value", ref="S1",
@@ -106,24 +111,28 @@ SYN015 = define(
     why="ObjectType, DataType, SubNumber, CompactSubObj, PDOMapping, ObjFlags and header counts must be "
     "numbers; the entry cannot be understood otherwise.",
     example="ObjectType=VAR",
-    fix="Write the number (`0x7`).")
+    fix="Write the number (`0x7`).",
+    blocks=True)
 
 SYN016 = define(
     "SYN016", E, "invalid compact sub-object section", ref="O14",
     why="`[XXXXName]`/`[XXXXValue]` list names/values of sub-objects of an object with CompactSubObj; "
     "`NrOfEntries` must equal the number of entries and every entry must be a sub-index 1..CompactSubObj.",
     example="[1003]\nCompactSubObj=2\n[1003Name]\nNrOfEntries=1\n3=Error 3",
-    fix="Correct NrOfEntries and the sub-index keys, or add CompactSubObj to the object.")
+    fix="Correct NrOfEntries and the sub-index keys, or add CompactSubObj to the object.",
+    blocks=True)
 
 SYN017 = define(
     "SYN017", E, "invalid object section name", ref="S5",
     why="Object sections are `[XXXX]` or `[XXXXsubY]` with a 4-digit hex index and hex sub-index 0..FE.",
     example="[2000sub1FF]",
-    fix="Use a sub-index 0..FE written in hex without 0x.")
+    fix="Use a sub-index 0..FE written in hex without 0x.",
+    blocks=True)
 
 SYN018 = define(
     "SYN018", E, "file too large", ref="S1",
     why="Device descriptions are kilobytes to a few megabytes (the largest known XDD is 0.6 MB). A file "
     "above 16 MiB is refused unread, so a hostile or corrupt file cannot exhaust memory or time.",
     example="(a 100 MB file)",
-    fix="Check that the file is a device description; split modules into separate files.")
+    fix="Check that the file is a device description; split modules into separate files.",
+    blocks=True)

@@ -10,7 +10,8 @@ XML001 = define(
     "tool can read it; odgen stops at the first such error.",
     example='<CANopenObject index="1000" name="Device type"',
     fix="Correct the syntax at the reported line; save the file in the encoding its XML "
-    "declaration names (normally UTF-8).")
+    "declaration names (normally UTF-8).",
+    blocks=True)
 
 XML002 = define(
     "XML002", E, "not a CiA 311 device description", ref="CiA 311 (ISO 15745 container)",
@@ -19,14 +20,16 @@ XML002 = define(
     "profile, is a different format and is not read.",
     example='<ISO15745Profile xmlns="http://www.profibus.com/GSDML/2003/11/DeviceProfile">',
     fix='Write the file as CiA 311: `<ISO15745ProfileContainer xmlns="http://www.canopen.org/xml/1.1">` '
-    "holding the device and communication network profiles, or convert it to an EDS.")
+    "holding the device and communication network profiles, or convert it to an EDS.",
+    blocks=True)
 
 XML003 = define(
     "XML003", E, "document type declaration refused", ref="CiA 311; XML security",
     why="CiA 311 files have no DOCTYPE. A DTD can declare entities that read local files (XXE) or "
     "expand to gigabytes (billion laughs); odgen does not expand them and does not read such files.",
     example='<!DOCTYPE x [<!ENTITY e SYSTEM "file:///etc/passwd">]>',
-    fix="Remove the DOCTYPE declaration and write the text in place of each entity reference.")
+    fix="Remove the DOCTYPE declaration and write the text in place of each entity reference.",
+    blocks=True)
 
 XML004 = define(
     "XML004", E, "does not match the CiA 311 schema", ref="CiA 311 schema; schemas/cia311-odgen.xsd",
@@ -34,7 +37,8 @@ XML004 = define(
     "(CANopenEditor, vendor configurators) validate against the CiA schema and refuse such files "
     "or drop the part.",
     example='<CANopenSubObject subIndex="01" objectType="7" PDOmapping="no"/>  (no name)',
-    fix="Add, move or correct the element or attribute as the message says.")
+    fix="Add, move or correct the element or attribute as the message says.",
+    blocks=True)
 
 XML005 = define(
     "XML005", E, "attribute value cannot be read", ref="CiA 311 CANopenObjectList",
@@ -43,19 +47,22 @@ XML005 = define(
     "`objectType`, `subNumber`, `objFlags` or `PDOmapping` is left unset.",
     example='<CANopenObject index="10x0" name="Device type" objectType="7"/>',
     fix='Write index as 4 hex digits ("1000"), subIndex as 2 ("0A"), dataType as hex ("0007"), '
-    'objectType and subNumber in decimal ("7") and PDOmapping as no/default/optional/TPDO/RPDO.')
+    'objectType and subNumber in decimal ("7") and PDOmapping as no/default/optional/TPDO/RPDO.',
+    blocks=True)
 
 XML006 = define(
     "XML006", E, "duplicate object index", ref="CiA 311 CANopenObjectList",
     why="An index may be described once. Tools disagree on which copy wins; odgen keeps the first.",
     example='<CANopenObject index="2000" .../>\n<CANopenObject index="2000" .../>',
-    fix="Remove or renumber one of the objects.")
+    fix="Remove or renumber one of the objects.",
+    blocks=True)
 
 XML007 = define(
     "XML007", E, "duplicate sub-index", ref="CiA 311 CANopenObjectList",
     why="A sub-index may appear once in an object. odgen keeps the first.",
     example='<CANopenSubObject subIndex="01" .../>\n<CANopenSubObject subIndex="01" .../>',
-    fix="Remove or renumber one of the sub-objects.")
+    fix="Remove or renumber one of the sub-objects.",
+    blocks=True)
 
 XML008 = define(
     "XML008", E, "uniqueIDRef names no parameter", ref="CiA 311 uniqueIDRef",
@@ -63,7 +70,8 @@ XML008 = define(
     "profile (as CANopenEditor writes every object) loses them when the parameter does not exist.",
     example='<CANopenObject index="2000" name="Speed" objectType="7" uniqueIDRef="UID_OBJ_2000"/>\n'
     "(no <parameter uniqueID=\"UID_OBJ_2000\">)",
-    fix="Add the parameter to ApplicationProcess/parameterList, or correct the reference.")
+    fix="Add the parameter to ApplicationProcess/parameterList, or correct the reference.",
+    blocks=True)
 
 XML009 = define(
     "XML009", W, "object attribute and its parameter disagree", ref="CiA 311 uniqueIDRef",
@@ -79,7 +87,8 @@ XML010 = define(
     why="The file has no `CANopenObjectList`, so it describes no object and nothing can be "
     "checked or generated.",
     example="<ApplicationLayers>\n  <dummyUsage>...</dummyUsage>\n</ApplicationLayers>",
-    fix="Add the communication network profile with ApplicationLayers/CANopenObjectList.")
+    fix="Add the communication network profile with ApplicationLayers/CANopenObjectList.",
+    blocks=True)
 
 XML011 = define(
     "XML011", E, "sub-objects on a single-value object", ref="CiA 311 CANopenObject",
@@ -87,7 +96,8 @@ XML011 = define(
     "itself; its CANopenSubObject children are ignored.",
     example='<CANopenObject index="2000" objectType="7" ...>\n'
     '  <CANopenSubObject subIndex="00" .../>\n</CANopenObject>',
-    fix='Make the object an ARRAY (objectType="8") or RECORD ("9"), or remove the sub-objects.')
+    fix='Make the object an ARRAY (objectType="8") or RECORD ("9"), or remove the sub-objects.',
+    blocks=True)
 
 XML012 = define(
     "XML012", W, "attribute value not in CiA 311 notation", ref="CiA 311 CANopenObjectList",
