@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from .rule import E, W, define
+from .rule import E, INFO, W, define
 
 HDR001 = define(
     "HDR001", E, "required section missing", ref="CiA 306 table row H1",
@@ -111,3 +111,11 @@ HDR014 = define(
     "objdictgen refuses such files. (Lely's dcfgen writes DCFs without it.)",
     example="(no [FileInfo] section)",
     fix="Add [FileInfo] with at least FileName, FileVersion, FileRevision and EDSVersion=4.0.")
+
+HDR015 = define(
+    "HDR015", INFO, "DCF Baudrate not set (0)", ref="CiA 306 table row H4",
+    why="CANopenEditor writes `Baudrate=0` into [DeviceComissioning] when no bit rate was chosen. "
+    "It configures nothing (no device runs at 0 kbit/s), so it is noted, not checked against "
+    "the supported rates as HDR008 does.",
+    example="[DeviceComissioning]\nBaudrate=0",
+    fix="Set the commissioned bit rate in kbit/s, or leave the note.")

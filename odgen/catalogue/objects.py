@@ -64,7 +64,9 @@ OBJ007 = define(
 OBJ008 = define(
     "OBJ008", E, "value keywords on an ARRAY/RECORD header", ref="CiA 306 table row O3",
     why="Without CompactSubObj, DataType, AccessType, DefaultValue, limits and PDOMapping belong to the "
-    "`[XXXXsubY]` sections; on the `[XXXX]` header they are ignored. Lely refuses AccessType there.",
+    "`[XXXXsubY]` sections; on the `[XXXX]` header they are ignored. Lely refuses AccessType there. "
+    "Since every reader (odgen, CANopenNode, python canopen) ignores them, the dictionary does not "
+    "change and generation goes on (`roscanopen__Schunk_0_63.dcf:1809`).",
     example="[2000]\nObjectType=0x9\nSubNumber=2\nAccessType=rw",
     fix="Move the keywords into the sub-object sections.")
 
@@ -89,8 +91,11 @@ OBJ011 = define(
     ref="CiA 306 table row O5 / CiA 301 ARRAY/RECORD sub0",
     why="The DefaultValue of sub0 is the highest sub-index the object supports. A smaller value hides "
     "sub-objects from masters, a larger one announces sub-objects that do not exist. "
-    "(0x1003 counts errors and PDO mapping objects count mapped entries instead; they are not checked here.)",
-    example="[2000sub0]\nDefaultValue=2\n[2000sub3]",
+    "(0x1003 counts errors and PDO mapping objects count mapped entries instead; they are not checked here. "
+    "Nor is a writable sub0 below the highest sub-index: it counts the valid entries as 0x1003 does, a "
+    "pattern vendors use for other objects, e.g. `kacanopen__CL4-E-2-12.eds:6267`, and that CANopenNode "
+    "and python canopen accept.)",
+    example="[2000sub0]\nAccessType=ro\nDefaultValue=2\n[2000sub3]",
     fix="Set sub0's DefaultValue to the highest sub-index present.",
     blocks=True)
 
@@ -205,8 +210,19 @@ OBJ025 = define(
     fix="Remove the keyword or write it as a `;` comment.")
 
 OBJ026 = define(
-    "OBJ026", E, "ARRAY elements of different data types", ref="CiA 301 object code ARRAY",
-    why="All sub-objects 1..n of an ARRAY share one data type (that is what makes it an array, "
-    "and how generators lay it out as a C array). Use a RECORD for mixed types.",
+    "OBJ026", W, "ARRAY elements of different data types", ref="CiA 301 object code ARRAY",
+    why="All sub-objects 1..n of an ARRAY share one data type; with mixed types the object is a RECORD. "
+    "CanFestival writes its PDO communication parameters 0x1400/0x1800 as ARRAYs of UNSIGNED32, "
+    "UNSIGNED8 and UNSIGNED16, which CiA 301 defines as RECORDs. Lely's dcfchk, objdictgen, "
+    "CANopenEditor and python canopen accept such files (each element keeps its own type), so odgen "
+    "generates the object as the RECORD it is and warns.",
     example="[2000]\nObjectType=0x8\n[2000sub1] DataType=0x0007\n[2000sub2] DataType=0x0006",
     fix="Give every element the same DataType, or change ObjectType to 0x9 (RECORD).")
+
+OBJ027 = define(
+    "OBJ027", W, "ARRAY element without a name", ref="CiA 306 table row O1",
+    why="CANopenEditor writes ARRAY elements with an empty `ParameterName`. The element's place in the "
+    "array names it well enough: odgen names it after the ARRAY and its sub-index in generated code, "
+    "as CANopenNode does, and warns so that the file can be completed.",
+    example="[2000sub1]\nParameterName=\nDataType=0x0007",
+    fix="Give each element a `ParameterName`.")

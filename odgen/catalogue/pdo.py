@@ -25,10 +25,13 @@ PDO002 = define(
 PDO003 = define(
     "PDO003", E, "mapping length differs from the entry's size", ref="CiA 306 table row C3",
     why="The low byte of a mapping entry is the length in bits and must equal the mapped entry's "
-    "size (0x08 for UNSIGNED8, 0x20 for UNSIGNED32; BOOLEAN 1 or 8). Otherwise the receiver "
-    "decodes every later field at the wrong offset; CANopenNode refuses it at run time.",
+    "size (0x08 for UNSIGNED8, 0x20 for UNSIGNED32; BOOLEAN 1 or 8). A longer mapping makes the receiver "
+    "decode every later field at the wrong offset. A shorter one (a 64-bit object mapped as 32 bits, "
+    "`roscanopen__Elmo.dcf:827`) CANopenNode accepts, sending the low-order bytes; CiA 301 does not "
+    "define it and the odg runtime, like Lely, refuses it (abort 0x06040041), so the generated node "
+    "would leave the PDO dead at start-up. Both block generation.",
     example="[6000sub1]\nDataType=0x0005\n[1A00sub1]\nDefaultValue=0x60000110",
-    fix="Write the entry's bit size in the low byte (`0x60000108`).",
+    fix="Write the entry's bit size in the low byte (`0x60000108`), or map an object of the intended size.",
     blocks=True)
 
 PDO004 = define(
@@ -88,3 +91,11 @@ PDO010 = define(
     "declaration; Vector's checker warns.",
     example="[6000sub1]\nAccessType=rwr\n[1600sub1]\nDefaultValue=0x60000108",
     fix="Map the entry in the declared direction, or correct its AccessType.")
+
+PDO011 = define(
+    "PDO011", W, "mapping entry counted by sub0 maps nothing", ref="CiA 301 PDO mapping parameter",
+    why="An entry 0x00000000 within the count of sub0 maps no data. Generators write sub0 as the highest "
+    "sub-index over all-zero entries; CANopenNode, Lely and python canopen read it as an empty entry "
+    "(0 bits), and so does odgen, but a device may refuse the mapping (abort 0x06040041) when written.",
+    example="[1A00sub0]\nDefaultValue=2\n[1A00sub2]\nDefaultValue=0x00000000",
+    fix="Set sub0 to the number of entries that map something.")

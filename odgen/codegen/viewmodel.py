@@ -356,7 +356,7 @@ def _sorted_struct(s: StorageStruct) -> StorageStruct:
 def _entry(b: _Builder, view: DictView, obj: Obj) -> None:
     subs = obj.sorted_subs()
     dense = [s.subindex for s in subs] == list(range(len(subs)))
-    code = {2: "ODG_OBJ_DOMAIN", 8: "ODG_OBJ_ARRAY", 9: "ODG_OBJ_RECORD"}.get(obj.object_code, "ODG_OBJ_VAR")
+    code = {2: "ODG_OBJ_DOMAIN", 8: "ODG_OBJ_ARRAY", 9: "ODG_OBJ_RECORD"}.get(obj.structure, "ODG_OBJ_VAR")
     view.entries.append(EntryView(obj.index, len(view.subs), len(subs), code + (" | ODG_E_DENSE" if dense else ""),
                                   comment(obj.name)))
     obj_ident = f"X{obj.index:04X}_" + identifier(obj.name, "object").upper()

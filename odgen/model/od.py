@@ -104,6 +104,14 @@ class Obj:
     def sorted_subs(self) -> list[Sub]:
         return [self.subs[k] for k in sorted(self.subs)]
 
+    @property
+    def structure(self) -> int:
+        """The object code the object is generated as: an ARRAY whose elements differ in data type
+        (CanFestival's 0x1400/0x1800, rule OBJ026) is the RECORD CiA 301 defines."""
+        if self.object_code == 0x8 and len({s.data_type for k, s in self.subs.items() if k and s.data_type}) > 1:
+            return 0x9
+        return self.object_code
+
 
 @dataclass
 class Section:

@@ -10,7 +10,8 @@ from __future__ import annotations
 import re
 
 from ..catalogue.header import (
-    HDR001, HDR002, HDR003, HDR004, HDR005, HDR006, HDR007, HDR008, HDR009, HDR010, HDR011, HDR012, HDR013, HDR014)
+    HDR001, HDR002, HDR003, HDR004, HDR005, HDR006, HDR007, HDR008, HDR009, HDR010, HDR011, HDR012, HDR013, HDR014,
+    HDR015)
 from ..diagnostics import Diagnostics, Loc
 from ..model import Field, ObjectDictionary, Section, Sub, Value
 from . import LintOptions, check
@@ -155,6 +156,9 @@ def _commissioned_rate(od: ObjectDictionary, rates: set[int], diags: Diagnostics
     if fld is None or not rates or not fld.text.strip():
         return
     rate = header_int(fld)
+    if rate == 0 and od.is_config:
+        diags.add(HDR015, _loc(od, fld), "Baudrate=0: no bit rate configured")
+        return
     if rate not in rates:
         listed = ", ".join(str(r) for r in sorted(rates))
         diags.add(HDR008, _loc(od, fld),

@@ -6,7 +6,7 @@ from collections.abc import Iterator
 
 from ..catalogue.objects import (
     OBJ001, OBJ002, OBJ003, OBJ004, OBJ005, OBJ006, OBJ007, OBJ008, OBJ009, OBJ010, OBJ011, OBJ012, OBJ013, OBJ014,
-    OBJ015, OBJ016, OBJ017, OBJ018, OBJ019, OBJ020, OBJ021, OBJ022, OBJ023, OBJ024, OBJ025, OBJ026)
+    OBJ015, OBJ016, OBJ017, OBJ018, OBJ019, OBJ020, OBJ021, OBJ022, OBJ023, OBJ024, OBJ025, OBJ026, OBJ027)
 from ..catalogue.rule import Rule
 from ..diagnostics import Diagnostics, Loc
 from ..model import (ACCESS_TYPES, ARRAY, DEFSTRUCT, DEFTYPE, DOMAIN, RECORD, VAR, Field, Obj, ObjectDictionary, Sub,
@@ -78,9 +78,10 @@ def parameter_names(od: ObjectDictionary, diags: Diagnostics, options: LintOptio
         # one report per object: generated files tend to miss every sub-object's name at once
         nameless = [sub for sub in written_subs(obj) if not sub.name.strip()]
         if nameless:
+            elements = obj.object_code == ARRAY and all(sub.subindex > 0 for sub in nameless)
             more = f" (nor do {len(nameless) - 1} more of its sub-objects)" if len(nameless) > 1 else ""
-            diags.add(OBJ001, Loc(od.source, nameless[0].line), f"has no ParameterName{more}",
-                      obj.index, nameless[0].subindex)
+            diags.add(OBJ027 if elements else OBJ001, Loc(od.source, nameless[0].line),
+                      f"has no ParameterName{more}", obj.index, nameless[0].subindex)
 
 
 @check
@@ -200,6 +201,8 @@ def _sub0_value(od: ObjectDictionary, obj: Obj, sub0: Sub, diags: Diagnostics) -
     highest = max(obj.subs)
     if highest == 0 or declared == highest:
         return
+    if declared < highest and sub0.writable:
+        return  # sub0 counts the valid entries, as 0x1003 does: vendors use that pattern for other objects
     diags.add(OBJ011, Loc(od.source, default_line(sub0)),
               f"DefaultValue={_show(default)} but the highest sub-index is {highest}", obj.index, 0)
 
@@ -471,5 +474,5 @@ def array_elements(od: ObjectDictionary, diags: Diagnostics, options: LintOption
             elif sub.data_type != first.data_type:
                 diags.add(OBJ026, Loc(od.source, sub.line_of("datatype")),
                           f"DataType=0x{sub.data_type:04X} but sub{first.subindex} has "
-                          f"0x{first.data_type:04X}", obj.index, sub.subindex)
+                          f"0x{first.data_type:04X}; generated as a RECORD", obj.index, sub.subindex)
                 break

@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 from dataclasses import dataclass
 
-from ..catalogue.pdo import PDO001, PDO002, PDO003, PDO004, PDO005, PDO006, PDO007, PDO008, PDO009, PDO010
+from ..catalogue.pdo import PDO001, PDO002, PDO003, PDO004, PDO005, PDO006, PDO007, PDO008, PDO009, PDO010, PDO011
 from ..diagnostics import Diagnostics, Loc, where
 from ..model import ARRAY, RECORD, Obj, ObjectDictionary, Sub, Value
 from ..model.datatypes import BASIC_TYPES, DataType
@@ -102,7 +102,7 @@ def mapping_entries(od: ObjectDictionary, obj: Obj, diags: Diagnostics) -> list[
     if empty:
         # once per object: generators write sub0 = highest sub-index over all-zero entries
         more = f" (and {len(empty) - 1} more empty entries)" if len(empty) > 1 else ""
-        diags.add(PDO001, Loc(od.source, empty[0].line),
+        diags.add(PDO011, Loc(od.source, empty[0].line),
                   f"maps nothing (0x00000000) but sub0={said} counts it{more}", obj.index, empty[0].sub.subindex)
     return entries
 
