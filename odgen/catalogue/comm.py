@@ -32,8 +32,8 @@ COM004 = define(
     "COM004", W, "default COB-ID not from the predefined connection set",
     ref="CiA 306 table row C6 / CiA 301 predefined connection set",
     why="CiA 301's predefined connection set gives RPDO1-4 `$NODEID+0x200/0x300/0x400/0x500`, "
-    "TPDO1-4 `$NODEID+0x180/0x280/0x380/0x480`, the default SDO server `$NODEID+0x600` (receive) "
-    "and `$NODEID+0x580` (transmit) and EMCY `$NODEID+0x80`. Another base (often RPDO and TPDO "
+    "TPDO1-4 `$NODEID+0x180/0x280/0x380/0x480` and EMCY `$NODEID+0x80` (the default SDO server's "
+    "`$NODEID+0x600`/`$NODEID+0x580` are COM017). Another base (often RPDO and TPDO "
     "swapped) or a fixed number in an EDS makes the device talk on CAN-IDs masters do not expect. "
     "A bare base (`0x180`) relies on CANopenNode adding the node-id at run time; other tools "
     "take it literally.",
@@ -128,3 +128,31 @@ COM015 = define(
     "0x06040043).",
     example="[1016sub1]\nDefaultValue=0x00800064  (node-id 128)",
     fix="Write `0x00NNTTTT` with a node-id 1..127, each at most once.")
+
+COM016 = define(
+    "COM016", E, "two enabled objects of one device on one CAN-ID",
+    ref="CiA 301 COB-ID usage / predefined connection set",
+    why="Each enabled PDO, SDO channel, EMCY, produced SYNC or TIME needs a CAN-ID of its own (a PDO "
+    "on the heartbeat's 0x700+node-id is COM005): two TPDOs on one ID collide on the bus, an RPDO on a "
+    "TPDO's ID receives the device's own frames. `lint --network` finds collisions between devices "
+    "(NET004, NET007); this is the same mistake inside one file. The dictionary itself is as "
+    "written, so generation goes on.",
+    example="[1800sub1]\nDefaultValue=$NODEID+0x180\n[1801sub1]\nDefaultValue=$NODEID+0x180",
+    fix="Give each object its own COB-ID, or disable one (bit 31).")
+
+COM017 = define(
+    "COM017", E, "default SDO server COB-ID not the predefined one or writable",
+    ref="CiA 301 object 0x1200",
+    why="The default SDO server 0x1200 receives on `$NODEID+0x600` and transmits on `$NODEID+0x580`, "
+    "and CiA 301 makes both sub-entries read-only: every master reaches a device there. Another "
+    "value, or one a master can change, makes the device unreachable by tools that assume the "
+    "default.",
+    example="[1200sub1]\nAccessType=rw\nDefaultValue=$NODEID+0x600",
+    fix="Write `$NODEID+0x600` / `$NODEID+0x580` with AccessType=ro; use 0x1201.. for other channels.")
+
+COM018 = define(
+    "COM018", W, "pre-defined error field count not writable", ref="CiA 301 object 0x1003",
+    why="Sub0 of 0x1003 counts the errors in the history; CiA 301 clears the history when 0 is "
+    "written to it, so it is rw. Read-only, a master cannot clear the errors.",
+    example="[1003sub0]\nAccessType=ro",
+    fix="Set `AccessType=rw` on 0x1003sub0.")

@@ -86,9 +86,10 @@ LST011 = define(
     fix="Move the object to the manufacturer range 0x2000-0x5FFF.")
 
 LST012 = define(
-    "LST012", W, "object index in the reserved range 0xC000-0xFFFF",
+    "LST012", E, "object index in the reserved range 0xC000-0xFFFF",
     ref="CiA 306 table row L4 / CiA 301 index ranges",
-    why="CiA 301 reserves 0xC000-0xFFFF for future use; objects there may collide with later "
-    "profiles and some tools reject them.",
+    why="CiA 301 reserves 0xC000-0xFFFF; no device may define objects there (CANopenNode's and Lely's "
+    "tools refuse them), and they may collide with later profiles. The object itself is well "
+    "defined, so generation goes on.",
     example="[C000]\nParameterName=Vendor block",
     fix="Move the object to the manufacturer range 0x2000-0x5FFF.")

@@ -226,3 +226,21 @@ OBJ027 = define(
     "as CANopenNode does, and warns so that the file can be completed.",
     example="[2000sub1]\nParameterName=\nDataType=0x0007",
     fix="Give each element a `ParameterName`.")
+
+OBJ028 = define(
+    "OBJ028", E, "sub-object that is not a VAR", ref="CiA 306 table row O2 / CiA 301 object codes",
+    why="A sub-object is a single value: CiA 306 gives every `[XXXXsubY]` section ObjectType=0x7 (VAR). "
+    "A DOMAIN, ARRAY or RECORD code there leaves it open what the entry holds (a DOMAIN's data is "
+    "said by DataType=0x000F on a VAR), so generation stops.",
+    example="[2000sub1]\nObjectType=0x2\nDataType=0x000F",
+    fix="Write `ObjectType=0x7`, with `DataType=0x000F` for a DOMAIN value.",
+    blocks=True)
+
+OBJ029 = define(
+    "OBJ029", E, "VISIBLE_STRING value with a NUL character", ref="CiA 301 VISIBLE_STRING",
+    why="VISIBLE_STRING holds the printable characters 0x20-0x7E. A NUL in its value ends the string "
+    "for the C runtime, which then serves a shorter value than the file describes (odgen check's "
+    "self-test fails on it), and masters disagree on the length.",
+    example="[1008]\nDataType=0x0009\nDefaultValue=Pump\\0A",
+    fix="Remove the NUL, or describe the value as an OCTET_STRING (0x000A).",
+    blocks=True)

@@ -31,7 +31,7 @@ def check(fn: Check) -> Check:
 
 
 # Value notes first, then the semantic passes in pipeline order.
-FAMILIES = ("syntax", "header", "lists", "objects", "pdo", "comm", "network")
+FAMILIES = ("syntax", "header", "lists", "objects", "pdo", "comm", "cobids", "network")
 for _family in FAMILIES:
     importlib.import_module(f"{__name__}.{_family}")
 

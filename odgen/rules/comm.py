@@ -118,8 +118,6 @@ def _predefined(index: int, subindex: int) -> tuple[int, str] | None:
         return 0x200 + 0x100 * (index - RPDO), f"RPDO{index - RPDO + 1}"
     if _in(index, TPDO, 4) and subindex == 1:
         return 0x180 + 0x100 * (index - TPDO), f"TPDO{index - TPDO + 1}"
-    if index == SDO_SERVER and subindex in (1, 2):
-        return (0x600, "SDO server receive") if subindex == 1 else (0x580, "SDO server transmit")
     if index == 0x1014 and subindex == 0:
         return 0x80, "EMCY"
     return None
@@ -133,7 +131,7 @@ def _entry(obj: Obj | None, subindex: int) -> Sub | None:
 
 
 def _cob_entries(od: ObjectDictionary) -> Iterator[tuple[Obj, Sub, tuple[int, str]]]:
-    for index in [0x1014, SDO_SERVER, *range(RPDO, RPDO + 4), *range(TPDO, TPDO + 4)]:
+    for index in [0x1014, *range(RPDO, RPDO + 4), *range(TPDO, TPDO + 4)]:  # 0x1200: COM017
         obj = od.objects.get(index)
         if obj is None:
             continue

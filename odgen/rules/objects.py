@@ -6,7 +6,8 @@ from collections.abc import Iterator
 
 from ..catalogue.objects import (
     OBJ001, OBJ002, OBJ003, OBJ004, OBJ005, OBJ006, OBJ007, OBJ008, OBJ009, OBJ010, OBJ011, OBJ012, OBJ013, OBJ014,
-    OBJ015, OBJ016, OBJ017, OBJ018, OBJ019, OBJ020, OBJ021, OBJ022, OBJ023, OBJ024, OBJ025, OBJ026, OBJ027)
+    OBJ015, OBJ016, OBJ017, OBJ018, OBJ019, OBJ020, OBJ021, OBJ022, OBJ023, OBJ024, OBJ025, OBJ026, OBJ027, OBJ028,
+    OBJ029)
 from ..catalogue.rule import Rule
 from ..diagnostics import Diagnostics, Loc
 from ..model import (ACCESS_TYPES, ARRAY, DEFSTRUCT, DEFTYPE, DOMAIN, RECORD, VAR, Field, Obj, ObjectDictionary, Sub,
@@ -14,10 +15,11 @@ from ..model import (ACCESS_TYPES, ARRAY, DEFSTRUCT, DEFTYPE, DOMAIN, RECORD, VA
 from ..model.datatypes import BASIC_TYPES, DataType
 from ..model.od import OBJECT_CODES
 from . import LintOptions, check
-from .common import addr, at, default_line, node_span, number, plain_int, value_line
+from .common import addr, at, default_line, node_span, number, plain_int, value_in_force, value_line
 
 
 
+VISIBLE_STRING, NUL = 0x0009, chr(0)
 VALID_OBJECT_CODES = (0x0, DOMAIN, DEFTYPE, DEFSTRUCT, VAR, ARRAY, RECORD)
 CONTAINER_CODES = (DEFSTRUCT, ARRAY, RECORD)
 # Keywords CiA 306 defines for object/sub-object sections (lower case), plus
@@ -94,8 +96,8 @@ def object_types(od: ObjectDictionary, diags: Diagnostics, options: LintOptions)
         if obj.is_var:
             continue
         for sub in written_subs(obj):
-            if sub.object_type is not None and sub.object_type not in (VAR, DOMAIN):
-                diags.add(OBJ002, Loc(od.source, sub.line_of("objecttype")),
+            if sub.object_type is not None and sub.object_type != VAR:
+                diags.add(OBJ028, Loc(od.source, sub.line_of("objecttype")),
                           f"ObjectType=0x{sub.object_type:X} on a sub-object; sub-objects are VAR (0x7)",
                           obj.index, sub.subindex)
 
@@ -381,7 +383,7 @@ def _visible(od: ObjectDictionary, obj: Obj, sub: Sub, diags: Diagnostics) -> No
     for keyword, value in (("defaultvalue", sub.default), ("parametervalue", sub.parameter_value)):
         if value is None:
             continue
-        bad = next((c for c in value.text if not " " <= c <= "~"), None)
+        bad = next((c for c in value.text if not " " <= c <= "~" and c != NUL), None)  # NUL: OBJ029
         if bad is not None:
             diags.add(OBJ020, Loc(od.source, value_line(sub, value, keyword)),
                       f"{_LABEL[keyword]} contains {bad!r} (U+{ord(bad):04X}), not printable ASCII",
@@ -476,3 +478,17 @@ def array_elements(od: ObjectDictionary, diags: Diagnostics, options: LintOption
                           f"DataType=0x{sub.data_type:04X} but sub{first.subindex} has "
                           f"0x{first.data_type:04X}; generated as a RECORD", obj.index, sub.subindex)
                 break
+
+
+# -- strings the runtime serves as C strings -----------------------------------
+
+@check
+def visible_strings(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    for obj in od.objects.values():
+        for sub in obj.subs.values():
+            value, keyword = value_in_force(od, sub)
+            at_nul = value.text.find(NUL) if value is not None and sub.data_type == VISIBLE_STRING else -1
+            if value is not None and at_nul >= 0:
+                diags.add(OBJ029, Loc(od.source, value_line(sub, value, keyword)),
+                          f"value has a NUL at character {at_nul + 1}; the runtime would end the string there",
+                          obj.index, addr(obj, sub))
