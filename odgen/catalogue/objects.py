@@ -229,12 +229,13 @@ OBJ027 = define(
 
 OBJ028 = define(
     "OBJ028", E, "sub-object that is not a VAR", ref="CiA 306 table row O2 / CiA 301 object codes",
-    why="A sub-object is a single value: CiA 306 gives every `[XXXXsubY]` section ObjectType=0x7 (VAR). "
-    "A DOMAIN, ARRAY or RECORD code there leaves it open what the entry holds (a DOMAIN's data is "
-    "said by DataType=0x000F on a VAR), so generation stops.",
+    why="A sub-object is a single value: CiA 306 gives every `[XXXXsubY]` section ObjectType=0x7 (VAR), "
+    "and a DOMAIN's data is said by DataType=0x000F on a VAR. Tools that check the code refuse another "
+    "one (Lely's dcfchk). Readers, odgen's included, take the sub-object as a value of its DataType "
+    "whatever its code, so the dictionary is clear and generation goes on "
+    "(`kacanopen__epos2_347717.eds:3647` writes a DOMAIN sub-object as ObjectType=0x2).",
     example="[2000sub1]\nObjectType=0x2\nDataType=0x000F",
-    fix="Write `ObjectType=0x7`, with `DataType=0x000F` for a DOMAIN value.",
-    blocks=True)
+    fix="Write `ObjectType=0x7`, with `DataType=0x000F` for a DOMAIN value.")
 
 OBJ029 = define(
     "OBJ029", E, "VISIBLE_STRING value with a NUL character", ref="CiA 301 VISIBLE_STRING",
