@@ -3,13 +3,15 @@
 from __future__ import annotations
 
 import re
+import shutil
 from pathlib import Path
 
 import pytest
 
 from odgen.cli import main
+from odgen.codegen.check import run_check
 from odgen.codegen.generate import Request, generate
-from odgen.codegen.names import comment, identifier, string_literal
+from odgen.codegen.names import comment, identifier, name_clash, string_literal
 from odgen.diagnostics import RULES
 
 from .conftest import FIXTURES, ROOT
@@ -35,6 +37,11 @@ def _fixture_cases() -> list[tuple[str, Path, Path | None]]:
     return cases
 
 
+def _name(path: Path) -> str | None:
+    """A fixture's `; name: X` line: the --name it is generated with."""
+    return next((x[len("; name: "):] for x in path.read_text().splitlines() if x.startswith("; name: ")), None)
+
+
 def _expectations(path: Path) -> list[str]:
     marker = "# expect: " if path.suffix == ".toml" else "; expect: "
     return [x[len(marker):] for x in path.read_text().splitlines() if x.startswith(marker)]
@@ -42,7 +49,7 @@ def _expectations(path: Path) -> list[str]:
 
 @pytest.mark.parametrize("rule,eds,options", _fixture_cases(), ids=lambda c: c if isinstance(c, str) else "")
 def test_gen_fixture(rule: str, eds: Path, options: Path | None) -> None:
-    result = generate(Request(eds, options=options))
+    result = generate(Request(eds, name=_name(eds), options=options))
     wanted = _expectations(options or eds)
     assert wanted and all(f"[{rule}]" in w for w in wanted)
     got = _rendered(result)
@@ -157,3 +164,31 @@ def test_placement_rules() -> None:
     assert placements[(0x1010, 1)].storage == "command"
     assert placements[(0x1017, 0)].storage == "persist:comm"
     assert placements[(0x2000, 0)].storage == "persist:app"
+
+
+# -- names that compile -------------------------------------------------------------------------
+
+CLASHING = ["odg", "ODG", "main", "stdint", "string", "memcpy", "size_t", "uint8_t", "odg_init", "odg_read",
+            "_Atomic", "errno", "stdio", "printf"]
+
+
+@pytest.mark.parametrize("name", CLASHING)
+def test_a_name_that_clashes_is_refused_when_given_and_prefixed_when_taken_from_the_file(
+        name: str, tmp_path: Path, capsys) -> None:
+    assert main(["generate", str(PLAIN), "-o", str(tmp_path / "given"), "--name", name]) == 1
+    assert f"error[GEN008]: --name {name} " in capsys.readouterr().err and not (tmp_path / "given").exists()
+    path = tmp_path / f"{name}.eds"
+    path.write_text(PLAIN.read_text())
+    outcome = run_check(Request(path), cc=shutil.which("gcc"))
+    assert outcome.ok, outcome.output[-2000:]
+    assert outcome.result.view is not None and name_clash(outcome.result.view.name) is None
+
+
+@pytest.mark.parametrize("second", ["a_t", "a_defaults"])
+def test_persistence_groups_whose_c_names_meet_are_refused(second: str, tmp_path: Path) -> None:
+    options = tmp_path / "groups.toml"
+    options.write_text(f'[[entry]]\nmatch = "0x2000"\nstorage = "persist:a"\n\n'
+                       f'[[entry]]\nmatch = "0x1017"\nstorage = "persist:{second}"\n')
+    result = generate(Request(PLAIN, options=options))
+    assert not result.files and [d.rule for d in result.refused] == ["GEN004"], _rendered(result)
+    assert f"is generated for both plain_persist_a and plain_persist_{second}" in result.refused[0].message

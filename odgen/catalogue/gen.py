@@ -60,3 +60,13 @@ GEN007 = define(
     "parameters into persistence groups, each its own block), shorten string or domain "
     "capacities, or split the device.",
     blocks=True)
+
+GEN008 = define(
+    "GEN008", E, "dictionary name clashes with the runtime or the C library", ref="odgen names",
+    why="The dictionary's name is the stem of its files (NAME.h, NAME.c) and the prefix of its symbols. "
+    "`odg` or `odg_init` collide with the runtime, `main`, `memcpy` or `size_t` with the C library, "
+    "and `stdint` or `string` make the generated header shadow the standard one: the C does not "
+    "compile. A name taken from the file name is prefixed `od_` instead (`main.eds` gives `od_main`).",
+    example="odgen generate main.eds -o gen --name main",
+    fix="Choose another --name, e.g. prefixed with the product: `--name pump_od`.",
+    blocks=True)

@@ -12,12 +12,13 @@ from pathlib import Path
 import jinja2
 
 from .. import __version__
-from ..diagnostics import Diagnostic, Diagnostics, Severity, more_line
+from ..catalogue.gen import GEN008
+from ..diagnostics import Diagnostic, Diagnostics, Loc, Severity, more_line
 from ..formats import load_path, read_bytes
 from ..lint import RuleFilter, lint_model
 from ..model import ObjectDictionary
 from ..rules import LintOptions
-from .names import comment, identifier, is_identifier
+from .names import comment, identifier, is_identifier, name_clash
 from .options import Options, load_options, parse_options
 from .placement import Placement, place
 from .viewmodel import DictView, build
@@ -78,7 +79,9 @@ def findings_comment(diags: Diagnostics, request: Request) -> list[str]:
 
 
 def default_name(path: Path) -> str:
-    return identifier(path.stem, "od")
+    """The file name as a C identifier; prefixed `od_` where it would clash with the runtime or C library."""
+    name = identifier(path.stem, "od")
+    return name if name_clash(name) is None else f"od_{name}"
 
 
 def environment() -> jinja2.Environment:
@@ -134,6 +137,7 @@ def generate(request: Request) -> Result:
 def _generate(request: Request) -> Result:
     name = request.name or default_name(request.input)
     result = prepare(request)
+    _check_name(request, result.diags)
     if result.od is None or result.placements is None or _refuse(result, request):
         return result
     view = build(result.od, result.placements, name, version=__version__, digest=digest(request, name),
@@ -146,6 +150,12 @@ def _generate(request: Request) -> Result:
     result.files = {f"{name}.h": env.get_template("dict.h.j2").render(v=view, findings=findings),
                     f"{name}.c": env.get_template("dict.c.j2").render(v=view)}
     return result
+
+
+def _check_name(request: Request, diags: Diagnostics) -> None:
+    why = name_clash(request.name) if request.name else None
+    if request.name and why:
+        diags.add(GEN008, Loc(str(request.input)), f"--name {request.name} {why}; use e.g. --name od_{request.name}")
 
 
 def valid_name(name: str) -> bool:

@@ -296,6 +296,7 @@ def build(od: ObjectDictionary, placements: dict[tuple[int, int], Placement], na
         _entry(b, view, obj)
     view.structs = [_sorted_struct(s) for _, s in sorted(b.structs.items(), key=lambda kv: _struct_order(kv[0]))]
     view.groups = _groups(od, view)
+    _check_group_names(b, view)
     _check_functions(b, view)
     for block in view.structs:
         _check_block_size(b, block)
@@ -331,6 +332,20 @@ def _generated_symbols(view: DictView) -> set[str]:
     names = {view.name, *(f"{view.name}_{t}" for t in tables), *(a.name for a in view.accessors)}
     names |= {s.name for s in view.structs} | {s.defaults for s in view.structs} | {d.name for d in view.domains}
     return names
+
+
+def _check_group_names(b: _Builder, view: DictView) -> None:
+    """Persistence groups whose symbols meet (group `a` has type `NAME_persist_a_t`, which is group `a_t`)."""
+    owner: dict[str, str] = {}
+    for s in view.structs:
+        for symbol in (s.name, s.type_name, s.defaults):
+            if not symbol:
+                continue
+            first = owner.setdefault(symbol, s.name)
+            if first != s.name:
+                where_from = b.od.source
+                b.diags.add(GEN004, Loc(where_from), f"C name {symbol} is generated for both {first} and {s.name}; "
+                            "rename one persistence group (;StorageLocation or the options file)")
 
 
 def _check_functions(b: _Builder, view: DictView) -> None:
