@@ -192,3 +192,36 @@ def test_persistence_groups_whose_c_names_meet_are_refused(second: str, tmp_path
     result = generate(Request(PLAIN, options=options))
     assert not result.files and [d.rule for d in result.refused] == ["GEN004"], _rendered(result)
     assert f"is generated for both plain_persist_a and plain_persist_{second}" in result.refused[0].message
+
+
+# -- one value in force ---------------------------------------------------------------------------
+
+def _configured(tmp_path: Path, suffix: str) -> Path:
+    """The clean rule fixture with ParameterValue=245 (a reserved TPDO transmission type) on 0x1800sub2."""
+    text = (FIXTURES / "rules" / "clean.eds").read_text()
+    entry = "[1800sub2]\nParameterName=Transmission type\nObjectType=0x7\nDataType=0x0005\nAccessType=rw\nDefaultValue=254\n"
+    assert entry in text
+    text = text.replace(entry, entry + "ParameterValue=245\n")
+    if suffix == ".dcf":
+        text = text.replace("\n[DummyUsage]", "\n[DeviceComissioning]\nNodeID=5\nBaudrate=250\n\n[DummyUsage]", 1)
+    path = tmp_path / f"dev{suffix}"
+    path.write_text(text)
+    return path
+
+
+@pytest.mark.parametrize("suffix,value", [(".dcf", 245), (".eds", 254)])
+def test_rules_generate_check_and_explain_take_the_same_value(suffix: str, value: int, tmp_path: Path, capsys) -> None:
+    """A DCF's ParameterValue is in force; an EDS's is ignored (OBJ024) by every stage alike."""
+    path = _configured(tmp_path, suffix)
+    result = generate(Request(path, name="dev"))
+    rules = {d.rule: d.message for d in result.diags}
+    assert ("COM011" in rules) == (value == 245) and ("OBJ024" in rules) == (suffix == ".eds")
+    assert f".x1800_tpdo1_communication_parameter_s2_transmission_type = {value}," in result.files["dev.c"]
+    if value == 245:
+        assert "warning[COM011]: 0x1800sub2 transmission type 245 is reserved" in result.files["dev.h"]
+    assert main(["explain", str(path), "0x1800sub2"]) == 0
+    source = "ParameterValue" if suffix == ".dcf" else "DefaultValue"
+    out = capsys.readouterr().out
+    assert f"value:   {value}" in out and f"from {source}" in out
+    outcome = run_check(Request(path, name="dev"), cc=shutil.which("gcc"))
+    assert outcome.ok, outcome.output[-2000:]

@@ -246,13 +246,6 @@ def limit_bits(value: int | float, dtype: DataType) -> int:
     return int(value) & 0xFFFFFFFFFFFFFFFF
 
 
-def generated_value(sub: Sub) -> Value | None:
-    """A DCF's configured ParameterValue wins over the DefaultValue."""
-    if sub.parameter_value is not None and not sub.parameter_value.empty and sub.parameter_value.error is None:
-        return sub.parameter_value
-    return sub.default
-
-
 # ---- the builder --------------------------------------------------------------------------
 
 
@@ -390,7 +383,7 @@ def _sub(b: _Builder, view: DictView, obj: Obj, sub: Sub) -> None:
         return
     member = b.member_name(obj, sub)
     pos = len(view.subs)
-    attr = _attr_flags(sub, placement, dtype)
+    attr = _attr_flags(b.od, sub, placement, dtype)
     if placement.storage == "command":
         storage = "ODG_S_STORE" + (" | ODG_S_RESTORE_FLAG" if obj.index == RESTORE else "")
         view.subs.append(SubView("0", 4, sub.subindex, dtype.code, attr, storage, comment(sub.name)))
@@ -411,7 +404,7 @@ def _sub(b: _Builder, view: DictView, obj: Obj, sub: Sub) -> None:
         view.macros.append(NameMacro(f"{view.upper}_SUB_{sub_ident}", f"0x{sub.subindex:02X}u", comment(sub.name)))
 
 
-def _attr_flags(sub: Sub, placement: Placement, dtype: DataType) -> str:
+def _attr_flags(od: ObjectDictionary, sub: Sub, placement: Placement, dtype: DataType) -> str:
     flags = []
     if sub.readable:
         flags.append("ODG_A_READ")
@@ -422,7 +415,7 @@ def _attr_flags(sub: Sub, placement: Placement, dtype: DataType) -> str:
             flags.append("ODG_A_TPDO")
         if sub.access in ("wo", "rww", "rw"):
             flags.append("ODG_A_RPDO")
-    value = generated_value(sub)
+    value = od.value_in_force(sub)
     if value is not None and value.nodeid and isinstance(value.parsed, int):
         flags.append("ODG_A_NODEID")
     if placement.hooks:
@@ -442,7 +435,7 @@ def _storage_code(placement: Placement, view: DictView) -> str:
 def _value_member(b: _Builder, view: DictView, obj: Obj, sub: Sub, dtype: DataType, placement: Placement,
                   member: str) -> tuple[str, int]:
     target = b.struct_for(placement.storage)
-    value = generated_value(sub)
+    value = b.od.value_in_force(sub)
     ctype = ctype_of(dtype)
     note = comment(f"0x{obj.index:04X}sub{sub.subindex} {sub.name}")
     key = (obj.index, sub.subindex)
@@ -453,7 +446,7 @@ def _value_member(b: _Builder, view: DictView, obj: Obj, sub: Sub, dtype: DataTy
         return _offset(target, member), size
     if dtype.kind == "domain":
         return _domain(b, view, target, member, value, placement, note, key)
-    init = _scalar_init(sub, dtype, ctype)
+    init = _scalar_init(b.od, sub, dtype, ctype)
     target.members.append(Member(member, ctype, "", init, note, _ALIGN[ctype], key))
     if value is not None and value.nodeid and isinstance(value.parsed, int):
         view.nodeid_fixes.append(NodeIdFix(f"{target.name}.{member}", ctype))
@@ -469,9 +462,9 @@ def _accessor(view: DictView, member: str, target: StorageStruct, note: str) -> 
     view.accessors.append(Accessor(f"{view.name}_{member}", f"({target.name}.{member})", note))
 
 
-def initial_number(sub: Sub, dtype: DataType) -> int | float:
+def initial_number(od: ObjectDictionary, sub: Sub, dtype: DataType) -> int | float:
     """The value an entry starts with: its default, or without one 0 moved into its limits."""
-    value = generated_value(sub)
+    value = od.value_in_force(sub)
     parsed = value.parsed if value is not None and value.error is None else None
     if isinstance(parsed, (int, float)) and not isinstance(parsed, bool):
         return float(parsed) if dtype.kind == "real" else int(parsed)
@@ -482,8 +475,8 @@ def initial_number(sub: Sub, dtype: DataType) -> int | float:
     return zero
 
 
-def _scalar_init(sub: Sub, dtype: DataType, ctype: str) -> str:
-    number = initial_number(sub, dtype)
+def _scalar_init(od: ObjectDictionary, sub: Sub, dtype: DataType, ctype: str) -> str:
+    number = initial_number(od, sub, dtype)
     if dtype.kind == "real":
         return real_literal(float(number), dtype.bits)
     return int_literal(int(number), ctype)

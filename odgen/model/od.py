@@ -171,3 +171,13 @@ class ObjectDictionary:
     def is_config(self) -> bool:
         """DCF/XDC: a configured device, where ParameterValue/Denotation belong."""
         return self.format in ("dcf", "xdc")
+
+    def value_in_force(self, sub: Sub) -> Value | None:
+        """The value the device starts with: a DCF's (XDC's) ParameterValue where given, else the
+        DefaultValue; an EDS's ParameterValue is ignored (OBJ024). `Value.resolve(node_id)` resolves
+        `$NODEID`; a Denotation names the value, it is not one. The rules, `generate`, `check`,
+        `roundtrip` and `explain` all take values from here."""
+        given = sub.parameter_value
+        if self.is_config and given is not None and not given.empty:
+            return given
+        return sub.default

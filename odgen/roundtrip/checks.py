@@ -210,7 +210,7 @@ def check_uploads(s: Session) -> Check:
         if not e.sub.readable:
             check.expect(code == WRITE_ONLY, f"{e.label}: read of write-only gave 0x{code:08X}")
             continue
-        want = expected_bytes(e.sub, e.dtype, s.node_id, e.placement.capacity)
+        want = expected_bytes(s.od, e.sub, e.dtype, s.node_id, e.placement.capacity)
         if want is None:
             check.expect(code == 0, f"{e.label}: upload aborted 0x{code:08X}")
         else:
@@ -224,7 +224,7 @@ def check_downloads(s: Session) -> Check:
         if _is_command(e) or e.obj.index in ACTIVE or not e.dtype.is_numeric:
             continue
         if not e.sub.writable:
-            data = expected_bytes(e.sub, e.dtype, s.node_id) or wire_bytes(0, e.dtype)
+            data = expected_bytes(s.od, e.sub, e.dtype, s.node_id) or wire_bytes(0, e.dtype)
             code = s.download(e.obj.index, e.sub.subindex, data)
             check.expect(code == ABORTS["ODG_ABORT_READ_ONLY"], f"{e.label}: write to {e.sub.access} gave 0x{code:08X}")
             continue
@@ -271,7 +271,7 @@ def check_strings(s: Session) -> Check:
 
 def _capacity(s: Session, e: Entry) -> int:
     data, _ = s.upload(e.obj.index, e.sub.subindex)
-    described = expected_bytes(e.sub, e.dtype, s.node_id) or b""
+    described = expected_bytes(s.od, e.sub, e.dtype, s.node_id) or b""
     return max(len(described), e.placement.capacity or 0, len(data or b""))
 
 
@@ -407,7 +407,7 @@ def check_persistence(s: Session) -> Check:
         check.skipped = "no persistent writable entry or no 0x1010/0x1011 sub 1"
         return check
     value = write_cases(target.sub, target.dtype)[1][0]
-    default = expected_bytes(target.sub, target.dtype, s.node_id, target.placement.capacity)
+    default = expected_bytes(s.od, target.sub, target.dtype, s.node_id, target.placement.capacity)
     check.expect(s.download(target.obj.index, target.sub.subindex, value) == 0, f"{target.label}: write refused")
     check.expect(s.download(0x1010, 1, b"save") == 0, "0x1010sub1 'save' refused")
     check.expect(s.download(0x1010, 1, b"nope") == 0x08000020, "0x1010sub1 without 'save' did not abort 0x08000020")
