@@ -199,7 +199,8 @@ def test_persistence_groups_whose_c_names_meet_are_refused(second: str, tmp_path
 def _configured(tmp_path: Path, suffix: str) -> Path:
     """The clean rule fixture with ParameterValue=245 (a reserved TPDO transmission type) on 0x1800sub2."""
     text = (FIXTURES / "rules" / "clean.eds").read_text()
-    entry = "[1800sub2]\nParameterName=Transmission type\nObjectType=0x7\nDataType=0x0005\nAccessType=rw\nDefaultValue=254\n"
+    entry = ("[1800sub2]\nParameterName=Transmission type\nObjectType=0x7\nDataType=0x0005\nAccessType=rw\n"
+             "DefaultValue=254\n")
     assert entry in text
     text = text.replace(entry, entry + "ParameterValue=245\n")
     if suffix == ".dcf":
