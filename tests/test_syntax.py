@@ -124,3 +124,9 @@ def test_lines_end_at_cr_and_lf_only() -> None:
     od, diags = load_bytes(text.encode(), "l.eds", "eds")
     assert od is not None and od.objects[0x2000].name == "a\x0cb\x85c\u2028d"
     assert od.objects[0x2000].subs[0].access == "rw" and not [d for d in diags if d.rule == "SYN001"]
+
+
+def test_an_index_without_leading_zeros_is_read_and_listed() -> None:
+    result = lint(SYNTAX / "SYN019.eds")
+    assert result.od is not None and 0x00A0 in result.od.objects
+    assert not [d for d in result.diagnostics if d.rule in ("LST005", "SYN010")]

@@ -136,3 +136,11 @@ SYN018 = define(
     example="(a 100 MB file)",
     fix="Check that the file is a device description; split modules into separate files.",
     blocks=True)
+
+SYN019 = define(
+    "SYN019", W, "object section index without leading zeros", ref="S5",
+    why="Object sections are named by a 4-digit hex index: `[00A0]`, not `[A0]`. Some generators drop "
+    "the zeros; the section is read as the object it names (unless `[00A0]` exists too), so the object "
+    "list finds it instead of reporting a listed object without a section.",
+    example="[A0]\nParameterName=Vendor type",
+    fix="Write the index with four digits: `[00A0]`.")

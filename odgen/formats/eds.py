@@ -10,7 +10,7 @@ from __future__ import annotations
 import re
 
 from ..catalogue.rule import Rule
-from ..catalogue.syntax import SYN010, SYN012, SYN013, SYN014, SYN015, SYN016, SYN017
+from ..catalogue.syntax import SYN010, SYN012, SYN013, SYN014, SYN015, SYN016, SYN017, SYN019
 from ..diagnostics import Diagnostics, Loc
 from ..model import VAR, Field, Obj, ObjectDictionary, ObjectList, Section, Sub
 from ..model.datatypes import BASIC_TYPES
@@ -24,6 +24,7 @@ HEADER_SECTIONS = ("FileInfo", "DeviceInfo", "DeviceComissioning", "DummyUsage",
 _CANONICAL_SECTIONS = {name.lower(): name for name in HEADER_SECTIONS + OBJECT_LISTS}
 _MODULE_SECTION = re.compile(r"^m\d+(moduleinfo|fixedobjects|subextends|subext[0-9a-f]{4}|comments)$")
 _OBJECT_SECTION = re.compile(r"^([0-9a-f]{4})(?:(sub)([0-9a-f]+)|(name)|(value))?$", re.IGNORECASE)
+_SHORT_INDEX = re.compile(r"^([0-9a-f]{1,3})(sub[0-9a-f]+|name|value)?$", re.IGNORECASE)  # [A0], [A0sub1]
 
 # Keywords of object and sub-object sections, in the spelling of CiA 306.
 KEYWORDS = ("ParameterName", "ObjectType", "DataType", "AccessType", "DefaultValue", "LowLimit",
@@ -65,7 +66,7 @@ class _Reader:
     def read(self, parsed: ini.IniFile) -> ObjectDictionary:
         subs, compact = [], []
         for key, section in parsed.sections.items():
-            match = _OBJECT_SECTION.match(key)
+            match = _OBJECT_SECTION.match(self._padded(key, section, parsed))
             if match is None:
                 self._header_section(key, section)
             elif match.group(2):
@@ -80,6 +81,18 @@ class _Reader:
             self._compact_section(index, section)
         self._node_id()
         return self.od
+
+    def _padded(self, key: str, section: ini.IniSection, parsed: ini.IniFile) -> str:
+        """An object section written without leading zeros ([A0]) is read as [00A0], unless that exists too."""
+        short = _SHORT_INDEX.match(key)
+        if short is None:
+            return key
+        padded = short.group(1).zfill(4) + (short.group(2) or "")
+        if padded.lower() in parsed.sections:
+            return key
+        self.diags.add(SYN019, self.loc(section.line),
+                       f"section [{section.name}] writes the index without leading zeros; read as [{padded.upper()}]")
+        return padded
 
     # -- header sections -------------------------------------------------
 
