@@ -25,7 +25,7 @@ from ..codegen.placement import Placement
 from ..errors import OdgenError
 from ..codegen.selftest import expected_bytes, wire_bytes, write_cases
 from ..formats.eds_writer import write_eds
-from ..model import Obj, ObjectDictionary, Sub
+from ..model import ARRAY, RECORD, Obj, ObjectDictionary, Sub
 from ..model.datatypes import BASIC_TYPES, DataType
 
 ABORTS = {"ODG_OK": 0, "ODG_ABORT_TOO_LONG": 0x06070012, "ODG_ABORT_TOO_SHORT": 0x06070013,
@@ -160,9 +160,13 @@ def client_eds(od: ObjectDictionary) -> str:
 
 
 def _expanded(od: ObjectDictionary) -> ObjectDictionary:
-    """A copy with CompactSubObj written out as sub-sections: canopen expands only compact ARRAYs."""
+    """A copy with CompactSubObj written out as sub-sections: canopen expands only compact ARRAYs.
+    PDO mapping objects written as ARRAYs become the RECORDs CiA 301 defines: canopen sizes an ARRAY by
+    the sub0 it reads from the device, so a remap (sub0 = 0, entries, sub0 = n) would write no entry."""
     copy = deepcopy(od)
     for obj in copy.objects.values():
+        if (0x1600 <= obj.index <= 0x17FF or 0x1A00 <= obj.index <= 0x1BFF) and obj.object_code == ARRAY:
+            obj.object_code = RECORD
         if obj.compact_sub_obj:
             obj.compact_sub_obj, obj.sub_number = None, len(obj.subs)
             for sub in obj.subs.values():
