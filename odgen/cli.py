@@ -227,9 +227,9 @@ def _generate_request(args: argparse.Namespace) -> Request:
                    strict=getattr(args, "strict", False), rule_filter=rule_filter)
 
 
-def _refusal(args: argparse.Namespace, refused: list[Diagnostic]) -> str:
+def _refusal(args: argparse.Namespace, refused: list[Diagnostic], what: str = "written") -> str:
     why = "blocking findings" if any(d.blocks for d in refused) else "findings (--strict)"
-    return f"odgen: {args.input}: {len(refused)} {why}, nothing written"
+    return f"odgen: {args.input}: {len(refused)} {why}, nothing {what}"
 
 
 def cmd_generate(args: argparse.Namespace) -> int:
@@ -275,7 +275,7 @@ def cmd_check(args: argparse.Namespace) -> int:
     outcome = run_check(request, workdir=args.keep)
     _print_findings(outcome.result.diags, request)
     if not outcome.result.files:
-        print(_refusal(args, outcome.result.refused).replace("nothing written", "nothing generated"), file=sys.stderr)
+        print(_refusal(args, outcome.result.refused, "generated"), file=sys.stderr)
         return 1
     lines = outcome.output.splitlines()
     shown = lines if args.verbose or not outcome.ok else [x for x in lines if not x.startswith("FAIL")]

@@ -106,6 +106,7 @@ def prepare(request: Request) -> Result:
         result.refused = refusals(diags, request)
         return result
     lint_model(od, diags, LintOptions(node_id=request.node_id))
+    _check_name(request, diags)
     options = parse_options(request.defaults, "(built-in defaults)", diags) if request.defaults else Options()
     if request.options:
         user = load_options(request.options, diags)
@@ -137,7 +138,6 @@ def generate(request: Request) -> Result:
 def _generate(request: Request) -> Result:
     name = request.name or default_name(request.input)
     result = prepare(request)
-    _check_name(request, result.diags)
     if result.od is None or result.placements is None or _refuse(result, request):
         return result
     view = build(result.od, result.placements, name, version=__version__, digest=digest(request, name),
