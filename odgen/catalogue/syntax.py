@@ -144,3 +144,11 @@ SYN019 = define(
     "list finds it instead of reporting a listed object without a section.",
     example="[A0]\nParameterName=Vendor type",
     fix="Write the index with four digits: `[00A0]`.")
+
+SYN020 = define(
+    "SYN020", W, "integer value with a C suffix", ref="7.6",
+    why="CiA 306 numbers follow `strtoul`, which stops at a suffix: `0x1234567890ABCDEFLL` (as "
+    "CANopenNode's example files write INTEGER64 defaults) is not a number to a strict reader, and "
+    "python canopen refuses it. The digits are unambiguous, so odgen reads them and drops the suffix.",
+    example="[2120sub1]\nDataType=0x0015\nDefaultValue=0x1234567890ABCDEFLL",
+    fix="Write the number without the suffix: `DefaultValue=0x1234567890ABCDEF`.")

@@ -14,7 +14,7 @@ import struct
 from dataclasses import dataclass, field
 
 from ..catalogue.rule import Rule
-from ..catalogue.syntax import SYN006, SYN007, SYN008, SYN009
+from ..catalogue.syntax import SYN006, SYN007, SYN008, SYN009, SYN020
 from .datatypes import DataType
 
 # (rule, message) pairs a reader turns into located diagnostics.
@@ -22,6 +22,7 @@ Note = tuple[Rule, str]
 
 MAX_DIGITS = 64  # significant digits of an integer literal; 64-bit values need 20 decimal or 16 hex
 _INT_RE = re.compile(r"^([+-]?)(0[xX][0-9a-fA-F]+|[0-9]+)$")
+_C_SUFFIX = re.compile(r"(?<=[0-9a-fA-F])(?:[uU](?:ll|LL|l|L)?|(?:ll|LL|l|L)[uU]?)$")  # 0x1234LL, 10u
 _NODEID_RE = re.compile(r"\$nodeid", re.IGNORECASE)
 _PREFIX_FORM = re.compile(r"^\$NODEID(\+.+)?$")
 _TIME_PAIR_RE = re.compile(r"^(\d+)\s+(\d+)$")
@@ -104,6 +105,15 @@ def split_nodeid(text: str) -> tuple[bool, str, list[Note]]:
     return True, rest or "0", notes
 
 
+def _without_c_suffix(value: Value, text: str) -> str:
+    """CANopenNode's files write INTEGER64 defaults with C's `LL`: read the number, note the suffix."""
+    suffix = _C_SUFFIX.search(text)
+    if suffix is None or _INT_RE.match(text[: suffix.start()].strip()) is None:
+        return text
+    value.notes.append((SYN020, f"'{text}': C suffix '{suffix.group()}' dropped; CiA 306 numbers have none"))
+    return text[: suffix.start()]
+
+
 def parse_value(text: str, dtype: DataType | None, line: int = 0) -> Value:
     """Parse `text` as a value of `dtype`; never raises."""
     value = Value(text=text, line=line)
@@ -119,6 +129,7 @@ def _read_integer(value: Value, text: str, dtype: DataType) -> None:
     relative, rest, notes = split_nodeid(text)
     value.nodeid = relative
     value.notes.extend(notes)
+    rest = _without_c_suffix(value, rest)
     number, notes = parse_int_literal(rest)
     value.notes.extend(notes)
     if number is None:

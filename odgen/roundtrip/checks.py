@@ -144,8 +144,9 @@ class Session:
 
 def client_eds(od: ObjectDictionary) -> str:
     """The description as EDS for python canopen, which stops on header numbers it cannot read
-    (`VendorNumber=` empty, `001`) or sections it reads strictly (a sparse [DummyUsage]): those are
-    left out, they play no part in the checks."""
+    (`VendorNumber=` empty, `001`) or sections it reads strictly (a sparse [DummyUsage], [Comments]
+    whose `Lines` counts a `line5` it looks up as `Line5`): those are left out, they play no part in
+    the checks."""
     lines, section = [], ""
     for line in write_eds(_expanded(od)).splitlines():
         if line.startswith("["):
@@ -153,7 +154,7 @@ def client_eds(od: ObjectDictionary) -> str:
         key, _, value = line.partition("=")
         if section == "[deviceinfo]" and key in _CANOPEN_INT_KEYS and not _python_int(value):
             continue
-        if section == "[dummyusage]":  # canopen needs all seven keys; the checks map no dummies
+        if section in ("[dummyusage]", "[comments]"):  # canopen needs all seven keys / every LineN
             continue
         lines.append(line)
     return "\n".join(lines) + "\n"
