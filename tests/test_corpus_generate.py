@@ -19,8 +19,6 @@ from .conftest import BUILD, corpus_files
 
 # file -> (blocking rules it is refused for, what makes its dictionary wrong or ambiguous)
 REFUSED: dict[str, tuple[set[str], str]] = {
-    "canopensocket__CANopenSocket_v1.3.eds": ({"GEN003"}, "CANopenNode v1 StorageLocation=ROM on writable entries"),
-    "canopensocket__CANopenSocket_v1.3.xdd": ({"GEN003"}, "CANopenNode v1 StorageLocation=ROM on writable entries"),
     "eyou__YiyouServo_V1.4.eds": ({"OBJ014"}, "UNSIGNED16 HighLimit 65536"),
     "gocanopen__base.eds": ({"OBJ011"}, "read-only sub0 5 below sub-index 6 of 0x1400-0x1403"),
     "kacanopen__605.3150.51-V-EK-2-60.eds": ({"OBJ015", "OBJ017"}, "INTEGER8 limits as bit patterns: 0..-1"),

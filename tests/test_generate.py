@@ -226,3 +226,17 @@ def test_rules_generate_check_and_explain_take_the_same_value(suffix: str, value
     assert f"value:   {value}" in out and f"from {source}" in out
     outcome = run_check(Request(path, name="dev"), cc=shutil.which("gcc"))
     assert outcome.ok, outcome.output[-2000:]
+
+
+def test_a_described_rom_location_on_a_writable_entry_is_canopennode_v1_persistence(tmp_path: Path) -> None:
+    """CANopenNode v1 keeps `;StorageLocation=ROM` entries in RAM and saves them by 0x1010; an options file's
+    `storage = "rom"` on a writable entry stays GEN003 (tests/fixtures/generate/GEN003.toml)."""
+    path = tmp_path / "v1.eds"
+    path.write_text(PLAIN.read_text().replace("DefaultValue=10\n", "DefaultValue=10\n;StorageLocation=ROM\n")
+                    .replace("ParameterName=Producer heartbeat time\n", "ParameterName=Producer heartbeat time\n"
+                             ";StorageLocation=ROM\n").replace("DataType=0x0006\nAccessType=rw\nDefaultValue=1000",
+                                                               "DataType=0x0006\nAccessType=const\nDefaultValue=1000"))
+    result = generate(Request(path, name="v1"))
+    assert result.placements is not None and result.files, _rendered(result)
+    assert result.placements[(0x2000, 0)].storage == "persist:rom"
+    assert result.placements[(0x1017, 0)].storage == "rom"
