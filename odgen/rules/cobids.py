@@ -40,8 +40,8 @@ def _named_entries(od: ObjectDictionary) -> Iterator[tuple[str, Obj, Sub | None]
             yield f"{kind}{(index & 0x1FF) + 1}", obj, obj.subs.get(1)
         elif 0x1200 <= index <= 0x12FF:
             kind = "SDO server" if index < 0x1280 else "SDO client"
-            yield f"{kind} {index & 0x7F} receive", obj, obj.subs.get(1)
-            yield f"{kind} {index & 0x7F} transmit", obj, obj.subs.get(2)
+            yield f"{kind} {index & 0x7F} client-to-server", obj, obj.subs.get(1)
+            yield f"{kind} {index & 0x7F} server-to-client", obj, obj.subs.get(2)
         elif index in (0x1005, 0x1012, 0x1014) and obj.is_var:
             yield {0x1005: "SYNC", 0x1012: "TIME", 0x1014: "EMCY"}[index], obj, obj.var
 
