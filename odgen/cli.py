@@ -19,7 +19,7 @@ from .errors import OdgenError
 
 if TYPE_CHECKING:
     from .codegen.generate import Request
-    from .diagnostics import Diagnostics
+    from .diagnostics import Diagnostic, Diagnostics
     from .lint import FileResult, RuleFilter
     from .rules import LintOptions
 
@@ -46,6 +46,15 @@ def _node_id(text: str) -> int:
 
 def _rule_list(text: str) -> list[str]:
     return [part.strip().upper() for part in text.split(",") if part.strip()]
+
+
+def _add_generation_policy(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--strict", action="store_true", help="refuse on any error or warning, not only on "
+                        "findings that block generation")
+    parser.add_argument("--select", type=_rule_list, action="extend", default=[], metavar="RULES",
+                        help="report only these rule ids or prefixes (findings that block are always reported)")
+    parser.add_argument("--ignore", type=_rule_list, action="extend", default=[], metavar="RULES",
+                        help="do not report these rule ids or prefixes (findings that block still refuse)")
 
 
 def _existing_file(what: str) -> Callable[[str], Path]:
@@ -131,6 +140,7 @@ def build_parser() -> argparse.ArgumentParser:
     gen.add_argument("--check", action="store_true",
                      help="write nothing; exit 1 listing missing, changed and extra files if DIR is not up to date")
     _input_format(gen)
+    _add_generation_policy(gen)
 
     explain = commands.add_parser("explain", help="show placement and hooks of an entry and their origin")
     explain.add_argument("input", type=Path, metavar="FILE")
@@ -147,6 +157,7 @@ def build_parser() -> argparse.ArgumentParser:
     chk.add_argument("--keep", type=Path, metavar="DIR", help="build in DIR and keep the files")
     chk.add_argument("--verbose", "-v", action="store_true", help="print the whole self-test output")
     _input_format(chk)
+    _add_generation_policy(chk)
 
     node = commands.add_parser("node", help="build a CANopen node from a description and run it on SocketCAN")
     node.add_argument("input", type=Path, metavar="FILE")
@@ -359,12 +370,11 @@ def cmd_convert(args: argparse.Namespace) -> int:
     return 0
 
 
-def _print_findings(diags: Diagnostics) -> None:
-    from .diagnostics import Severity
+def _print_findings(diags: Diagnostics, request: Request | None = None) -> None:
+    from .codegen.generate import Request, reported
 
-    for d in diags.sorted():
-        if d.severity >= Severity.WARNING:
-            print(d.text(), file=sys.stderr)
+    for d in reported(diags, request or Request(Path())):
+        print(d.text(), file=sys.stderr)
 
 
 def _generate_request(args: argparse.Namespace) -> Request:
@@ -372,17 +382,29 @@ def _generate_request(args: argparse.Namespace) -> Request:
 
     if args.name is not None and not valid_name(args.name):
         raise OdgenError(f"--name '{args.name}' must be a C identifier of at most 32 characters")
-    return Request(args.input, args.name, args.options, args.node_id, args.lookup, input_format=args.input_format)
+    from .config import check_rule_ids
+    from .lint import RuleFilter
+
+    check_rule_ids(args.select, "--select")
+    check_rule_ids(args.ignore, "--ignore")
+    return Request(args.input, args.name, args.options, args.node_id, args.lookup, input_format=args.input_format,
+                   strict=args.strict, rule_filter=RuleFilter(tuple(args.select), tuple(args.ignore)))
+
+
+def _refusal(args: argparse.Namespace, refused: list[Diagnostic], what: str = "written") -> str:
+    why = "blocking findings" if any(d.blocks for d in refused) else "findings (--strict)"
+    return f"odgen: {args.input}: {len(refused)} {why}, nothing {what}"
 
 
 def cmd_generate(args: argparse.Namespace) -> int:
     from .codegen.generate import generate
     from .fileio import output_dir, write_files
 
-    result = generate(_generate_request(args))
-    _print_findings(result.diags)
+    request = _generate_request(args)
+    result = generate(request)
+    _print_findings(result.diags, request)
     if not result.files:
-        print(f"odgen: {args.input}: errors found, nothing written", file=sys.stderr)
+        print(_refusal(args, result.refused), file=sys.stderr)
         return 1
     if args.check:
         from .codegen.outcheck import check_outputs
@@ -428,9 +450,9 @@ def cmd_check(args: argparse.Namespace) -> int:
 
     request = _generate_request(args)
     outcome = run_check(request, workdir=args.keep)
-    _print_findings(outcome.result.diags)
+    _print_findings(outcome.result.diags, request)
     if not outcome.result.files:
-        print(f"odgen: {args.input}: errors found, nothing generated", file=sys.stderr)
+        print(_refusal(args, outcome.result.refused, "generated"), file=sys.stderr)
         return 1
     lines = outcome.output.splitlines()
     shown = lines if args.verbose or not outcome.ok else [x for x in lines if not x.startswith("FAIL")]
@@ -480,8 +502,7 @@ def cmd_roundtrip(args: argparse.Namespace) -> int:
 
 
 def cmd_rules(args: argparse.Namespace) -> int:
-    from . import rules  # noqa: F401  (fills the catalogue)
-    from .rules.catalogue import render_markdown, render_table
+    from .catalogue.render import render_markdown, render_table
 
     sys.stdout.write(render_markdown() if args.markdown else render_table())
     return 0

@@ -17,6 +17,7 @@ class FileResult:
     source: str
     od: ObjectDictionary | None
     diagnostics: list[Diagnostic] = field(default_factory=list)
+    omitted: dict[str, int] = field(default_factory=dict)  # rule id -> findings past its cap, not listed
 
     def count(self, severity: Severity) -> int:
         return sum(1 for d in self.diagnostics if d.severity == severity)
@@ -45,7 +46,8 @@ def lint_path(path: str | Path, options: LintOptions, rule_filter: RuleFilter = 
     if od is not None:
         lint_model(od, diags, options)
     kept = [d for d in diags.sorted() if rule_filter.keeps(d.rule)]
-    return FileResult(str(path), od, kept)
+    omitted = {rule_id: n for rule_id, n in diags.omitted().items() if rule_filter.keeps(rule_id)}
+    return FileResult(str(path), od, kept, omitted)
 
 
 def exit_code(results: Sequence[FileResult], strict: bool) -> int:

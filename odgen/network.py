@@ -12,6 +12,7 @@ import sys
 from dataclasses import dataclass, replace
 from pathlib import Path
 
+from .catalogue.network import NET001, NET002, NET003
 from .diagnostics import Diagnostics, Loc
 from .errors import OdgenError
 from .lint import FileResult, RuleFilter, lint_path
@@ -37,11 +38,11 @@ def parse_network(text: str, path: Path, diags: Diagnostics) -> list[NodeSpec]:
         doc = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
         m = re.search(r"line (\d+)", str(err))
-        diags.add("NET001", Loc(source, int(m.group(1)) if m else 0), f"not valid TOML: {err}")
+        diags.add(NET001, Loc(source, int(m.group(1)) if m else 0), f"not valid TOML: {err}")
         return []
     raw_nodes = doc.get("node")
     if set(doc) != {"node"} or not isinstance(raw_nodes, list) or not raw_nodes:
-        diags.add("NET001", Loc(source, 1), "expected only [[node]] tables, at least one")
+        diags.add(NET001, Loc(source, 1), "expected only [[node]] tables, at least one")
         return []
     lines = [n for n, line in enumerate(text.splitlines(), start=1) if line.strip().startswith("[[node]]")]
     specs: list[NodeSpec] = []
@@ -50,14 +51,14 @@ def parse_network(text: str, path: Path, diags: Diagnostics) -> list[NodeSpec]:
         loc = Loc(source, lines[n] if n < len(lines) else 0)
         if not isinstance(raw, dict) or set(raw) != {"file", "node_id"} or not isinstance(raw["file"], str) \
                 or not isinstance(raw["node_id"], int) or isinstance(raw["node_id"], bool):
-            diags.add("NET001", loc, "[[node]] needs exactly `file` (a string) and `node_id` (an integer)")
+            diags.add(NET001, loc, "[[node]] needs exactly `file` (a string) and `node_id` (an integer)")
             continue
         node_id: int | None = raw["node_id"]
         if not 1 <= raw["node_id"] <= 127:
-            diags.add("NET002", loc, f"node_id {raw['node_id']} is outside 1..127")
+            diags.add(NET002, loc, f"node_id {raw['node_id']} is outside 1..127")
             node_id = None
         elif raw["node_id"] in seen:
-            diags.add("NET002", loc, f"node_id {raw['node_id']} is also the node at line {seen[raw['node_id']]}")
+            diags.add(NET002, loc, f"node_id {raw['node_id']} is also the node at line {seen[raw['node_id']]}")
             node_id = None
         else:
             seen[raw["node_id"]] = loc.line
@@ -79,11 +80,12 @@ def lint_network(path: Path, options: LintOptions, rule_filter: RuleFilter) -> t
         try:
             result = lint_path(spec.file, replace(options, node_id=spec.node_id), rule_filter)
         except OdgenError as err:
-            diags.add("NET003", spec.loc, str(err))
+            diags.add(NET003, spec.loc, str(err))
             unreadable = True
             continue
         merged = results.setdefault(result.source, FileResult(result.source, result.od))
         merged.diagnostics += [d for d in result.diagnostics if d not in merged.diagnostics]
+        merged.omitted.update(result.omitted)
         if result.od is not None and spec.node_id is not None:
             nodes.append(Node(result.od, spec.node_id))
     check_network(nodes, diags)

@@ -6,6 +6,7 @@ from pathlib import Path
 
 import pytest
 
+from odgen.codegen.generate import Request, generate
 from odgen.lint import FileResult, lint_path
 from odgen.rules import LintOptions
 
@@ -21,6 +22,11 @@ def corpus_files(*suffixes: str) -> list[Path]:
         return []
     files = sorted(p for p in CORPUS.iterdir() if p.is_file())
     return [p for p in files if not suffixes or p.suffix.lower() in suffixes]
+
+
+def generates(path: Path) -> bool:
+    """Whether `odgen generate` writes a dictionary for the file (no blocking finding)."""
+    return bool(generate(Request(path, name="od")).files)
 
 
 def corpus_params(*suffixes: str) -> list:

@@ -1,4 +1,4 @@
-"""Generated C is compiled and run: the matrix, the corpus, golden files, CMake.
+"""Generated C is compiled and run: the matrix, golden files, CMake (the corpus: test_corpus_generate.py).
 
 `odgen check` builds the dictionary with the runtime and a generated self-test that
 compares every entry with values computed from the description, exercises hooks and
@@ -16,11 +16,8 @@ import pytest
 
 from odgen.codegen.check import run_check
 from odgen.codegen.generate import Request, generate
-from odgen.diagnostics import Severity
-from odgen.lint import lint_path
-from odgen.rules import LintOptions
 
-from .conftest import BUILD, FIXTURES, ROOT, corpus_files
+from .conftest import FIXTURES, ROOT
 
 GEN = FIXTURES / "generate"
 GOLDEN = Path(__file__).resolve().parent / "golden"
@@ -55,30 +52,6 @@ def test_all_types_storage_classes_and_hooks(cc: str, lookup: str) -> None:
 
 def test_all_types_under_sanitizers() -> None:
     _assert_passed(run_check(ALLTYPES, cc=_compiler("clang"), cflags=SANITIZE))
-
-
-def _lint_clean(path: Path) -> bool:
-    result = lint_path(path, LintOptions())
-    return result.od is not None and result.count(Severity.ERROR) == 0
-
-
-def test_every_lint_clean_corpus_file_generates_compiles_and_checks() -> None:
-    files = [p for p in corpus_files() if _lint_clean(p)]
-    if not files:
-        pytest.skip("../shared/corpus is absent")
-    failures, lines = [], []
-    for path in files:
-        for cc in ("gcc", "clang"):
-            outcome = run_check(Request(path, name="od"), cc=_compiler(cc))
-            summary = outcome.output.strip().splitlines()[-1] if outcome.output.strip() else "no output"
-            lines.append(f"| {path.name} | {cc} | {'ok' if outcome.ok else 'FAILED'} | {summary} |")
-            if not outcome.ok:
-                failures.append(f"{path.name} ({cc}): {outcome.output[-800:]}")
-    BUILD.mkdir(parents=True, exist_ok=True)
-    (BUILD / "corpus-check.md").write_text(
-        f"# odgen check on {len(files)} lint-clean corpus files\n\n| file | cc | result | self-test |\n"
-        "|---|---|---|---|\n" + "\n".join(lines) + "\n", encoding="utf-8")
-    assert not failures, "\n\n".join(failures)
 
 
 @pytest.mark.parametrize("case", sorted(GOLDEN_CASES))

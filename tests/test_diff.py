@@ -174,7 +174,19 @@ def test_xml_file_against_its_eds_conversion_is_empty(path: Path, tmp_path: Path
     eds.write_text(write_eds(od), encoding="utf-8")
     converted, _ = load_path(eds)
     assert converted is not None
-    assert diff_models(od, converted).changes == []
+    changes = diff_models(od, converted).changes
+    real = [c for c in changes if not _ini_trims(c, od)]
+    # what remains is nothing, or only the version findings that format-only changes of class (b) raise
+    assert real == [] or (len(real) < len(changes) and {c.kind for c in real} <= {"DIF401", "DIF402"})
+
+
+def _ini_trims(c: Change, xdd: ObjectDictionary) -> bool:
+    """A stored string whose capacity changed because its XML default ends in blanks, which an INI
+    value cannot keep (CiA 306 values are trimmed)."""
+    if c.kind != "DIF202" or c.index is None:
+        return False
+    value = xdd.objects[c.index].subs[c.sub or 0].default
+    return value is not None and value.text != value.text.rstrip()
 
 
 def _storage_group(od: ObjectDictionary, index: int, sub: int | None) -> str | None:

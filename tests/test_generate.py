@@ -3,13 +3,15 @@
 from __future__ import annotations
 
 import re
+import shutil
 from pathlib import Path
 
 import pytest
 
 from odgen.cli import main
+from odgen.codegen.check import run_check
 from odgen.codegen.generate import Request, generate
-from odgen.codegen.names import comment, identifier, string_literal
+from odgen.codegen.names import comment, identifier, name_clash, string_literal
 from odgen.diagnostics import RULES
 
 from .conftest import FIXTURES, ROOT
@@ -35,6 +37,11 @@ def _fixture_cases() -> list[tuple[str, Path, Path | None]]:
     return cases
 
 
+def _name(path: Path) -> str | None:
+    """A fixture's `; name: X` line: the --name it is generated with."""
+    return next((x[len("; name: "):] for x in path.read_text().splitlines() if x.startswith("; name: ")), None)
+
+
 def _expectations(path: Path) -> list[str]:
     marker = "# expect: " if path.suffix == ".toml" else "; expect: "
     return [x[len(marker):] for x in path.read_text().splitlines() if x.startswith(marker)]
@@ -42,14 +49,14 @@ def _expectations(path: Path) -> list[str]:
 
 @pytest.mark.parametrize("rule,eds,options", _fixture_cases(), ids=lambda c: c if isinstance(c, str) else "")
 def test_gen_fixture(rule: str, eds: Path, options: Path | None) -> None:
-    result = generate(Request(eds, options=options))
+    result = generate(Request(eds, name=_name(eds), options=options))
     wanted = _expectations(options or eds)
     assert wanted and all(f"[{rule}]" in w for w in wanted)
     got = _rendered(result)
     for line in wanted:
         assert line in got, f"expected {line!r}, got {got}"
-    if RULES[rule].severity.label == "error":
-        assert result.files == {}, "generation must stop on an error"
+    if RULES[rule].blocks:
+        assert result.files == {}, "generation must stop on a blocking finding"
 
 
 def test_every_gen_rule_has_a_fixture() -> None:
@@ -60,6 +67,41 @@ def test_refuses_on_lint_errors_and_writes_nothing(tmp_path: Path) -> None:
     bad = FIXTURES / "syntax" / "SYN003.eds"
     assert main(["generate", str(bad), "-o", str(tmp_path / "out")]) == 1
     assert not (tmp_path / "out").exists()
+
+
+NOT_LISTED = FIXTURES / "rules" / "LST007.eds"  # an error that does not block generation
+
+
+def test_goes_on_past_findings_that_do_not_block_and_lists_them_in_the_header(tmp_path: Path, capsys) -> None:
+    assert main(["generate", str(NOT_LISTED), "-o", str(tmp_path), "--name", "od"]) == 0
+    assert f"{NOT_LISTED}:68: error[LST007]: 0x2000 is in no object list" in capsys.readouterr().err
+    header = (tmp_path / "od.h").read_text()
+    assert " *   LST007.eds:68: error[LST007]: 0x2000 is in no object list (belongs in [ManufacturerObjects])" in header
+    assert str(NOT_LISTED.parent) not in header, "the header names the file, not the path it was read from"
+
+
+def test_strict_refuses_on_any_error_or_warning(tmp_path: Path, capsys) -> None:
+    assert main(["generate", str(NOT_LISTED), "-o", str(tmp_path / "out"), "--strict"]) == 1
+    assert "1 findings (--strict), nothing written" in capsys.readouterr().err
+    assert not (tmp_path / "out").exists()
+
+
+def test_ignored_findings_are_neither_printed_nor_listed(tmp_path: Path, capsys) -> None:
+    assert main(["generate", str(NOT_LISTED), "-o", str(tmp_path), "--name", "od", "--ignore", "LST",
+                 "--strict"]) == 0
+    assert "LST007" not in capsys.readouterr().err and "[LST007]" not in (tmp_path / "od.h").read_text()
+
+
+def test_blocking_findings_refuse_even_when_ignored(tmp_path: Path, capsys) -> None:
+    bad = FIXTURES / "syntax" / "SYN003.eds"
+    assert main(["generate", str(bad), "-o", str(tmp_path / "out"), "--ignore", "SYN003"]) == 1
+    err = capsys.readouterr().err
+    assert "error[SYN003]" in err and "1 blocking findings, nothing written" in err
+
+
+def test_a_misspelt_rule_id_is_a_usage_error(tmp_path: Path, capsys) -> None:
+    assert main(["generate", str(PLAIN), "-o", str(tmp_path), "--select", "PDO001,XYZ12"]) == 2
+    assert "'XYZ12' is not a rule id or prefix" in capsys.readouterr().err
 
 
 def test_output_is_deterministic_and_hash_tracks_options(tmp_path: Path) -> None:
@@ -121,3 +163,79 @@ def test_placement_rules() -> None:
     assert placements[(0x1010, 1)].storage == "command"
     assert placements[(0x1017, 0)].storage == "persist:comm"
     assert placements[(0x2000, 0)].storage == "persist:app"
+
+
+# -- names that compile -------------------------------------------------------------------------
+
+CLASHING = ["odg", "ODG", "main", "stdint", "string", "memcpy", "size_t", "uint8_t", "odg_init", "odg_read",
+            "_Atomic", "errno", "stdio", "printf"]
+
+
+@pytest.mark.parametrize("name", CLASHING)
+def test_a_name_that_clashes_is_refused_when_given_and_prefixed_when_taken_from_the_file(
+        name: str, tmp_path: Path, capsys) -> None:
+    assert main(["generate", str(PLAIN), "-o", str(tmp_path / "given"), "--name", name]) == 1
+    assert f"error[GEN008]: --name {name} " in capsys.readouterr().err and not (tmp_path / "given").exists()
+    path = tmp_path / f"{name}.eds"
+    path.write_text(PLAIN.read_text())
+    outcome = run_check(Request(path), cc=shutil.which("gcc"))
+    assert outcome.ok, outcome.output[-2000:]
+    assert outcome.result.view is not None and name_clash(outcome.result.view.name) is None
+
+
+@pytest.mark.parametrize("second", ["a_t", "a_defaults"])
+def test_persistence_groups_whose_c_names_meet_are_refused(second: str, tmp_path: Path) -> None:
+    options = tmp_path / "groups.toml"
+    options.write_text(f'[[entry]]\nmatch = "0x2000"\nstorage = "persist:a"\n\n'
+                       f'[[entry]]\nmatch = "0x1017"\nstorage = "persist:{second}"\n')
+    result = generate(Request(PLAIN, options=options))
+    assert not result.files and [d.rule for d in result.refused] == ["GEN004"], _rendered(result)
+    assert f"is generated for both plain_persist_a and plain_persist_{second}" in result.refused[0].message
+
+
+# -- one value in force ---------------------------------------------------------------------------
+
+def _configured(tmp_path: Path, suffix: str) -> Path:
+    """The clean rule fixture with ParameterValue=245 (a reserved TPDO transmission type) on 0x1800sub2."""
+    text = (FIXTURES / "rules" / "clean.eds").read_text()
+    entry = ("[1800sub2]\nParameterName=Transmission type\nObjectType=0x7\nDataType=0x0005\nAccessType=rw\n"
+             "DefaultValue=254\n")
+    assert entry in text
+    text = text.replace(entry, entry + "ParameterValue=245\n")
+    if suffix == ".dcf":
+        text = text.replace("\n[DummyUsage]", "\n[DeviceComissioning]\nNodeID=5\nBaudrate=250\n\n[DummyUsage]", 1)
+    path = tmp_path / f"dev{suffix}"
+    path.write_text(text)
+    return path
+
+
+@pytest.mark.parametrize("suffix,value", [(".dcf", 245), (".eds", 254)])
+def test_rules_generate_check_and_explain_take_the_same_value(suffix: str, value: int, tmp_path: Path, capsys) -> None:
+    """A DCF's ParameterValue is in force; an EDS's is ignored (OBJ024) by every stage alike."""
+    path = _configured(tmp_path, suffix)
+    result = generate(Request(path, name="dev"))
+    rules = {d.rule: d.message for d in result.diags}
+    assert ("COM011" in rules) == (value == 245) and ("OBJ024" in rules) == (suffix == ".eds")
+    assert f".x1800_tpdo1_communication_parameter_s2_transmission_type = {value}," in result.files["dev.c"]
+    if value == 245:
+        assert "warning[COM011]: 0x1800sub2 transmission type 245 is reserved" in result.files["dev.h"]
+    assert main(["explain", str(path), "0x1800sub2"]) == 0
+    source = "ParameterValue" if suffix == ".dcf" else "DefaultValue"
+    out = capsys.readouterr().out
+    assert f"value:   {value}" in out and f"from {source}" in out
+    outcome = run_check(Request(path, name="dev"), cc=shutil.which("gcc"))
+    assert outcome.ok, outcome.output[-2000:]
+
+
+def test_a_described_rom_location_on_a_writable_entry_is_canopennode_v1_persistence(tmp_path: Path) -> None:
+    """CANopenNode v1 keeps `;StorageLocation=ROM` entries in RAM and saves them by 0x1010; an options file's
+    `storage = "rom"` on a writable entry stays GEN003 (tests/fixtures/generate/GEN003.toml)."""
+    path = tmp_path / "v1.eds"
+    path.write_text(PLAIN.read_text().replace("DefaultValue=10\n", "DefaultValue=10\n;StorageLocation=ROM\n")
+                    .replace("ParameterName=Producer heartbeat time\n", "ParameterName=Producer heartbeat time\n"
+                             ";StorageLocation=ROM\n").replace("DataType=0x0006\nAccessType=rw\nDefaultValue=1000",
+                                                               "DataType=0x0006\nAccessType=const\nDefaultValue=1000"))
+    result = generate(Request(path, name="v1"))
+    assert result.placements is not None and result.files, _rendered(result)
+    assert result.placements[(0x2000, 0)].storage == "persist:rom"
+    assert result.placements[(0x1017, 0)].storage == "rom"

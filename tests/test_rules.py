@@ -212,3 +212,59 @@ def test_real_defects_are_found(name: str, line: str) -> None:
     if not path.is_file():
         pytest.skip("../shared/corpus is absent")
     assert any(line in d for d in rendered(lint(path)))
+
+
+# -- severities decided from what the peers accept (docs/rules.md) ------------------------------
+
+def _variant(tmp_path: Path, fixture: str, *edits: tuple[str, str]) -> list[str]:
+    """The rules a rule fixture reports after text edits (its '; expect:' lines dropped)."""
+    text = "\n".join(x for x in (RULE_FIXTURES / fixture).read_text().splitlines() if not x.startswith("; expect:"))
+    for old, new in edits:
+        assert old in text, old
+        text = text.replace(old, new, 1)
+    path = tmp_path / fixture
+    path.write_text(text + "\n")
+    return [d.rule for d in lint(path).diagnostics]
+
+
+def test_a_writable_sub0_may_count_the_valid_entries(tmp_path: Path) -> None:
+    """The 0x1003 pattern vendors use for other objects (kacanopen__CL4-E-2-12.eds:6267): sub0 rw, below the highest."""
+    sub0 = "[2000sub0]\nParameterName=Highest sub-index supported\nDataType=0x0005\nAccessType="
+    assert _variant(tmp_path, "OBJ011.eds", (sub0 + "ro", sub0 + "rw")) == []
+    assert _variant(tmp_path, "OBJ011.eds", (sub0 + "ro\nDefaultValue=1", sub0 + "rw\nDefaultValue=3")) == ["OBJ011"]
+
+
+def test_only_a_configured_baudrate_of_zero_is_a_note(tmp_path: Path) -> None:
+    assert _variant(tmp_path, "HDR008.dcf", ("Baudrate=1000", "Baudrate=0")) == ["HDR015"]
+    assert _variant(tmp_path, "HDR008.dcf", ("Baudrate=1000", "Baudrate=125")) == ["HDR008"]
+
+
+def test_unnamed_sub_objects_of_a_record_stay_errors(tmp_path: Path) -> None:
+    assert _variant(tmp_path, "OBJ027.eds", ("ObjectType=0x8", "ObjectType=0x9")) == ["OBJ001"]
+
+
+def test_mixed_array_is_a_record_in_the_model() -> None:
+    od = lint(RULE_FIXTURES / "OBJ026.eds").od
+    assert od is not None and od.objects[0x2000].object_code == ARRAY and od.objects[0x2000].structure == 0x9
+
+
+@pytest.mark.parametrize("name,line", [
+    ("canfestival__DS401_Slave_Gui.eds", "372: warning[OBJ026]: 0x1400sub2 DataType=0x0005 but sub1 has 0x0007; "
+                                         "generated as a RECORD"),
+    ("objdictgen__objdictgen_slave.eds", "396: warning[PDO011]: 0x1600sub1 maps nothing (0x00000000) but sub0=8"),
+    ("roscanopen__Schunk_0_63.dcf", "1809: error[OBJ008]: 0x200B DataType, AccessType on the RECORD header"),
+    ("oresatmon__oresat_c3.dcf", "54: info[HDR015]: Baudrate=0: no bit rate configured"),
+])
+def test_the_audits_examples_are_reported_as_decided(name: str, line: str) -> None:
+    """The audit of real files (docs/rules.md): each finding at the severity decided, none blocking there."""
+    path = CORPUS / name
+    if not path.is_file():
+        pytest.skip("../shared/corpus is absent")
+    assert any(d.startswith(line) for d in rendered(lint(path)))
+
+
+def test_the_audits_writable_sub0_is_not_reported() -> None:
+    path = CORPUS / "kacanopen__CL4-E-2-12.eds"
+    if not path.is_file():
+        pytest.skip("../shared/corpus is absent")
+    assert not [d for d in lint(path).diagnostics if d.rule == "OBJ011"]

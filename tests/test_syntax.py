@@ -8,6 +8,9 @@ import pytest
 
 from odgen.diagnostics import RULES
 from odgen.formats import load_bytes, load_path
+from odgen.lint import lint_path
+from odgen.report import render_text
+from odgen.rules import LintOptions
 from odgen.model.values import parse_value, split_nodeid
 from odgen.model.datatypes import BY_NAME
 
@@ -102,14 +105,18 @@ def test_wide_encodings_are_decoded_and_reported(encoding: str) -> None:
     assert [d.rule for d in diags] == ["SYN004"]
 
 
-def test_capped_rule_keeps_its_count_when_another_rule_collapses() -> None:
+def test_capped_rules_are_counted_past_their_cap_and_reported_in_one_line(tmp_path: Path) -> None:
     text = "[FileInfo]\n" + "junk\n" * 600 + "".join(f"K{i}=1 ; note\n" for i in range(3))
     od, diags = load_bytes(text.encode(), "c.eds", "eds")
-    messages = [d.message for d in diags.sorted()]
-    assert sum(d.rule == "SYN001" for d in diags) == 501
-    assert "100 more SYN001 findings not listed (at most 500 per rule and file)" in messages
+    assert sum(d.rule == "SYN001" for d in diags) == 500
     assert [d.message for d in diags if d.rule == "SYN014"] == [
-        "inline comment '; note' after the value of 'K0' is dropped (and 2 more lines like it)"]
+        "inline comment '; note' after the value of 'K0' is dropped"]
+    assert diags.omitted() == {"SYN001": 100, "SYN014": 2}
+    path = tmp_path / "c.eds"
+    path.write_text(text)
+    report = render_text([lint_path(path, LintOptions())])
+    assert f"{path}: error[SYN001]: 100 more SYN001 findings not listed (at most 500 per rule and file)" in report
+    assert f"{path}: warning[SYN014]: 2 more SYN014 findings not listed (at most 1 per rule and file)" in report
 
 
 def test_lines_end_at_cr_and_lf_only() -> None:
@@ -117,3 +124,9 @@ def test_lines_end_at_cr_and_lf_only() -> None:
     od, diags = load_bytes(text.encode(), "l.eds", "eds")
     assert od is not None and od.objects[0x2000].name == "a\x0cb\x85c\u2028d"
     assert od.objects[0x2000].subs[0].access == "rw" and not [d for d in diags if d.rule == "SYN001"]
+
+
+def test_an_index_without_leading_zeros_is_read_and_listed() -> None:
+    result = lint(SYNTAX / "SYN019.eds")
+    assert result.od is not None and 0x00A0 in result.od.objects
+    assert not [d for d in result.diagnostics if d.rule in ("LST005", "SYN010")]

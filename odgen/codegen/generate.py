@@ -6,19 +6,20 @@ import gc
 import hashlib
 from collections.abc import Iterator
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import jinja2
 
 from .. import __version__
 from ..assets import templates_dir
-from ..diagnostics import Diagnostics, Severity
+from ..catalogue.gen import GEN008
+from ..diagnostics import Diagnostic, Diagnostics, Loc, Severity, more_line
 from ..formats import load_path, read_bytes
-from ..lint import lint_model
+from ..lint import RuleFilter, lint_model
 from ..model import ObjectDictionary
 from ..rules import LintOptions
-from .names import identifier, is_identifier
+from .names import comment, identifier, is_identifier, name_clash
 from .options import Options, load_options, parse_options
 from .placement import Placement, place
 from .viewmodel import DictView, build
@@ -36,6 +37,8 @@ class Request:
     defaults: str = ""  # options (TOML) applied before the options file, e.g. by `odgen roundtrip`
     can_fd: bool = False  # lint PDOs against a CAN FD frame (512 bits)
     input_format: str | None = None  # eds/dcf/xdd/xdc when the suffix does not say
+    strict: bool = False  # refuse on any error or warning, not only on blocking findings
+    rule_filter: RuleFilter = RuleFilter()  # --select/--ignore: the findings reported (blocking ones always are)
 
 
 @dataclass
@@ -45,10 +48,42 @@ class Result:
     od: ObjectDictionary | None = None
     placements: dict[tuple[int, int], Placement] | None = None
     view: DictView | None = None
+    refused: list[Diagnostic] = field(default_factory=list)  # the findings that stopped generation
+
+
+def reported(diags: Diagnostics, request: Request) -> list[Diagnostic]:
+    """The findings `generate` prints and lists in the header: errors and warnings the rule filter keeps,
+    and every blocking finding, since the refusal must say why."""
+    return [d for d in diags.sorted()
+            if d.blocks or (d.severity >= Severity.WARNING and request.rule_filter.keeps(d.rule))]
+
+
+def refusals(diags: Diagnostics, request: Request) -> list[Diagnostic]:
+    """Blocking findings; under --strict, every reported finding."""
+    return [d for d in reported(diags, request) if d.blocks or request.strict]
+
+
+def _refuse(result: Result, request: Request) -> bool:
+    result.refused = refusals(result.diags, request)
+    return bool(result.refused)
+
+
+def findings_comment(diags: Diagnostics, request: Request) -> list[str]:
+    """Lines for the header's comment of accepted findings: file name (not path) and message."""
+    lines = []
+    for d in reported(diags, request):
+        name = Path(d.loc.file).name
+        lines.append(comment(d.text().replace(d.loc.file, name, 1), 1000))
+    source = Path(request.input).name
+    lines += [comment(more_line(source, rule_id, n), 1000) for rule_id, n in diags.omitted().items()
+              if request.rule_filter.keeps(rule_id)]
+    return lines
 
 
 def default_name(path: Path) -> str:
-    return identifier(path.stem, "od")
+    """The file name as a C identifier; prefixed `od_` where it would clash with the runtime or C library."""
+    name = identifier(path.stem, "od")
+    return name if name_clash(name) is None else f"od_{name}"
 
 
 def environment() -> jinja2.Environment:
@@ -66,17 +101,19 @@ def digest(request: Request, name: str) -> str:
 
 
 def prepare(request: Request) -> Result:
-    """Load, lint, read options and place; stops early when errors were found."""
+    """Load, lint, read options and place; stops early on a blocking finding (any, under --strict)."""
     od, diags = load_path(request.input, request.input_format)
     result = Result(diags, {}, od)
-    if od is None:
+    if od is None:  # nothing understood: the reader's findings say why
+        result.refused = refusals(diags, request)
         return result
     lint_model(od, diags, LintOptions(node_id=request.node_id, can_fd=request.can_fd))
+    _check_name(request, diags)
     options = parse_options(request.defaults, "(built-in defaults)", diags) if request.defaults else Options()
     if request.options:
         user = load_options(request.options, diags)
         options.entries += user.entries
-    if diags.count(Severity.ERROR):
+    if _refuse(result, request):
         return result
     result.placements = place(od, options, diags)
     return result
@@ -103,17 +140,24 @@ def generate(request: Request) -> Result:
 def _generate(request: Request) -> Result:
     name = request.name or default_name(request.input)
     result = prepare(request)
-    if result.od is None or result.placements is None or result.diags.count(Severity.ERROR):
+    if result.od is None or result.placements is None or _refuse(result, request):
         return result
     view = build(result.od, result.placements, name, version=__version__, digest=digest(request, name),
                  lookup=request.lookup, diags=result.diags)
-    if result.diags.count(Severity.ERROR):
+    if _refuse(result, request):
         return result
     env = environment()
     result.view = view
-    result.files = {f"{name}.h": env.get_template("dict.h.j2").render(v=view),
+    findings = findings_comment(result.diags, request)
+    result.files = {f"{name}.h": env.get_template("dict.h.j2").render(v=view, findings=findings),
                     f"{name}.c": env.get_template("dict.c.j2").render(v=view)}
     return result
+
+
+def _check_name(request: Request, diags: Diagnostics) -> None:
+    why = name_clash(request.name) if request.name else None
+    if request.name and why:
+        diags.add(GEN008, Loc(str(request.input)), f"--name {request.name} {why}; use e.g. --name od_{request.name}")
 
 
 def valid_name(name: str) -> bool:

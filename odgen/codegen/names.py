@@ -13,6 +13,25 @@ volatile while _Bool _Complex _Imaginary bool true false NULL
 """.split()  # noqa: SIM905
 )
 
+# Names a dictionary (its files NAME.h/NAME.c, its symbols NAME and NAME_*) must not take: the C99
+# headers (a generated stdint.h would shadow <stdint.h>, as -I puts the output folder first), and the
+# library identifiers the generated C, the runtime or `odgen check`'s self-test declare or call.
+C_HEADERS = frozenset(
+    """
+assert complex ctype errno fenv float inttypes iso646 limits locale math setjmp signal stdarg stdbool stddef
+stdint stdio stdlib string tgmath time wchar wctype
+""".split()  # noqa: SIM905
+)
+C_LIBRARY = frozenset(
+    """
+main errno offsetof size_t ptrdiff_t wchar_t intptr_t uintptr_t intmax_t uintmax_t int8_t int16_t int32_t int64_t
+uint8_t uint16_t uint32_t uint64_t memcpy memset memcmp memmove memchr strlen strcmp strncmp strcpy strncpy strcat
+strchr strrchr strstr printf fprintf sprintf snprintf puts putchar fputs fflush fopen fclose fread fwrite
+stdin stdout stderr malloc calloc realloc free exit abort atexit qsort bsearch abs labs atoi atol strtol strtoul
+strtod fabs floor ceil sqrt pow isnan isinf signal raise va_list jmp_buf FILE EOF
+""".split()  # noqa: SIM905
+)
+
 MAX_IDENT = 48
 _IDENT_RE = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 
@@ -27,6 +46,19 @@ def identifier(text: str, fallback: str = "entry") -> str:
     if ident in C_KEYWORDS or ident.startswith("__"):
         ident += "_"
     return ident
+
+
+def name_clash(name: str) -> str | None:
+    """Why `name` cannot name a dictionary, or None when it can."""
+    if name.lower() == "odg" or name.lower().startswith("odg_"):
+        return "would clash with the runtime (odg.h, odg_* and ODG_* names)"
+    if name in C_HEADERS:
+        return f"would make {name}.h shadow the C library's <{name}.h>"
+    if name in C_LIBRARY:
+        return "is a name of the C library"
+    if name.startswith("_") and name[1:2].isupper():
+        return "is reserved to the C implementation (underscore and capital)"
+    return None
 
 
 def is_identifier(text: str) -> bool:

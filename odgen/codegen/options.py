@@ -17,6 +17,7 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from ..catalogue.gen import GEN001
 from ..diagnostics import Diagnostics, Loc
 from .names import is_identifier
 
@@ -86,7 +87,7 @@ def load_options(path: Path | None, diags: Diagnostics) -> Options:
     try:
         text = path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as err:
-        diags.add("GEN001", Loc(str(path)), f"cannot read the options file: {err}")
+        diags.add(GEN001, Loc(str(path)), f"cannot read the options file: {err}")
         return Options(str(path))
     return parse_options(text, str(path), diags)
 
@@ -96,15 +97,15 @@ def parse_options(text: str, source: str, diags: Diagnostics) -> Options:
     try:
         doc = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
-        diags.add("GEN001", Loc(source, _error_line(err)), f"not valid TOML: {err}")
+        diags.add(GEN001, Loc(source, _error_line(err)), f"not valid TOML: {err}")
         return options
     unknown = sorted(set(doc) - {"entry"})
     if unknown:
-        diags.add("GEN001", Loc(source, 1), f"unknown top-level key(s) {', '.join(unknown)}; only [[entry]] tables")
+        diags.add(GEN001, Loc(source, 1), f"unknown top-level key(s) {', '.join(unknown)}; only [[entry]] tables")
     lines = [n for n, line in enumerate(text.splitlines(), start=1) if line.strip().startswith("[[entry]]")]
     raw_entries = doc.get("entry", [])
     if not isinstance(raw_entries, list):
-        diags.add("GEN001", Loc(source, 1), "'entry' must be an array of tables ([[entry]])")
+        diags.add(GEN001, Loc(source, 1), "'entry' must be an array of tables ([[entry]])")
         return options
     for n, raw in enumerate(raw_entries):
         line = lines[n] if n < len(lines) else 0
@@ -121,11 +122,11 @@ def _error_line(err: Exception) -> int:
 
 def _entry(raw: object, loc: Loc, diags: Diagnostics) -> OptionEntry | None:
     if not isinstance(raw, dict):
-        diags.add("GEN001", loc, "[[entry]] must be a table")
+        diags.add(GEN001, loc, "[[entry]] must be a table")
         return None
     bad = sorted(set(raw) - set(KEYS))
     if bad:
-        diags.add("GEN001", loc, f"unknown key(s) {', '.join(bad)}; use {', '.join(KEYS)}")
+        diags.add(GEN001, loc, f"unknown key(s) {', '.join(bad)}; use {', '.join(KEYS)}")
         return None
     patterns = _patterns(raw.get("match"), loc, diags)
     if patterns is None:
@@ -138,12 +139,12 @@ def _entry(raw: object, loc: Loc, diags: Diagnostics) -> OptionEntry | None:
 def _patterns(value: object, loc: Loc, diags: Diagnostics) -> list[Pattern] | None:
     texts = [value] if isinstance(value, str) else value
     if not isinstance(texts, list) or not texts or not all(isinstance(t, str) for t in texts):
-        diags.add("GEN001", loc, "'match' must be a pattern or a list of patterns")
+        diags.add(GEN001, loc, "'match' must be a pattern or a list of patterns")
         return None
     patterns = [parse_pattern(t) for t in texts]
     for text, pattern in zip(texts, patterns, strict=True):
         if pattern is None:
-            diags.add("GEN001", loc, f"'{text}' is not a pattern: use 0x6000, 0x6000-0x60FF, 0x6200sub1-8 or *")
+            diags.add(GEN001, loc, f"'{text}' is not a pattern: use 0x6000, 0x6000-0x60FF, 0x6200sub1-8 or *")
     return [p for p in patterns if p is not None] if all(patterns) else None
 
 
@@ -152,7 +153,7 @@ def _storage(entry: OptionEntry, raw: dict, loc: Loc, diags: Diagnostics) -> boo
     if value is None:
         return True
     if not isinstance(value, str) or not _STORAGE_RE.match(value):
-        diags.add("GEN001", loc, f"storage '{value}' is not rom, ram, persist or persist:<group>")
+        diags.add(GEN001, loc, f"storage '{value}' is not rom, ram, persist or persist:<group>")
         return False
     entry.storage = value
     return True
@@ -163,7 +164,7 @@ def _hooks(entry: OptionEntry, raw: dict, loc: Loc, diags: Diagnostics) -> bool:
     if value is None:
         return True
     if not isinstance(value, list) or any(v not in HOOK_KINDS for v in value):
-        diags.add("GEN001", loc, f"hooks {value!r} must be a list of {', '.join(HOOK_KINDS)}")
+        diags.add(GEN001, loc, f"hooks {value!r} must be a list of {', '.join(HOOK_KINDS)}")
         return False
     entry.hooks = tuple(k for k in HOOK_KINDS if k in value)
     return True
@@ -174,7 +175,7 @@ def _function(entry: OptionEntry, raw: dict, loc: Loc, diags: Diagnostics) -> bo
     if value is None:
         return True
     if not isinstance(value, str) or not is_identifier(value):
-        diags.add("GEN001", loc, f"function '{value}' is not a C identifier")
+        diags.add(GEN001, loc, f"function '{value}' is not a C identifier")
         return False
     entry.function = value
     return True
@@ -185,7 +186,7 @@ def _capacity(entry: OptionEntry, raw: dict, loc: Loc, diags: Diagnostics) -> bo
     if value is None:
         return True
     if not isinstance(value, int) or isinstance(value, bool) or not 0 <= value <= 65535:
-        diags.add("GEN001", loc, f"capacity {value!r} must be a number of bytes 0..65535")
+        diags.add(GEN001, loc, f"capacity {value!r} must be a number of bytes 0..65535")
         return False
     entry.capacity = value
     return True

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..catalogue.gen import GEN002, GEN003
 from ..diagnostics import Diagnostics, Loc
 from ..model import Obj, ObjectDictionary, Sub
 from .names import identifier
@@ -76,7 +77,7 @@ def place(od: ObjectDictionary, options: Options, diags: Diagnostics) -> dict[tu
     for entry in options.entries:
         if not entry.used:
             patterns = ", ".join(p.text for p in entry.patterns)
-            diags.add("GEN002", Loc(entry.source, entry.line), f"match {patterns} selects no entry")
+            diags.add(GEN002, Loc(entry.source, entry.line), f"match {patterns} selects no entry")
     for (index, subindex), placement in result.items():
         _validate(od, index, subindex, placement, diags)
     return result
@@ -88,6 +89,8 @@ def _place_one(od: ObjectDictionary, obj: Obj, sub: Sub, options: Options) -> Pl
     if described is not None and storage != "command":
         line = sub.line_of("storagelocation") if sub.storage else obj.line_of("storagelocation")
         storage, why = described, f"{od.source}:{line}: storage location {sub.storage or obj.storage}"
+        if storage == "rom" and _unfit_for_rom(sub):  # CANopenNode v1: CO_OD_ROM is RAM that 0x1010 saves
+            storage, why = "persist:rom", why + " (CANopenNode v1: kept in RAM, saved by 0x1010)"
     placement = Placement(storage, why)
     for entry in options.entries:
         if any(p.matches(obj.index, sub.subindex) for p in entry.patterns):
@@ -108,21 +111,27 @@ def _apply(placement: Placement, entry: OptionEntry, loc: Loc) -> None:
         placement.capacity, placement.capacity_from = entry.capacity, origin
 
 
-def _validate(od: ObjectDictionary, index: int, subindex: int, placement: Placement, diags: Diagnostics) -> None:
-    if placement.storage != "rom":
-        return
-    obj = od.objects[index]
-    sub = obj.subs[subindex]
+def _unfit_for_rom(sub: Sub) -> list[str]:
+    """Why a value cannot live in FLASH, as the description gives it."""
     reasons = []
     if sub.writable:
         reasons.append(f"it is writable ({sub.access})")
     if sub.default is not None and sub.default.nodeid:
         reasons.append("its default is $NODEID-relative")
-    if "pre_read" in placement.hooks:
-        reasons.append("a pre_read hook refreshes it")
     if sub.data_type == 0x000F:
         reasons.append("a DOMAIN keeps its buffer and length in RAM")
+    return reasons
+
+
+def _validate(od: ObjectDictionary, index: int, subindex: int, placement: Placement, diags: Diagnostics) -> None:
+    if placement.storage != "rom":
+        return
+    obj = od.objects[index]
+    sub = obj.subs[subindex]
+    reasons = _unfit_for_rom(sub)
+    if "pre_read" in placement.hooks:
+        reasons.append("a pre_read hook refreshes it")
     if reasons:
-        diags.add("GEN003", Loc(od.source, sub.line),
+        diags.add(GEN003, Loc(od.source, sub.line),
                   f"is placed in rom ({placement.storage_from}) but {' and '.join(reasons)}",
                   index, None if obj.is_var else subindex)

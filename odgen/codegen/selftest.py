@@ -14,7 +14,7 @@ from ..model import Obj, ObjectDictionary, Sub, Value
 from ..model.datatypes import BASIC_TYPES, DataType
 from .memory import value_rows
 from .placement import RESTORE, STORE, Placement
-from .viewmodel import DictView, generated_value, initial_number
+from .viewmodel import DictView, initial_number
 
 MAX_WRITE_CASES = 3
 
@@ -74,21 +74,22 @@ def c_bytes(data: bytes) -> str:
     return "{" + ", ".join(f"0x{b:02X}" for b in data) + "}" if data else "{0}"
 
 
-def expected_bytes(sub: Sub, dtype: DataType, node_id: int, capacity: int | None = None) -> bytes | None:
+def expected_bytes(od: ObjectDictionary, sub: Sub, dtype: DataType, node_id: int,
+                   capacity: int | None = None) -> bytes | None:
     """The wire bytes an upload of `sub` must give on node `node_id` (None: not comparable).
     An OCTET_STRING is as long as its capacity: the default padded with zero bytes."""
-    data = _described_bytes(sub, dtype, node_id)
+    data = _described_bytes(od, sub, dtype, node_id)
     if data is not None and dtype.kind == "ostring":
         return data.ljust(capacity or 0, b"\0")
     return data
 
 
-def _described_bytes(sub: Sub, dtype: DataType, node_id: int) -> bytes | None:
-    value = generated_value(sub)
+def _described_bytes(od: ObjectDictionary, sub: Sub, dtype: DataType, node_id: int) -> bytes | None:
+    value = od.value_in_force(sub)
     if dtype.kind == "domain":
         return None  # domains are compared by length only in hooks/streams, not by text form
     if value is None or value.error is not None or value.parsed is None:
-        return b"" if dtype.is_string else wire_bytes(initial_number(sub, dtype), dtype)
+        return b"" if dtype.is_string else wire_bytes(initial_number(od, sub, dtype), dtype)
     resolved = value.resolve(node_id)
     if resolved is None:
         return None
@@ -134,11 +135,11 @@ def _write_cases(sub: Sub, dtype: DataType) -> list[WriteCase]:
     return [WriteCase(c_bytes(data), len(data), expect) for data, expect in write_cases(sub, dtype)]
 
 
-def _expect(obj: Obj, sub: Sub, placement: Placement, node_id: int) -> Expect | None:
+def _expect(od: ObjectDictionary, obj: Obj, sub: Sub, placement: Placement, node_id: int) -> Expect | None:
     dtype = BASIC_TYPES.get(sub.data_type or 0)
     if dtype is None or obj.index < 0x1000 or (obj.index in (STORE, RESTORE) and sub.subindex > 0):
         return None
-    expected = expected_bytes(sub, dtype, node_id, placement.capacity)
+    expected = expected_bytes(od, sub, dtype, node_id, placement.capacity)
     label = f"0x{obj.index:04X}sub{sub.subindex}"
     exp = Expect(obj.index, sub.subindex, label, sub.readable, sub.writable,
                  c_bytes(expected or b""), len(expected or b""), expected is not None and dtype.kind != "domain",
@@ -157,7 +158,7 @@ def build_selftest(od: ObjectDictionary, placements: dict[tuple[int, int], Place
     expects = []
     for obj in od.sorted_objects():
         for sub in obj.sorted_subs():
-            exp = _expect(obj, sub, placements[(obj.index, sub.subindex)], node_id)
+            exp = _expect(od, obj, sub, placements[(obj.index, sub.subindex)], node_id)
             if exp is not None:
                 expects.append(exp)
     missing = next(i for i in range(0x5FFF, 0x1FFF, -1) if i not in od.objects)

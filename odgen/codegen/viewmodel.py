@@ -12,6 +12,7 @@ import struct
 import zlib
 from dataclasses import dataclass, field
 
+from ..catalogue.gen import GEN004, GEN005, GEN006, GEN007
 from ..diagnostics import Diagnostics, Loc
 from ..model import Obj, ObjectDictionary, Sub, Value
 from ..model.datatypes import BASIC_TYPES, DataType
@@ -245,13 +246,6 @@ def limit_bits(value: int | float, dtype: DataType) -> int:
     return int(value) & 0xFFFFFFFFFFFFFFFF
 
 
-def generated_value(sub: Sub) -> Value | None:
-    """A DCF's configured ParameterValue wins over the DefaultValue."""
-    if sub.parameter_value is not None and not sub.parameter_value.empty and sub.parameter_value.error is None:
-        return sub.parameter_value
-    return sub.default
-
-
 # ---- the builder --------------------------------------------------------------------------
 
 
@@ -279,7 +273,7 @@ class _Builder:
         name = base if obj.is_var else f"{base}_s{sub.subindex}_" + identifier(sub.name, "sub")
         key = (obj.index, sub.subindex)
         if self.member_names.setdefault(name, key) != key:
-            self.diags.add("GEN004", Loc(self.od.source, sub.line), f"C name {name} is used twice", obj.index)
+            self.diags.add(GEN004, Loc(self.od.source, sub.line), f"C name {name} is used twice", obj.index)
         return name
 
 
@@ -290,11 +284,12 @@ def build(od: ObjectDictionary, placements: dict[tuple[int, int], Placement], na
                     source=comment(od.source.rsplit("/", 1)[-1]), lookup=lookup)
     for obj in od.sorted_objects():
         if obj.index < 0x1000:
-            diags.add("GEN006", Loc(od.source, obj.line), "defines a data type; not generated", obj.index)
+            diags.add(GEN006, Loc(od.source, obj.line), "defines a data type; not generated", obj.index)
             continue
         _entry(b, view, obj)
     view.structs = [_sorted_struct(s) for _, s in sorted(b.structs.items(), key=lambda kv: _struct_order(kv[0]))]
     view.groups = _groups(od, view)
+    _check_group_names(b, view)
     _check_functions(b, view)
     for block in view.structs:
         _check_block_size(b, block)
@@ -315,7 +310,7 @@ def _check_block_size(b: _Builder, struct: StorageStruct) -> None:
             obj = b.od.objects.get(index)
             line = obj.subs[sub].line if obj is not None and sub in obj.subs else 0
             total = sum(map(member_bytes, struct.members))
-            b.diags.add("GEN007", Loc(b.od.source, line),
+            b.diags.add(GEN007, Loc(b.od.source, line),
                         f"{struct.name} needs {total}+ bytes; a storage class's block is at most {BLOCK_LIMIT} "
                         f"bytes (16-bit offsets), exceeded from 0x{index:04X}sub{sub} on", index)
             return
@@ -332,6 +327,20 @@ def _generated_symbols(view: DictView) -> set[str]:
     return names
 
 
+def _check_group_names(b: _Builder, view: DictView) -> None:
+    """Persistence groups whose symbols meet (group `a` has type `NAME_persist_a_t`, which is group `a_t`)."""
+    owner: dict[str, str] = {}
+    for s in view.structs:
+        for symbol in (s.name, s.type_name, s.defaults):
+            if not symbol:
+                continue
+            first = owner.setdefault(symbol, s.name)
+            if first != s.name:
+                where_from = b.od.source
+                b.diags.add(GEN004, Loc(where_from), f"C name {symbol} is generated for both {first} and {s.name}; "
+                            "rename one persistence group (;StorageLocation or the options file)")
+
+
 def _check_functions(b: _Builder, view: DictView) -> None:
     """Hook functions named in the options must not clash with generated or runtime names."""
     taken = _generated_symbols(view)
@@ -339,7 +348,7 @@ def _check_functions(b: _Builder, view: DictView) -> None:
         fn = placement.function
         if fn and (fn in taken or fn.startswith("odg_")) and placement.function_loc is not None:
             clash = f"hook function {fn} clashes with a generated or runtime name"
-            b.diags.add("GEN004", placement.function_loc, clash)
+            b.diags.add(GEN004, placement.function_loc, clash)
             taken.discard(fn)  # report each clash once
 
 
@@ -355,7 +364,7 @@ def _sorted_struct(s: StorageStruct) -> StorageStruct:
 def _entry(b: _Builder, view: DictView, obj: Obj) -> None:
     subs = obj.sorted_subs()
     dense = [s.subindex for s in subs] == list(range(len(subs)))
-    code = {2: "ODG_OBJ_DOMAIN", 8: "ODG_OBJ_ARRAY", 9: "ODG_OBJ_RECORD"}.get(obj.object_code, "ODG_OBJ_VAR")
+    code = {2: "ODG_OBJ_DOMAIN", 8: "ODG_OBJ_ARRAY", 9: "ODG_OBJ_RECORD"}.get(obj.structure, "ODG_OBJ_VAR")
     view.entries.append(EntryView(obj.index, len(view.subs), len(subs), code + (" | ODG_E_DENSE" if dense else ""),
                                   comment(obj.name)))
     obj_ident = f"X{obj.index:04X}_" + identifier(obj.name, "object").upper()
@@ -368,13 +377,13 @@ def _sub(b: _Builder, view: DictView, obj: Obj, sub: Sub) -> None:
     placement = b.placements[(obj.index, sub.subindex)]
     dtype = BASIC_TYPES.get(sub.data_type or 0)
     if dtype is None:
-        b.diags.add("GEN005", Loc(b.od.source, sub.line_of("datatype")),
+        b.diags.add(GEN005, Loc(b.od.source, sub.line_of("datatype")),
                     f"has DataType 0x{sub.data_type or 0:04X}, not a basic type", obj.index,
                     None if obj.is_var else sub.subindex)
         return
     member = b.member_name(obj, sub)
     pos = len(view.subs)
-    attr = _attr_flags(sub, placement, dtype)
+    attr = _attr_flags(b.od, sub, placement, dtype)
     if placement.storage == "command":
         storage = "ODG_S_STORE" + (" | ODG_S_RESTORE_FLAG" if obj.index == RESTORE else "")
         view.subs.append(SubView("0", 4, sub.subindex, dtype.code, attr, storage, comment(sub.name)))
@@ -395,7 +404,7 @@ def _sub(b: _Builder, view: DictView, obj: Obj, sub: Sub) -> None:
         view.macros.append(NameMacro(f"{view.upper}_SUB_{sub_ident}", f"0x{sub.subindex:02X}u", comment(sub.name)))
 
 
-def _attr_flags(sub: Sub, placement: Placement, dtype: DataType) -> str:
+def _attr_flags(od: ObjectDictionary, sub: Sub, placement: Placement, dtype: DataType) -> str:
     flags = []
     if sub.readable:
         flags.append("ODG_A_READ")
@@ -406,7 +415,7 @@ def _attr_flags(sub: Sub, placement: Placement, dtype: DataType) -> str:
             flags.append("ODG_A_TPDO")
         if sub.access in ("wo", "rww", "rw"):
             flags.append("ODG_A_RPDO")
-    value = generated_value(sub)
+    value = od.value_in_force(sub)
     if value is not None and value.nodeid and isinstance(value.parsed, int):
         flags.append("ODG_A_NODEID")
     if placement.hooks:
@@ -426,7 +435,7 @@ def _storage_code(placement: Placement, view: DictView) -> str:
 def _value_member(b: _Builder, view: DictView, obj: Obj, sub: Sub, dtype: DataType, placement: Placement,
                   member: str) -> tuple[str, int]:
     target = b.struct_for(placement.storage)
-    value = generated_value(sub)
+    value = b.od.value_in_force(sub)
     ctype = ctype_of(dtype)
     note = comment(f"0x{obj.index:04X}sub{sub.subindex} {sub.name}")
     key = (obj.index, sub.subindex)
@@ -437,7 +446,7 @@ def _value_member(b: _Builder, view: DictView, obj: Obj, sub: Sub, dtype: DataTy
         return _offset(target, member), size
     if dtype.kind == "domain":
         return _domain(b, view, target, member, value, placement, note, key)
-    init = _scalar_init(sub, dtype, ctype)
+    init = _scalar_init(b.od, sub, dtype, ctype)
     target.members.append(Member(member, ctype, "", init, note, _ALIGN[ctype], key))
     if value is not None and value.nodeid and isinstance(value.parsed, int):
         view.nodeid_fixes.append(NodeIdFix(f"{target.name}.{member}", ctype))
@@ -453,9 +462,9 @@ def _accessor(view: DictView, member: str, target: StorageStruct, note: str) -> 
     view.accessors.append(Accessor(f"{view.name}_{member}", f"({target.name}.{member})", note))
 
 
-def initial_number(sub: Sub, dtype: DataType) -> int | float:
+def initial_number(od: ObjectDictionary, sub: Sub, dtype: DataType) -> int | float:
     """The value an entry starts with: its default, or without one 0 moved into its limits."""
-    value = generated_value(sub)
+    value = od.value_in_force(sub)
     parsed = value.parsed if value is not None and value.error is None else None
     if isinstance(parsed, (int, float)) and not isinstance(parsed, bool):
         return float(parsed) if dtype.kind == "real" else int(parsed)
@@ -466,8 +475,8 @@ def initial_number(sub: Sub, dtype: DataType) -> int | float:
     return zero
 
 
-def _scalar_init(sub: Sub, dtype: DataType, ctype: str) -> str:
-    number = initial_number(sub, dtype)
+def _scalar_init(od: ObjectDictionary, sub: Sub, dtype: DataType, ctype: str) -> str:
+    number = initial_number(od, sub, dtype)
     if dtype.kind == "real":
         return real_literal(float(number), dtype.bits)
     return int_literal(int(number), ctype)

@@ -7,6 +7,7 @@ from pathlib import Path
 
 from ..codegen.options import load_options
 from ..codegen.placement import place
+from ..catalogue.gen import GEN001
 from ..diagnostics import Diagnostics, Severity
 from ..errors import OdgenError
 from ..model import ObjectDictionary
@@ -22,7 +23,7 @@ def layouts(od: ObjectDictionary, options: Path | None) -> dict[str, GroupLayout
     """The persistence groups of a description placed with an options file (or none)."""
     diags = Diagnostics()
     placements = place(od, load_options(options, diags), diags)
-    errors = [d for d in diags.sorted() if d.rule == "GEN001" and d.severity == Severity.ERROR]
+    errors = [d for d in diags.sorted() if d.rule == GEN001.id and d.severity == Severity.ERROR]
     if errors:
         raise OdgenError(f"{errors[0].text()}; fix the options file")
     return group_layouts(od, placements)

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .. import rules  # noqa: F401  (defines the rule catalogue readers report against)
+from ..catalogue.syntax import SYN018
 from ..diagnostics import Diagnostics, Loc
 from ..errors import OdgenError
 from ..model import ObjectDictionary
@@ -43,7 +43,7 @@ def read_bytes(path: Path, limit: int | None = None) -> bytes:
 def load_bytes(data: bytes, source: str, fmt: str) -> tuple[ObjectDictionary | None, Diagnostics]:
     diags = Diagnostics()
     if len(data) > MAX_BYTES:
-        diags.add("SYN018", Loc(source), f"file is larger than {MAX_BYTES >> 20} MiB; not read")
+        diags.add(SYN018, Loc(source), f"file is larger than {MAX_BYTES >> 20} MiB; not read")
         return None, diags
     if fmt in ("xdd", "xdc"):
         from .xdd import load_xdd

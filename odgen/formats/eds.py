@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import re
 
+from ..catalogue.rule import Rule
+from ..catalogue.syntax import SYN010, SYN012, SYN013, SYN014, SYN015, SYN016, SYN017, SYN019
 from ..diagnostics import Diagnostics, Loc
 from ..model import VAR, Field, Obj, ObjectDictionary, ObjectList, Section, Sub
 from ..model.datatypes import BASIC_TYPES
@@ -22,6 +24,7 @@ HEADER_SECTIONS = ("FileInfo", "DeviceInfo", "DeviceComissioning", "DummyUsage",
 _CANONICAL_SECTIONS = {name.lower(): name for name in HEADER_SECTIONS + OBJECT_LISTS}
 _MODULE_SECTION = re.compile(r"^m\d+(moduleinfo|fixedobjects|subextends|subext[0-9a-f]{4}|comments)$")
 _OBJECT_SECTION = re.compile(r"^([0-9a-f]{4})(?:(sub)([0-9a-f]+)|(name)|(value))?$", re.IGNORECASE)
+_SHORT_INDEX = re.compile(r"^([0-9a-f]{1,3})(sub[0-9a-f]+|name|value)?$", re.IGNORECASE)  # [A0], [A0sub1]
 
 # Keywords of object and sub-object sections, in the spelling of CiA 306.
 KEYWORDS = ("ParameterName", "ObjectType", "DataType", "AccessType", "DefaultValue", "LowLimit",
@@ -45,7 +48,6 @@ def load_eds(data: bytes, source: str, diags: Diagnostics, fmt: str = "eds") -> 
     text = ini.decode(data, source, diags)
     parsed = ini.parse(text, source, diags, COMMENT_KEYS)
     od = _Reader(source, fmt, diags).read(parsed)
-    diags.collapse("SYN014")  # files that comment inline do so on every line
     return od
 
 
@@ -58,13 +60,13 @@ class _Reader:
     def loc(self, line: int) -> Loc:
         return Loc(self.od.source, line)
 
-    def report(self, rule_id: str, line: int, message: str, index: int | None = None) -> None:
-        self.diags.add(rule_id, self.loc(line), message, index)
+    def report(self, rule: Rule, line: int, message: str, index: int | None = None) -> None:
+        self.diags.add(rule, self.loc(line), message, index)
 
     def read(self, parsed: ini.IniFile) -> ObjectDictionary:
         subs, compact = [], []
         for key, section in parsed.sections.items():
-            match = _OBJECT_SECTION.match(key)
+            match = _OBJECT_SECTION.match(self._padded(key, section, parsed))
             if match is None:
                 self._header_section(key, section)
             elif match.group(2):
@@ -80,17 +82,29 @@ class _Reader:
         self._node_id()
         return self.od
 
+    def _padded(self, key: str, section: ini.IniSection, parsed: ini.IniFile) -> str:
+        """An object section written without leading zeros ([A0]) is read as [00A0], unless that exists too."""
+        short = _SHORT_INDEX.match(key)
+        if short is None:
+            return key
+        padded = short.group(1).zfill(4) + (short.group(2) or "")
+        if padded.lower() in parsed.sections:
+            return key
+        self.diags.add(SYN019, self.loc(section.line),
+                       f"section [{section.name}] writes the index without leading zeros; read as [{padded.upper()}]")
+        return padded
+
     # -- header sections -------------------------------------------------
 
     def _header_section(self, key: str, section: ini.IniSection) -> None:
         canonical = _CANONICAL_SECTIONS.get(key)
         if key == "devicecommissioning" and "devicecomissioning" not in self.od.sections:
             canonical = "DeviceComissioning"
-            self.diags.add("SYN010", self.loc(section.line),
+            self.diags.add(SYN010, self.loc(section.line),
                            f"section [{section.name}] is spelled [DeviceComissioning] in CiA 306; read as such")
             key = "devicecomissioning"
         elif canonical is None and not _MODULE_SECTION.match(key):
-            self.diags.add("SYN010", self.loc(section.line), f"section [{section.name}] is not defined by CiA 306")
+            self.diags.add(SYN010, self.loc(section.line), f"section [{section.name}] is not defined by CiA 306")
         self._spelling(section.name, canonical, section.line)
         if canonical in OBJECT_LISTS:
             self.od.object_lists[key] = self._object_list(canonical, section)
@@ -186,7 +200,7 @@ class _Reader:
         match = HASH_COMMENT.search(entry.value) if "#" in entry.value else None
         if match is None:
             return entry.value
-        self.diags.add("SYN014", self.loc(entry.line),
+        self.diags.add(SYN014, self.loc(entry.line),
                        f"inline comment '{match.group(0).strip()}' after the value of '{entry.key}' is dropped")
         return entry.value[: match.start()]
 
@@ -196,11 +210,11 @@ class _Reader:
         subindex = int(sub_text, 16)
         parent = self.od.objects.get(index)
         if subindex > 0xFE:
-            self.report("SYN017", section.line, f"[{section.name}]: sub-index 0x{subindex:X} is above 0xFE")
+            self.report(SYN017, section.line, f"[{section.name}]: sub-index 0x{subindex:X} is above 0xFE")
             return
         if parent is None or parent.object_code in SINGLE_VALUE_CODES:
             why = f"has no [{index:04X}] section" if parent is None else "is not an ARRAY or RECORD"
-            self.report("SYN013", section.line, f"[{section.name}]: object 0x{index:04X} {why}")
+            self.report(SYN013, section.line, f"[{section.name}]: object 0x{index:04X} {why}")
             return
         self._check_spellings(section)
         self._spelling(section.name[4:7], "sub", section.line)
@@ -211,7 +225,7 @@ class _Reader:
     def _expand_compact(self, obj: Obj, section: ini.IniSection) -> None:
         count = obj.compact_sub_obj or 0
         if count > 0xFE:
-            self.report("SYN016", obj.line_of("compactsubobj"), f"CompactSubObj={count} is above 254", obj.index)
+            self.report(SYN016, obj.line_of("compactsubobj"), f"CompactSubObj={count} is above 254", obj.index)
             count = 0xFE
         sub0 = Sub(0, "NrOfObjects", line=obj.line, data_type=0x0005, access="ro", compact=True)
         sub0.default = parse_value(str(count), BASIC_TYPES[0x0005], obj.line_of("compactsubobj"))
@@ -225,7 +239,7 @@ class _Reader:
         obj = self.od.objects.get(index)
         kind = "names" if section.name.lower().endswith("name") else "values"
         if obj is None or not obj.compact_sub_obj:
-            self.report("SYN016", section.line,
+            self.report(SYN016, section.line,
                         f"[{section.name}] lists {kind} but object 0x{index:04X} has no CompactSubObj", index)
             return
         entries = self._compact_entries(obj, section)
@@ -247,7 +261,7 @@ class _Reader:
             subindex, _ = parse_int_literal(key)
             if subindex is None or not 1 <= subindex <= (obj.compact_sub_obj or 0):
                 bad = f"[{section.name}] entry '{entry.key}' is not a sub-index 1..{obj.compact_sub_obj}"
-                self.report("SYN016", entry.line, bad, obj.index)
+                self.report(SYN016, entry.line, bad, obj.index)
                 continue
             result[subindex] = entry
         declared = self._int_entry(nr) if nr is not None else None
@@ -255,7 +269,7 @@ class _Reader:
             line = nr.line if nr is not None else section.line
             written = nr.value if nr is not None else "(missing)"
             mismatch = f"[{section.name}] NrOfEntries={written} but {len(result)} entries follow"
-            self.report("SYN016", line, mismatch, obj.index)
+            self.report(SYN016, line, mismatch, obj.index)
         return result
 
     # -- small readers ---------------------------------------------------------
@@ -267,10 +281,10 @@ class _Reader:
 
     def _number(self, key: str, text: str, line: int) -> int | None:
         number, notes = parse_int_literal(text)
-        for rule_id, message in notes:
-            self.diags.add(rule_id, self.loc(line), f"{key}: {message}")
+        for rule, message in notes:
+            self.diags.add(rule, self.loc(line), f"{key}: {message}")
         if number is None:
-            self.diags.add("SYN015", self.loc(line), f"{key}='{text}' is not a number")
+            self.diags.add(SYN015, self.loc(line), f"{key}='{text}' is not a number")
         return number
 
     def _flag(self, entry: ini.IniEntry | None) -> bool:
@@ -282,7 +296,7 @@ class _Reader:
             return number == 1
         if text in ("true", "false"):
             return text == "true"
-        self.diags.add("SYN015", self.loc(entry.line), f"{entry.key}='{entry.value}' is not 0 or 1")
+        self.diags.add(SYN015, self.loc(entry.line), f"{entry.key}='{entry.value}' is not 0 or 1")
         return False
 
     def _check_spellings(self, section: ini.IniSection) -> None:
@@ -297,7 +311,7 @@ class _Reader:
         if written in self.spellings:
             return
         self.spellings.add(written)
-        self.diags.add("SYN012", self.loc(line), f"'{written}' is spelled '{canonical}' in CiA 306")
+        self.diags.add(SYN012, self.loc(line), f"'{written}' is spelled '{canonical}' in CiA 306")
 
 
 def _text(entry: ini.IniEntry | None) -> str | None:

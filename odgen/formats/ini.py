@@ -11,6 +11,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 
+from ..catalogue.syntax import SYN001, SYN002, SYN003, SYN004, SYN005, SYN014
 from ..diagnostics import Diagnostics, Loc
 
 _SECTION_RE = re.compile(r"^\[([^\]]*)\]\s*(?:[;#].*)?$")
@@ -62,7 +63,7 @@ def decode(data: bytes, source: str, diags: Diagnostics) -> str:
         except UnicodeDecodeError:
             pass  # not what it looked like: read it as bytes below
         else:
-            diags.add("SYN004", Loc(source, 1), f"file is {encoding.upper()}, not UTF-8; read as such")
+            diags.add(SYN004, Loc(source, 1), f"file is {encoding.upper()}, not UTF-8; read as such")
             return text
     if data.startswith(b"\xef\xbb\xbf"):
         data = data[3:]
@@ -70,7 +71,7 @@ def decode(data: bytes, source: str, diags: Diagnostics) -> str:
         return data.decode("utf-8")
     except UnicodeDecodeError as err:
         line = data.count(b"\n", 0, err.start) + 1
-        diags.add("SYN004", Loc(source, line), "file is not UTF-8; read as Windows-1252")
+        diags.add(SYN004, Loc(source, line), "file is not UTF-8; read as Windows-1252")
     # cp1252 leaves five bytes undefined; read those as Latin-1 so decoding never fails
     return "".join(_cp1252_char(b) for b in data)
 
@@ -111,7 +112,7 @@ def parse(text: str, source: str, diags: Diagnostics, comment_keys: frozenset[st
         elif "=" in line:
             _key_line(current, line, number, source, diags)
         else:
-            diags.add("SYN001", Loc(source, number), f"'{_clip(line)}' is neither [section] nor key=value")
+            diags.add(SYN001, Loc(source, number), f"'{_clip(line)}' is neither [section] nor key=value")
     return ini
 
 
@@ -122,7 +123,7 @@ def _open_section(ini: IniFile, name: str, line: int, source: str, diags: Diagno
     if first is None:
         ini.sections[key] = section
     else:
-        diags.add("SYN002", Loc(source, line), f"section [{name}] repeats line {first.line}; this copy is ignored")
+        diags.add(SYN002, Loc(source, line), f"section [{name}] repeats line {first.line}; this copy is ignored")
     return section
 
 
@@ -137,18 +138,18 @@ def _key_line(section: IniSection | None, line: str, number: int, source: str, d
     key, _, value = line.partition("=")
     key, value = key.rstrip(), value.lstrip()
     if section is None:
-        diags.add("SYN005", Loc(source, number), f"'{key}' stands before any [section]")
+        diags.add(SYN005, Loc(source, number), f"'{key}' stands before any [section]")
         return
     comment = ""
     match = _INLINE_COMMENT_RE.search(value) if ";" in value else None
     if match:
         value, comment = value[: match.start()], match.group(0).strip()
-        diags.add("SYN014", Loc(source, number),
+        diags.add(SYN014, Loc(source, number),
                   f"inline comment '{_clip(comment)}' after the value of '{key}' is dropped")
     lower = key.lower()
     first = section.entries.get(lower)
     if first is not None and not first.commented:
-        diags.add("SYN003", Loc(source, number),
+        diags.add(SYN003, Loc(source, number),
                   f"key '{key}' repeats line {first.line} in [{section.name}]; this one is ignored")
         return
     section.entries[lower] = IniEntry(key, value, number, comment=comment)

@@ -54,8 +54,10 @@ from typing import Any, cast
 
 from lxml import etree
 
-from .. import rules  # noqa: F401  (defines the XML rules this reader reports)
 from ..assets import schema_path
+from ..catalogue.rule import Rule
+from ..catalogue.xml import (
+    XML001, XML002, XML003, XML004, XML005, XML006, XML007, XML008, XML009, XML010, XML011, XML012, XML013)
 from ..diagnostics import Diagnostics, Loc
 from ..model import ARRAY, DEFSTRUCT, RECORD, VAR, Field, Obj, ObjectDictionary, Sub, Value, lookup, parse_value
 from ..model.datatypes import BASIC_TYPES, DataType
@@ -165,13 +167,13 @@ def _parse(data: bytes, source: str, diags: Diagnostics) -> etree._Element | Non
     except etree.XMLSyntaxError as err:
         line = err.lineno if isinstance(err.lineno, int) and err.lineno > 0 else 1
         message = re.sub(r",\s*line \d+, column \d+$", "", err.msg or "") or "the file is not XML"
-        diags.add("XML001", Loc(source, line), message)
+        diags.add(XML001, Loc(source, line), message)
         return None
     doctype = str(getattr(root.getroottree().docinfo, "doctype", "") or "")
     if doctype:
         start = data.find(b"<!DOCTYPE")
         line = data.count(b"\n", 0, start) + 1 if start >= 0 else 1
-        diags.add("XML003", Loc(source, line),
+        diags.add(XML003, Loc(source, line),
                   f"DOCTYPE declaration '{_clip(doctype)}' refused: odgen reads no DTD and expands no entities")
         return None
     return root
@@ -182,11 +184,11 @@ def _is_cia311(root: etree._Element, source: str, diags: Diagnostics) -> bool:
     if name.localname == ROOT and name.namespace in CANOPEN_NAMESPACES:
         return True
     if name.localname == ROOT and name.namespace is None:
-        diags.add("XML004", Loc(source, _line(root) or 1),
+        diags.add(XML004, Loc(source, _line(root) or 1),
                   f"{ROOT} has no namespace; CiA 311 puts it in {NS}")
         return True
     found = f"{{{name.namespace}}}{name.localname}" if name.namespace else name.localname
-    diags.add("XML002", Loc(source, _line(root) or 1),
+    diags.add(XML002, Loc(source, _line(root) or 1),
               f"the root element is {found}, not {ROOT} in the CANopen namespace {NS}")
     return False
 
@@ -260,11 +262,11 @@ class _Reader:
     def loc(self, line: int) -> Loc:
         return Loc(self.od.source, line)
 
-    def report(self, rule_id: str, el: etree._Element, attr: str, message: str,
+    def report(self, rule: Rule, el: etree._Element, attr: str, message: str,
                index: int | None = None, sub: int | None = None) -> None:
         if attr:  # so the schema's message about the same attribute is not repeated
             self.reported.add((_line(el), attr))
-        self.diags.add(rule_id, self.loc(_line(el)), message, index, sub)
+        self.diags.add(rule, self.loc(_line(el)), message, index, sub)
 
     def find(self, path: str) -> Iterator[etree._Element]:
         """Elements by a path of local names below the root, e.g. 'ProfileBody/DeviceIdentity'."""
@@ -297,7 +299,7 @@ class _Reader:
                 continue  # required: the schema reports it
             first = self.params.setdefault(uid, param)
             if first is not param:
-                self.report("XML004", param, "uniqueID",
+                self.report(XML004, param, "uniqueID",
                             f"parameter uniqueID '{uid}' is used again; the parameter of line {_line(first)} counts")
 
     # -- header sections -----------------------------------------------------
@@ -401,7 +403,7 @@ class _Reader:
             return None  # required: the schema reports it
         number = _integer(text)
         if number is None:
-            self.report("XML005", el, "NodeID", f"deviceCommissioning NodeID '{text}' is not a number")
+            self.report(XML005, el, "NodeID", f"deviceCommissioning NodeID '{text}' is not a number")
         return number
 
     # -- objects -------------------------------------------------------------------
@@ -411,7 +413,7 @@ class _Reader:
         if not lists:
             where = self.first("ApplicationLayers")
             el = where if where is not None else self.root
-            self.report("XML010", el, "", "the file has no ApplicationLayers/CANopenObjectList")
+            self.report(XML010, el, "", "the file has no ApplicationLayers/CANopenObjectList")
         for olist in lists:
             for el in _children(olist, "CANopenObject"):
                 self._object(el)
@@ -422,7 +424,7 @@ class _Reader:
             return
         first = self.od.objects.get(index)
         if first is not None:
-            self.report("XML006", el, "index", f"is described again; the object of line {first.line} is kept", index)
+            self.report(XML006, el, "index", f"is described again; the object of line {first.line} is kept", index)
             return
         self.subjects[_line(el)] = (index, None)
         param = self._parameter(el, index, None)
@@ -445,7 +447,7 @@ class _Reader:
                       subs: list[etree._Element]) -> None:
         if subs:
             count = f"its {len(subs)} sub-objects are" if len(subs) > 1 else "its sub-object is"
-            self.report("XML011", subs[0], "", f"is a single-value object (objectType {obj.object_code}); "
+            self.report(XML011, subs[0], "", f"is a single-value object (objectType {obj.object_code}); "
                         f"{count} ignored", obj.index)
         sub = Sub(subindex=0, name=obj.name, line=obj.line)
         sub.lines.update(obj.lines)
@@ -471,7 +473,7 @@ class _Reader:
             return
         first = obj.subs.get(subindex)
         if first is not None:
-            self.report("XML007", el, "subIndex",
+            self.report(XML007, el, "subIndex",
                         f"is described again; the sub-object of line {first.line} is kept", obj.index, subindex)
             return
         self.subjects[_line(el)] = (obj.index, subindex)
@@ -495,7 +497,7 @@ class _Reader:
             return None
         param = self.params.get(ref.strip())
         if param is None:
-            self.report("XML008", el, "uniqueIDRef", f"has uniqueIDRef '{ref}', which names no parameter", index, sub)
+            self.report(XML008, el, "uniqueIDRef", f"has uniqueIDRef '{ref}', which names no parameter", index, sub)
         return param
 
     def _ignored_values(self, el: etree._Element, param: etree._Element | None, obj: Obj) -> None:
@@ -505,7 +507,7 @@ class _Reader:
         if written:
             verb = "are" if len(written) > 1 else "is"
             code = OBJECT_CODES[obj.object_code]
-            self.report("XML013", el, "", f"is {'an' if code[0] == 'A' else 'a'} {code}: {', '.join(written)} on the "
+            self.report(XML013, el, "", f"is {'an' if code[0] == 'A' else 'a'} {code}: {', '.join(written)} on the "
                         f"object {verb} ignored; values belong on the sub-objects", obj.index)
 
     # -- one value entry (a VAR object or a sub-object) -------------------------------
@@ -544,7 +546,7 @@ class _Reader:
             sub.lines["datatype"] = _line(el)  # also when unreadable: that is reported, not "missing"
         if written is not None:
             if iec is not None and not _compatible(written, iec[0]):
-                self.report("XML009", el, "dataType", f"has dataType 0x{written:04X} but its parameter "
+                self.report(XML009, el, "dataType", f"has dataType 0x{written:04X} but its parameter "
                             f"(line {_line(iec[1])}) declares {etree.QName(iec[1]).localname}; "
                             f"0x{written:04X} is used", *where)
             return written
@@ -576,7 +578,7 @@ class _Reader:
             return written
         if written == "rw" and declared.text in ("rwr", "rww"):
             return declared.text  # the parameter says which PDO direction the rw entry takes
-        self.report("XML009", el, "accessType", f"has accessType '{el.get('accessType')}' but its "
+        self.report(XML009, el, "accessType", f"has accessType '{el.get('accessType')}' but its "
                     f"parameter (line {declared.line}) says access '{_ACCESS_NAME.get(declared.text, declared.text)}'; "
                     f"'{written}' is used", *where)
         return written
@@ -590,7 +592,7 @@ class _Reader:
         if word is None:  # kept as written; the objects rules report an invalid AccessType
             return _Found(text.strip().lower(), _line(param))
         if word != text:
-            self.report("XML012", param, "access", f"has parameter access '{text}'; CiA 311 writes '{word}'", *where)
+            self.report(XML012, param, "access", f"has parameter access '{text}'; CiA 311 writes '{word}'", *where)
         return _Found(PARAMETER_ACCESS[word] or "", _line(param))
 
     def _access_word(self, el: etree._Element, where: tuple[int, int | None]) -> str | None:
@@ -598,11 +600,11 @@ class _Reader:
         word = text.strip().lower()
         if word in ACCESS_WORDS:
             if word != text:
-                self.report("XML012", el, "accessType", f"has accessType '{text}'; CiA 311 writes '{word}'", *where)
+                self.report(XML012, el, "accessType", f"has accessType '{text}'; CiA 311 writes '{word}'", *where)
             return word
         if word in ("rwr", "rww"):
             pdo = "TPDO" if word == "rwr" else "RPDO"
-            self.report("XML012", el, "accessType", f"has accessType '{text}', an EDS word; CiA 311 writes "
+            self.report(XML012, el, "accessType", f"has accessType '{text}', an EDS word; CiA 311 writes "
                         f"accessType=\"rw\" with PDOmapping=\"{pdo}\"", *where)
             return word
         return word or None  # kept as written; the objects rules report an invalid AccessType
@@ -615,11 +617,11 @@ class _Reader:
         if word is None and text.strip().lower() in ("0", "1", "false", "true"):
             word = "optional" if text.strip().lower() in ("1", "true") else "no"
         if word is None:
-            self.report("XML005", el, "PDOmapping", f"has PDOmapping '{text}', which is not one of "
+            self.report(XML005, el, "PDOmapping", f"has PDOmapping '{text}', which is not one of "
                         f"{', '.join(PDO_WORDS)}", *where)
             return None
         if word != text:
-            self.report("XML012", el, "PDOmapping", f"has PDOmapping '{text}'; CiA 311 writes '{word}'", *where)
+            self.report(XML012, el, "PDOmapping", f"has PDOmapping '{text}'; CiA 311 writes '{word}'", *where)
         return word
 
     def _value(self, sub: Sub, keyword: str, dtype: DataType | None, where: tuple[int, int | None], text: str | None,
@@ -628,7 +630,7 @@ class _Reader:
         if found is None:
             return None
         if text is not None and declared is not None and not _same_value(text, declared.text, dtype):
-            self.report("XML009", el, keyword, f"has {_ATTRIBUTE_OF[keyword]} '{text}' but its parameter "
+            self.report(XML009, el, keyword, f"has {_ATTRIBUTE_OF[keyword]} '{text}' but its parameter "
                         f"(line {declared.line}) says '{declared.text}'; '{text}' is used", *where)
         sub.lines[keyword] = found.line
         return parse_value(found.text, dtype, found.line)
@@ -652,7 +654,7 @@ class _Reader:
         if text is not None:
             sub.lines["denotation"] = _line(el)
             if declared is not None and text != declared:
-                self.report("XML009", el, "denotation", f"has denotation '{text}' but its parameter "
+                self.report(XML009, el, "denotation", f"has denotation '{text}' but its parameter "
                             f"(line {_line(den)}) says '{declared}'; '{text}' is used", *where)
             return text
         if declared is not None:
@@ -693,7 +695,7 @@ class _Reader:
         number = _hex_number(text) if text is not None else None
         if number is None or number > limit:
             why = "no " + attr if text is None else f"{attr} '{text}', which is not a hex number up to 0x{limit:X}"
-            self.report("XML005", el, attr, f"{tag} has {why}; it is skipped", index)
+            self.report(XML005, el, attr, f"{tag} has {why}; it is skipped", index)
             return None
         self._hex_form(el, attr, (number, None) if attr == "index" else (index, number))
         return number
@@ -703,7 +705,7 @@ class _Reader:
         text = el.get(attr, "")
         number = _hex_number(text)
         if number is None:
-            self.report("XML005", el, attr, f"has {attr} '{text}', which is not a hex number", *where)
+            self.report(XML005, el, attr, f"has {attr} '{text}', which is not a hex number", *where)
             return None
         self._hex_form(el, attr, where)
         return number
@@ -712,7 +714,7 @@ class _Reader:
         text = el.get(attr, "")
         form, example = HEX_FORMS[attr]
         if not re.fullmatch(form, text):
-            self.report("XML012", el, attr, f"has {attr} '{text}'; CiA 311 writes hex digits without 0x, "
+            self.report(XML012, el, attr, f"has {attr} '{text}'; CiA 311 writes hex digits without 0x, "
                         f"as in '{example}'", *where)
 
     def _object_type(self, el: etree._Element, index: int, sub: int | None) -> int | None:
@@ -724,10 +726,10 @@ class _Reader:
         if number is not None and text.strip().isdigit():
             return number
         if number is None and name is None:
-            self.report("XML005", el, "objectType", f"has objectType '{text}', which is not an object code", index, sub)
+            self.report(XML005, el, "objectType", f"has objectType '{text}', which is not an object code", index, sub)
             return None
         code = number if number is not None else name
-        self.report("XML012", el, "objectType", f"has objectType '{text}'; CiA 311 writes the decimal code "
+        self.report(XML012, el, "objectType", f"has objectType '{text}'; CiA 311 writes the decimal code "
                     f"'{code}'", index, sub)
         return code
 
@@ -735,9 +737,9 @@ class _Reader:
         text = el.get(attr, "")
         number = _integer(text)
         if number is None:
-            self.report("XML005", el, attr, f"has {attr} '{text}', which is not a number", index, sub)
+            self.report(XML005, el, attr, f"has {attr} '{text}', which is not a number", index, sub)
         elif not text.strip().isdigit():
-            self.report("XML012", el, attr, f"has {attr} '{text}'; CiA 311 writes it in decimal", index, sub)
+            self.report(XML012, el, attr, f"has {attr} '{text}'; CiA 311 writes it in decimal", index, sub)
         return number
 
     def _obj_flags(self, el: etree._Element, index: int, sub: int | None) -> int | None:
@@ -829,7 +831,7 @@ def _validate(doc: etree._Element, source: str, diags: Diagnostics, reader: _Rea
     for message, lines in groups.items():
         index, sub = reader.subjects.get(lines[0], (None, None))
         more = f" (and on {len(lines) - 1} more line{'s' if len(lines) > 2 else ''})" if len(lines) > 1 else ""
-        diags.add("XML004", Loc(source, lines[0]), message + more, index, sub)
+        diags.add(XML004, Loc(source, lines[0]), message + more, index, sub)
 
 
 def _schema_message(message: str) -> str:

@@ -104,6 +104,14 @@ class Obj:
     def sorted_subs(self) -> list[Sub]:
         return [self.subs[k] for k in sorted(self.subs)]
 
+    @property
+    def structure(self) -> int:
+        """The object code the object is generated as: an ARRAY whose elements differ in data type
+        (CanFestival's 0x1400/0x1800, rule OBJ026) is the RECORD CiA 301 defines."""
+        if self.object_code == 0x8 and len({s.data_type for k, s in self.subs.items() if k and s.data_type}) > 1:
+            return 0x9
+        return self.object_code
+
 
 @dataclass
 class Section:
@@ -163,3 +171,13 @@ class ObjectDictionary:
     def is_config(self) -> bool:
         """DCF/XDC: a configured device, where ParameterValue/Denotation belong."""
         return self.format in ("dcf", "xdc")
+
+    def value_in_force(self, sub: Sub) -> Value | None:
+        """The value the device starts with: a DCF's (XDC's) ParameterValue where given, else the
+        DefaultValue; an EDS's ParameterValue is ignored (OBJ024). `Value.resolve(node_id)` resolves
+        `$NODEID`; a Denotation names the value, it is not one. The rules, `generate`, `check`,
+        `roundtrip` and `explain` all take values from here."""
+        given = sub.parameter_value
+        if self.is_config and given is not None and not given.empty:
+            return given
+        return sub.default

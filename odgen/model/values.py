@@ -13,13 +13,16 @@ import re
 import struct
 from dataclasses import dataclass, field
 
+from ..catalogue.rule import Rule
+from ..catalogue.syntax import SYN006, SYN007, SYN008, SYN009, SYN020
 from .datatypes import DataType
 
-# (rule id, message) pairs a reader turns into located diagnostics.
-Note = tuple[str, str]
+# (rule, message) pairs a reader turns into located diagnostics.
+Note = tuple[Rule, str]
 
 MAX_DIGITS = 64  # significant digits of an integer literal; 64-bit values need 20 decimal or 16 hex
 _INT_RE = re.compile(r"^([+-]?)(0[xX][0-9a-fA-F]+|[0-9]+)$")
+_C_SUFFIX = re.compile(r"(?<=[0-9a-fA-F])(?:[uU](?:ll|LL|l|L)?|(?:ll|LL|l|L)[uU]?)$")  # 0x1234LL, 10u
 _NODEID_RE = re.compile(r"\$nodeid", re.IGNORECASE)
 _PREFIX_FORM = re.compile(r"^\$NODEID(\+.+)?$")
 _TIME_PAIR_RE = re.compile(r"^(\d+)\s+(\d+)$")
@@ -82,10 +85,10 @@ def _leading_zero(digits: str) -> tuple[int | None, list[Note]]:
     if decimal is None:
         return None, []
     if any(c in "89" for c in digits):
-        return decimal, [("SYN006", f"'{digits}' has a leading zero but is not octal; read as {decimal}")]
+        return decimal, [(SYN006, f"'{digits}' has a leading zero but is not octal; read as {decimal}")]
     octal = int(digits.lstrip("0") or "0", 8)  # as long as the decimal, which is bounded
     if octal != decimal:
-        return octal, [("SYN006", f"'{digits}' is octal ({octal}) under CiA 306, not {decimal}")]
+        return octal, [(SYN006, f"'{digits}' is octal ({octal}) under CiA 306, not {decimal}")]
     return octal, []
 
 
@@ -96,10 +99,19 @@ def split_nodeid(text: str) -> tuple[bool, str, list[Note]]:
     compact = re.sub(r"\s+", "", text)
     notes: list[Note] = []
     if not _PREFIX_FORM.match(compact) or compact != text.strip():
-        notes.append(("SYN007", f"'{text.strip()}' is not the CiA 306 form $NODEID+<number>"))
+        notes.append((SYN007, f"'{text.strip()}' is not the CiA 306 form $NODEID+<number>"))
     rest = _NODEID_RE.sub("", compact, count=1)
     rest = rest.strip("+") if rest.count("+") <= 1 else rest
     return True, rest or "0", notes
+
+
+def _without_c_suffix(value: Value, text: str) -> str:
+    """CANopenNode's files write INTEGER64 defaults with C's `LL`: read the number, note the suffix."""
+    suffix = _C_SUFFIX.search(text)
+    if suffix is None or _INT_RE.match(text[: suffix.start()].strip()) is None:
+        return text
+    value.notes.append((SYN020, f"'{text}': C suffix '{suffix.group()}' dropped; CiA 306 numbers have none"))
+    return text[: suffix.start()]
 
 
 def parse_value(text: str, dtype: DataType | None, line: int = 0) -> Value:
@@ -117,6 +129,7 @@ def _read_integer(value: Value, text: str, dtype: DataType) -> None:
     relative, rest, notes = split_nodeid(text)
     value.nodeid = relative
     value.notes.extend(notes)
+    rest = _without_c_suffix(value, rest)
     number, notes = parse_int_literal(rest)
     value.notes.extend(notes)
     if number is None:
@@ -150,7 +163,7 @@ def _twos_complement(value: Value, number: int, text: str, dtype: DataType) -> i
         return number
     top = 1 << dtype.bits
     if (dtype.max or 0) < number < top:
-        value.notes.append(("SYN008", f"'{text}' read as the {dtype.bits}-bit two's complement {number - top}"))
+        value.notes.append((SYN008, f"'{text}' read as the {dtype.bits}-bit two's complement {number - top}"))
         return number - top
     return number
 
@@ -165,7 +178,7 @@ def _read_real(value: Value, text: str, dtype: DataType) -> None:
         return
     if text.lower().lstrip("+-").startswith("0x"):
         value.parsed = _bits_to_real(number, dtype.bits)
-        value.notes.append(("SYN009", f"'{text}' read as an IEEE 754 bit pattern = {value.parsed!r}"))
+        value.notes.append((SYN009, f"'{text}' read as an IEEE 754 bit pattern = {value.parsed!r}"))
     else:
         value.parsed = float(number)
     value.notes.extend(notes)

@@ -30,7 +30,8 @@ def render_json(results: Sequence[FileResult]) -> str:
         "version": __version__,
         "files": [
             {"file": r.source, "loaded": r.od is not None,
-             "diagnostics": [_diagnostic(d) for d in r.diagnostics]}
+             "diagnostics": [_diagnostic(d) for d in r.diagnostics],
+             "omitted": r.omitted}
             for r in results
         ],
         "summary": summary(results),

@@ -97,5 +97,8 @@ def render_sarif(results: Sequence[FileResult]) -> str:
                     for r in results for d in r.diagnostics],
         "columnKind": "unicodeCodePoints",
     }
+    omitted = {r.source: r.omitted for r in results if r.omitted}
+    if omitted:  # findings past a rule's cap: counted, not listed
+        run["properties"] = {"omittedFindings": omitted}
     doc = {"$schema": SCHEMA_URI, "version": "2.1.0", "runs": [run]}
     return json.dumps(doc, indent=2) + "\n"

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from ..diagnostics import Severity
+from ..diagnostics import Severity, more_line
 from ..lint import FileResult
 
 
@@ -18,7 +18,10 @@ def summary(results: Sequence[FileResult]) -> dict[str, int]:
 
 
 def render_text(results: Sequence[FileResult]) -> str:
-    lines = [d.text() for r in results for d in r.diagnostics]
+    lines = []
+    for r in results:
+        lines += [d.text() for d in r.diagnostics]
+        lines += [more_line(r.source, rule_id, more) for rule_id, more in r.omitted.items()]
     s = summary(results)
     lines.append(
         f"{s['files']} file(s) checked: {s['errors']} error(s), {s['warnings']} warning(s), "

@@ -25,7 +25,7 @@ from ..codegen.placement import Placement
 from ..errors import OdgenError
 from ..codegen.selftest import expected_bytes, wire_bytes, write_cases
 from ..formats.eds_writer import write_eds
-from ..model import Obj, ObjectDictionary, Sub
+from ..model import ARRAY, RECORD, Obj, ObjectDictionary, Sub
 from ..model.datatypes import BASIC_TYPES, DataType
 
 ABORTS = {"ODG_OK": 0, "ODG_ABORT_TOO_LONG": 0x06070012, "ODG_ABORT_TOO_SHORT": 0x06070013,
@@ -144,8 +144,9 @@ class Session:
 
 def client_eds(od: ObjectDictionary) -> str:
     """The description as EDS for python canopen, which stops on header numbers it cannot read
-    (`VendorNumber=` empty, `001`) or sections it reads strictly (a sparse [DummyUsage]): those are
-    left out, they play no part in the checks."""
+    (`VendorNumber=` empty, `001`) or sections it reads strictly (a sparse [DummyUsage], [Comments]
+    whose `Lines` counts a `line5` it looks up as `Line5`): those are left out, they play no part in
+    the checks."""
     lines, section = [], ""
     for line in write_eds(_expanded(od)).splitlines():
         if line.startswith("["):
@@ -153,16 +154,20 @@ def client_eds(od: ObjectDictionary) -> str:
         key, _, value = line.partition("=")
         if section == "[deviceinfo]" and key in _CANOPEN_INT_KEYS and not _python_int(value):
             continue
-        if section == "[dummyusage]":  # canopen needs all seven keys; the checks map no dummies
+        if section in ("[dummyusage]", "[comments]"):  # canopen needs all seven keys / every LineN
             continue
         lines.append(line)
     return "\n".join(lines) + "\n"
 
 
 def _expanded(od: ObjectDictionary) -> ObjectDictionary:
-    """A copy with CompactSubObj written out as sub-sections: canopen expands only compact ARRAYs."""
+    """A copy with CompactSubObj written out as sub-sections: canopen expands only compact ARRAYs.
+    PDO mapping objects written as ARRAYs become the RECORDs CiA 301 defines: canopen sizes an ARRAY by
+    the sub0 it reads from the device, so a remap (sub0 = 0, entries, sub0 = n) would write no entry."""
     copy = deepcopy(od)
     for obj in copy.objects.values():
+        if (0x1600 <= obj.index <= 0x17FF or 0x1A00 <= obj.index <= 0x1BFF) and obj.object_code == ARRAY:
+            obj.object_code = RECORD
         if obj.compact_sub_obj:
             obj.compact_sub_obj, obj.sub_number = None, len(obj.subs)
             for sub in obj.subs.values():
@@ -210,7 +215,7 @@ def check_uploads(s: Session) -> Check:
         if not e.sub.readable:
             check.expect(code == WRITE_ONLY, f"{e.label}: read of write-only gave 0x{code:08X}")
             continue
-        want = expected_bytes(e.sub, e.dtype, s.node_id, e.placement.capacity)
+        want = expected_bytes(s.od, e.sub, e.dtype, s.node_id, e.placement.capacity)
         if want is None:
             check.expect(code == 0, f"{e.label}: upload aborted 0x{code:08X}")
         else:
@@ -224,7 +229,7 @@ def check_downloads(s: Session) -> Check:
         if _is_command(e) or e.obj.index in ACTIVE or not e.dtype.is_numeric:
             continue
         if not e.sub.writable:
-            data = expected_bytes(e.sub, e.dtype, s.node_id) or wire_bytes(0, e.dtype)
+            data = expected_bytes(s.od, e.sub, e.dtype, s.node_id) or wire_bytes(0, e.dtype)
             code = s.download(e.obj.index, e.sub.subindex, data)
             check.expect(code == ABORTS["ODG_ABORT_READ_ONLY"], f"{e.label}: write to {e.sub.access} gave 0x{code:08X}")
             continue
@@ -271,7 +276,7 @@ def check_strings(s: Session) -> Check:
 
 def _capacity(s: Session, e: Entry) -> int:
     data, _ = s.upload(e.obj.index, e.sub.subindex)
-    described = expected_bytes(e.sub, e.dtype, s.node_id) or b""
+    described = expected_bytes(s.od, e.sub, e.dtype, s.node_id) or b""
     return max(len(described), e.placement.capacity or 0, len(data or b""))
 
 
@@ -407,7 +412,7 @@ def check_persistence(s: Session) -> Check:
         check.skipped = "no persistent writable entry or no 0x1010/0x1011 sub 1"
         return check
     value = write_cases(target.sub, target.dtype)[1][0]
-    default = expected_bytes(target.sub, target.dtype, s.node_id, target.placement.capacity)
+    default = expected_bytes(s.od, target.sub, target.dtype, s.node_id, target.placement.capacity)
     check.expect(s.download(target.obj.index, target.sub.subindex, value) == 0, f"{target.label}: write refused")
     check.expect(s.download(0x1010, 1, b"save") == 0, "0x1010sub1 'save' refused")
     check.expect(s.download(0x1010, 1, b"nope") == 0x08000020, "0x1010sub1 without 'save' did not abort 0x08000020")

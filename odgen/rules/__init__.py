@@ -1,7 +1,8 @@
 """The lint pass: rule families, each a module of small checks over the model.
 
-A family module defines its rules with `define_rule` (odgen.diagnostics) and its
-checks with the `@check` decorator; readers emit the SYN/XML rules themselves.
+A family module holds the checks (the `@check` decorator) of the rules its
+family defines in the catalogue (odgen.catalogue); readers report most SYN and
+all XML rules themselves, the generator the GEN rules.
 """
 
 from __future__ import annotations
@@ -29,8 +30,8 @@ def check(fn: Check) -> Check:
     return fn
 
 
-# Reader-emitted rules first, then the semantic passes in pipeline order.
-FAMILIES = ("syntax", "xml", "header", "lists", "objects", "pdo", "comm", "gen", "network")
+# Value notes first, then the semantic passes in pipeline order.
+FAMILIES = ("syntax", "header", "lists", "objects", "pdo", "comm", "cobids", "network")
 for _family in FAMILIES:
     importlib.import_module(f"{__name__}.{_family}")
 

@@ -9,121 +9,16 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from ..diagnostics import Diagnostics, Loc, Severity, define_rule
+from ..catalogue.comm import (
+    COM001, COM002, COM003, COM004, COM005, COM006, COM007, COM008, COM009, COM010, COM011, COM012, COM013, COM014,
+    COM015)
+from ..diagnostics import Diagnostics, Loc
 from ..model import Obj, ObjectDictionary, Sub, Value
 from ..model.datatypes import BASIC_TYPES
 from . import LintOptions, check
 from .common import addr, at, default_line, node_span, number, plain_int, value_in_force, value_line
 
-E, W, INFO = Severity.ERROR, Severity.WARNING, Severity.INFO
 
-define_rule(
-    "COM001", E, "mandatory object missing", ref="CiA 306 table row L3 / CiA 301 mandatory objects",
-    why="Every CANopen device has 0x1000 (device type), 0x1001 (error register) and, since CiA 301 "
-    "v4, 0x1018 (identity). Masters read them first; Lely's DCF loader refuses a file without them.",
-    example="(no [1018] section)",
-    fix="Add the object with its CiA 301 definition.")
-define_rule(
-    "COM002", E, "communication entry with the wrong data type",
-    ref="CiA 301 communication profile objects",
-    why="CiA 301 fixes the data type of every communication object (COB-IDs UNSIGNED32, "
-    "transmission types UNSIGNED8, times UNSIGNED16, ...). Masters access them by that size, so a "
-    "different DataType breaks SDO transfers and generated code.",
-    example="[1017]\nDataType=0x0007  (Producer heartbeat time is UNSIGNED16)",
-    fix="Use the CiA 301 data type named in the message.")
-define_rule(
-    "COM003", W, "identity information is writable", ref="CiA 301 communication profile objects",
-    why="0x1000, 0x1001, 0x1008-0x100A and 0x1018 describe the device; CiA 301 makes them ro (or "
-    "const). A writable entry lets a master overwrite what identifies the device.",
-    example="[1000]\nAccessType=rw",
-    fix="Write `AccessType=ro` (or const).")
-define_rule(
-    "COM004", W, "default COB-ID not from the predefined connection set",
-    ref="CiA 306 table row C6 / CiA 301 predefined connection set",
-    why="CiA 301's predefined connection set gives RPDO1-4 `$NODEID+0x200/0x300/0x400/0x500`, "
-    "TPDO1-4 `$NODEID+0x180/0x280/0x380/0x480`, the default SDO server `$NODEID+0x600` (receive) "
-    "and `$NODEID+0x580` (transmit) and EMCY `$NODEID+0x80`. Another base (often RPDO and TPDO "
-    "swapped) or a fixed number in an EDS makes the device talk on CAN-IDs masters do not expect. "
-    "A bare base (`0x180`) relies on CANopenNode adding the node-id at run time; other tools "
-    "take it literally.",
-    example="[1800sub1]\nDefaultValue=$NODEID+0x200",
-    fix="Write the predefined default, e.g. `DefaultValue=$NODEID+0x180` for TPDO1.")
-define_rule(
-    "COM005", E, "PDO COB-ID uses a restricted or invalid CAN-ID",
-    ref="CiA 306 table row C6 / CiA 301 predefined connection set",
-    why="A valid PDO (bit 31 clear) must not use the CAN-IDs CiA 301 restricts to NMT, SYNC/EMCY, "
-    "TIME, SDO, heartbeat and LSS (0x000-0x07F, 0x101-0x180, 0x581-0x5FF, 0x601-0x67F, 0x6E0-0x6FF, "
-    "0x701-0x7FF), and an 11-bit COB-ID (bit 29 clear) has no bits set in 11-28.",
-    example="[1800sub1]\nDefaultValue=$NODEID+0x700",
-    fix="Use a free CAN-ID, or set bit 31 (0x80000000) to disable the PDO.")
-define_rule(
-    "COM006", W, "identity object without Vendor-ID",
-    ref="CiA 306 table row C7 / CiA 301 object 0x1018",
-    why="0x1018 is a RECORD whose sub1 (Vendor-ID) is mandatory; masters identify devices and LSS "
-    "addresses them by it.",
-    example="[1018]\nObjectType=0x9\nSubNumber=1\n[1018sub0]",
-    fix="Add `[1018sub1]` Vendor-ID (UNSIGNED32, ro) and set sub0 to the highest sub-index.")
-define_rule(
-    "COM007", W, "no error control object", ref="CiA 306 table row C7 / CiA 301 error control",
-    why="A CiA 301 v4 device supports heartbeat (0x1017) or, for older masters, node guarding "
-    "(0x100C and 0x100D). Without either a master cannot tell that the node is alive.",
-    example="(no [1017], [100C] or [100D])",
-    fix="Add 0x1017 Producer heartbeat time (UNSIGNED16, rw).")
-define_rule(
-    "COM008", W, "heartbeat and node guarding both enabled",
-    ref="CiA 306 table row C7 / CiA 301 error control",
-    why="A device uses heartbeat or node guarding, not both; with both defaults non-zero the behaviour "
-    "depends on the stack. Lely's dcfgen refuses such a configuration.",
-    example="[1017]\nDefaultValue=1000\n[100C]\nDefaultValue=100\n[100D]\nDefaultValue=3",
-    fix="Set the default of 0x1017, or of 0x100C/0x100D, to 0.")
-define_rule(
-    "COM009", INFO, "PDO communication record with an unusual highest sub-index",
-    ref="CiA 306 table row C8",
-    why="CiA 301 defines RPDO communication parameters up to sub5 and TPDO ones up to sub6, with at "
-    "least sub1 (COB-ID) and sub2 (transmission type). Sparse records are legal.",
-    example="[1400sub0]\nDefaultValue=6",
-    fix="Remove the sub-objects CiA 301 does not define, and set sub0 accordingly.")
-define_rule(
-    "COM010", E, "communication record lacks a required sub-object",
-    ref="CiA 306 table row C8 / CiA 301 PDO and SDO parameters",
-    why="PDO communication records need sub1 (COB-ID) and sub2 (transmission type); SDO parameter "
-    "records need sub1 and sub2 (COB-IDs), SDO client records also sub3 (server node-ID). "
-    "Stacks cannot set up the channel without them.",
-    example="[1800]\nObjectType=0x9\nSubNumber=2\n[1800sub0]\n[1800sub1]",
-    fix="Add the missing sub-object.")
-define_rule(
-    "COM011", W, "reserved PDO transmission type", ref="CiA 301 PDO communication parameter",
-    why="Transmission types 241-251 are reserved for TPDOs, 241-253 for RPDOs (252/253, RTR, exist "
-    "only for TPDOs). Devices refuse them (abort 0x06090030).",
-    example="[1400sub2]\nDefaultValue=252",
-    fix="Use 0-240 (synchronous) or 254/255 (event-driven).")
-define_rule(
-    "COM012", W, "device type names no profile but profile objects exist",
-    ref="CiA 301 object 0x1000",
-    why="The low 16 bits of 0x1000 are the device profile number (401 = 0x191, 402 = 0x192, ...). "
-    "With 0 (no profile) but objects in 0x6000-0x9FFF, masters and profile tools ignore or "
-    "misinterpret the profile part.",
-    example="[1000]\nDefaultValue=0\n[6000]\n...",
-    fix="Write the profile number (and its additional information) into 0x1000.")
-define_rule(
-    "COM013", W, "device type or Vendor-ID without a value", ref="CiA 301 objects 0x1000, 0x1018",
-    why="0x1000 and 0x1018 sub1 are read-only constants masters check during boot-up; without a "
-    "DefaultValue the generated device answers 0.",
-    example="[1000]\nParameterName=Device type\nDataType=0x0007\nAccessType=ro",
-    fix="Add the DefaultValue (e.g. `0x00000191` for a CiA 401 device).")
-define_rule(
-    "COM014", W, "node guarding half configured", ref="CiA 301 objects 0x100C, 0x100D",
-    why="Node guarding needs both guard time (0x100C) and life time factor (0x100D); one without the "
-    "other cannot be used.",
-    example="[100C]\n(no [100D])",
-    fix="Add the missing object, or remove both and use heartbeat (0x1017).")
-define_rule(
-    "COM015", W, "invalid heartbeat consumer entry", ref="CiA 301 object 0x1016",
-    why="A 0x1016 entry is 0x00NNTTTT: bits 24-31 are reserved (0), NN is a node-id 1..127 when "
-    "the time TTTT is not 0, and no node-id may be monitored twice (devices refuse with abort "
-    "0x06040043).",
-    example="[1016sub1]\nDefaultValue=0x00800064  (node-id 128)",
-    fix="Write `0x00NNTTTT` with a node-id 1..127, each at most once.")
 
 U8, U16, U32, VSTR = 0x0005, 0x0006, 0x0007, 0x0009
 MANDATORY = {0x1000: "device type", 0x1001: "error register", 0x1018: "identity"}
@@ -165,7 +60,7 @@ def _pdo_comm(index: int) -> str | None:
 def mandatory_objects(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for index, name in MANDATORY.items():
         if index not in od.objects:
-            diags.add("COM001", Loc(od.source), f"mandatory object 0x{index:04X} ({name}) is missing")
+            diags.add(COM001, Loc(od.source), f"mandatory object 0x{index:04X} ({name}) is missing")
 
 
 def _expected_type(obj: Obj, sub: Sub) -> int | None:
@@ -198,7 +93,7 @@ def comm_data_types(od: ObjectDictionary, diags: Diagnostics, options: LintOptio
             if sub.compact and sub.subindex > 1:
                 continue  # a CompactSubObj template is reported once, at sub1
             got = BASIC_TYPES.get(sub.data_type)
-            diags.add("COM002", Loc(od.source, sub.line_of("datatype")),
+            diags.add(COM002, Loc(od.source, sub.line_of("datatype")),
                       f"DataType=0x{sub.data_type:04X}{f' ({got.name})' if got else ''}; "
                       f"CiA 301 defines {BASIC_TYPES[expected].name}", index, addr(obj, sub))
 
@@ -211,7 +106,7 @@ def read_only_identity(od: ObjectDictionary, diags: Diagnostics, options: LintOp
             continue
         for sub in obj.subs.values():
             if sub.writable and not sub.compact:
-                diags.add("COM003", Loc(od.source, sub.line_of("accesstype")),
+                diags.add(COM003, Loc(od.source, sub.line_of("accesstype")),
                           f"AccessType={sub.access}; CiA 301 defines it read-only", index, addr(obj, sub))
 
 
@@ -223,8 +118,6 @@ def _predefined(index: int, subindex: int) -> tuple[int, str] | None:
         return 0x200 + 0x100 * (index - RPDO), f"RPDO{index - RPDO + 1}"
     if _in(index, TPDO, 4) and subindex == 1:
         return 0x180 + 0x100 * (index - TPDO), f"TPDO{index - TPDO + 1}"
-    if index == SDO_SERVER and subindex in (1, 2):
-        return (0x600, "SDO server receive") if subindex == 1 else (0x580, "SDO server transmit")
     if index == 0x1014 and subindex == 0:
         return 0x80, "EMCY"
     return None
@@ -238,7 +131,7 @@ def _entry(obj: Obj | None, subindex: int) -> Sub | None:
 
 
 def _cob_entries(od: ObjectDictionary) -> Iterator[tuple[Obj, Sub, tuple[int, str]]]:
-    for index in [0x1014, SDO_SERVER, *range(RPDO, RPDO + 4), *range(TPDO, TPDO + 4)]:
+    for index in [0x1014, *range(RPDO, RPDO + 4), *range(TPDO, TPDO + 4)]:  # 0x1200: COM017
         obj = od.objects.get(index)
         if obj is None:
             continue
@@ -258,7 +151,7 @@ def predefined_cob_ids(od: ObjectDictionary, diags: Diagnostics, options: LintOp
             continue
         problem = _not_predefined(od, value, raw, base, name)
         if problem:
-            diags.add("COM004", Loc(od.source, value_line(sub, value, keyword)),
+            diags.add(COM004, Loc(od.source, value_line(sub, value, keyword)),
                       f"COB-ID {value.text.strip()} {problem}", obj.index, addr(obj, sub))
 
 
@@ -289,7 +182,7 @@ def pdo_cob_ids(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) 
             continue  # a bare predefined base: COM004 says what is missing
         problem = _cob_problem(value, span)
         if problem:
-            diags.add("COM005", Loc(od.source, value_line(sub, value, keyword)),
+            diags.add(COM005, Loc(od.source, value_line(sub, value, keyword)),
                       f"COB-ID {value.text.strip()} {problem}", index, 1)
 
 
@@ -317,7 +210,7 @@ def _cob_problem(value: Value, span: tuple[int, int]) -> str | None:
 def identity(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     obj = od.objects.get(0x1018)
     if obj is not None and (obj.is_var or 1 not in obj.subs):
-        diags.add("COM006", Loc(od.source, obj.line), "has no Vendor-ID (sub1)", 0x1018)
+        diags.add(COM006, Loc(od.source, obj.line), "has no Vendor-ID (sub1)", 0x1018)
     for index, subindex in ((0x1000, 0), (0x1018, 1)):
         target = od.objects.get(index)
         sub = _entry(target, subindex)
@@ -326,7 +219,7 @@ def identity(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> 
         value, _ = value_in_force(od, sub)
         if value is None or value.empty:
             what = "device type" if index == 0x1000 else "Vendor-ID"
-            diags.add("COM013", Loc(od.source, sub.line), f"{what} has no DefaultValue", index, addr(target, sub))
+            diags.add(COM013, Loc(od.source, sub.line), f"{what} has no DefaultValue", index, addr(target, sub))
 
 
 def _var_int(od: ObjectDictionary, index: int) -> tuple[Sub | None, int | None]:
@@ -340,14 +233,14 @@ def _var_int(od: ObjectDictionary, index: int) -> tuple[Sub | None, int | None]:
 def error_control(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     guard, life = od.objects.get(0x100C), od.objects.get(0x100D)
     if 0x1017 not in od.objects and guard is None and life is None:
-        diags.add("COM007", Loc(od.source), "neither heartbeat (0x1017) nor node guarding (0x100C/0x100D)")
+        diags.add(COM007, Loc(od.source), "neither heartbeat (0x1017) nor node guarding (0x100C/0x100D)")
     present, absent = (guard, 0x100D) if life is None else (life, 0x100C)
     if present is not None and (guard is None or life is None):
-        diags.add("COM014", Loc(od.source, present.line), f"is defined but 0x{absent:04X} is not", present.index)
+        diags.add(COM014, Loc(od.source, present.line), f"is defined but 0x{absent:04X} is not", present.index)
     heartbeat, hb_time = _var_int(od, 0x1017)
     guard_time, life_factor = _var_int(od, 0x100C)[1], _var_int(od, 0x100D)[1]
     if heartbeat is not None and hb_time and guard_time and life_factor:
-        diags.add("COM008", Loc(od.source, default_line(heartbeat)),
+        diags.add(COM008, Loc(od.source, default_line(heartbeat)),
                   f"heartbeat {hb_time} ms and node guarding {guard_time} ms x {life_factor} are both enabled",
                   0x1017)
 
@@ -368,7 +261,7 @@ def heartbeat_consumers(od: ObjectDictionary, diags: Diagnostics, options: LintO
         node, time = (raw >> 16) & 0xFF, raw & 0xFFFF
         problem = _consumer_problem(raw >> 24, node, time, seen)
         if problem:
-            diags.add("COM015", Loc(od.source, value_line(sub, value, keyword)),
+            diags.add(COM015, Loc(od.source, value_line(sub, value, keyword)),
                       f"{value.text.strip()} {problem}", 0x1016, sub.subindex)
         elif time:
             seen[node] = sub.subindex
@@ -392,7 +285,7 @@ def device_profile(od: ObjectDictionary, diags: Diagnostics, options: LintOption
         return
     profile = next((i for i in sorted(od.objects) if 0x6000 <= i <= 0x9FFF), None)
     if profile is not None:
-        diags.add("COM012", Loc(od.source, default_line(sub)),
+        diags.add(COM012, Loc(od.source, default_line(sub)),
                   f"device type 0x{device_type:08X} names no device profile, but the file defines "
                   f"profile objects (first 0x{profile:04X})", 0x1000)
 
@@ -415,7 +308,7 @@ def comm_records(od: ObjectDictionary, diags: Diagnostics, options: LintOptions)
 def _required(od: ObjectDictionary, obj: Obj, required: tuple[int, ...], diags: Diagnostics) -> bool:
     missing = [s for s in required if s not in obj.subs]
     if missing:
-        diags.add("COM010", Loc(od.source, obj.line),
+        diags.add(COM010, Loc(od.source, obj.line),
                   f"has no {', '.join(f'sub{s}' for s in missing)}", obj.index)
     return not missing
 
@@ -429,7 +322,7 @@ def _pdo_record(od: ObjectDictionary, obj: Obj, kind: str, diags: Diagnostics) -
     if highest is None:
         highest = max(obj.subs, default=0)
     if not 2 <= highest <= top and sub0 is not None:
-        diags.add("COM009", Loc(od.source, sub0.line_of("defaultvalue")),
+        diags.add(COM009, Loc(od.source, sub0.line_of("defaultvalue")),
                   f"{kind} communication record's highest sub-index is {highest}, CiA 301 defines 2..{top}",
                   obj.index, 0)
     _transmission_type(od, obj, kind, diags)
@@ -443,7 +336,7 @@ def _transmission_type(od: ObjectDictionary, obj: Obj, kind: str, diags: Diagnos
     ttype = plain_int(value)
     reserved = range(241, 254) if kind == "RPDO" else range(241, 252)
     if ttype is not None and ttype in reserved:
-        diags.add("COM011", Loc(od.source, value_line(sub, value, keyword)),
+        diags.add(COM011, Loc(od.source, value_line(sub, value, keyword)),
                   f"transmission type {ttype} is reserved for {kind}s", obj.index, 2)
 
 

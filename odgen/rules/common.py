@@ -48,10 +48,9 @@ def at(value: Value, node_id: int) -> int | float | None:
 
 
 def value_in_force(od: ObjectDictionary, sub: Sub) -> tuple[Value | None, str]:
-    """The value in force, with its keyword: a DCF's ParameterValue where given, else the DefaultValue."""
-    if od.is_config and sub.parameter_value is not None and not sub.parameter_value.empty:
-        return sub.parameter_value, "parametervalue"
-    return sub.default, "defaultvalue"
+    """The value in force (ObjectDictionary.value_in_force), with the keyword to point at."""
+    value = od.value_in_force(sub)
+    return value, "parametervalue" if value is not None and value is sub.parameter_value else "defaultvalue"
 
 
 def value_line(sub: Sub, value: Value | None, keyword: str) -> int:

@@ -9,108 +9,15 @@ from __future__ import annotations
 
 import re
 
-from ..diagnostics import Diagnostics, Loc, Severity, define_rule
+from ..catalogue.header import (
+    HDR001, HDR002, HDR003, HDR004, HDR005, HDR006, HDR007, HDR008, HDR009, HDR010, HDR011, HDR012, HDR013, HDR014,
+    HDR015)
+from ..diagnostics import Diagnostics, Loc
 from ..model import Field, ObjectDictionary, Section, Sub, Value
 from . import LintOptions, check
 from .common import gaps, granularity, header_field, header_int, number
 
-E, W, INFO = Severity.ERROR, Severity.WARNING, Severity.INFO
 
-define_rule(
-    "HDR001", E, "required section missing", ref="CiA 306 table row H1",
-    why="An EDS/DCF describes the device in [DeviceInfo] and lists its objects in [MandatoryObjects] "
-    "(plus Optional/ManufacturerObjects). Without them tools cannot identify the device or find "
-    "its objects; objdictgen refuses the file.",
-    example="(no [DeviceInfo] section)",
-    fix="Add the section with its keys.")
-define_rule(
-    "HDR002", W, "unknown key in a header section", ref="CiA 306 table row H2",
-    why="[FileInfo], [DeviceInfo] and [DeviceComissioning] have a fixed set of keys. Lely's dcfchk "
-    "reports others as invalid entries, and a misspelt key (`BaudRate_100`) is silently ignored.",
-    example="[DeviceInfo]\nBaudRate_100=1",
-    fix="Correct the spelling, or remove the key (vendor notes go into [Comments]).")
-define_rule(
-    "HDR003", W, "header value is not a valid number", ref="CiA 306 table rows H3, H6, H7",
-    why="FileVersion and FileRevision are UNSIGNED8; VendorNumber, ProductNumber and RevisionNumber "
-    "UNSIGNED32; NrOfRXPDO/NrOfTXPDO 0..512; CompactPDO a bit field 0..0x3F; "
-    "DynamicChannelsSupported a count; a DCF's NodeID 1..127 (255: not yet configured by LSS). "
-    "Tools read other text as 0 or refuse the file.",
-    example="[FileInfo]\nFileVersion=1.0",
-    fix="Write a decimal or 0x-hex number in the key's range (`FileVersion=1`).")
-define_rule(
-    "HDR004", W, "EDSVersion is not 4.0", ref="CiA 306 table row H3 (verify)",
-    why="CiA 306 files of this format declare `EDSVersion=4.0`; values such as 402 or 404 are device "
-    "profile numbers written in the wrong key. (Row marked verify: warning.)",
-    example="EDSVersion=402",
-    fix="Write `EDSVersion=4.0`.")
-define_rule(
-    "HDR005", W, "date or time not in CiA 306 format", ref="CiA 306 table row H3 (verify)",
-    why="CreationDate/ModificationDate are written `mm-dd-yyyy` and CreationTime/ModificationTime "
-    "`hh:mm` followed by AM or PM. Other forms (yyyy-mm-dd, 24-hour with seconds) are misread by "
-    "tools that parse them. (Row marked verify: warning.)",
-    example="CreationDate=2024-03-01\nCreationTime=14:05:00",
-    fix="Write `CreationDate=03-01-2024` and `CreationTime=02:05PM`.")
-define_rule(
-    "HDR006", W, "[DeviceInfo] flag is not 0 or 1", ref="CiA 306 table row H4",
-    why="BaudRate_10 .. BaudRate_1000, SimpleBootUpMaster/Slave, GroupMessaging and LSS_Supported "
-    "are booleans written 0 or 1.",
-    example="BaudRate_250=yes",
-    fix="Write 1 (supported) or 0 (not supported).")
-define_rule(
-    "HDR007", W, "no bit rate supported", ref="CiA 306 table row H4",
-    why="A device supports at least one CiA 301 bit rate; with every BaudRate_xxx 0 or absent, "
-    "configuration tools have no bit rate to offer.",
-    example="BaudRate_125=0\nBaudRate_250=0\n... (all 0)",
-    fix="Set `BaudRate_xxx=1` for each bit rate the device supports.")
-define_rule(
-    "HDR008", W, "DCF Baudrate not supported by the device", ref="CiA 306 table row H4",
-    why="[DeviceComissioning] Baudrate is the configured bit rate in kbit/s; it must be one the "
-    "device declares with BaudRate_xxx=1 in [DeviceInfo], or the node cannot join the network.",
-    example="[DeviceInfo]\nBaudRate_500=0\n[DeviceComissioning]\nBaudrate=500",
-    fix="Configure a supported bit rate, or correct [DeviceInfo].")
-define_rule(
-    "HDR009", E, "Granularity outside 0..64", ref="CiA 306 table row H5",
-    why="Granularity is the mapping granularity in bits, 0..64 (0: mapping not modifiable; 8: "
-    "byte-wise, as CANopenNode needs). PDO mapping checks and generators depend on it. "
-    "(Python canopen reads it as a boolean.)",
-    example="Granularity=128",
-    fix="Write the bit granularity the device supports, typically `Granularity=8`.")
-define_rule(
-    "HDR010", W, "DynamicChannelsSupported and [DynamicChannels] disagree",
-    ref="CiA 306 table row H8 (verify)",
-    why="DynamicChannelsSupported is the number of dynamic channel segments (CiA 302 network "
-    "variables); a count above 0 needs a [DynamicChannels] section describing them, and that "
-    "section means nothing with a count of 0. (Row marked verify: warning.)",
-    example="DynamicChannelsSupported=0\n[DynamicChannels]\nNrOfSeg=1",
-    fix="Make the count and the section agree.")
-define_rule(
-    "HDR011", E, "invalid [DummyUsage] entry", ref="CiA 306 table row H9",
-    why="[DummyUsage] has keys Dummy0001..Dummy001B (the basic data type indices) with value 0 or 1; "
-    "mapping a dummy entry depends on them. Lely refuses other keys and values.",
-    example="[DummyUsage]\nDummy0005=yes",
-    fix="Write `DummyXXXX=1` for each data type usable as a dummy mapping, 0 otherwise.")
-define_rule(
-    "HDR012", W, "[DeviceInfo]/[DeviceComissioning] differs from the identity object",
-    ref="CiA 306 table row H10",
-    why="VendorNumber, ProductNumber and RevisionNumber repeat 0x1018 sub1..sub3 (and a DCF's "
-    "LSS_SerialNumber 0x1018 sub4). Masters compare the device's 0x1018 against the file, so a "
-    "mismatch makes them reject a correct device (Lely warns about it).",
-    example="VendorNumber=0x123\n[1018sub1]\nDefaultValue=0x456",
-    fix="Make both carry the same number.")
-define_rule(
-    "HDR013", W, "[Comments] Lines differs from its LineN keys", ref="CiA 306 table row H11",
-    why="[Comments] declares `Lines=N` followed by Line1..LineN. Readers that loop over 1..N "
-    "lose extra lines or stop at a missing one (python canopen raises).",
-    example="[Comments]\nLines=3\nLine1=a\nLine2=b",
-    fix="Set Lines to the number of LineN keys and number them from 1 without gaps.")
-
-define_rule(
-    "HDR014", W, "[FileInfo] missing", ref="CiA 306 table row H1",
-    why="CiA 306 files start with [FileInfo] (file name, version, EDSVersion, dates, author). Nothing "
-    "technical depends on it, but without it nobody can tell which revision of the file this is; "
-    "objdictgen refuses such files. (Lely's dcfgen writes DCFs without it.)",
-    example="(no [FileInfo] section)",
-    fix="Add [FileInfo] with at least FileName, FileVersion, FileRevision and EDSVersion=4.0.")
 
 KNOWN_KEYS = {
     # LastEDS names a DCF's source EDS; CANopenEditor, python canopen and gocanopen also write it
@@ -160,11 +67,11 @@ def required_sections(od: ObjectDictionary, diags: Diagnostics, options: LintOpt
     if od.format not in ("eds", "dcf"):
         return
     if od.section("FileInfo") is None:
-        diags.add("HDR014", Loc(od.source), "[FileInfo] is missing")
+        diags.add(HDR014, Loc(od.source), "[FileInfo] is missing")
     if od.section("DeviceInfo") is None:
-        diags.add("HDR001", Loc(od.source), "[DeviceInfo] is missing")
+        diags.add(HDR001, Loc(od.source), "[DeviceInfo] is missing")
     if "mandatoryobjects" not in od.object_lists:
-        diags.add("HDR001", Loc(od.source), "[MandatoryObjects] is missing")
+        diags.add(HDR001, Loc(od.source), "[MandatoryObjects] is missing")
 
 
 @check
@@ -176,7 +83,7 @@ def header_keys(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) 
         known = {k.lower() for k in keys}
         for key, fld in section.fields.items():
             if key not in known:
-                diags.add("HDR002", _loc(od, fld), f"'{fld.key}' is not a [{section.name}] key")
+                diags.add(HDR002, _loc(od, fld), f"'{fld.key}' is not a [{section.name}] key")
 
 
 # -- H3 --------------------------------------------------------------------------
@@ -192,7 +99,7 @@ def header_numbers(od: ObjectDictionary, diags: Diagnostics, options: LintOption
             continue  # the reader reports an unreadable NodeID (SYN015)
         if value is None or value not in valid:
             what = "not a number" if value is None else f"outside {said}"
-            diags.add("HDR003", _loc(od, fld), f"{fld.key}={fld.text.strip()} is {what}")
+            diags.add(HDR003, _loc(od, fld), f"{fld.key}={fld.text.strip()} is {what}")
 
 
 @check
@@ -202,15 +109,15 @@ def file_info_formats(od: ObjectDictionary, diags: Diagnostics, options: LintOpt
         return
     version = section.get("EDSVersion")
     if version is not None and not re.fullmatch(r"4(\.0+)?", version.text.strip()):
-        diags.add("HDR004", _loc(od, version), f"EDSVersion={version.text.strip()}, expected 4.0")
+        diags.add(HDR004, _loc(od, version), f"EDSVersion={version.text.strip()}, expected 4.0")
     for key in ("CreationDate", "ModificationDate"):
         fld = section.get(key)
         if fld is not None and fld.text.strip() and not _valid_date(fld.text.strip()):
-            diags.add("HDR005", _loc(od, fld), f"{fld.key}={fld.text.strip()} is not mm-dd-yyyy")
+            diags.add(HDR005, _loc(od, fld), f"{fld.key}={fld.text.strip()} is not mm-dd-yyyy")
     for key in ("CreationTime", "ModificationTime"):
         fld = section.get(key)
         if fld is not None and fld.text.strip() and not _valid_time(fld.text.strip()):
-            diags.add("HDR005", _loc(od, fld), f"{fld.key}={fld.text.strip()} is not hh:mm followed by AM or PM")
+            diags.add(HDR005, _loc(od, fld), f"{fld.key}={fld.text.strip()} is not hh:mm followed by AM or PM")
 
 
 def _valid_date(text: str) -> bool:
@@ -233,10 +140,10 @@ def device_flags(od: ObjectDictionary, diags: Diagnostics, options: LintOptions)
     for key in FLAGS:
         fld = section.get(key)
         if fld is not None and header_int(fld) not in (0, 1):
-            diags.add("HDR006", _loc(od, fld), f"{fld.key}={fld.text.strip()} is not 0 or 1")
+            diags.add(HDR006, _loc(od, fld), f"{fld.key}={fld.text.strip()} is not 0 or 1")
     rates = _supported_rates(section)
     if not rates:
-        diags.add("HDR007", _loc(od, section), "no BaudRate_xxx is 1")
+        diags.add(HDR007, _loc(od, section), "no BaudRate_xxx is 1")
     _commissioned_rate(od, rates, diags)
 
 
@@ -249,9 +156,12 @@ def _commissioned_rate(od: ObjectDictionary, rates: set[int], diags: Diagnostics
     if fld is None or not rates or not fld.text.strip():
         return
     rate = header_int(fld)
+    if rate == 0 and od.is_config:
+        diags.add(HDR015, _loc(od, fld), "Baudrate=0: no bit rate configured")
+        return
     if rate not in rates:
         listed = ", ".join(str(r) for r in sorted(rates))
-        diags.add("HDR008", _loc(od, fld),
+        diags.add(HDR008, _loc(od, fld),
                   f"Baudrate={fld.text.strip()} is not a supported bit rate ({listed} kbit/s)")
 
 
@@ -261,7 +171,7 @@ def _commissioned_rate(od: ObjectDictionary, rates: set[int], diags: Diagnostics
 def granularity_range(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     value, fld = granularity(od)
     if fld is not None and fld.text.strip() and (value is None or not 0 <= value <= 64):
-        diags.add("HDR009", _loc(od, fld), f"Granularity={fld.text.strip()} is not a number 0..64")
+        diags.add(HDR009, _loc(od, fld), f"Granularity={fld.text.strip()} is not a number 0..64")
 
 
 # -- H8 --------------------------------------------------------------------------
@@ -272,11 +182,11 @@ def dynamic_channels(od: ObjectDictionary, diags: Diagnostics, options: LintOpti
     count = header_int(fld)
     channels = od.section("DynamicChannels")
     if fld is not None and count is not None and count > 0 and channels is None:
-        diags.add("HDR010", _loc(od, fld), f"DynamicChannelsSupported={fld.text.strip()} "
+        diags.add(HDR010, _loc(od, fld), f"DynamicChannelsSupported={fld.text.strip()} "
                   "but there is no [DynamicChannels] section")
     elif channels is not None and not count:
         said = f"={fld.text.strip()}" if fld is not None else " is absent"
-        diags.add("HDR010", _loc(od, channels), f"[DynamicChannels] but DynamicChannelsSupported{said}")
+        diags.add(HDR010, _loc(od, channels), f"[DynamicChannels] but DynamicChannelsSupported{said}")
 
 
 # -- H9 --------------------------------------------------------------------------
@@ -289,9 +199,9 @@ def dummy_usage(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) 
     for fld in section.fields.values():
         m = _DUMMY_RE.match(fld.key)
         if m is None or not 0x0001 <= int(m.group(1), 16) <= 0x001B:
-            diags.add("HDR011", _loc(od, fld), f"'{fld.key}' is not Dummy0001..Dummy001B")
+            diags.add(HDR011, _loc(od, fld), f"'{fld.key}' is not Dummy0001..Dummy001B")
         elif header_int(fld) not in (0, 1):
-            diags.add("HDR011", _loc(od, fld), f"{fld.key}={fld.text.strip()} is not 0 or 1")
+            diags.add(HDR011, _loc(od, fld), f"{fld.key}={fld.text.strip()} is not 0 or 1")
 
 
 # -- H10 -------------------------------------------------------------------------
@@ -313,7 +223,7 @@ def identity_numbers(od: ObjectDictionary, diags: Diagnostics, options: LintOpti
         if fld is None or header is None or value is None or device is None:
             continue
         if not value.nodeid and header != device:
-            diags.add("HDR012", _loc(od, fld),
+            diags.add(HDR012, _loc(od, fld),
                       f"{key}={fld.text.strip()} but 0x1018sub{subindex} is {value.text.strip()}")
 
 
@@ -339,11 +249,11 @@ def comment_lines(od: ObjectDictionary, diags: Diagnostics, options: LintOptions
     if lines_fld is None or declared is None:
         said = f"Lines={lines_fld.text.strip()} is not a number" if lines_fld else "no Lines key"
         if numbers or lines_fld is not None:
-            diags.add("HDR013", _loc(od, lines_fld or section), f"{said} ({len(numbers)} LineN keys)")
+            diags.add(HDR013, _loc(od, lines_fld or section), f"{said} ({len(numbers)} LineN keys)")
         return
     parts = _line_mismatches(declared, set(numbers))
     if parts:
-        diags.add("HDR013", _loc(od, lines_fld), f"Lines={lines_fld.text.strip()} but {'; '.join(parts)}")
+        diags.add(HDR013, _loc(od, lines_fld), f"Lines={lines_fld.text.strip()} but {'; '.join(parts)}")
 
 
 def _line_mismatches(declared: int, numbers: set[int]) -> list[str]:

@@ -9,55 +9,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..diagnostics import Diagnostics, Loc, Severity, define_rule
+from ..catalogue.network import NET004, NET005, NET006, NET007
+from ..diagnostics import Diagnostics, Loc
 from ..model import ObjectDictionary
 from .common import at, number, value_in_force, value_line
 from .pdo import MPDO, mapping_entries
 
-E, W = Severity.ERROR, Severity.WARNING
 
-define_rule(
-    "NET001", E, "network file is not a list of nodes",
-    why="NET.toml lists the nodes as `[[node]]` tables, each with `file` (relative to NET.toml) "
-    "and `node_id`; anything else cannot be checked.",
-    example='[[node]]\nfile = "slave.eds"\n(no node_id)',
-    fix="Give every [[node]] a `file` string and a `node_id` integer, and nothing else.")
-define_rule(
-    "NET002", E, "node-id outside 1..127 or used twice",
-    why="Every node of a CANopen network has its own node-id 1..127; the fixed COB-IDs (SDO, EMCY, "
-    "heartbeat) and every `$NODEID` value derive from it, so two nodes with one id collide on all of them.",
-    example='[[node]]\nfile = "a.eds"\nnode_id = 2\n[[node]]\nfile = "b.eds"\nnode_id = 2',
-    fix="Give each node a distinct node-id in 1..127.")
-define_rule(
-    "NET003", E, "node's file is missing or unreadable",
-    why="A node whose description cannot be read cannot be checked against the others.",
-    example='[[node]]\nfile = "missing.eds"\nnode_id = 2',
-    fix="Correct the path (relative to NET.toml) or add the file.")
-define_rule(
-    "NET004", E, "two TPDOs transmit the same COB-ID",
-    why="A COB-ID has exactly one producer; two nodes transmitting the same identifier with different "
-    "data cause bus errors (same identifier, different bits) or frames that consumers misread.",
-    example="node 2: [1800sub1] DefaultValue=0x182\nnode 4: [1800sub1] DefaultValue=0x182",
-    fix="Give one of the TPDOs another COB-ID, or disable it (bit 31).")
-define_rule(
-    "NET005", W, "RPDO COB-ID that no node transmits",
-    why="An enabled RPDO waits for a frame no node of the network sends: its entries never change. "
-    "Often a node-id or COB-ID typo.",
-    example="node 1: [1401sub1] DefaultValue=0x183\n(no node 3 in NET.toml)",
-    fix="Set the COB-ID of the producing TPDO, add the producer to NET.toml, or disable the RPDO (bit 31).")
-define_rule(
-    "NET006", E, "RPDO mapping does not match the producing TPDO",
-    why="A consumer decodes a frame by its own mapping: unless it has the same number of entries with "
-    "the same lengths in the same order as the producer's, every field after the first difference "
-    "is read at the wrong bit offset.",
-    example="TPDO [1A00] maps 8 bit, 8 bit\nRPDO [1600] maps 16 bit",
-    fix="Make the RPDO mapping's lengths follow the TPDO's (pad with dummy entries where needed).")
-define_rule(
-    "NET007", E, "PDO COB-ID collides with another node's fixed COB-ID",
-    why="SDO (0x580+id, 0x600+id), EMCY (0x80+id) and heartbeat (0x700+id) of each node are fixed by "
-    "its node-id; a PDO on one of them is taken for that service, or disturbs it.",
-    example="node 2: [1800sub1] DefaultValue=0x83\nnode 3 in the network (EMCY 0x83)",
-    fix="Move the PDO to a COB-ID that no node's fixed services use.")
 
 FIXED = ((0x80, "EMCY"), (0x580, "SDO response"), (0x600, "SDO request"), (0x700, "heartbeat"))
 KINDS = (("RPDO", 0x1400, 0x1600), ("TPDO", 0x1800, 0x1A00))
@@ -130,12 +88,12 @@ def check_network(nodes: list[Node], diags: Diagnostics) -> None:
             continue
         first = producers.setdefault(p.cob_id, p)
         if first is not p:
-            diags.add("NET004", Loc(p.node.od.source, p.line), f"{p.name} transmits COB-ID 0x{p.cob_id:X}, "
+            diags.add(NET004, Loc(p.node.od.source, p.line), f"{p.name} transmits COB-ID 0x{p.cob_id:X}, "
                       f"as {first.name} does ({first.at})", p.comm, 1)
     for p in every:
         producer = producers.get(p.cob_id)
         if p.kind == "RPDO" and producer is None:
-            diags.add("NET005", Loc(p.node.od.source, p.line),
+            diags.add(NET005, Loc(p.node.od.source, p.line),
                       f"{p.name} receives COB-ID 0x{p.cob_id:X}, which no node transmits", p.comm, 1)
         elif p.kind == "RPDO" and producer is not None:
             _compare(p, producer, diags)
@@ -143,7 +101,7 @@ def check_network(nodes: list[Node], diags: Diagnostics) -> None:
     for p in every:
         owner = fixed.get(p.cob_id)
         if owner is not None and owner[0].node_id != p.node.node_id:
-            diags.add("NET007", Loc(p.node.od.source, p.line), f"{p.name} uses COB-ID 0x{p.cob_id:X}, the "
+            diags.add(NET007, Loc(p.node.od.source, p.line), f"{p.name} uses COB-ID 0x{p.cob_id:X}, the "
                       f"{owner[1]} COB-ID of node {owner[0].node_id}", p.comm, 1)
 
 
@@ -155,6 +113,6 @@ def _compare(rpdo: Pdo, tpdo: Pdo, diags: Diagnostics) -> None:
         return
     differ = next((i for i, (a, b) in enumerate(zip(mine, theirs, strict=False)) if a != b), None)
     line, sub = (rpdo.lengths[differ][1], rpdo.lengths[differ][2]) if differ is not None else (rpdo.map_line, 0)
-    diags.add("NET006", Loc(rpdo.node.od.source, line),
+    diags.add(NET006, Loc(rpdo.node.od.source, line),
               f"{rpdo.name} maps {rpdo.layout()} but {tpdo.name} ({tpdo.at}) transmits {tpdo.layout()}",
               rpdo.comm + 0x200, sub)

@@ -4,186 +4,22 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from ..diagnostics import Diagnostics, Loc, Severity, define_rule
+from ..catalogue.objects import (
+    OBJ001, OBJ002, OBJ003, OBJ004, OBJ005, OBJ006, OBJ007, OBJ008, OBJ009, OBJ010, OBJ011, OBJ012, OBJ013, OBJ014,
+    OBJ015, OBJ016, OBJ017, OBJ018, OBJ019, OBJ020, OBJ021, OBJ022, OBJ023, OBJ024, OBJ025, OBJ026, OBJ027, OBJ028,
+    OBJ029)
+from ..catalogue.rule import Rule
+from ..diagnostics import Diagnostics, Loc
 from ..model import (ACCESS_TYPES, ARRAY, DEFSTRUCT, DEFTYPE, DOMAIN, RECORD, VAR, Field, Obj, ObjectDictionary, Sub,
                      Value)
 from ..model.datatypes import BASIC_TYPES, DataType
 from ..model.od import OBJECT_CODES
 from . import LintOptions, check
-from .common import addr, at, default_line, node_span, number, plain_int, value_line
-
-E, W, INFO = Severity.ERROR, Severity.WARNING, Severity.INFO
-
-define_rule(
-    "OBJ001", E, "ParameterName missing", ref="CiA 306 table row O1",
-    why="Every object and sub-object section needs a `ParameterName`. Lely and CANopenEditor refuse "
-    "the file without it, and generated code has nothing to name the entry after.",
-    example="[2000]\nObjectType=0x7\nDataType=0x0007\nAccessType=rw",
-    fix="Add `ParameterName=<name>`.")
-define_rule(
-    "OBJ002", E, "invalid ObjectType", ref="CiA 306 table row O2 / CiA 301 object codes",
-    why="ObjectType is a CiA 301 object code: 0x2 DOMAIN, 0x5 DEFTYPE, 0x6 DEFSTRUCT, 0x7 VAR, "
-    "0x8 ARRAY, 0x9 RECORD (absent means VAR). A sub-object is always a VAR (0x7), or a DOMAIN (0x2).",
-    example="[2000]\nObjectType=0x3",
-    fix="Write the object code of the entry (`0x7` for a single value, `0x8`/`0x9` for sub-objects).")
-define_rule(
-    "OBJ003", E, "DataType missing", ref="CiA 306 table row O3",
-    why="A VAR or DEFTYPE object, a sub-object and a CompactSubObj header need a `DataType`; without "
-    "it the value has no size or range. Lely and CANopenEditor refuse the file.",
-    example="[2000]\nParameterName=Speed\nObjectType=0x7\nAccessType=rw",
-    fix="Add `DataType=0x....` (e.g. 0x0007 for UNSIGNED32).")
-define_rule(
-    "OBJ004", E, "AccessType missing", ref="CiA 306 table row O3",
-    why="A VAR, DOMAIN or DEFTYPE object, a sub-object and a CompactSubObj header need an "
-    "`AccessType`; without it nobody knows whether the entry may be read or written.",
-    example="[2000]\nParameterName=Speed\nDataType=0x0007",
-    fix="Add `AccessType=ro|wo|rw|rwr|rww|const`.")
-define_rule(
-    "OBJ005", E, "invalid AccessType", ref="CiA 306 table row O7",
-    why="AccessType is one of ro, wo, rw, rwr (read/write, TPDO-mappable), rww (read/write, "
-    "RPDO-mappable) or const. Other values are refused by Lely, CANopenEditor and objdictgen.",
-    example="AccessType=readonly",
-    fix="Use one of `ro`, `wo`, `rw`, `rwr`, `rww`, `const`.")
-define_rule(
-    "OBJ006", E, "ARRAY/RECORD needs exactly one of SubNumber and CompactSubObj",
-    ref="CiA 306 table row O3",
-    why="An ARRAY, RECORD or DEFSTRUCT object says how many sub-objects it has either with `SubNumber` "
-    "(followed by `[XXXXsubY]` sections) or with `CompactSubObj` (sub-objects implied). With neither, "
-    "or both, readers disagree on its sub-objects.",
-    example="[1003]\nParameterName=Pre-defined error field\nObjectType=0x8\n(no SubNumber)",
-    fix="Add `SubNumber=<count of sub-object sections>`, or keep only one of the two keywords.")
-define_rule(
-    "OBJ007", E, "SubNumber or CompactSubObj on a single-value object", ref="CiA 306 table row O3",
-    why="`SubNumber` and `CompactSubObj` belong to ARRAY/RECORD objects. On a VAR, DOMAIN or DEFTYPE "
-    "they contradict the object type; CANopenEditor refuses the file.",
-    example="[2000]\nObjectType=0x7\nSubNumber=2",
-    fix="Remove the keyword, or make the object an ARRAY (0x8) or RECORD (0x9) with sub-objects.")
-define_rule(
-    "OBJ008", E, "value keywords on an ARRAY/RECORD header", ref="CiA 306 table row O3",
-    why="Without CompactSubObj, DataType, AccessType, DefaultValue, limits and PDOMapping belong to the "
-    "`[XXXXsubY]` sections; on the `[XXXX]` header they are ignored. Lely refuses AccessType there.",
-    example="[2000]\nObjectType=0x9\nSubNumber=2\nAccessType=rw",
-    fix="Move the keywords into the sub-object sections.")
-define_rule(
-    "OBJ009", E, "SubNumber differs from the sub-objects present", ref="CiA 306 table row O4",
-    why="`SubNumber` is the number of `[XXXXsubY]` sections that follow (gaps in sub-indices allowed), "
-    "not the highest sub-index. Lely reports missing or extra sub-objects; other tools silently drop them.",
-    example="[2000]\nObjectType=0x8\nSubNumber=4\n[2000sub0] [2000sub1] [2000sub2]",
-    fix="Set SubNumber to the number of sub-object sections, or add the missing ones.")
-define_rule(
-    "OBJ010", E, "sub0 of an ARRAY/RECORD missing or not UNSIGNED8",
-    ref="CiA 306 table row O5 / CiA 301 ARRAY/RECORD sub0",
-    why="Sub-index 0 of an ARRAY or RECORD holds its highest sub-index as UNSIGNED8. Without it, or "
-    "with another type, masters cannot enumerate the object; Lely refuses the file.",
-    example="[2000sub0]\nDataType=0x0007",
-    fix="Add `[XXXXsub0]` with `DataType=0x0005`, `AccessType=ro` and the highest sub-index as DefaultValue.")
-define_rule(
-    "OBJ011", E, "sub0 differs from the highest sub-index",
-    ref="CiA 306 table row O5 / CiA 301 ARRAY/RECORD sub0",
-    why="The DefaultValue of sub0 is the highest sub-index the object supports. A smaller value hides "
-    "sub-objects from masters, a larger one announces sub-objects that do not exist. "
-    "(0x1003 counts errors and PDO mapping objects count mapped entries instead; they are not checked here.)",
-    example="[2000sub0]\nDefaultValue=2\n[2000sub3]",
-    fix="Set sub0's DefaultValue to the highest sub-index present.")
-define_rule(
-    "OBJ012", E, "undefined DataType", ref="CiA 306 table row O9",
-    why="DataType must be a CiA 301 basic type (0x0001-0x001B, not the reserved 0x000E/0x0017), or a "
-    "type defined in the file by a DEFTYPE/DEFSTRUCT object at that index. Python canopen turns "
-    "unknown types into DOMAIN; generated code cannot size the value.",
-    example="DataType=0x0040 (no [0040] section)",
-    fix="Use a basic type, or add the DEFTYPE/DEFSTRUCT definition.")
-define_rule(
-    "OBJ013", E, "limits on a non-numeric entry", ref="CiA 306 table row O10",
-    why="LowLimit/HighLimit restrict numeric values; on strings, DOMAIN or time types they mean "
-    "nothing and Lely refuses them.",
-    example="DataType=0x0009\nLowLimit=0",
-    fix="Remove LowLimit/HighLimit from the entry.")
-define_rule(
-    "OBJ014", E, "limit outside the data type's range", ref="CiA 306 table row O10",
-    why="A LowLimit or HighLimit the data type cannot hold is a typo or a wrong DataType; Lely reports "
-    "it as overflow. `$NODEID+v` limits are checked for node-ids 1..127 (or the given node-id).",
-    example="DataType=0x0006\nHighLimit=65536",
-    fix="Use a limit within the type (UNSIGNED16: 0..65535) or a wider DataType.")
-define_rule(
-    "OBJ015", E, "LowLimit above HighLimit", ref="CiA 306 table row O10",
-    why="No value satisfies LowLimit > HighLimit, so every write is refused.",
-    example="LowLimit=100\nHighLimit=10",
-    fix="Swap or correct the limits.")
-define_rule(
-    "OBJ016", E, "value outside the data type's range", ref="CiA 306 table row O11",
-    why="A DefaultValue or ParameterValue the data type cannot hold is truncated differently by every "
-    "tool. `$NODEID+v` values are checked for node-ids 1..127 (or the node-id given to odgen).",
-    example="DataType=0x0005\nDefaultValue=300",
-    fix="Correct the value, or widen the DataType.")
-define_rule(
-    "OBJ017", E, "value outside LowLimit..HighLimit", ref="CiA 306 table row O11",
-    why="The device would refuse to be written its own default: a DefaultValue or ParameterValue must "
-    "lie within [LowLimit, HighLimit].",
-    example="LowLimit=1\nHighLimit=10\nDefaultValue=0",
-    fix="Correct the value or the limits.")
-define_rule(
-    "OBJ018", INFO, "PDO-mappable rw entry without a direction", ref="CiA 306 table row O8",
-    why="CiA 306 marks the PDO direction of a mappable read/write entry with `rwr` (TPDO, process "
-    "input) or `rww` (RPDO, process output). Plain `rw` is legal and may be mapped either way, but "
-    "tools must guess the intent; Vector's checker warns. Information only (a third of real files "
-    "do this), reported once per object.",
-    example="AccessType=rw\nPDOMapping=1",
-    fix="Write `rww` for entries the device receives, `rwr` for entries it sends.")
-define_rule(
-    "OBJ019", W, "PDO-mappable entry of a type that cannot be mapped",
-    ref="CiA 306 table row O8 / CiA 301 PDO mapping",
-    why="A PDO carries at most 64 bits (CAN FD: 512) of fixed-size data. DOMAIN entries have no fixed "
-    "size and cannot be mapped.",
-    example="DataType=0x000F\nPDOMapping=1",
-    fix="Set `PDOMapping=0`.")
-define_rule(
-    "OBJ020", W, "VISIBLE_STRING value with invisible characters",
-    ref="CiA 306 table row O12 / CiA 301 VISIBLE_STRING",
-    why="VISIBLE_STRING holds printable ASCII (0x20-0x7E). Other characters are encoded differently "
-    "by every tool (Windows-1252, UTF-8) and may not reach the device as written.",
-    example="DataType=0x0009\nDefaultValue=Température",
-    fix="Use ASCII text, or UNICODE_STRING (0x000B).")
-define_rule(
-    "OBJ021", W, "DOMAIN with a DefaultValue", ref="CiA 306 table row O12 (verify)",
-    why="A DOMAIN's content is not written in the description: CiA 306 uses UploadFile/DownloadFile. "
-    "Tools read a DOMAIN DefaultValue as text, as hex bytes or not at all. `DefaultValue=0`, which "
-    "editors write for \"no content\", is not reported. (Row marked verify: warning until checked "
-    "against the CiA 306 text.)",
-    example="DataType=0x000F\nDefaultValue=0x1234",
-    fix="Remove the DefaultValue, or use OCTET_STRING (0x000A) for fixed bytes.")
-define_rule(
-    "OBJ022", W, "UploadFile/DownloadFile with the wrong AccessType", ref="CiA 306 table row O12",
-    why="An UploadFile is read from the device, so the entry is `ro` or `const`; a DownloadFile is "
-    "written to it, so the entry is `wo`. Lely's DCF loader refuses other combinations.",
-    example="AccessType=rw\nUploadFile=log.bin",
-    fix="Correct the AccessType or remove the file keyword.")
-define_rule(
-    "OBJ023", W, "ObjFlags with undefined bits", ref="CiA 306 table row O13",
-    why="ObjFlags is UNSIGNED32 with bit 0 (refuse read on scan) and bit 1 (refuse write on download) "
-    "defined; other bits are reserved.",
-    example="ObjFlags=0x10",
-    fix="Use a value 0..3.")
-define_rule(
-    "OBJ024", W, "DCF-only content in an EDS", ref="CiA 306 table row O15",
-    why="ParameterValue, Denotation, ParamRefd and [DeviceComissioning] describe one configured node "
-    "and belong to a DCF. In an EDS they are ignored by most tools or mistaken for defaults.",
-    example="(dev.eds)\n[2000]\nParameterValue=5",
-    fix="Put the value into DefaultValue, or move the configuration into a DCF.")
-define_rule(
-    "OBJ025", W, "unknown keyword in an object section",
-    ref="CiA 306 object section keywords (as Lely's dcfchk checks them)",
-    why="The keyword is not one CiA 306 defines for object sections; odgen keeps it but no tool "
-    "interprets it, and Lely rejects it.",
-    example="[2000]\nUnit=rpm",
-    fix="Remove the keyword or write it as a `;` comment.")
-define_rule(
-    "OBJ026", E, "ARRAY elements of different data types", ref="CiA 301 object code ARRAY",
-    why="All sub-objects 1..n of an ARRAY share one data type (that is what makes it an array, "
-    "and how generators lay it out as a C array). Use a RECORD for mixed types.",
-    example="[2000]\nObjectType=0x8\n[2000sub1] DataType=0x0007\n[2000sub2] DataType=0x0006",
-    fix="Give every element the same DataType, or change ObjectType to 0x9 (RECORD).")
+from .common import addr, at, default_line, node_span, number, plain_int, value_in_force, value_line
 
 
+
+VISIBLE_STRING, NUL = 0x0009, chr(0)
 VALID_OBJECT_CODES = (0x0, DOMAIN, DEFTYPE, DEFSTRUCT, VAR, ARRAY, RECORD)
 CONTAINER_CODES = (DEFSTRUCT, ARRAY, RECORD)
 # Keywords CiA 306 defines for object/sub-object sections (lower case), plus
@@ -238,29 +74,30 @@ def _show(value: Value) -> str:
 def parameter_names(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for obj in od.objects.values():
         if not obj.name.strip():
-            diags.add("OBJ001", Loc(od.source, obj.line), "has no ParameterName", obj.index)
+            diags.add(OBJ001, Loc(od.source, obj.line), "has no ParameterName", obj.index)
         if obj.is_var:
             continue
         # one report per object: generated files tend to miss every sub-object's name at once
         nameless = [sub for sub in written_subs(obj) if not sub.name.strip()]
         if nameless:
+            elements = obj.object_code == ARRAY and all(sub.subindex > 0 for sub in nameless)
             more = f" (nor do {len(nameless) - 1} more of its sub-objects)" if len(nameless) > 1 else ""
-            diags.add("OBJ001", Loc(od.source, nameless[0].line), f"has no ParameterName{more}",
-                      obj.index, nameless[0].subindex)
+            diags.add(OBJ027 if elements else OBJ001, Loc(od.source, nameless[0].line),
+                      f"has no ParameterName{more}", obj.index, nameless[0].subindex)
 
 
 @check
 def object_types(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for obj in od.objects.values():
         if obj.object_code not in VALID_OBJECT_CODES:
-            diags.add("OBJ002", Loc(od.source, obj.line_of("objecttype")),
+            diags.add(OBJ002, Loc(od.source, obj.line_of("objecttype")),
                       f"ObjectType=0x{obj.object_code:X} is not a CiA 301 object code "
                       "(0x2, 0x5, 0x6, 0x7, 0x8, 0x9)", obj.index)
         if obj.is_var:
             continue
         for sub in written_subs(obj):
-            if sub.object_type is not None and sub.object_type not in (VAR, DOMAIN):
-                diags.add("OBJ002", Loc(od.source, sub.line_of("objecttype")),
+            if sub.object_type is not None and sub.object_type != VAR:
+                diags.add(OBJ028, Loc(od.source, sub.line_of("objecttype")),
                           f"ObjectType=0x{sub.object_type:X} on a sub-object; sub-objects are VAR (0x7)",
                           obj.index, sub.subindex)
 
@@ -285,11 +122,11 @@ def required_attributes(od: ObjectDictionary, diags: Diagnostics, options: LintO
         for sub, subindex, line in _attribute_holders(obj):
             loc = Loc(od.source, line)
             if sub.data_type is None and "datatype" not in sub.lines and obj.object_code != DOMAIN:
-                diags.add("OBJ003", loc, "has no DataType", obj.index, subindex)
+                diags.add(OBJ003, loc, "has no DataType", obj.index, subindex)
             if sub.access is None:
-                diags.add("OBJ004", loc, "has no AccessType", obj.index, subindex)
+                diags.add(OBJ004, loc, "has no AccessType", obj.index, subindex)
             elif sub.access not in ACCESS_TYPES:
-                diags.add("OBJ005", Loc(od.source, sub.line_of("accesstype")),
+                diags.add(OBJ005, Loc(od.source, sub.line_of("accesstype")),
                           f"AccessType={sub.access} is not one of ro, wo, rw, rwr, rww, const",
                           obj.index, subindex)
 
@@ -306,7 +143,7 @@ def container_keywords(od: ObjectDictionary, diags: Diagnostics, options: LintOp
         elif has_number or has_compact:
             key = "subnumber" if has_number else "compactsubobj"
             name = "SubNumber" if has_number else "CompactSubObj"
-            diags.add("OBJ007", Loc(od.source, obj.line_of(key)),
+            diags.add(OBJ007, Loc(od.source, obj.line_of(key)),
                       f"{name} on a {OBJECT_CODES.get(obj.object_code, 'VAR')} object", obj.index)
 
 
@@ -315,13 +152,13 @@ def _container_shape(od: ObjectDictionary, obj: Obj, has_number: bool, has_compa
     kind = OBJECT_CODES[obj.object_code]
     if has_number == has_compact:
         what = "both SubNumber and CompactSubObj" if has_number else "neither SubNumber nor CompactSubObj"
-        diags.add("OBJ006", Loc(od.source, obj.line), f"{kind} has {what}", obj.index)
+        diags.add(OBJ006, Loc(od.source, obj.line), f"{kind} has {what}", obj.index)
     if has_compact:
         return
     stray = [obj.extra[k].key for k in HEADER_VALUE_KEYS if k in obj.extra]
     if stray:
         first = min(obj.extra[k.lower()].line for k in stray)
-        diags.add("OBJ008", Loc(od.source, first),
+        diags.add(OBJ008, Loc(od.source, first),
                   f"{', '.join(stray)} on the {kind} header is ignored without CompactSubObj", obj.index)
 
 
@@ -334,7 +171,7 @@ def sub_counts(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -
             continue
         present = sum(1 for sub in obj.subs.values() if not sub.compact)
         if present != obj.sub_number:
-            diags.add("OBJ009", Loc(od.source, obj.sub_number_line or obj.line_of("subnumber")),
+            diags.add(OBJ009, Loc(od.source, obj.sub_number_line or obj.line_of("subnumber")),
                       f"SubNumber={obj.sub_number} but {present} sub-object"
                       f"{'' if present == 1 else 's'} {'is' if present == 1 else 'are'} defined", obj.index)
 
@@ -346,12 +183,12 @@ def sub0_entries(od: ObjectDictionary, diags: Diagnostics, options: LintOptions)
             continue
         sub0 = obj.subs.get(0)
         if sub0 is None:
-            diags.add("OBJ010", Loc(od.source, obj.line), "has no sub0 (highest sub-index)", obj.index)
+            diags.add(OBJ010, Loc(od.source, obj.line), "has no sub0 (highest sub-index)", obj.index)
             continue
         if sub0.data_type is not None and sub0.data_type != 0x0005:
             dtype = BASIC_TYPES.get(sub0.data_type)
             name = f" ({dtype.name})" if dtype else ""
-            diags.add("OBJ010", Loc(od.source, sub0.line_of("datatype")),
+            diags.add(OBJ010, Loc(od.source, sub0.line_of("datatype")),
                       f"DataType=0x{sub0.data_type:04X}{name} is not UNSIGNED8", obj.index, 0)
         _sub0_value(od, obj, sub0, diags)
 
@@ -366,7 +203,9 @@ def _sub0_value(od: ObjectDictionary, obj: Obj, sub0: Sub, diags: Diagnostics) -
     highest = max(obj.subs)
     if highest == 0 or declared == highest:
         return
-    diags.add("OBJ011", Loc(od.source, default_line(sub0)),
+    if declared < highest and sub0.writable:
+        return  # sub0 counts the valid entries, as 0x1003 does: vendors use that pattern for other objects
+    diags.add(OBJ011, Loc(od.source, default_line(sub0)),
               f"DefaultValue={_show(default)} but the highest sub-index is {highest}", obj.index, 0)
 
 
@@ -380,7 +219,7 @@ def data_types(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -
             code = sub.data_type
             if code is None or code in BASIC_TYPES or code in defined:
                 continue
-            diags.add("OBJ012", Loc(od.source, sub.line_of("datatype")),
+            diags.add(OBJ012, Loc(od.source, sub.line_of("datatype")),
                       f"DataType=0x{code:04X} is neither a basic type nor defined in the file",
                       obj.index, subindex)
 
@@ -400,14 +239,14 @@ def limits(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> No
                 _non_numeric_limits(od, obj, sub, dtype, diags)
                 continue
             for keyword, value in (("lowlimit", sub.low), ("highlimit", sub.high)):
-                _type_range(od, obj.index, where_sub, sub, keyword, value, dtype, span, "OBJ014", diags)
+                _type_range(od, obj.index, where_sub, sub, keyword, value, dtype, span, OBJ014, diags)
             _ordered(od, obj.index, where_sub, sub, span, diags)
 
 
 def _non_numeric_limits(od: ObjectDictionary, obj: Obj, sub: Sub, dtype: DataType, diags: Diagnostics) -> None:
     written = [v for v in (sub.low, sub.high) if v is not None and not v.empty]
     if written:
-        diags.add("OBJ013", Loc(od.source, written[0].line or sub.line),
+        diags.add(OBJ013, Loc(od.source, written[0].line or sub.line),
                   f"LowLimit/HighLimit on a {dtype.name} entry", obj.index, addr(obj, sub))
 
 
@@ -416,7 +255,7 @@ _LABEL = {"lowlimit": "LowLimit", "highlimit": "HighLimit", "defaultvalue": "Def
 
 
 def _type_range(od: ObjectDictionary, index: int, where_sub: int | None, sub: Sub, keyword: str,
-                value: Value | None, dtype: DataType, span: tuple[int, int], rule: str,
+                value: Value | None, dtype: DataType, span: tuple[int, int], rule: Rule,
                 diags: Diagnostics) -> None:
     bounds = _bounds(dtype)
     if value is None or bounds is None or number(value) is None:
@@ -465,7 +304,7 @@ def _ordered(od: ObjectDictionary, index: int, where_sub: int | None, sub: Sub, 
     if node_id is None:
         return
     node = f" for node-id {node_id}" if sub.low.nodeid or sub.high.nodeid else ""
-    diags.add("OBJ015", Loc(od.source, value_line(sub, sub.low, "lowlimit")),
+    diags.add(OBJ015, Loc(od.source, value_line(sub, sub.low, "lowlimit")),
               f"LowLimit={_show(sub.low)} is above HighLimit={_show(sub.high)}{node}", index, where_sub)
 
 
@@ -481,7 +320,7 @@ def value_ranges(od: ObjectDictionary, diags: Diagnostics, options: LintOptions)
                 if value is None or number(value) is None:
                     continue
                 before = len(diags)
-                _type_range(od, obj.index, addr(obj, sub), sub, keyword, value, dtype, span, "OBJ016", diags)
+                _type_range(od, obj.index, addr(obj, sub), sub, keyword, value, dtype, span, OBJ016, diags)
                 if len(diags) == before:
                     _within_limits(od, obj, sub, keyword, value, span, diags)
 
@@ -497,7 +336,7 @@ def _within_limits(od: ObjectDictionary, obj: Obj, sub: Sub, keyword: str, value
         name = "LowLimit" if below else "HighLimit"
         node = f" for node-id {node_id}" if value.nodeid or limit.nodeid else ""
         side = "below" if below else "above"
-        diags.add("OBJ017", Loc(od.source, value_line(sub, value, keyword)),
+        diags.add(OBJ017, Loc(od.source, value_line(sub, value, keyword)),
                   f"{_LABEL[keyword]}={_show(value)} is {side} {name}={_show(limit)}{node}",
                   obj.index, addr(obj, sub))
         return
@@ -516,10 +355,10 @@ def pdo_mapping_flags(od: ObjectDictionary, diags: Diagnostics, options: LintOpt
                 undirected = sub
             dtype = sub.dtype
             if dtype is not None and dtype.kind == "domain":
-                diags.add("OBJ019", Loc(od.source, sub.line_of("pdomapping")),
+                diags.add(OBJ019, Loc(od.source, sub.line_of("pdomapping")),
                           "is a DOMAIN but has PDOMapping=1", obj.index, addr(obj, sub))
         if undirected is not None:
-            diags.add("OBJ018", Loc(od.source, undirected.line_of("accesstype")),
+            diags.add(OBJ018, Loc(od.source, undirected.line_of("accesstype")),
                       "AccessType=rw with PDOMapping=1: write rwr (TPDO) or rww (RPDO)",
                       obj.index, addr(obj, undirected))
 
@@ -536,7 +375,7 @@ def string_values(od: ObjectDictionary, diags: Diagnostics, options: LintOptions
             if dtype.kind == "vstring":
                 _visible(od, obj, sub, diags)
             elif dtype.kind == "domain" and sub.default is not None and sub.default.text.strip() not in ("", "0"):
-                diags.add("OBJ021", Loc(od.source, default_line(sub)),
+                diags.add(OBJ021, Loc(od.source, default_line(sub)),
                           "DOMAIN has a DefaultValue", obj.index, addr(obj, sub))
 
 
@@ -544,9 +383,9 @@ def _visible(od: ObjectDictionary, obj: Obj, sub: Sub, diags: Diagnostics) -> No
     for keyword, value in (("defaultvalue", sub.default), ("parametervalue", sub.parameter_value)):
         if value is None:
             continue
-        bad = next((c for c in value.text if not " " <= c <= "~"), None)
+        bad = next((c for c in value.text if not " " <= c <= "~" and c != NUL), None)  # NUL: OBJ029
         if bad is not None:
-            diags.add("OBJ020", Loc(od.source, value_line(sub, value, keyword)),
+            diags.add(OBJ020, Loc(od.source, value_line(sub, value, keyword)),
                       f"{_LABEL[keyword]} contains {bad!r} (U+{ord(bad):04X}), not printable ASCII",
                       obj.index, addr(obj, sub))
 
@@ -558,11 +397,11 @@ def file_keywords(od: ObjectDictionary, diags: Diagnostics, options: LintOptions
             if sub.access is None or sub.access not in ACCESS_TYPES:
                 continue
             if sub.upload_file is not None and sub.access not in ("ro", "const"):
-                diags.add("OBJ022", Loc(od.source, sub.line_of("uploadfile")),
+                diags.add(OBJ022, Loc(od.source, sub.line_of("uploadfile")),
                           f"UploadFile with AccessType={sub.access}; an uploaded entry is ro or const",
                           obj.index, addr(obj, sub))
             if sub.download_file is not None and sub.access != "wo":
-                diags.add("OBJ022", Loc(od.source, sub.line_of("downloadfile")),
+                diags.add(OBJ022, Loc(od.source, sub.line_of("downloadfile")),
                           f"DownloadFile with AccessType={sub.access}; a downloaded entry is wo",
                           obj.index, addr(obj, sub))
 
@@ -576,7 +415,7 @@ def obj_flags(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) ->
         holders += [(s.obj_flags, addr(obj, s), s.line_of("objflags")) for s in written_subs(obj)]
         for flags, subindex, line in holders:
             if flags is not None and not 0 <= flags <= 3:
-                diags.add("OBJ023", Loc(od.source, line),
+                diags.add(OBJ023, Loc(od.source, line),
                           f"ObjFlags=0x{flags:X} sets bits other than 0 and 1", obj.index, subindex)
                 break
 
@@ -591,7 +430,7 @@ def dcf_only_content(od: ObjectDictionary, diags: Diagnostics, options: LintOpti
         return
     section = od.section("DeviceComissioning")
     if section is not None:
-        diags.add("OBJ024", Loc(od.source, section.line), f"[{section.name}] in an EDS")
+        diags.add(OBJ024, Loc(od.source, section.line), f"[{section.name}] in an EDS")
     found: dict[str, list[tuple[Obj, Sub]]] = {key: [] for key, _ in _DCF_ONLY}
     for obj in od.sorted_objects():
         for sub in written_subs(obj):
@@ -603,7 +442,7 @@ def dcf_only_content(od: ObjectDictionary, diags: Diagnostics, options: LintOpti
             continue
         obj, sub = found[key][0]
         more = f" (and {len(found[key]) - 1} more entries)" if len(found[key]) > 1 else ""
-        diags.add("OBJ024", Loc(od.source, sub.lines[key]), f"{name} in an EDS{more}",
+        diags.add(OBJ024, Loc(od.source, sub.lines[key]), f"{name} in an EDS{more}",
                   obj.index, addr(obj, sub))
 
 
@@ -617,7 +456,7 @@ def unknown_keywords(od: ObjectDictionary, diags: Diagnostics, options: LintOpti
         for extra, subindex in places:
             for key, fld in extra.items():
                 if key not in KNOWN_KEYS:
-                    diags.add("OBJ025", Loc(od.source, fld.line),
+                    diags.add(OBJ025, Loc(od.source, fld.line),
                               f"'{fld.key}' is not a CiA 306 keyword", obj.index, subindex)
 
 
@@ -635,7 +474,21 @@ def array_elements(od: ObjectDictionary, diags: Diagnostics, options: LintOption
             if first is None:
                 first = sub
             elif sub.data_type != first.data_type:
-                diags.add("OBJ026", Loc(od.source, sub.line_of("datatype")),
+                diags.add(OBJ026, Loc(od.source, sub.line_of("datatype")),
                           f"DataType=0x{sub.data_type:04X} but sub{first.subindex} has "
-                          f"0x{first.data_type:04X}", obj.index, sub.subindex)
+                          f"0x{first.data_type:04X}; generated as a RECORD", obj.index, sub.subindex)
                 break
+
+
+# -- strings the runtime serves as C strings -----------------------------------
+
+@check
+def visible_strings(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    for obj in od.objects.values():
+        for sub in obj.subs.values():
+            value, keyword = value_in_force(od, sub)
+            at_nul = value.text.find(NUL) if value is not None and sub.data_type == VISIBLE_STRING else -1
+            if value is not None and at_nul >= 0:
+                diags.add(OBJ029, Loc(od.source, value_line(sub, value, keyword)),
+                          f"value has a NUL at character {at_nul + 1}; the runtime would end the string there",
+                          obj.index, addr(obj, sub))

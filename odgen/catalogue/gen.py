@@ -1,51 +1,56 @@
-"""GEN: findings of the generator (options file, placement, C names).
-
-Defined here so they are part of the one catalogue; odgen.codegen reports them.
-"""
+"""GEN: findings of the generator (options file, placement, C names)."""
 
 from __future__ import annotations
 
-from ..diagnostics import Severity, define_rule
+from .rule import E, INFO, W, define
 
-E, W, N = Severity.ERROR, Severity.WARNING, Severity.INFO
-
-define_rule(
+GEN001 = define(
     "GEN001", E, "invalid options file", ref="odgen options",
     why="The options file decides placement, hooks and capacities; a key or value odgen does not "
     "understand would silently change the generated dictionary.",
     example='[[entry]]\nmatch = "0x2000"\nstorag = "rom"',
-    fix="Use the keys match, storage, hooks, function, capacity (see docs/generate.md).")
-define_rule(
+    fix="Use the keys match, storage, hooks, function, capacity (see docs/generate.md).",
+    blocks=True)
+
+GEN002 = define(
     "GEN002", W, "options pattern matches nothing", ref="odgen options",
     why="A pattern that selects no entry is usually a typo or a stale line after the description changed.",
     example='[[entry]]\nmatch = "0x2100"   # the file has no 0x2100\nstorage = "ram"',
     fix="Correct the index/sub pattern or remove the entry.")
-define_rule(
+
+GEN003 = define(
     "GEN003", E, "impossible storage class", ref="odgen placement",
     why="A `rom` value lives in FLASH and can never change: it cannot be writable, $NODEID-relative "
     "(resolved at run time) or refreshed by a pre-read hook.",
     example='AccessType=rw\n# options: storage = "rom"',
-    fix="Use ram or persist for the entry, or make it const/ro without hooks.")
-define_rule(
+    fix="Use ram or persist for the entry, or make it const/ro without hooks.",
+    blocks=True)
+
+GEN004 = define(
     "GEN004", E, "C identifier collision", ref="odgen names",
     why="A C name odgen would emit twice does not compile or silently shadows another: entry names are "
     "made unique by their index and sub-index, but a hook function named in the options file can clash "
     "with a generated symbol or the odg_ runtime prefix.",
     example='[[entry]]\nmatch = "0x6200sub1"\nhooks = ["post_write"]\nfunction = "io_node_reset"',
-    fix="Name the hook function outside the dictionary's prefix and outside odg_.")
-define_rule(
+    fix="Name the hook function outside the dictionary's prefix and outside odg_.",
+    blocks=True)
+
+GEN005 = define(
     "GEN005", E, "entry cannot be generated", ref="odgen generate",
     why="The generated runtime handles the CiA 301 basic types 0x0001-0x001B; other data types "
     "(DEFSTRUCT records used as a type, vendor types) have no defined memory layout.",
     example="DataType=0x0040",
-    fix="Describe the entry with a basic data type, or exclude it with an options entry.")
-define_rule(
-    "GEN006", N, "object not generated", ref="odgen generate",
+    fix="Describe the entry with a basic data type, or exclude it with an options entry.",
+    blocks=True)
+
+GEN006 = define(
+    "GEN006", INFO, "object not generated", ref="odgen generate",
     why="Data type definition objects (0x0001-0x025F) describe types, not values; they are not "
     "placed in the generated dictionary.",
     example="[0020]\nParameterName=PDO_COMMUNICATION_PARAMETER\nObjectType=0x6",
     fix="Nothing to do; this is a note.")
-define_rule(
+
+GEN007 = define(
     "GEN007", E, "value block too large", ref="odgen generate",
     why="Sub-entry descriptors are 8 bytes with a 16-bit offset into their storage class's value "
     "block (FLASH, RAM, or one persistence group), so one block holds at most 65535 bytes; C "
@@ -53,4 +58,15 @@ define_rule(
     example="16000 RAM objects with long string defaults",
     fix="Spread the values over storage classes with an options file (constant entries to rom, "
     "parameters into persistence groups, each its own block), shorten string or domain "
-    "capacities, or split the device.")
+    "capacities, or split the device.",
+    blocks=True)
+
+GEN008 = define(
+    "GEN008", E, "dictionary name clashes with the runtime or the C library", ref="odgen names",
+    why="The dictionary's name is the stem of its files (NAME.h, NAME.c) and the prefix of its symbols. "
+    "`odg` or `odg_init` collide with the runtime, `main`, `memcpy` or `size_t` with the C library, "
+    "and `stdint` or `string` make the generated header shadow the standard one: the C does not "
+    "compile. A name taken from the file name is prefixed `od_` instead (`main.eds` gives `od_main`).",
+    example="odgen generate main.eds -o gen --name main",
+    fix="Choose another --name, e.g. prefixed with the product: `--name pump_od`.",
+    blocks=True)

@@ -1,70 +1,79 @@
-"""XML: problems found while reading a CiA 311 XDD/XDC file, reported by the reader.
-
-Only what is about the XML form lives here. Checks on the meaning of the object
-dictionary (ranges, PDO mapping, mandatory objects, ...) run on the model for every
-input format alike.
-"""
+"""XML: XDD/XDC reading (CiA 311), reported by the XML reader."""
 
 from __future__ import annotations
 
-from ..diagnostics import Severity, define_rule
+from .rule import E, W, define
 
-E, W = Severity.ERROR, Severity.WARNING
-
-define_rule(
+XML001 = define(
     "XML001", E, "not well-formed XML", ref="XML 1.0",
     why="The file breaks the XML syntax (unclosed tag, bad character, wrong encoding), so no XML "
     "tool can read it; odgen stops at the first such error.",
     example='<CANopenObject index="1000" name="Device type"',
     fix="Correct the syntax at the reported line; save the file in the encoding its XML "
-    "declaration names (normally UTF-8).")
-define_rule(
+    "declaration names (normally UTF-8).",
+    blocks=True)
+
+XML002 = define(
     "XML002", E, "not a CiA 311 device description", ref="CiA 311 (ISO 15745 container)",
     why="An XDD/XDC starts with `ISO15745ProfileContainer` in the CANopen namespace "
     "`http://www.canopen.org/xml/1.1` (or `/1.0`). Another root, such as a PROFINET GSDML "
     "profile, is a different format and is not read.",
     example='<ISO15745Profile xmlns="http://www.profibus.com/GSDML/2003/11/DeviceProfile">',
     fix='Write the file as CiA 311: `<ISO15745ProfileContainer xmlns="http://www.canopen.org/xml/1.1">` '
-    "holding the device and communication network profiles, or convert it to an EDS.")
-define_rule(
+    "holding the device and communication network profiles, or convert it to an EDS.",
+    blocks=True)
+
+XML003 = define(
     "XML003", E, "document type declaration refused", ref="CiA 311; XML security",
     why="CiA 311 files have no DOCTYPE. A DTD can declare entities that read local files (XXE) or "
     "expand to gigabytes (billion laughs); odgen does not expand them and does not read such files.",
     example='<!DOCTYPE x [<!ENTITY e SYSTEM "file:///etc/passwd">]>',
-    fix="Remove the DOCTYPE declaration and write the text in place of each entity reference.")
-define_rule(
+    fix="Remove the DOCTYPE declaration and write the text in place of each entity reference.",
+    blocks=True)
+
+XML004 = define(
     "XML004", E, "does not match the CiA 311 schema", ref="CiA 311 schema; schemas/cia311-odgen.xsd",
     why="An element or attribute is missing, misplaced, unknown or of the wrong form. Other tools "
     "(CANopenEditor, vendor configurators) validate against the CiA schema and refuse such files "
     "or drop the part.",
     example='<CANopenSubObject subIndex="01" objectType="7" PDOmapping="no"/>  (no name)',
-    fix="Add, move or correct the element or attribute as the message says.")
-define_rule(
+    fix="Add, move or correct the element or attribute as the message says.",
+    blocks=True)
+
+XML005 = define(
     "XML005", E, "attribute value cannot be read", ref="CiA 311 CANopenObjectList",
     why="odgen needs this attribute to place or type the entry: an object without a readable "
     "`index`, or a sub-object without a readable `subIndex`, is skipped; an unreadable `dataType`, "
     "`objectType`, `subNumber`, `objFlags` or `PDOmapping` is left unset.",
     example='<CANopenObject index="10x0" name="Device type" objectType="7"/>',
     fix='Write index as 4 hex digits ("1000"), subIndex as 2 ("0A"), dataType as hex ("0007"), '
-    'objectType and subNumber in decimal ("7") and PDOmapping as no/default/optional/TPDO/RPDO.')
-define_rule(
+    'objectType and subNumber in decimal ("7") and PDOmapping as no/default/optional/TPDO/RPDO.',
+    blocks=True)
+
+XML006 = define(
     "XML006", E, "duplicate object index", ref="CiA 311 CANopenObjectList",
     why="An index may be described once. Tools disagree on which copy wins; odgen keeps the first.",
     example='<CANopenObject index="2000" .../>\n<CANopenObject index="2000" .../>',
-    fix="Remove or renumber one of the objects.")
-define_rule(
+    fix="Remove or renumber one of the objects.",
+    blocks=True)
+
+XML007 = define(
     "XML007", E, "duplicate sub-index", ref="CiA 311 CANopenObjectList",
     why="A sub-index may appear once in an object. odgen keeps the first.",
     example='<CANopenSubObject subIndex="01" .../>\n<CANopenSubObject subIndex="01" .../>',
-    fix="Remove or renumber one of the sub-objects.")
-define_rule(
+    fix="Remove or renumber one of the sub-objects.",
+    blocks=True)
+
+XML008 = define(
     "XML008", E, "uniqueIDRef names no parameter", ref="CiA 311 uniqueIDRef",
     why="An object that takes its data type, access and values from a parameter of the device "
     "profile (as CANopenEditor writes every object) loses them when the parameter does not exist.",
     example='<CANopenObject index="2000" name="Speed" objectType="7" uniqueIDRef="UID_OBJ_2000"/>\n'
     "(no <parameter uniqueID=\"UID_OBJ_2000\">)",
-    fix="Add the parameter to ApplicationProcess/parameterList, or correct the reference.")
-define_rule(
+    fix="Add the parameter to ApplicationProcess/parameterList, or correct the reference.",
+    blocks=True)
+
+XML009 = define(
     "XML009", W, "object attribute and its parameter disagree", ref="CiA 311 uniqueIDRef",
     why="The entry states a data type, access or value both on the CANopenObject and in the "
     "referenced parameter, differently. Tools pick different sides (CANopenEditor the parameter); "
@@ -72,27 +81,33 @@ define_rule(
     example='<CANopenObject index="2000" dataType="0007" uniqueIDRef="P"/>\n'
     '<parameter uniqueID="P"><label lang="en">Speed</label><UINT/></parameter>',
     fix="Make both agree, or state the value in one place only.")
-define_rule(
+
+XML010 = define(
     "XML010", E, "no object dictionary", ref="CiA 311 ApplicationLayers",
     why="The file has no `CANopenObjectList`, so it describes no object and nothing can be "
     "checked or generated.",
     example="<ApplicationLayers>\n  <dummyUsage>...</dummyUsage>\n</ApplicationLayers>",
-    fix="Add the communication network profile with ApplicationLayers/CANopenObjectList.")
-define_rule(
+    fix="Add the communication network profile with ApplicationLayers/CANopenObjectList.",
+    blocks=True)
+
+XML011 = define(
     "XML011", E, "sub-objects on a single-value object", ref="CiA 311 CANopenObject",
     why="A VAR, DOMAIN or DEFTYPE object has exactly one value, described by the CANopenObject "
     "itself; its CANopenSubObject children are ignored.",
     example='<CANopenObject index="2000" objectType="7" ...>\n'
     '  <CANopenSubObject subIndex="00" .../>\n</CANopenObject>',
-    fix='Make the object an ARRAY (objectType="8") or RECORD ("9"), or remove the sub-objects.')
-define_rule(
+    fix='Make the object an ARRAY (objectType="8") or RECORD ("9"), or remove the sub-objects.',
+    blocks=True)
+
+XML012 = define(
     "XML012", W, "attribute value not in CiA 311 notation", ref="CiA 311 CANopenObjectList",
     why="The value is readable, and odgen reads it, but it is not written as CiA 311 says "
     "(for example an EDS word or a 0x prefix); stricter tools refuse it.",
     example='<CANopenObject index="0x2000" ... accessType="rww"/>',
     fix='Write index without 0x ("2000"), accessType as const/ro/wo/rw with PDOmapping="RPDO" '
     '(or "TPDO") for what EDS calls rww (rwr).')
-define_rule(
+
+XML013 = define(
     "XML013", W, "value on an ARRAY/RECORD object ignored", ref="CiA 311 CANopenObject",
     why="An ARRAY or RECORD has no value of its own: data type, access, values and PDO mapping "
     "belong to its sub-objects. CANopenEditor writes the actual values of an XDC's sub-objects "

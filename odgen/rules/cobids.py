@@ -1,0 +1,117 @@
+"""COM: the COB-IDs of one device: the default SDO server's, and no two enabled objects on one CAN-ID.
+
+`odgen lint --network` finds collisions across devices (NET004, NET007); these
+checks look inside one description, with each value in force for the node-ids
+it must work for (rules.common.node_span).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+from ..catalogue.comm import COM016, COM017, COM018
+from ..diagnostics import Diagnostics, Loc, where
+from ..model import Obj, ObjectDictionary, Sub
+from . import LintOptions, check
+from .common import addr, at, node_span, value_in_force, value_line
+
+SDO_SERVER = 0x1200
+INVALID, EXTENDED = 0x80000000, 0x20000000
+READ_ONLY = ("ro", "const")
+
+
+@dataclass(frozen=True)
+class Use:
+    """One enabled object that sends or receives on a COB-ID."""
+
+    name: str
+    index: int
+    sub: int | None
+    line: int
+
+
+def _named_entries(od: ObjectDictionary) -> Iterator[tuple[str, Obj, Sub | None]]:
+    """(name, object, sub-entry) of every COB-ID entry CiA 301 defines (PDO, SDO, EMCY, SYNC, TIME)."""
+    for index in sorted(od.objects):
+        obj = od.objects[index]
+        if 0x1400 <= index <= 0x15FF or 0x1800 <= index <= 0x19FF:
+            kind = "RPDO" if index < 0x1800 else "TPDO"
+            yield f"{kind}{(index & 0x1FF) + 1}", obj, obj.subs.get(1)
+        elif 0x1200 <= index <= 0x12FF:
+            kind = "SDO server" if index < 0x1280 else "SDO client"
+            yield f"{kind} {index & 0x7F} client-to-server", obj, obj.subs.get(1)
+            yield f"{kind} {index & 0x7F} server-to-client", obj, obj.subs.get(2)
+        elif index in (0x1005, 0x1012, 0x1014) and obj.is_var:
+            yield {0x1005: "SYNC", 0x1012: "TIME", 0x1014: "EMCY"}[index], obj, obj.var
+
+
+def _uses(od: ObjectDictionary, node_id: int) -> Iterator[tuple[int, Use]]:
+    """(CAN-ID, use) of every enabled 11-bit COB-ID at `node_id` (heartbeat's 0x700+node-id is COM005's)."""
+    for name, obj, sub in _named_entries(od):
+        if sub is None:
+            continue
+        value, keyword = value_in_force(od, sub)
+        raw = at(value, node_id) if value is not None else None
+        if not isinstance(raw, int) or raw < 0 or raw & (INVALID | EXTENDED) or not raw & 0x7FF:
+            continue  # disabled, a 29-bit identifier, or not yet configured (0)
+        if obj.index in (0x1005, 0x1012) and not raw & 0x40000000:
+            continue  # SYNC/TIME consumed only: receiving what another node produces is the point
+        yield raw & 0x7FF, Use(name, obj.index, addr(obj, sub), value_line(sub, value, keyword))
+
+
+def _collisions(od: ObjectDictionary, node_id: int) -> dict[tuple[Use, Use], int]:
+    """(later use, first use) -> CAN-ID of every two uses that share a CAN-ID at `node_id`."""
+    seen: dict[int, Use] = {}
+    found: dict[tuple[Use, Use], int] = {}
+    for can_id, use in _uses(od, node_id):
+        first = seen.setdefault(can_id, use)
+        if first is not use:
+            found[use, first] = can_id
+    return found
+
+
+@check
+def cob_id_collisions(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    """Collisions at every node-id the file must work for: a fixed COB-ID that meets a `$NODEID` one at a
+    single node-id (a master receiving node 127's TPDO1 on 0x1FF) is left to `lint --network`."""
+    lo, hi = node_span(od, options)
+    found = _collisions(od, lo)
+    if hi != lo:
+        found = {pair: can_id for pair, can_id in found.items() if pair in _collisions(od, hi)}
+    reported: set[Use] = set()
+    for (use, first), can_id in found.items():
+        if use in reported:
+            continue
+        reported.add(use)
+        diags.add(COM016, Loc(od.source, use.line),
+                  f"{use.name} uses CAN-ID 0x{can_id:X}{'' if hi != lo else f' (node-id {lo})'}, as does "
+                  f"{first.name} ({where(first.index, first.sub)})", use.index, use.sub)
+
+
+@check
+def default_sdo_server(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    obj = od.objects.get(SDO_SERVER)
+    if obj is None or obj.is_var:
+        return
+    for subindex, base in ((1, 0x600), (2, 0x580)):
+        sub = obj.subs.get(subindex)
+        if sub is None:
+            continue
+        if sub.access not in READ_ONLY:
+            diags.add(COM017, Loc(od.source, sub.line_of("accesstype")),
+                      f"is {sub.access}; the default SDO server's COB-IDs are read-only", SDO_SERVER, subindex)
+        value, keyword = value_in_force(od, sub)
+        wrong = [n for n in set(node_span(od, options)) if value is not None and at(value, n) != base + n]
+        if value is not None and wrong and not value.error:
+            diags.add(COM017, Loc(od.source, value_line(sub, value, keyword)),
+                      f"COB-ID {value.text.strip()} is not $NODEID+0x{base:X}", SDO_SERVER, subindex)
+
+
+@check
+def error_history_count(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    obj = od.objects.get(0x1003)
+    sub0 = obj.subs.get(0) if obj is not None and not obj.is_var else None
+    if sub0 is not None and sub0.access is not None and not sub0.writable:
+        diags.add(COM018, Loc(od.source, sub0.line_of("accesstype")),
+                  f"is {sub0.access}; writing 0 to it clears the error history", 0x1003, 0)
