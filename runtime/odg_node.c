@@ -4,7 +4,6 @@
  */
 #include <string.h>
 
-#include "odg_impl.h"
 #include "odg_node_impl.h"
 
 /* ---- helpers shared with odg_sdo.c and odg_pdo.c ------------------------------------ */
@@ -70,9 +69,15 @@ static void load_cobs(odg_node_t *n)
     n->emcy_cob = odg_node_get_or_(n, 0x1014, 0, 0x80u + id);
 }
 
-void odg_node_written_(odg_node_t *n, uint16_t index)
+/* A value changed, whoever wrote it (SDO server, application, persistence layer): re-read
+ * what the node caches from the communication entries. */
+static void comm_changed(odg_client_t *self, const odg_ref_t *ref)
 {
-    if (index >= 0x1400u && index < 0x1C00u) {
+    odg_node_t *n = (odg_node_t *)(void *)self; /* the client is the node's first member */
+    uint16_t index = ref != NULL ? ref->entry->index : 0u;
+    if (ref == NULL) {
+        odg_node_reload(n);
+    } else if (index >= 0x1400u && index < 0x1C00u) {
         odg_pdo_load_(n, index >= 0x1800u, (uint16_t)(index & 0x1FFu));
     } else if (index == 0x1005u || index == 0x1014u) {
         load_cobs(n);
@@ -105,6 +110,27 @@ static void stored_values_lost(odg_node_t *n)
     }
 }
 
+/* Reset the dictionary, load the stored values when there is a driver (else every group runs
+ * on defaults), and listen to changes of the communication entries. */
+static odg_abort_t init_dict(odg_node_t *n)
+{
+    const odg_dict_t *d = n->cfg.dict;
+    uint8_t g;
+    odg_abort_t ac = odg_init(d, n->cfg.node_id);
+    if (ac != ODG_OK) {
+        return ac;
+    }
+    if (n->cfg.nv != NULL) {
+        ac = odg_persist_init(&n->persist, d, n->cfg.nv, n->cfg.boot);
+    }
+    for (g = 0; n->cfg.nv == NULL && n->cfg.boot != NULL && g < d->n_groups; g++) {
+        n->cfg.boot[g] = ODG_BOOT_NV_ERROR;
+    }
+    n->client.changed = comm_changed;
+    odg_attach(d, &n->client);
+    return ac;
+}
+
 /* Initialising: drop the SDO transfer, re-read the communication entries (after odg_init for
  * a reset of the node), send the boot-up frame, and go pre-operational. */
 static odg_abort_t boot(odg_node_t *n, int reset_node)
@@ -114,7 +140,7 @@ static odg_abort_t boot(odg_node_t *n, int reset_node)
     n->state = ODG_NMT_INITIALISING;
     odg_sdo_drop_(n);
     if (reset_node) {
-        ac = odg_init(n->cfg.dict, n->cfg.node_id, n->cfg.nv, n->cfg.boot);
+        ac = init_dict(n);
     }
     n->error_register = (uint8_t)odg_node_get_or_(n, 0x1001, 0, 0);
     odg_node_reload(n);
@@ -244,17 +270,11 @@ odg_nmt_state_t odg_node_state(const odg_node_t *node)
     return (odg_nmt_state_t)node->state;
 }
 
-/* 0x1001 is read-only for SDO, so the node stores it directly into its storage block (the
- * runtime's own odg_value_), where a read will find it. */
+/* 0x1001 is read-only for SDO: the node sets it as the application would (odg_set). */
 static void set_error_register(odg_node_t *n, uint8_t reg)
 {
-    odg_ref_t r;
     n->error_register = reg;
-    if (odg_find(n->cfg.dict, 0x1001, 0, &r) == ODG_OK && r.sub->size == 1u &&
-        r.sub->type == ODG_T_UNSIGNED8 && ODG_S_CLASS(r.sub->storage) != ODG_S_ROM &&
-        ODG_S_CLASS(r.sub->storage) != ODG_S_STORE) {
-        odg_store_(odg_value_(n->cfg.dict, r.sub), 1, reg);
-    }
+    (void)odg_set_u8(n->cfg.dict, 0x1001, 0, reg);
 }
 
 odg_abort_t odg_node_emcy(odg_node_t *node, uint16_t code, uint8_t error_register,

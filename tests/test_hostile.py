@@ -92,7 +92,7 @@ static int check(uint16_t index, const uint8_t *want, uint32_t len)
 int main(void)
 {{
     unsigned failed = 0;
-    if (odg_init(&{name}, 5, NULL, NULL) != 0) {{ puts("init failed"); return 1; }}
+    if (odg_init(&{name}, 5) != 0) {{ puts("init failed"); return 1; }}
 {body}
     printf("%u passed, %u failed\\n", passed, failed);
     return failed != 0;

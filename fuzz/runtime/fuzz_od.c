@@ -24,6 +24,7 @@
 static uint8_t nv_booted[sizeof nv_mem];
 static odg_hook_slot_t slots_booted[64];
 static int have_nv;
+static odg_persist_t persist;
 
 static int is_number(const odg_sub_t *s)
 {
@@ -75,7 +76,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     in.n = size;
     if (!have_nv) {
         memset(nv_mem, 0xFF, sizeof nv_mem);
-        REQUIRE(odg_init(&DICT, NID, &nv_ram, NULL) == ODG_OK);
+        REQUIRE(odg_init(&DICT, NID) == ODG_OK && odg_persist_init(&persist, &DICT, &nv_ram, NULL) == ODG_OK);
         memcpy(nv_booted, nv_mem, sizeof nv_mem);
         REQUIRE(DICT.n_hooks <= 64u);
         memcpy(slots_booted, DICT.hook_slots, DICT.n_hooks * sizeof *slots_booted);
@@ -84,7 +85,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     /* every input starts from the same state: NV as after the first boot, hooks as generated */
     memcpy(nv_mem, nv_booted, sizeof nv_mem);
     memcpy(DICT.hook_slots, slots_booted, DICT.n_hooks * sizeof *slots_booted);
-    REQUIRE(odg_init(&DICT, NID, &nv_ram, NULL) == ODG_OK);
+    REQUIRE(odg_init(&DICT, NID) == ODG_OK && odg_persist_init(&persist, &DICT, &nv_ram, NULL) == ODG_OK);
     while (in.n > 0u) {
         uint8_t op = take(&in), buf[80];
         odg_ref_t r;

@@ -88,7 +88,7 @@ static int bytes_eq(const void *a, const void *b, uint32_t n)
     return memcmp(a, b, n) == 0;
 }
 
-/* ---- expected uploads after odg_init(&td, 5, ...) ------------------------------------ */
+/* ---- expected uploads after odg_init(&td, 5) ------------------------------------ */
 
 typedef struct {
     uint16_t index;
@@ -265,16 +265,16 @@ static void test_abort_text(void)
 
 static void test_init(void)
 {
-    odg_boot_status_t boot[2] = {ODG_BOOT_LOADED, ODG_BOOT_LOADED};
-    CHECK_EQ(odg_init(NULL, NODE, NULL, NULL), ODG_ABORT_NO_DICTIONARY);
+    CHECK_EQ(odg_init(NULL, NODE), ODG_ABORT_NO_DICTIONARY);
     td_ram.x2007 = 0;
-    CHECK_EQ(odg_init(&td, NODE, NULL, boot), ODG_OK);
-    CHECK_EQ(boot[0], ODG_BOOT_NV_ERROR); /* no driver: defaults in RAM, NV untouched */
-    CHECK_EQ(boot[1], ODG_BOOT_NV_ERROR);
+    td.state->boot_seen = 0;
+    CHECK_EQ(odg_init(&td, NODE), ODG_OK);
+    /* no driver yet: defaults in RAM, NV untouched */
+    CHECK_EQ(td.state->boot_seen, 1u << ODG_BOOT_NV_ERROR);
     CHECK_EQ(td.state->node_id, NODE);
-    CHECK(td.state->nv == NULL);
+    CHECK(td.state->clients == NULL);
     CHECK_EQ(td_ram.x2007, 0x89ABCDEFu); /* reset ran */
-    CHECK_EQ(odg_init(&td, NODE, NULL, NULL), ODG_OK);
+    CHECK_EQ(odg_init(&td, NODE), ODG_OK);
 }
 
 static void test_find(void)
@@ -817,16 +817,16 @@ static void test_hooks(void)
 static void test_node_id(void)
 {
     CHECK_EQ(wrv(0x1014, 0, 0x1234, 4), ODG_OK);
-    CHECK_EQ(odg_init(&td, 127, NULL, NULL), ODG_OK);
+    CHECK_EQ(odg_init(&td, 127), ODG_OK);
     CHECK_EQ(rdv(0x1014, 0), 0xFFu);
     CHECK_EQ(rdv(0x1400, 1), 0x27Fu);
     CHECK_EQ(rdv(0x2500, 5), 0x17Fu);
-    CHECK_EQ(odg_init(&td, 1, NULL, NULL), ODG_OK);
+    CHECK_EQ(odg_init(&td, 1), ODG_OK);
     CHECK_EQ(rdv(0x1014, 0), 0x81u);
     CHECK_EQ(rdv(0x1400, 1), 0x201u);
     CHECK_EQ(rdv(0x2500, 5), 0x101u);
     CHECK_EQ(rdv(0x1000, 0), 0x00020191u); /* others untouched */
-    CHECK_EQ(odg_init(&td, NODE, NULL, NULL), ODG_OK);
+    CHECK_EQ(odg_init(&td, NODE), ODG_OK);
     CHECK_EQ(rdv(0x1014, 0), 0x85u);
 }
 
@@ -1237,7 +1237,7 @@ static void test_signed_zero(void)
     CHECK_EQ(odg_write(&r, "\x00\x00\x00\x80", 4), ODG_OK); /* REAL32 -0 */
     CHECK_EQ(odg_write(&r, "\x01\x00\x00\x80", 4), ODG_ABORT_VALUE_LOW);
     fresh();
-    CHECK_EQ(odg_init(&td, NODE, NULL, NULL), ODG_OK);
+    CHECK_EQ(odg_init(&td, NODE), ODG_OK);
 }
 
 int main(void)
@@ -1257,7 +1257,7 @@ int main(void)
     test_node_id();
     test_mapping();
     test_signed_zero();
-    CHECK_EQ(odg_init(&td, NODE, NULL, NULL), ODG_OK);
+    CHECK_EQ(odg_init(&td, NODE), ODG_OK);
     CHECK_EQ(odg_verify(&td, NULL), ODG_OK);
     return done();
 }
