@@ -88,7 +88,7 @@ static int bytes_eq(const void *a, const void *b, uint32_t n)
     return memcmp(a, b, n) == 0;
 }
 
-/* ---- expected uploads after odg_init(&td, 5) ------------------------------------ */
+/* ---- expected uploads after odg_init(&td, 5) ----------------------------------------- */
 
 typedef struct {
     uint16_t index;
