@@ -2,10 +2,11 @@
 built for several grid points, all checked in one tools/vcan/run.py session.
 
 Each node program is the generated dictionary + the glue (runtime/profiles/ds401.c, configured by
-the generated ds401_app.h) + the example's sim.c (outputs wired to inputs), built by odgen.roundtrip.build like `odgen node`. Over vcan,
-python canopen uploads the profile objects by SDO (expected: the description's defaults) and
-sends RPDO1 (0x6200) / RPDO2 (analog outputs), which must come back as change-of-state TPDO1
-(0x6000) / TPDO2 (analog inputs) with the looped-back values.
+the generated ds401_app.h) + the example's sim.c (outputs wired to inputs), built by
+odgen.roundtrip.build like `odgen node`. Over vcan, python canopen uploads the profile objects by
+SDO (expected: the description's defaults) and sends RPDO1 (0x6200) / RPDO2 (analog outputs),
+which must come back as change-of-state TPDO1 (0x6000) / TPDO2 (analog inputs) with the
+looped-back values.
 """
 
 from __future__ import annotations
