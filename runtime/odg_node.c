@@ -74,10 +74,13 @@ static void load_cobs(odg_node_t *n)
 static void comm_changed(odg_client_t *self, const odg_ref_t *ref)
 {
     odg_node_t *n = (odg_node_t *)(void *)self; /* the client is the node's first member */
-    uint16_t index = ref != NULL ? ref->entry->index : 0u;
+    uint16_t index;
     if (ref == NULL) {
         odg_node_reload(n);
-    } else if (index >= 0x1400u && index < 0x1C00u) {
+        return;
+    }
+    index = ref->entry->index;
+    if (index >= 0x1400u && index < 0x1C00u) {
         odg_pdo_load_(n, index >= 0x1800u, (uint16_t)(index & 0x1FFu));
     } else if (index == 0x1005u || index == 0x1014u) {
         load_cobs(n);

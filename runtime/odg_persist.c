@@ -196,7 +196,47 @@ static odg_abort_t store(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t
     return ODG_OK;
 }
 
-static odg_abort_t command(odg_client_t *self, const odg_dict_t *d, uint8_t sub, int restore);
+/* Make the next boot of group `g` use the defaults: erase both slots. */
+static odg_abort_t erase(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
+{
+    const odg_group_t *gr;
+    uint8_t hdr[2][HDR];
+    int k;
+    if (nv == NULL || g >= d->n_groups) {
+        return ODG_ABORT_DATA_STORE;
+    }
+    gr = &d->groups[g];
+    k = newest(nv, gr, hdr);
+    if (k == -2) {
+        return ODG_ABORT_HARDWARE;
+    }
+    /* the older slot first: a power cut in between leaves the newest image (nothing
+     * happened), never the older one */
+    k = k == 0;
+    if (nv->erase(nv->ctx, slot_addr(gr, k), ODG_PERSIST_SLOT_SIZE(gr->size)) != 0 ||
+        nv->erase(nv->ctx, slot_addr(gr, !k), ODG_PERSIST_SLOT_SIZE(gr->size)) != 0) {
+        return ODG_ABORT_HARDWARE;
+    }
+    return ODG_OK;
+}
+
+/* 0x1010 / 0x1011 sub `sub`, handed over by the core: sub 1 acts on every group, another on
+ * the groups with that store_sub; DATA_STORE when none has it. */
+static odg_abort_t command(odg_client_t *self, const odg_dict_t *d, uint8_t sub, int restore)
+{
+    const odg_nv_driver_t *nv = ((const odg_persist_t *)(const void *)self)->nv;
+    odg_abort_t ac = ODG_ABORT_DATA_STORE;
+    uint8_t g;
+    for (g = 0; g < d->n_groups; g++) {
+        if (sub == 1u || d->groups[g].store_sub == sub) {
+            ac = restore ? erase(d, nv, g) : store(d, nv, g);
+            if (ac != ODG_OK) {
+                break;
+            }
+        }
+    }
+    return ac;
+}
 
 /* The driver of the persistence layer attached to `d` (the client with its `command`; the
  * client is the first member of odg_persist_t), or NULL. */
@@ -216,44 +256,7 @@ odg_abort_t odg_persist_store(const odg_dict_t *dict, uint8_t g)
 
 odg_abort_t odg_persist_restore(const odg_dict_t *dict, uint8_t g)
 {
-    const odg_nv_driver_t *nv = driver(dict);
-    const odg_group_t *gr;
-    uint8_t hdr[2][HDR];
-    int k;
-    if (nv == NULL || g >= dict->n_groups) {
-        return ODG_ABORT_DATA_STORE;
-    }
-    gr = &dict->groups[g];
-    k = newest(nv, gr, hdr);
-    if (k == -2) {
-        return ODG_ABORT_HARDWARE;
-    }
-    /* the older slot first: a power cut in between leaves the newest image (nothing
-     * happened), never the older one */
-    k = k == 0;
-    if (nv->erase(nv->ctx, slot_addr(gr, k), ODG_PERSIST_SLOT_SIZE(gr->size)) != 0 ||
-        nv->erase(nv->ctx, slot_addr(gr, !k), ODG_PERSIST_SLOT_SIZE(gr->size)) != 0) {
-        return ODG_ABORT_HARDWARE;
-    }
-    return ODG_OK;
-}
-
-/* 0x1010 / 0x1011 sub `sub`: sub 1 acts on every group, another on the groups with that
- * store_sub; DATA_STORE when none has it. */
-static odg_abort_t command(odg_client_t *self, const odg_dict_t *d, uint8_t sub, int restore)
-{
-    odg_abort_t ac = ODG_ABORT_DATA_STORE;
-    uint8_t g;
-    (void)self;
-    for (g = 0; g < d->n_groups; g++) {
-        if (sub == 1u || d->groups[g].store_sub == sub) {
-            ac = restore ? odg_persist_restore(d, g) : odg_persist_store(d, g);
-            if (ac != ODG_OK) {
-                break;
-            }
-        }
-    }
-    return ac;
+    return erase(dict, driver(dict), g);
 }
 
 /* Defaults into the mirror of group `g`, with the node-id added to $NODEID values (what the
