@@ -431,6 +431,35 @@ static void test_application_writes(void)
     CHECK_EQ(count_id(TPDO1), 0);
 }
 
+/* An application's client stays attached through an NMT reset of the node. */
+static unsigned app_heard;
+
+static void app_changed(odg_client_t *self, const odg_ref_t *ref)
+{
+    (void)self, (void)ref;
+    app_heard++;
+}
+
+static void test_application_client(void)
+{
+    static odg_client_t app;
+    operational();
+    app.changed = app_changed;
+    odg_attach(&pdo_node, &app);
+    CHECK_EQ(odg_set_u8(&pdo_node, 0x2000, 0, 1), ODG_OK);
+    CHECK_EQ(app_heard, 1);
+    nmt(ODG_NMT_RESET_NODE, NID);
+    CHECK_EQ(odg_set_u8(&pdo_node, 0x2000, 0, 2), ODG_OK);
+    CHECK_EQ(app_heard, 2);
+    /* and the node itself still hears its parameters */
+    nmt(ODG_NMT_START, NID);
+    CHECK_EQ(odg_set_u32(&pdo_node, 0x1800, 1, INVALID | TPDO1), ODG_OK);
+    clear();
+    pdo_node_x2000_u8_value = 0x45;
+    run_ms(10);
+    CHECK_EQ(count_id(TPDO1), 0);
+}
+
 int main(void)
 {
     test_only_when_operational();
@@ -440,5 +469,6 @@ int main(void)
     test_remap();
     test_emcy_and_resets();
     test_application_writes();
+    test_application_client();
     return done();
 }
