@@ -599,7 +599,8 @@ static odg_abort_t typed(const odg_dict_t *d, uint16_t index, uint8_t sub, uint3
     return ODG_OK;
 }
 
-odg_abort_t odg_get(const odg_dict_t *dict, uint16_t index, uint8_t sub, void *value, uint32_t size)
+odg_abort_t odg_get(const odg_dict_t *dict, uint16_t index, uint8_t sub, void *value,
+                    uint32_t size)
 {
     odg_ref_t r;
     odg_abort_t ac = typed(dict, index, sub, size, &r);

@@ -339,7 +339,8 @@ odg_abort_t odg_verify(const odg_dict_t *dict, uint16_t *bad_index);
  * application's own accesses: no access rights, limits or hooks apply (so it can set a
  * read-only input or 0x1001), and odg_set tells the clients (odg_changed). odg_set aborts
  * READ_ONLY for a constant (ROM) value. */
-odg_abort_t odg_get(const odg_dict_t *dict, uint16_t index, uint8_t sub, void *value, uint32_t size);
+odg_abort_t odg_get(const odg_dict_t *dict, uint16_t index, uint8_t sub, void *value,
+                    uint32_t size);
 odg_abort_t odg_set(const odg_dict_t *dict, uint16_t index, uint8_t sub, const void *value,
                     uint32_t size);
 
