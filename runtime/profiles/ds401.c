@@ -19,15 +19,6 @@ static uint8_t get_u8(const odg_dict_t *d, uint16_t index, uint8_t sub, uint8_t 
     return odg_get_u8(d, index, sub, &v) == ODG_OK ? v : absent;
 }
 
-static odg_abort_t hook_range(const odg_dict_t *d, uint16_t index, uint32_t n, odg_hook_fn fn)
-{
-    uint32_t s;
-    odg_abort_t ac = ODG_OK;
-    for (s = 1; s <= n && ac == ODG_OK; s++) {
-        ac = odg_hook_register(d, index, (uint8_t)s, fn, NULL);
-    }
-    return ac;
-}
 
 #if DS401_DI_GROUPS > 0 || DS401_AI_CHANNELS > 0
 
@@ -72,14 +63,6 @@ static void refresh_inputs(const odg_dict_t *d)
     }
 }
 
-static odg_abort_t inputs_hook(const odg_ref_t *ref, odg_hook_kind_t kind, const void *data,
-                               uint32_t len, void *ctx)
-{
-    (void)kind, (void)data, (void)len, (void)ctx;
-    refresh_inputs(ref->dict);
-    return ODG_OK;
-}
-
 /* Lines whose change is an event: any change under 0x6006, rising under 0x6007, falling under
  * 0x6008, all only while 0x6005 is TRUE. */
 static uint32_t digital_events(const odg_dict_t *d)
@@ -118,14 +101,6 @@ static void apply_outputs(const odg_dict_t *d)
     }
     ds401_write_outputs(do_pins, (uint16_t)DS401_DO_GROUPS);
 }
-
-static odg_abort_t outputs_hook(const odg_ref_t *ref, odg_hook_kind_t kind, const void *data,
-                                uint32_t len, void *ctx)
-{
-    (void)kind, (void)data, (void)len, (void)ctx;
-    apply_outputs(ref->dict);
-    return ODG_OK;
-}
 #endif
 
 #if DS401_AI_CHANNELS > 0
@@ -147,14 +122,6 @@ static void refresh_analog(const odg_dict_t *d)
     for (c = 0; c < DS401_AI_CHANNELS; c++) {
         (void)odg_set(d, DS401_AI_INDEX, (uint8_t)(c + 1u), &ai_now[c], (uint32_t)sizeof ai_now[c]);
     }
-}
-
-static odg_abort_t analog_hook(const odg_ref_t *ref, odg_hook_kind_t kind, const void *data,
-                               uint32_t len, void *ctx)
-{
-    (void)kind, (void)data, (void)len, (void)ctx;
-    refresh_analog(ref->dict);
-    return ODG_OK;
 }
 
 /* One channel against 0x6421 (bit 0 upper limit exceeded, 1 below the lower limit, 2 changed
@@ -206,46 +173,80 @@ static void apply_analog(const odg_dict_t *d)
     }
     ds401_write_analog(ao_values, (uint16_t)DS401_AO_CHANNELS);
 }
-
-static odg_abort_t analog_out_hook(const odg_ref_t *ref, odg_hook_kind_t kind, const void *data,
-                                   uint32_t len, void *ctx)
-{
-    (void)kind, (void)data, (void)len, (void)ctx;
-    apply_analog(ref->dict);
-    return ODG_OK;
-}
 #endif
 
 /* ---- interface ------------------------------------------------------------------------ */
+
+/* The one hook of the process data: inputs refreshed before a read (PRE_READ on 0x6000 and the
+ * analog inputs), outputs applied after a write (POST_WRITE on 0x6200, 0x6202 and the analog
+ * outputs), as `odgen profile ds401 --generate` declares them. */
+static odg_abort_t io_hook(const odg_ref_t *ref, odg_hook_kind_t kind, const void *data,
+                           uint32_t len, void *ctx)
+{
+    uint16_t index = ref->entry->index;
+    (void)kind, (void)data, (void)len, (void)ctx, (void)index;
+#if DS401_DI_GROUPS > 0
+    if (index == 0x6000u) {
+        refresh_inputs(ref->dict);
+    }
+#endif
+#if DS401_DO_GROUPS > 0
+    if (index == 0x6200u || index == 0x6202u) {
+        apply_outputs(ref->dict);
+    }
+#endif
+#if DS401_AI_CHANNELS > 0
+    if (index == DS401_AI_INDEX) {
+        refresh_analog(ref->dict);
+    }
+#endif
+#if DS401_AO_CHANNELS > 0
+    if (index == DS401_AO_INDEX) {
+        apply_analog(ref->dict);
+    }
+#endif
+    return ODG_OK;
+}
+
+/* io_hook for sub-indices 1..n of `index`. */
+static odg_abort_t hook_range(const odg_dict_t *d, uint16_t index, uint32_t n)
+{
+    uint32_t s;
+    odg_abort_t ac = ODG_OK;
+    for (s = 1; s <= n && ac == ODG_OK; s++) {
+        ac = odg_hook_register(d, index, (uint8_t)s, io_hook, NULL);
+    }
+    return ac;
+}
 
 odg_abort_t ds401_init(odg_node_t *node)
 {
     const odg_dict_t *d = node->cfg.dict;
     odg_abort_t ac = ODG_OK;
 #if DS401_DI_GROUPS > 0
-    ac = hook_range(d, 0x6000, DS401_DI_GROUPS, inputs_hook);
+    ac = hook_range(d, 0x6000, DS401_DI_GROUPS);
     refresh_inputs(d);
     memcpy(di_last, di_now, sizeof di_last);
 #endif
 #if DS401_DO_GROUPS > 0
     if (ac == ODG_OK) {
-        ac = hook_range(d, 0x6200, DS401_DO_GROUPS, outputs_hook);
+        ac = hook_range(d, 0x6200, DS401_DO_GROUPS);
     }
     if (ac == ODG_OK) {
-        ac = hook_range(d, 0x6202, DS401_DO_GROUPS, outputs_hook);
+        ac = hook_range(d, 0x6202, DS401_DO_GROUPS);
     }
     apply_outputs(d);
 #endif
 #if DS401_AI_CHANNELS > 0
     if (ac == ODG_OK) {
-        ac = hook_range(d, DS401_AI_INDEX, DS401_AI_CHANNELS, analog_hook);
+        ac = hook_range(d, DS401_AI_INDEX, DS401_AI_CHANNELS);
     }
     refresh_analog(d);
     memcpy(ai_base, ai_now, sizeof ai_base);
 #endif
 #if DS401_AO_CHANNELS > 0
     if (ac == ODG_OK) {
-        ac = hook_range(d, DS401_AO_INDEX, DS401_AO_CHANNELS, analog_out_hook);
+        ac = hook_range(d, DS401_AO_INDEX, DS401_AO_CHANNELS);
     }
     apply_analog(d);
 #endif
