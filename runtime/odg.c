@@ -6,8 +6,9 @@
  * built byte by byte (little-endian), never by copying a native multi-byte integer, so the
  * code is endian-portable. All numeric types share one path: a value is widened to 64 bits,
  * packed to / unpacked from `size` wire bytes, sign-extended for signed types.
- * Build options: -DODG_NO_ABORT_TEXT (odg_abort_text returns ""), -DODG_NO_PERSIST (no
- * odg_persist.c: 0x1010/0x1011 abort with DATA_STORE, odg_init ignores `nv`).
+ * Build option: -DODG_NO_ABORT_TEXT (odg_abort_text returns "").
+ * Layers above (persistence, the node) attach as odg_client_t: the core calls them through
+ * their function pointers and knows nothing else of them.
  */
 #include <float.h>
 #include <string.h>
@@ -406,28 +407,38 @@ static odg_abort_t check(const odg_ref_t *r, uint64_t v)
     return v < limit_key(s, l->low) ? ODG_ABORT_VALUE_LOW : ODG_OK;
 }
 
-/* 0x1010 / 0x1011 after the command word was checked: `sub` 1 acts on every group, another
- * on the groups with that store_sub. */
-static odg_abort_t command(const odg_ref_t *r)
+/* ---- clients ------------------------------------------------------------------------------ */
+
+void odg_attach(const odg_dict_t *dict, odg_client_t *client)
 {
-    const odg_dict_t *d = r->dict;
-    int restore = (r->sub->storage & ODG_S_RESTORE_FLAG) != 0;
-    odg_abort_t ac = ODG_ABORT_DATA_STORE; /* also when no group matches */
-#ifndef ODG_NO_PERSIST
-    uint8_t g;
-    for (g = 0; g < d->n_groups; g++) {
-        if (r->sub->sub == 1u || d->groups[g].store_sub == r->sub->sub) {
-            ac = restore ? odg_persist_restore(d, g) : odg_persist_store(d, g);
-            if (ac != ODG_OK) {
-                break;
-            }
+    odg_client_t **p = &dict->state->clients;
+    while (*p != NULL && *p != client) {
+        p = &(*p)->next;
+    }
+    if (*p == NULL) {
+        client->next = NULL;
+        *p = client;
+    }
+}
+
+void odg_changed(const odg_dict_t *dict, const odg_ref_t *ref)
+{
+    odg_client_t *c;
+    for (c = dict->state->clients; c != NULL; c = c->next) {
+        if (c->changed != NULL) {
+            c->changed(c, ref);
         }
     }
-#else
-    (void)d;
-    (void)restore;
-#endif
-    return ac;
+}
+
+/* The client that answers 0x1010/0x1011 commands, or NULL. */
+static odg_client_t *storage(const odg_dict_t *d)
+{
+    odg_client_t *c = d->state->clients;
+    while (c != NULL && c->command == NULL) {
+        c = c->next;
+    }
+    return c;
 }
 
 /* Store `len` wire bytes at wire offset `off` of a string or domain. */
@@ -457,6 +468,7 @@ static odg_abort_t finish(const odg_ref_t *r, uint32_t total)
         uint32_t w = s->type == ODG_T_UNICODE_STRING ? 2u : 1u;
         memset(odg_value_(r->dict, s) + total, 0, s->size + w - total);
     }
+    odg_changed(r->dict, r);
     return hook(r, ODG_HOOK_POST_WRITE, NULL, 0);
 }
 
@@ -478,7 +490,7 @@ odg_abort_t odg_write(const odg_ref_t *ref, const void *buf, uint32_t len)
     }
     v = unpack(s, b);
     if (ODG_S_CLASS(s->storage) == ODG_S_STORE) {
-        ac = (v == ((s->storage & ODG_S_RESTORE_FLAG) ? CMD_LOAD : CMD_SAVE) && ref->dict->state->nv)
+        ac = (v == ((s->storage & ODG_S_RESTORE_FLAG) ? CMD_LOAD : CMD_SAVE) && storage(ref->dict))
                  ? ODG_OK
                  : ODG_ABORT_DATA_STORE;
     } else {
@@ -488,11 +500,17 @@ odg_abort_t odg_write(const odg_ref_t *ref, const void *buf, uint32_t len)
         return ac;
     }
     if (ODG_S_CLASS(s->storage) == ODG_S_STORE) {
-        if ((ac = command(ref)) != ODG_OK) {
+        odg_client_t *c = storage(ref->dict);
+        if (c == NULL) {
+            return ODG_ABORT_DATA_STORE; /* the PRE_WRITE hook detached it */
+        }
+        ac = c->command(c, ref->dict, s->sub, (s->storage & ODG_S_RESTORE_FLAG) != 0u);
+        if (ac != ODG_OK) {
             return ac;
         }
     } else {
         odg_store_(odg_value_(ref->dict, s), s->size, v);
+        odg_changed(ref->dict, ref);
     }
     return hook(ref, ODG_HOOK_POST_WRITE, NULL, 0);
 }
@@ -546,32 +564,74 @@ odg_abort_t odg_check_mapping(const odg_dict_t *dict, uint32_t mapping, uint8_t 
 
 /* ---- init -------------------------------------------------------------------------------- */
 
-odg_abort_t odg_init(const odg_dict_t *dict, uint8_t node_id, const odg_nv_driver_t *nv,
-                     odg_boot_status_t *boot)
+odg_abort_t odg_init(const odg_dict_t *dict, uint8_t node_id)
 {
-    uint8_t g;
     if (dict == NULL || dict->state == NULL) {
         return ODG_ABORT_NO_DICTIONARY;
     }
-    /* the generated reset reads the node-id from the state, and stores need the driver */
+    /* the generated reset reads the node-id from the state */
     dict->state->node_id = node_id;
-#ifdef ODG_NO_PERSIST
-    nv = NULL;
-#endif
-    dict->state->nv = nv;
+    dict->state->clients = NULL;
+    /* no stored values yet: every group runs on defaults until odg_persist_init */
+    dict->state->boot_seen = (uint8_t)(dict->n_groups > 0u ? 1u << ODG_BOOT_NV_ERROR : 0u);
     if (dict->reset) {
         dict->reset(dict);
     }
-#ifndef ODG_NO_PERSIST
-    if (nv != NULL) {
-        return odg_persist_boot(dict, nv, boot);
+    return ODG_OK;
+}
+
+/* ---- typed access ---------------------------------------------------------------------------- */
+
+/* The number at index/sub whose C type is `size` bytes: `ref` filled, its value's address. */
+static odg_abort_t typed(const odg_dict_t *d, uint16_t index, uint8_t sub, uint32_t size,
+                         odg_ref_t *r)
+{
+    uint32_t n;
+    odg_abort_t ac = odg_find(d, index, sub, r);
+    if (ac != ODG_OK) {
+        return ac;
     }
-#endif
-    dict->state->boot_seen = (uint8_t)(dict->n_groups > 0u ? 1u << ODG_BOOT_NV_ERROR : 0u);
-    for (g = 0; boot != NULL && g < dict->n_groups; g++) {
-        boot[g] = ODG_BOOT_NV_ERROR; /* no driver: defaults in RAM, NV untouched */
+    n = r->sub->size;
+    if (IS_STREAM(r->sub) || ODG_S_CLASS(r->sub->storage) == ODG_S_STORE ||
+        size != (n <= 2u ? n : (n <= 4u ? 4u : 8u))) {
+        return ODG_ABORT_TYPE_LENGTH;
     }
     return ODG_OK;
+}
+
+odg_abort_t odg_get(const odg_dict_t *dict, uint16_t index, uint8_t sub, void *value,
+                    uint32_t size)
+{
+    odg_ref_t r;
+    odg_abort_t ac = typed(dict, index, sub, size, &r);
+    if (ac == ODG_OK) {
+        memcpy(value, odg_value_(dict, r.sub), size);
+    }
+    return ac;
+}
+
+odg_abort_t odg_set(const odg_dict_t *dict, uint16_t index, uint8_t sub, const void *value,
+                    uint32_t size)
+{
+    odg_ref_t r;
+    odg_abort_t ac = typed(dict, index, sub, size, &r);
+    if (ac == ODG_OK && ODG_S_CLASS(r.sub->storage) == ODG_S_ROM) {
+        ac = ODG_ABORT_READ_ONLY;
+    }
+    if (ac == ODG_OK) {
+        memcpy(odg_value_(dict, r.sub), value, size);
+        odg_changed(dict, &r);
+    }
+    return ac;
+}
+
+void *odg_ptr(const odg_dict_t *dict, uint16_t index, uint8_t sub, uint32_t size)
+{
+    odg_ref_t r;
+    if (typed(dict, index, sub, size, &r) != ODG_OK || ODG_S_CLASS(r.sub->storage) == ODG_S_ROM) {
+        return NULL;
+    }
+    return odg_value_(dict, r.sub);
 }
 
 /* ---- self-check ------------------------------------------------------------------------------ */

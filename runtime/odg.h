@@ -212,7 +212,7 @@ typedef struct odg_group {
     ((((uint32_t)(size)) + ODG_PERSIST_HEADER_SIZE + ((uint32_t)ODG_PERSIST_ALIGN - 1u)) \
      & ~((uint32_t)ODG_PERSIST_ALIGN - 1u))
 
-/* Outcome of odg_persist_boot for one group. */
+/* Outcome of odg_persist_init for one group. */
 typedef enum odg_boot_status {
     ODG_BOOT_LOADED = 0,     /* newest valid slot with a matching signature was loaded */
     ODG_BOOT_DEFAULTS = 1,   /* both slots erased (first boot, restore requested): defaults, written to NV */
@@ -228,11 +228,29 @@ typedef enum odg_boot_status {
 
 /* ---- the dictionary ------------------------------------------------------------- */
 
+struct odg_dict;
+struct odg_ref;
+
+/* A layer that attaches to a dictionary at run time (odg_attach): the persistence layer
+ * handles the 0x1010/0x1011 commands, the node layer re-reads its communication parameters
+ * when they change. Embed it in the layer's own state; either function may be NULL. */
+typedef struct odg_client {
+    struct odg_client *next; /* set by odg_attach */
+    /* A "save" written to 0x1010 sub `sub` (restore = 0) or a "load" to 0x1011 (restore = 1).
+     * The first client with a `command` answers; without one the write aborts DATA_STORE. */
+    odg_abort_t (*command)(struct odg_client *self, const struct odg_dict *dict, uint8_t sub,
+                           int restore);
+    /* A value was changed by odg_write, odg_write_part, odg_set or odg_changed: `ref`, or
+     * NULL when any value may have changed (values loaded from NV, say). */
+    void (*changed)(struct odg_client *self, const struct odg_ref *ref);
+} odg_client_t;
+
 typedef struct odg_state { /* pointer first: no padding between the bytes */
-    const odg_nv_driver_t *nv;  /* set by odg_init; NULL: 0x1010/0x1011 abort with DATA_STORE */
+    odg_client_t *clients;      /* attached layers; odg_init detaches them all */
     uint8_t node_id;            /* set by odg_init before dict->reset runs */
-    uint8_t boot_seen;          /* set by odg_init: bit (1 << status) for each odg_boot_status_t
-                                 * a persistence group reported (0 without groups) */
+    uint8_t boot_seen;          /* bit (1 << status) for each odg_boot_status_t a persistence
+                                 * group reported: odg_init sets NV_ERROR for every group (no
+                                 * driver yet), odg_persist_init the statuses it found */
 } odg_state_t;
 
 typedef struct odg_dict {
@@ -266,13 +284,17 @@ typedef struct odg_ref {
 
 /* ---- API ---------------------------------------------------------------------------- */
 
-/* Store `node_id` and `nv` in dict->state, then dict->reset(dict): RAM values and group
- * mirrors to their defaults with the node-id added to $NODEID entries. Then, when `nv` is
- * given, load each persistence group from NV; a group without a valid image keeps the
- * mirror reset() produced and writes it to NV. Status per group goes into `boot` (may be
- * NULL; it holds dict->n_groups entries). */
-odg_abort_t odg_init(const odg_dict_t *dict, uint8_t node_id, const odg_nv_driver_t *nv,
-                     odg_boot_status_t *boot);
+/* Store `node_id` in dict->state, detach every client, then dict->reset(dict): RAM values
+ * and group mirrors to their defaults with the node-id added to $NODEID entries. Loading
+ * stored values is the persistence layer's part (odg_persist_init, after this). */
+odg_abort_t odg_init(const odg_dict_t *dict, uint8_t node_id);
+
+/* Attach `client` (see odg_client_t); attaching one already attached does nothing. */
+void odg_attach(const odg_dict_t *dict, odg_client_t *client);
+
+/* Tell every client that the value at `ref` (NULL: any value) changed, after the application
+ * wrote it through an odg_ptr pointer or behind the dictionary's back. */
+void odg_changed(const odg_dict_t *dict, const struct odg_ref *ref);
 
 /* Locate index/sub: ODG_ABORT_NO_OBJECT or ODG_ABORT_NO_SUB when absent. */
 odg_abort_t odg_find(const odg_dict_t *dict, uint16_t index, uint8_t sub, odg_ref_t *ref);
@@ -309,15 +331,74 @@ odg_abort_t odg_check_mapping(const odg_dict_t *dict, uint32_t mapping, uint8_t 
  * hook map sorted. ODG_OK or ODG_ABORT_INTERNAL; `*bad_index` names the first bad entry. */
 odg_abort_t odg_verify(const odg_dict_t *dict, uint16_t *bad_index);
 
+/* ---- typed access for the application ------------------------------------------------ */
+
+/* Numbers by index and sub-index, in the C type that holds them (odg.h, "How each type is
+ * held"): `size` must be that type's size (sizeof(uint32_t) for UNSIGNED24, ...), else
+ * ODG_ABORT_TYPE_LENGTH; strings and domains go through odg_read / odg_write. These are the
+ * application's own accesses: no access rights, limits or hooks apply (so it can set a
+ * read-only input or 0x1001), and odg_set tells the clients (odg_changed). odg_set aborts
+ * READ_ONLY for a constant (ROM) value. */
+odg_abort_t odg_get(const odg_dict_t *dict, uint16_t index, uint8_t sub, void *value,
+                    uint32_t size);
+odg_abort_t odg_set(const odg_dict_t *dict, uint16_t index, uint8_t sub, const void *value,
+                    uint32_t size);
+
+/* Where a number lives in RAM, for hot paths; NULL when absent, of another size, or constant.
+ * Writes through it are not seen by the clients until odg_changed. */
+void *odg_ptr(const odg_dict_t *dict, uint16_t index, uint8_t sub, uint32_t size);
+
+/* Typed forms: odg_get_u32(&od, 0x1017, 0, &v), odg_set_u8(&od, 0x1001, 0, 0x01),
+ * odg_ptr_i16(&od, 0x6401, 1). */
+#define ODG_TYPED_(name, ctype)                                                              \
+    static inline odg_abort_t odg_get_##name(const odg_dict_t *d, uint16_t i, uint8_t s,      \
+                                             ctype *v)                                       \
+    {                                                                                        \
+        return odg_get(d, i, s, v, (uint32_t)sizeof *v);                                     \
+    }                                                                                        \
+    static inline odg_abort_t odg_set_##name(const odg_dict_t *d, uint16_t i, uint8_t s,      \
+                                             ctype v)                                        \
+    {                                                                                        \
+        return odg_set(d, i, s, &v, (uint32_t)sizeof v);                                     \
+    }                                                                                        \
+    static inline ctype *odg_ptr_##name(const odg_dict_t *d, uint16_t i, uint8_t s)          \
+    {                                                                                        \
+        return (ctype *)odg_ptr(d, i, s, (uint32_t)sizeof(ctype));                           \
+    }
+ODG_TYPED_(u8, uint8_t)
+ODG_TYPED_(u16, uint16_t)
+ODG_TYPED_(u32, uint32_t)
+ODG_TYPED_(u64, uint64_t)
+ODG_TYPED_(i8, int8_t)
+ODG_TYPED_(i16, int16_t)
+ODG_TYPED_(i32, int32_t)
+ODG_TYPED_(i64, int64_t)
+ODG_TYPED_(r32, float)
+ODG_TYPED_(r64, double)
+#undef ODG_TYPED_
+
 /* ---- persistence (odg_persist.c) --------------------------------------------------- */
+
+/* The persistence layer's state: a client of the dictionary (it answers 0x1010/0x1011) and
+ * the NV driver. Lives as long as it is attached (until the next odg_init). */
+typedef struct odg_persist {
+    odg_client_t client;
+    const odg_nv_driver_t *nv;
+} odg_persist_t;
+
+/* After odg_init: attach `p` with driver `nv` to the dictionary, then load every group from
+ * NV; a group without a valid image keeps the mirror odg_init's reset produced and writes it
+ * to NV. Status per group goes into `boot` (may be NULL; dict->n_groups entries) and
+ * dict->state->boot_seen; then the clients hear odg_changed(NULL). HARDWARE when a group's NV
+ * failed (that group runs on defaults); DATA_STORE, nothing attached, when `nv` is NULL. */
+odg_abort_t odg_persist_init(odg_persist_t *p, const odg_dict_t *dict, const odg_nv_driver_t *nv,
+                             odg_boot_status_t *boot);
 
 /* Bytes one slot of a group of `size` bytes takes in NV: ODG_PERSIST_SLOT_SIZE(size). */
 uint32_t odg_persist_slot_size(uint32_t size);
 
-/* Load every group from NV (or write defaults to NV as the status says). */
-odg_abort_t odg_persist_boot(const odg_dict_t *dict, const odg_nv_driver_t *nv, odg_boot_status_t *boot);
-
-/* Store group `g` (its RAM mirror) into the older of its two slots, newest sequence. */
+/* Store group `g` (its RAM mirror) into the older of its two slots, newest sequence, with the
+ * driver of the attached odg_persist_t; DATA_STORE when none is attached. */
 odg_abort_t odg_persist_store(const odg_dict_t *dict, uint8_t g);
 
 /* Make the next boot of group `g` use the defaults (invalidates both slots). */

@@ -4,7 +4,6 @@
  */
 #include <string.h>
 
-#include "odg_impl.h"
 #include "odg_node_impl.h"
 
 /* ---- helpers shared with odg_sdo.c and odg_pdo.c ------------------------------------ */
@@ -70,8 +69,17 @@ static void load_cobs(odg_node_t *n)
     n->emcy_cob = odg_node_get_or_(n, 0x1014, 0, 0x80u + id);
 }
 
-void odg_node_written_(odg_node_t *n, uint16_t index)
+/* A value changed, whoever wrote it (SDO server, application, persistence layer): re-read
+ * what the node caches from the communication entries. */
+static void comm_changed(odg_client_t *self, const odg_ref_t *ref)
 {
+    odg_node_t *n = (odg_node_t *)(void *)self; /* the client is the node's first member */
+    uint16_t index;
+    if (ref == NULL) {
+        odg_node_reload(n);
+        return;
+    }
+    index = ref->entry->index;
     if (index >= 0x1400u && index < 0x1C00u) {
         odg_pdo_load_(n, index >= 0x1800u, (uint16_t)(index & 0x1FFu));
     } else if (index == 0x1005u || index == 0x1014u) {
@@ -93,6 +101,8 @@ void odg_node_reload(odg_node_t *node)
 
 /* ---- NMT ------------------------------------------------------------------------------- */
 
+enum { BOOT_COMM = 0, BOOT_RESET = 1, BOOT_POWER_ON = 2 }; /* boot(): what is reset */
+
 /* After the dictionary was initialised with an NV driver: when a persistence group did not get
  * its stored values back (an image of another layout, a damaged image, a failing driver), an
  * EMCY 0x5530 (data storage) with the generic error bit, and in byte 3 the boot statuses seen
@@ -105,23 +115,50 @@ static void stored_values_lost(odg_node_t *n)
     }
 }
 
+/* Reset the dictionary, load the stored values when there is a driver (else every group runs
+ * on defaults), and listen to changes of the communication entries. An NMT reset keeps the
+ * clients attached (the application's among them), a power-on starts without. */
+static odg_abort_t init_dict(odg_node_t *n, int keep_clients)
+{
+    const odg_dict_t *d = n->cfg.dict;
+    odg_client_t *clients = d->state != NULL ? d->state->clients : NULL;
+    uint8_t g;
+    odg_abort_t ac = odg_init(d, n->cfg.node_id);
+    if (ac != ODG_OK) {
+        return ac;
+    }
+    if (keep_clients) {
+        d->state->clients = clients;
+    }
+    if (n->cfg.nv != NULL) {
+        ac = odg_persist_init(&n->persist, d, n->cfg.nv, n->cfg.boot);
+    }
+    for (g = 0; n->cfg.nv == NULL && n->cfg.boot != NULL && g < d->n_groups; g++) {
+        n->cfg.boot[g] = ODG_BOOT_NV_ERROR;
+    }
+    n->client.changed = comm_changed;
+    odg_attach(d, &n->client);
+    return ac;
+}
+
 /* Initialising: drop the SDO transfer, re-read the communication entries (after odg_init for
- * a reset of the node), send the boot-up frame, and go pre-operational. */
-static odg_abort_t boot(odg_node_t *n, int reset_node)
+ * a reset of the node, `what` BOOT_RESET, or the first boot, BOOT_POWER_ON), send the boot-up
+ * frame, and go pre-operational. */
+static odg_abort_t boot(odg_node_t *n, int what)
 {
     static const uint8_t bootup = 0x00;
     odg_abort_t ac = ODG_OK;
     n->state = ODG_NMT_INITIALISING;
     odg_sdo_drop_(n);
-    if (reset_node) {
-        ac = odg_init(n->cfg.dict, n->cfg.node_id, n->cfg.nv, n->cfg.boot);
+    if (what != BOOT_COMM) {
+        ac = init_dict(n, what == BOOT_RESET);
     }
     n->error_register = (uint8_t)odg_node_get_or_(n, 0x1001, 0, 0);
     odg_node_reload(n);
     n->hb_timer = 0;
     (void)odg_node_send_(n, 0x700u + n->cfg.node_id, &bootup, 1);
     n->state = ODG_NMT_PRE_OPERATIONAL;
-    if (reset_node) {
+    if (what != BOOT_COMM) {
         stored_values_lost(n);
     }
     return ac;
@@ -157,10 +194,10 @@ static void nmt(odg_node_t *n, const odg_frame_t *f)
         enter(n, ODG_NMT_PRE_OPERATIONAL);
         break;
     case ODG_NMT_RESET_NODE:
-        (void)boot(n, 1);
+        (void)boot(n, BOOT_RESET);
         break;
     case ODG_NMT_RESET_COMM:
-        (void)boot(n, 0);
+        (void)boot(n, BOOT_COMM);
         break;
     default:
         return; /* unknown commands are ignored, as CiA 301 has no reply for them */
@@ -179,7 +216,7 @@ odg_abort_t odg_node_init(odg_node_t *node, const odg_node_config_t *cfg)
     if (cfg->dict == NULL || cfg->send == NULL || cfg->node_id < 1u || cfg->node_id > 127u) {
         return ODG_ABORT_INCOMPATIBLE;
     }
-    return boot(node, 1);
+    return boot(node, BOOT_POWER_ON);
 }
 
 void odg_node_receive(odg_node_t *node, const odg_frame_t *frame)
@@ -244,17 +281,11 @@ odg_nmt_state_t odg_node_state(const odg_node_t *node)
     return (odg_nmt_state_t)node->state;
 }
 
-/* 0x1001 is read-only for SDO, so the node stores it directly into its storage block (the
- * runtime's own odg_value_), where a read will find it. */
+/* 0x1001 is read-only for SDO: the node sets it as the application would (odg_set). */
 static void set_error_register(odg_node_t *n, uint8_t reg)
 {
-    odg_ref_t r;
     n->error_register = reg;
-    if (odg_find(n->cfg.dict, 0x1001, 0, &r) == ODG_OK && r.sub->size == 1u &&
-        r.sub->type == ODG_T_UNSIGNED8 && ODG_S_CLASS(r.sub->storage) != ODG_S_ROM &&
-        ODG_S_CLASS(r.sub->storage) != ODG_S_STORE) {
-        odg_store_(odg_value_(n->cfg.dict, r.sub), 1, reg);
-    }
+    (void)odg_set_u8(n->cfg.dict, 0x1001, 0, reg);
 }
 
 odg_abort_t odg_node_emcy(odg_node_t *node, uint16_t code, uint8_t error_register,

@@ -92,8 +92,8 @@ typedef enum odg_nmt_state {
 typedef struct odg_node_config {
     const odg_dict_t *dict;
     uint8_t node_id;               /* 1..127 */
-    const odg_nv_driver_t *nv;     /* persistence driver for odg_init, or NULL */
-    odg_boot_status_t *boot;       /* dict->n_groups entries, filled by each odg_init; or NULL */
+    const odg_nv_driver_t *nv;     /* persistence driver for odg_persist_init, or NULL */
+    odg_boot_status_t *boot;       /* dict->n_groups entries, filled at each boot; or NULL */
     odg_send_fn send;
     void *send_ctx;
     /* Optional: called after the node acted on an NMT command addressed to it (for reset
@@ -141,6 +141,8 @@ typedef struct odg_sdo {
 } odg_sdo_t;
 
 typedef struct odg_node {
+    odg_client_t client;      /* attached to the dictionary: hears every change (internal) */
+    odg_persist_t persist;    /* the persistence layer, attached when cfg.nv is given */
     odg_node_config_t cfg;
     odg_sdo_t sdo;
     odg_pdo_t rpdo[ODG_NODE_MAX_RPDO];
@@ -155,8 +157,10 @@ typedef struct odg_node {
 
 /* ---- API ------------------------------------------------------------------------------ */
 
-/* Copy `cfg`, odg_init the dictionary (with cfg->nv), read the communication entries, send
- * the boot-up frame and enter pre-operational. Returns odg_init's result (HARDWARE when NV
+/* Copy `cfg`, odg_init the dictionary and, with cfg->nv, odg_persist_init it; attach the node
+ * to the dictionary (so it hears every change of its communication entries, by SDO, by the
+ * application's odg_set or by the persistence layer), read them, send the boot-up frame and
+ * enter pre-operational. Returns odg_init's or odg_persist_init's result (HARDWARE when NV
  * failed: the node runs on defaults), or ODG_ABORT_INCOMPATIBLE for a node-id outside
  * 1..127 or no `send` (then nothing is sent). With an NV driver, when a group's stored values
  * did not come back (ODG_BOOT_SIGNATURE, ODG_BOOT_NV_ERROR, ODG_BOOT_DAMAGED), an EMCY
@@ -186,7 +190,8 @@ odg_abort_t odg_node_emcy(odg_node_t *node, uint16_t code, uint8_t error_registe
 void odg_node_tpdo_request(odg_node_t *node, uint16_t n);
 
 /* Re-read every communication entry (0x1005, 0x1014, 0x1200, PDOs) after the application
- * changed them directly rather than through the SDO server. */
+ * changed them behind the dictionary's back (through an odg_ptr pointer, say); writes by
+ * odg_write, odg_set and the persistence layer are seen without it. */
 void odg_node_reload(odg_node_t *node);
 
 #ifdef __cplusplus

@@ -43,8 +43,6 @@ uint32_t odg_node_get_or_(const odg_node_t *n, uint16_t index, uint8_t sub, uint
 /* Before the SDO server stores a whole value: the CiA 301 rules for PDO parameters. */
 odg_abort_t odg_node_check_(odg_node_t *n, uint16_t index, uint8_t sub, const uint8_t *data,
                             uint32_t len);
-/* After the SDO server wrote to `index`: re-read what the node caches from it. */
-void odg_node_written_(odg_node_t *n, uint16_t index);
 
 /* odg_sdo.c */
 void odg_sdo_receive_(odg_node_t *n, const odg_frame_t *f);

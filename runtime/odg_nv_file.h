@@ -3,7 +3,8 @@
  *
  *     odg_nv_file_t nvf;
  *     if (odg_nv_file_open(&nvf, "node.nv", 4096) != 0) { ...errno... }
- *     odg_init(&my_dict, node_id, &nvf.driver, boot);
+ *     odg_init(&my_dict, node_id);
+ *     odg_persist_init(&persist, &my_dict, &nvf.driver, boot);
  *     ...
  *     odg_nv_file_close(&nvf);
  *
@@ -25,7 +26,7 @@ extern "C" {
 #endif
 
 typedef struct odg_nv_file {
-    odg_nv_driver_t driver; /* pass &nvf.driver to odg_init; driver.ctx points back here */
+    odg_nv_driver_t driver; /* pass &nvf.driver to odg_persist_init; driver.ctx points back here */
     int fd;
     uint32_t size;
     int sync; /* 1: fsync after each write/erase (default); 0: leave it to the OS */

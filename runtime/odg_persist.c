@@ -20,6 +20,9 @@
  * holds the previous image. So a power cut at any byte leaves the old image or the new one,
  * never a mix; corrupted bits beyond that are caught by the CRC. Boot takes the valid slot
  * with the newest sequence number.
+ *
+ * The layer is a client of the dictionary (odg_client_t): odg_persist_init attaches it, and
+ * the core hands it the "save" / "load" commands written to 0x1010 / 0x1011.
  */
 #include <string.h>
 
@@ -193,21 +196,16 @@ static odg_abort_t store(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t
     return ODG_OK;
 }
 
-odg_abort_t odg_persist_store(const odg_dict_t *dict, uint8_t g)
+/* Make the next boot of group `g` use the defaults: erase both slots. */
+static odg_abort_t erase(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
 {
-    return store(dict, dict->state->nv, g);
-}
-
-odg_abort_t odg_persist_restore(const odg_dict_t *dict, uint8_t g)
-{
-    const odg_nv_driver_t *nv = dict->state->nv;
     const odg_group_t *gr;
     uint8_t hdr[2][HDR];
     int k;
-    if (nv == NULL || g >= dict->n_groups) {
+    if (nv == NULL || g >= d->n_groups) {
         return ODG_ABORT_DATA_STORE;
     }
-    gr = &dict->groups[g];
+    gr = &d->groups[g];
     k = newest(nv, gr, hdr);
     if (k == -2) {
         return ODG_ABORT_HARDWARE;
@@ -220,6 +218,45 @@ odg_abort_t odg_persist_restore(const odg_dict_t *dict, uint8_t g)
         return ODG_ABORT_HARDWARE;
     }
     return ODG_OK;
+}
+
+/* 0x1010 / 0x1011 sub `sub`, handed over by the core: sub 1 acts on every group, another on
+ * the groups with that store_sub; DATA_STORE when none has it. */
+static odg_abort_t command(odg_client_t *self, const odg_dict_t *d, uint8_t sub, int restore)
+{
+    const odg_nv_driver_t *nv = ((const odg_persist_t *)(const void *)self)->nv;
+    odg_abort_t ac = ODG_ABORT_DATA_STORE;
+    uint8_t g;
+    for (g = 0; g < d->n_groups; g++) {
+        if (sub == 1u || d->groups[g].store_sub == sub) {
+            ac = restore ? erase(d, nv, g) : store(d, nv, g);
+            if (ac != ODG_OK) {
+                break;
+            }
+        }
+    }
+    return ac;
+}
+
+/* The driver of the persistence layer attached to `d` (the client with its `command`; the
+ * client is the first member of odg_persist_t), or NULL. */
+static const odg_nv_driver_t *driver(const odg_dict_t *d)
+{
+    const odg_client_t *c = d->state->clients;
+    while (c != NULL && c->command != command) {
+        c = c->next;
+    }
+    return c != NULL ? ((const odg_persist_t *)(const void *)c)->nv : NULL;
+}
+
+odg_abort_t odg_persist_store(const odg_dict_t *dict, uint8_t g)
+{
+    return store(dict, driver(dict), g);
+}
+
+odg_abort_t odg_persist_restore(const odg_dict_t *dict, uint8_t g)
+{
+    return erase(dict, driver(dict), g);
 }
 
 /* Defaults into the mirror of group `g`, with the node-id added to $NODEID values (what the
@@ -265,11 +302,17 @@ static odg_boot_status_t boot_group(const odg_dict_t *d, const odg_nv_driver_t *
     return st;
 }
 
-odg_abort_t odg_persist_boot(const odg_dict_t *dict, const odg_nv_driver_t *nv,
+odg_abort_t odg_persist_init(odg_persist_t *p, const odg_dict_t *dict, const odg_nv_driver_t *nv,
                              odg_boot_status_t *boot)
 {
     odg_abort_t ac = nv != NULL ? ODG_OK : ODG_ABORT_DATA_STORE;
     uint8_t g;
+    if (nv != NULL) {
+        p->client.command = command;
+        p->client.changed = NULL;
+        p->nv = nv;
+        odg_attach(dict, &p->client);
+    }
     dict->state->boot_seen = 0;
     for (g = 0; g < dict->n_groups; g++) {
         odg_boot_status_t st = nv != NULL ? boot_group(dict, nv, g) : ODG_BOOT_NV_ERROR;
@@ -281,5 +324,6 @@ odg_abort_t odg_persist_boot(const odg_dict_t *dict, const odg_nv_driver_t *nv,
             boot[g] = st;
         }
     }
+    odg_changed(dict, NULL);
     return ac;
 }

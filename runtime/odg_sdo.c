@@ -83,16 +83,13 @@ void odg_sdo_drop_(odg_node_t *n)
 
 /* ---- download ------------------------------------------------------------------------- */
 
-/* Store a complete value of at most 8 bytes: PDO rules first, then the dictionary. */
+/* Store a complete value of at most 8 bytes: PDO rules first, then the dictionary (which
+ * tells the node's client what changed). */
 static odg_abort_t write_whole(odg_node_t *n, const uint8_t *data, uint32_t len)
 {
     odg_sdo_t *s = &n->sdo;
     odg_abort_t ac = odg_node_check_(n, s->index, s->sub, data, len);
-    if (ac == ODG_OK) {
-        ac = odg_write(&s->ref, data, len);
-    }
-    odg_node_written_(n, s->index);
-    return ac;
+    return ac != ODG_OK ? ac : odg_write(&s->ref, data, len);
 }
 
 static void begin_download(odg_node_t *n, uint32_t total)
@@ -147,7 +144,6 @@ static odg_abort_t finish_download(odg_node_t *n)
         return ODG_ABORT_TOO_SHORT;
     }
     if (s->flags & ODG_SDO_F_STREAM) {
-        odg_node_written_(n, s->index);
         return ODG_OK;
     }
     return write_whole(n, s->buf, s->offset);

@@ -1,11 +1,12 @@
 """`odgen profile ds401` round trips on a CAN bus: the ds401-io loop-back node (examples/ds401-io)
 built for several grid points, all checked in one tools/vcan/run.py session.
 
-Each node program is the generated dictionary + the generated glue + the example's sim.c
-(outputs wired to inputs), built by odgen.roundtrip.build like `odgen node`. Over vcan,
-python canopen uploads the profile objects by SDO (expected: the description's defaults) and
-sends RPDO1 (0x6200) / RPDO2 (analog outputs), which must come back as change-of-state TPDO1
-(0x6000) / TPDO2 (analog inputs) with the looped-back values.
+Each node program is the generated dictionary + the glue (runtime/profiles/ds401.c, configured by
+the generated ds401_app.h) + the example's sim.c (outputs wired to inputs), built by
+odgen.roundtrip.build like `odgen node`. Over vcan, python canopen uploads the profile objects by
+SDO (expected: the description's defaults) and sends RPDO1 (0x6200) / RPDO2 (analog outputs),
+which must come back as change-of-state TPDO1 (0x6000) / TPDO2 (analog inputs) with the
+looped-back values.
 """
 
 from __future__ import annotations
@@ -28,6 +29,7 @@ from .test_profile_ds401 import GRID
 
 VCAN = ROOT / "tools" / "vcan"
 SIM = ROOT / "examples" / "ds401-io" / "sim.c"
+GLUE = ROOT / "runtime" / "profiles" / "ds401.c"
 NODE_ID = 5
 POINTS = ["16-16-4-4", "one-each", "8bit", "32bit", "di-only-max", "maxima"]
 SIZES = {0x0001: 1, 0x0002: 1, 0x0003: 2, 0x0004: 4, 0x0005: 1, 0x0006: 2, 0x0007: 4}
@@ -92,7 +94,7 @@ def test_ds401_loop_back_nodes_on_vcan(tmp_path: Path, monkeypatch: pytest.Monke
         eds.parent.mkdir()
         write(spec, eds)
         exe, result = build_node(Request(eds, name="io", defaults=options_toml(spec)), extra=glue_files(spec),
-                                 sources=[SIM], defines=["ODG_APP", "ODG_NODE_TPDO_COS=0"])
+                                 sources=[SIM, GLUE], defines=["ODG_APP", "ODG_NODE_TPDO_COS=0"])
         assert result.files
         plan = _plan(name, exe, spec)
         loops += len(plan["steps"])  # type: ignore[arg-type]

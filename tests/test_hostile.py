@@ -92,7 +92,7 @@ static int check(uint16_t index, const uint8_t *want, uint32_t len)
 int main(void)
 {{
     unsigned failed = 0;
-    if (odg_init(&{name}, 5, NULL, NULL) != 0) {{ puts("init failed"); return 1; }}
+    if (odg_init(&{name}, 5) != 0) {{ puts("init failed"); return 1; }}
 {body}
     printf("%u passed, %u failed\\n", passed, failed);
     return failed != 0;
@@ -165,7 +165,7 @@ def test_profile_name_is_a_value_not_a_path(tmp_path: Path) -> None:
     assert main(["profile", "ds401", "--di", "8", "--name", "../../x */ \"q\"", "-o", str(out),
                  "--generate", str(gen)]) == 0
     assert sorted(p.relative_to(tmp_path).as_posix() for p in tmp_path.rglob("*")) == [
-        "work", "work/gen", "work/gen/ds401_app.c", "work/gen/ds401_app.h", "work/gen/io.c", "work/gen/io.h",
+        "work", "work/gen", "work/gen/ds401_app.h", "work/gen/io.c", "work/gen/io.h",
         "work/io.eds"]
     assert "ProductName=../../x */ \"q\"" in out.read_text(encoding="utf-8")
 

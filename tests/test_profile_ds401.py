@@ -166,7 +166,7 @@ def test_cli_writes_eds_and_c(tmp_path: Path) -> None:
     args = ["profile", "ds401", "--di", "16", "--do", "16", "--ai", "4", "--ao", "4", "--vendor-id", "0x1234",
             "--name", "Test I/O", "-o", str(out), "--generate", str(gen)]
     assert main(args) == 0
-    assert sorted(p.name for p in gen.iterdir()) == ["ds401_app.c", "ds401_app.h", "io.c", "io.h"]
+    assert sorted(p.name for p in gen.iterdir()) == ["ds401_app.h", "io.c", "io.h"]
     assert out.read_text(encoding="utf-8") == write(Ds401(16, 16, 4, 4, name="Test I/O", vendor_id=0x1234), out)
     assert main(["lint", "--strict", str(out)]) == 0
 
@@ -185,16 +185,17 @@ def test_cli_refuses_other_suffix(tmp_path: Path) -> None:
 
 
 DS401_TESTS = ROOT / "tests" / "ds401"
+DS401_GLUE = RUNTIME / "profiles" / "ds401.c"
 
 
 @pytest.fixture(scope="module")
 def io_16_16_4_4(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """`--generate` output for 16 DI / 16 DO / 4 AI / 4 AO: io.[ch] and ds401_app.[ch]."""
+    """`--generate` output for 16 DI / 16 DO / 4 AI / 4 AO: io.[ch] and ds401_app.h."""
     gen = tmp_path_factory.mktemp("ds401")
     spec = GRID["16-16-4-4"]
     write(spec, gen / "io.eds")
     result = generate_c(spec, gen / "io.eds")
-    assert sorted(result.files) == ["ds401_app.c", "ds401_app.h", "io.c", "io.h"]
+    assert sorted(result.files) == ["ds401_app.h", "io.c", "io.h"]
     for name, text in result.files.items():
         (gen / name).write_text(text, encoding="utf-8")
     return gen
@@ -206,7 +207,7 @@ def test_glue_change_of_state_on_a_node(build_name: str, io_16_16_4_4: Path, tmp
     remapped TPDOs and transmission type 0, over the fake transport."""
     cc, flags = BUILDS[build_name]
     gen = io_16_16_4_4
-    sources = (DS401_TESTS / "test_ds401_app.c", gen / "ds401_app.c", gen / "io.c",
+    sources = (DS401_TESTS / "test_ds401_app.c", DS401_GLUE, gen / "io.c",
                *(RUNTIME / s for s in ("odg.c", "odg_persist.c", "odg_node.c", "odg_sdo.c", "odg_pdo.c")))
     exe = tmp_path / "test_ds401_app"
     build_c(cc, (*flags, "-DODG_NODE_TPDO_COS=0"), sources, (gen, RUNTIME, ROOT / "tests" / "node",
@@ -217,13 +218,13 @@ def test_glue_change_of_state_on_a_node(build_name: str, io_16_16_4_4: Path, tmp
 @pytest.mark.parametrize("name", list(GRID))
 @pytest.mark.parametrize("cc", ["gcc", "clang"])
 def test_glue_compiles_warning_free(name: str, cc: str, tmp_path: Path) -> None:
-    """The glue of every grid point, beside its dictionary, under the strict and extra warnings."""
+    """runtime/profiles/ds401.c configured by every grid point's header, under the strict and extra warnings."""
     spec = GRID[name]
     write(spec, tmp_path / "io.eds")
     result = generate_c(spec, tmp_path / "io.eds")
     for file_name, text in result.files.items():
         (tmp_path / file_name).write_text(text, encoding="utf-8")
-    cmd = [compiler(cc), *STRICT, *EXTRA, "-O1", f"-I{RUNTIME}", "-c", str(tmp_path / "ds401_app.c"), "-o",
+    cmd = [compiler(cc), *STRICT, *EXTRA, "-O1", f"-I{RUNTIME}", f"-I{tmp_path}", "-c", str(DS401_GLUE), "-o",
            str(tmp_path / "ds401_app.o")]
     done = subprocess.run(cmd, capture_output=True, text=True, check=False)
     assert done.returncode == 0, done.stderr

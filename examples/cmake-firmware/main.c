@@ -32,7 +32,7 @@ int main(void)
     odg_ref_t out, in;
     uint8_t value = 0x5A, read = 0;
     uint32_t n = 0;
-    if (odg_init(&io_node, 5, NULL, NULL) != ODG_OK) return 1;
+    if (odg_init(&io_node, 5) != ODG_OK) return 1;
     if (odg_find(&io_node, IO_NODE_IDX_X6200_WRITE_OUTPUT_8_BIT, 1, &out) != ODG_OK) return 1;
     if (odg_find(&io_node, IO_NODE_IDX_X6000_READ_INPUT_8_BIT, 1, &in) != ODG_OK) return 1;
     if (odg_write(&out, &value, 1) != ODG_OK) return 1;

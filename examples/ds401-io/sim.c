@@ -4,7 +4,7 @@
  * so whatever a master writes comes back as a change of state in a TPDO.
  *
  * The node program (runtime/linux/odg_node_main.c, built with -DODG_APP) calls odg_app_init
- * once and odg_app_tick every millisecond; the CiA 401 work is in the generated ds401_app.c.
+ * once and odg_app_tick every millisecond; the CiA 401 work is in runtime/profiles/ds401.c.
  */
 #include <stdio.h>
 #include <string.h>

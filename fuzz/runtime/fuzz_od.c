@@ -1,6 +1,6 @@
 /*
  * fuzz_od.c - odg_read / odg_write / odg_write_part / odg_check_mapping / odg_hook_register
- * on the alltypes dictionary (every CiA 301 data type, limits, strings, domains, both
+ * and the typed access (odg_get / odg_set / odg_ptr) on the alltypes dictionary (every CiA 301 data type, limits, strings, domains, both
  * persistence groups, 0x1010/0x1011), straight through the runtime API.
  *
  * Input: records led by an opcode byte; most name a sub-entry by 2 bytes (its position in the
@@ -10,8 +10,8 @@
  *   op % 8 == 3..4  read: offset byte, capacity byte (0..79)
  *   op % 8 == 5     check_mapping: 4 raw bytes, direction from op bit 5
  *   op % 8 == 6     register a hook (accept, refuse or none, from the next byte)
- *   op % 8 == 7     odg_length
- * Properties: reads never exceed their capacity; a number written whole reads back as the
+ *   op % 8 == 7     odg_length; odg_get in the C size 1 << (op bits 3-4), odg_set of that value
+ * Properties: reads never exceed their capacity; odg_ptr agrees with odg_get; a number written whole reads back as the
  * same bytes; a failed write leaves the value unchanged; and at the end odg_verify still
  * finds the dictionary consistent (every value within its limits, strings terminated,
  * domain lengths within capacity).
@@ -24,6 +24,7 @@
 static uint8_t nv_booted[sizeof nv_mem];
 static odg_hook_slot_t slots_booted[64];
 static int have_nv;
+static odg_persist_t persist;
 
 static int is_number(const odg_sub_t *s)
 {
@@ -68,6 +69,24 @@ static void write_whole(const odg_ref_t *r, input_t *in)
     }
 }
 
+/* Typed access in the C size op bits 3-4 pick: a number read back unchanged with odg_set
+ * (an arbitrary value could break the limits odg_verify checks at the end), its pointer
+ * agreeing; no input consumed, so the seeds keep their meaning. */
+static void typed_round_trip(const odg_ref_t *r, uint8_t op)
+{
+    uint8_t v[8];
+    uint32_t size = 1u << ((op >> 3) & 3u);
+    uint16_t index = r->entry->index;
+    int rom = ODG_S_CLASS(r->sub->storage) == ODG_S_ROM;
+    uint8_t *p = (uint8_t *)odg_ptr(&DICT, index, r->sub->sub, size);
+    if (odg_get(&DICT, index, r->sub->sub, v, size) != ODG_OK) {
+        REQUIRE(p == NULL);
+        return;
+    }
+    REQUIRE(rom ? p == NULL : (p != NULL && memcmp(p, v, size) == 0));
+    REQUIRE(odg_set(&DICT, index, r->sub->sub, v, size) == (rom ? ODG_ABORT_READ_ONLY : ODG_OK));
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     input_t in;
@@ -75,7 +94,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     in.n = size;
     if (!have_nv) {
         memset(nv_mem, 0xFF, sizeof nv_mem);
-        REQUIRE(odg_init(&DICT, NID, &nv_ram, NULL) == ODG_OK);
+        REQUIRE(odg_init(&DICT, NID) == ODG_OK && odg_persist_init(&persist, &DICT, &nv_ram, NULL) == ODG_OK);
         memcpy(nv_booted, nv_mem, sizeof nv_mem);
         REQUIRE(DICT.n_hooks <= 64u);
         memcpy(slots_booted, DICT.hook_slots, DICT.n_hooks * sizeof *slots_booted);
@@ -84,7 +103,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     /* every input starts from the same state: NV as after the first boot, hooks as generated */
     memcpy(nv_mem, nv_booted, sizeof nv_mem);
     memcpy(DICT.hook_slots, slots_booted, DICT.n_hooks * sizeof *slots_booted);
-    REQUIRE(odg_init(&DICT, NID, &nv_ram, NULL) == ODG_OK);
+    REQUIRE(odg_init(&DICT, NID) == ODG_OK && odg_persist_init(&persist, &DICT, &nv_ram, NULL) == ODG_OK);
     while (in.n > 0u) {
         uint8_t op = take(&in), buf[80];
         odg_ref_t r;
@@ -119,6 +138,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             break;
         default:
             (void)odg_length(&r);
+            typed_round_trip(&r, op);
             break;
         }
     }

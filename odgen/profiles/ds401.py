@@ -263,11 +263,12 @@ def options_toml(p: Ds401) -> str:
 
 
 C_INT = {8: "int8_t", 16: "int16_t", 32: "int32_t"}
-GLUE = ("ds401_app.h", "ds401_app.c")
+GLUE = ("ds401_app.h",)
 
 
 def glue_files(p: Ds401) -> dict[str, str]:
-    """The application glue (templates/ds401_app.*.j2): hooks, polarity, change-of-state TPDOs."""
+    """The header that configures the application glue, runtime/profiles/ds401.c (hooks, polarity,
+    change-of-state TPDOs): channel counts, the analog objects and their C types."""
     from ..codegen.generate import environment  # jinja2: only when C is generated
 
     env = environment()

@@ -146,7 +146,7 @@ int main(int argc, char **argv)
         return usage(argv[0]);
     }
     /* defaults in RAM first (no NV yet), as odg_verify also checks the current values */
-    if (odg_init(dict, (uint8_t)node_id, NULL, NULL) != ODG_OK || odg_verify(dict, &bad) != ODG_OK) {
+    if (odg_init(dict, (uint8_t)node_id) != ODG_OK || odg_verify(dict, &bad) != ODG_OK) {
         fprintf(stderr, "odg-node: the dictionary's tables are inconsistent at 0x%04X\n", bad);
         return 1;
     }

@@ -1,8 +1,9 @@
 /*
- * test_ds401_app.c - the glue of `odgen profile ds401 --di 16 --do 16 --ai 4 --ao 4 --generate`
- * (ds401_app.c) on a node over the fake transport, built with ODG_NODE_TPDO_COS=0: inputs
- * through the hooks with polarity, outputs by RPDO and SDO with polarity, and change-of-state
- * TPDOs under 0x6005-0x6008 and 0x6421-0x6426, following remapping and transmission type 0.
+ * test_ds401_app.c - the glue (runtime/profiles/ds401.c, configured by the ds401_app.h of
+ * `odgen profile ds401 --di 16 --do 16 --ai 4 --ao 4 --generate`) on a node over the fake
+ * transport, built with ODG_NODE_TPDO_COS=0: inputs through the hooks with polarity, outputs
+ * by RPDO and SDO with polarity, and change-of-state TPDOs under 0x6005-0x6008 and
+ * 0x6421-0x6426, following remapping and transmission type 0.
  */
 #include <string.h>
 

@@ -2,7 +2,8 @@
  * test_node_io.c - the example io-node (examples/io-node, generated with its options file) as
  * a running node: input hook sampled for the TPDO, output hook driven by the RPDO, and the
  * communication settings stored through 0x1010 into a file (odg_nv_file) surviving a power
- * cycle. Run in a scratch directory: it creates io_node.nv there.
+ * cycle, and reloaded from NV while the node runs. Run in a scratch directory: it creates
+ * io_node.nv there.
  */
 #include <stdio.h>
 #include <string.h>
@@ -14,6 +15,7 @@
 #define TPDO1 (0x180u + NID)
 #define RPDO1 (0x200u + NID)
 #define NV_PATH "io_node.nv"
+#define INVALID_COB 0x80000000u
 
 /* the hardware: 8 input pins, 8 output pins */
 static uint8_t pins_in, pins_out;
@@ -164,9 +166,37 @@ static void test_power_cycle(void)
     remove(NV_PATH);
 }
 
+/* Values loaded by the persistence layer reach the node like any other write: the stored
+ * TPDO settings come back, and the node serves them without a reset. */
+static void test_reload_from_nv(void)
+{
+    static const uint8_t save[4] = {'s', 'a', 'v', 'e'};
+    static odg_persist_t again; /* stays attached until the next odg_init */
+    remove(NV_PATH);
+    power_on();
+    CHECK_EQ(download_u32(0x1017, 0, 0, 2), 0);
+    CHECK_EQ(download_u32(0x1800, 1, INVALID_COB | TPDO1, 4), 0); /* TPDO1 off, and stored */
+    CHECK_EQ(download(0x1010, 1, save, 4), 0);
+    CHECK_EQ(download_u32(0x1800, 1, TPDO1, 4), 0); /* on again, not stored */
+    nmt(ODG_NMT_START, NID);
+    clear();
+    after(1);
+    CHECK_EQ(count_id(TPDO1), 1);
+    /* the application loads the stored values (a second persistence layer on the same NV) */
+    CHECK_EQ(odg_persist_init(&again, &io_node, &nvf.driver, NULL), ODG_OK);
+    CHECK_EQ(upload_u32(0x1800, 1), INVALID_COB | TPDO1);
+    clear();
+    pins_in = (uint8_t)(pins_in ^ 0xFFu);
+    run_ms(300);
+    CHECK_EQ(count_id(TPDO1), 0);
+    power_off();
+    remove(NV_PATH);
+}
+
 int main(void)
 {
     test_io();
     test_power_cycle();
+    test_reload_from_nv();
     return done();
 }

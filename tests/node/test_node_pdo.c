@@ -1,5 +1,6 @@
 /*
- * test_node_pdo.c - SYNC, TPDOs, RPDOs, PDO remapping by SDO and EMCY, against the pdo_node
+ * test_node_pdo.c - SYNC, TPDOs, RPDOs, PDO remapping by SDO and EMCY, communication
+ * parameters set by the application (odg_set), against the pdo_node
  * dictionary generated at test time from tests/node/pdo-node.eds:
  *
  *   TPDO1 0x180+id  type 255, no timers    0x2000 u8, 0x2001 u16
@@ -379,6 +380,86 @@ static void test_emcy_and_resets(void)
     CHECK_EQ(count_id(TPDO1), 0);
 }
 
+/* The node hears communication parameters the application sets (odg_set) at once, without
+ * odg_node_reload; a write through an odg_ptr pointer only after odg_changed. */
+static void test_application_writes(void)
+{
+    uint32_t *cob;
+    operational();
+    clear();
+    after(1);
+    CHECK_EQ(count_id(TPDO1), 1);
+    /* TPDO1 made invalid: a changed mapped value sends nothing */
+    CHECK_EQ(odg_set_u32(&pdo_node, 0x1800, 1, INVALID | TPDO1), ODG_OK);
+    clear();
+    pdo_node_x2000_u8_value = 0x42;
+    run_ms(10);
+    CHECK_EQ(count_id(TPDO1), 0);
+    /* valid again: sent at the first chance */
+    CHECK_EQ(odg_set_u32(&pdo_node, 0x1800, 1, TPDO1), ODG_OK);
+    after(1);
+    CHECK_EQ(count_id(TPDO1), 1);
+    CHECK(FRAME_IS(last_id(TPDO1), 0x42, 0x33, 0x22));
+    /* SYNC moved to 0x81: TPDO2 (every 3rd SYNC) counts only those */
+    CHECK_EQ(odg_set_u32(&pdo_node, 0x1005, 0, 0x81), ODG_OK);
+    clear();
+    sync0();
+    sync0();
+    sync0();
+    CHECK_EQ(count_id(TPDO2), 0);
+    rx0(0x81);
+    rx0(0x81);
+    rx0(0x81);
+    CHECK_EQ(count_id(TPDO2), 1);
+    /* EMCY moved */
+    CHECK_EQ(odg_set_u32(&pdo_node, 0x1014, 0, 0x90), ODG_OK);
+    clear();
+    CHECK_EQ(odg_node_emcy(&node, 0x1000, 0x01, NULL, 0), 0);
+    CHECK(count_id(EMCY) == 0 && count_id(0x90) == 1);
+    /* behind the dictionary's back: unseen until odg_changed */
+    cob = odg_ptr_u32(&pdo_node, 0x1800, 1);
+    CHECK(cob != NULL);
+    *cob = INVALID | TPDO1;
+    clear();
+    pdo_node_x2000_u8_value = 0x43;
+    after(1);
+    CHECK_EQ(count_id(TPDO1), 1);
+    odg_changed(&pdo_node, NULL);
+    clear();
+    pdo_node_x2000_u8_value = 0x44;
+    run_ms(10);
+    CHECK_EQ(count_id(TPDO1), 0);
+}
+
+/* An application's client stays attached through an NMT reset of the node. */
+static unsigned app_heard;
+
+static void app_changed(odg_client_t *self, const odg_ref_t *ref)
+{
+    (void)self, (void)ref;
+    app_heard++;
+}
+
+static void test_application_client(void)
+{
+    static odg_client_t app;
+    operational();
+    app.changed = app_changed;
+    odg_attach(&pdo_node, &app);
+    CHECK_EQ(odg_set_u8(&pdo_node, 0x2000, 0, 1), ODG_OK);
+    CHECK_EQ(app_heard, 1);
+    nmt(ODG_NMT_RESET_NODE, NID);
+    CHECK_EQ(odg_set_u8(&pdo_node, 0x2000, 0, 2), ODG_OK);
+    CHECK_EQ(app_heard, 2);
+    /* and the node itself still hears its parameters */
+    nmt(ODG_NMT_START, NID);
+    CHECK_EQ(odg_set_u32(&pdo_node, 0x1800, 1, INVALID | TPDO1), ODG_OK);
+    clear();
+    pdo_node_x2000_u8_value = 0x45;
+    run_ms(10);
+    CHECK_EQ(count_id(TPDO1), 0);
+}
+
 int main(void)
 {
     test_only_when_operational();
@@ -387,5 +468,7 @@ int main(void)
     test_rpdo();
     test_remap();
     test_emcy_and_resets();
+    test_application_writes();
+    test_application_client();
     return done();
 }

@@ -1,7 +1,7 @@
 /*
  * test_core.c - odg.c against the hand-written dictionary td: find, read, write, partial
- * transfers, limits, hooks, node-id, PDO mapping, abort texts, and odg_verify on good and
- * deliberately broken tables. Prints "N passed, M failed"; exit status 0 only when M is 0.
+ * transfers, limits, hooks, node-id, PDO mapping, abort texts, typed access, clients, and
+ * odg_verify on good and deliberately broken tables. Prints "N passed, M failed"; exit status 0 only when M is 0.
  */
 #include <string.h>
 
@@ -88,7 +88,7 @@ static int bytes_eq(const void *a, const void *b, uint32_t n)
     return memcmp(a, b, n) == 0;
 }
 
-/* ---- expected uploads after odg_init(&td, 5, ...) ------------------------------------ */
+/* ---- expected uploads after odg_init(&td, 5) ----------------------------------------- */
 
 typedef struct {
     uint16_t index;
@@ -265,16 +265,16 @@ static void test_abort_text(void)
 
 static void test_init(void)
 {
-    odg_boot_status_t boot[2] = {ODG_BOOT_LOADED, ODG_BOOT_LOADED};
-    CHECK_EQ(odg_init(NULL, NODE, NULL, NULL), ODG_ABORT_NO_DICTIONARY);
+    CHECK_EQ(odg_init(NULL, NODE), ODG_ABORT_NO_DICTIONARY);
     td_ram.x2007 = 0;
-    CHECK_EQ(odg_init(&td, NODE, NULL, boot), ODG_OK);
-    CHECK_EQ(boot[0], ODG_BOOT_NV_ERROR); /* no driver: defaults in RAM, NV untouched */
-    CHECK_EQ(boot[1], ODG_BOOT_NV_ERROR);
+    td.state->boot_seen = 0;
+    CHECK_EQ(odg_init(&td, NODE), ODG_OK);
+    /* no driver yet: defaults in RAM, NV untouched */
+    CHECK_EQ(td.state->boot_seen, 1u << ODG_BOOT_NV_ERROR);
     CHECK_EQ(td.state->node_id, NODE);
-    CHECK(td.state->nv == NULL);
+    CHECK(td.state->clients == NULL);
     CHECK_EQ(td_ram.x2007, 0x89ABCDEFu); /* reset ran */
-    CHECK_EQ(odg_init(&td, NODE, NULL, NULL), ODG_OK);
+    CHECK_EQ(odg_init(&td, NODE), ODG_OK);
 }
 
 static void test_find(void)
@@ -817,16 +817,16 @@ static void test_hooks(void)
 static void test_node_id(void)
 {
     CHECK_EQ(wrv(0x1014, 0, 0x1234, 4), ODG_OK);
-    CHECK_EQ(odg_init(&td, 127, NULL, NULL), ODG_OK);
+    CHECK_EQ(odg_init(&td, 127), ODG_OK);
     CHECK_EQ(rdv(0x1014, 0), 0xFFu);
     CHECK_EQ(rdv(0x1400, 1), 0x27Fu);
     CHECK_EQ(rdv(0x2500, 5), 0x17Fu);
-    CHECK_EQ(odg_init(&td, 1, NULL, NULL), ODG_OK);
+    CHECK_EQ(odg_init(&td, 1), ODG_OK);
     CHECK_EQ(rdv(0x1014, 0), 0x81u);
     CHECK_EQ(rdv(0x1400, 1), 0x201u);
     CHECK_EQ(rdv(0x2500, 5), 0x101u);
     CHECK_EQ(rdv(0x1000, 0), 0x00020191u); /* others untouched */
-    CHECK_EQ(odg_init(&td, NODE, NULL, NULL), ODG_OK);
+    CHECK_EQ(odg_init(&td, NODE), ODG_OK);
     CHECK_EQ(rdv(0x1014, 0), 0x85u);
 }
 
@@ -1237,7 +1237,164 @@ static void test_signed_zero(void)
     CHECK_EQ(odg_write(&r, "\x00\x00\x00\x80", 4), ODG_OK); /* REAL32 -0 */
     CHECK_EQ(odg_write(&r, "\x01\x00\x00\x80", 4), ODG_ABORT_VALUE_LOW);
     fresh();
-    CHECK_EQ(odg_init(&td, NODE, NULL, NULL), ODG_OK);
+    CHECK_EQ(odg_init(&td, NODE), ODG_OK);
+}
+
+/* ---- typed access and clients ------------------------------------------------------------ */
+
+static unsigned hook_runs;
+
+static odg_abort_t count_hook(const odg_ref_t *ref, odg_hook_kind_t kind, const void *data,
+                              uint32_t len, void *ctx)
+{
+    (void)ref, (void)kind, (void)data, (void)len, (void)ctx;
+    hook_runs++;
+    return ODG_ABORT_DATA_LOCAL; /* would veto an SDO write */
+}
+
+static void test_typed(void)
+{
+    uint8_t u8 = 0;
+    uint16_t u16 = 0;
+    uint32_t u32 = 0;
+    int64_t i64 = 0;
+    float r32 = 0.0f;
+    uint32_t *p;
+    CHECK_EQ(odg_init(&td, NODE), ODG_OK);
+    /* get: the value in its C type, wherever it lives */
+    CHECK_EQ(odg_get_u32(&td, 0x2007, 0, &u32), ODG_OK);
+    CHECK_EQ(u32, 0x89ABCDEFu);
+    CHECK_EQ(odg_get_u32(&td, 0x1000, 0, &u32), ODG_OK); /* ROM */
+    CHECK_EQ(u32, td_rom.x1000);
+    CHECK_EQ(odg_get_u16(&td, 0x1017, 0, &u16), ODG_OK); /* a persistence group's mirror */
+    CHECK_EQ(u16, td_persist_comm.x1017);
+    CHECK_EQ(odg_get_u32(&td, 0x2016, 0, &u32), ODG_OK); /* UNSIGNED24 lives in a uint32_t */
+    CHECK_EQ(odg_get_u32(&td, 0x2400, 0, &u32), ODG_OK); /* write-only on the bus: still read */
+    /* the C type must match: size, absent objects, strings, commands */
+    CHECK_EQ(odg_get_u16(&td, 0x2007, 0, &u16), ODG_ABORT_TYPE_LENGTH);
+    CHECK_EQ(odg_get_u8(&td, 0x2016, 0, &u8), ODG_ABORT_TYPE_LENGTH);
+    CHECK_EQ(odg_get_u32(&td, 0x2009, 0, &u32), ODG_ABORT_TYPE_LENGTH); /* VISIBLE_STRING */
+    CHECK_EQ(odg_get_u32(&td, 0x1010, 1, &u32), ODG_ABORT_TYPE_LENGTH); /* a command, no value */
+    CHECK_EQ(odg_get_u32(&td, 0x6FFF, 0, &u32), ODG_ABORT_NO_OBJECT);
+    CHECK_EQ(odg_get_u16(&td, 0x2100, 99, &u16), ODG_ABORT_NO_SUB);
+    /* set: no access rights, limits or hooks (the application's own access) */
+    CHECK_EQ(odg_set_u32(&td, 0x2401, 0, 0x1234u), ODG_OK); /* read-only on the bus */
+    CHECK_EQ(td_ram.x2401, 0x1234u);
+    CHECK_EQ(odg_set_u32(&td, 0x2200, 2, 0xFFFFFFFFu), ODG_OK); /* beyond its HighLimit */
+    CHECK_EQ(td_ram.x2200_s2, 0xFFFFFFFFu);
+    CHECK_EQ(odg_set_i64(&td, 0x2500, 3, -123456789012LL), ODG_OK);
+    CHECK_EQ(odg_get_i64(&td, 0x2500, 3, &i64), ODG_OK);
+    CHECK(i64 == -123456789012LL);
+    CHECK_EQ(odg_set_r32(&td, 0x2008, 0, 1.5f), ODG_OK);
+    CHECK_EQ(odg_get_r32(&td, 0x2008, 0, &r32), ODG_OK);
+    CHECK(r32 == 1.5f);
+    hook_runs = 0;
+    CHECK_EQ(odg_hook_register(&td, 0x2300, 2, count_hook, NULL), ODG_OK);
+    CHECK_EQ(odg_set_u16(&td, 0x2300, 2, 77), ODG_OK);
+    CHECK_EQ(hook_runs, 0);
+    CHECK_EQ(td_ram.x2300_s2, 77);
+    CHECK_EQ(wr(0x2300, 2, "\x05\x00", 2), ODG_ABORT_DATA_LOCAL); /* an SDO write meets the hook */
+    CHECK_EQ(hook_runs, 1);
+    CHECK_EQ(odg_hook_register(&td, 0x2300, 2, NULL, NULL), ODG_OK);
+    CHECK_EQ(odg_set_u32(&td, 0x1000, 0, 1u), ODG_ABORT_READ_ONLY); /* a constant */
+    CHECK_EQ(odg_set_u8(&td, 0x2007, 0, 1u), ODG_ABORT_TYPE_LENGTH);
+    /* ptr: the value itself, for hot paths; none for constants or another size */
+    p = odg_ptr_u32(&td, 0x2007, 0);
+    CHECK(p == &td_ram.x2007);
+    *p = 42u;
+    CHECK_EQ(odg_get_u32(&td, 0x2007, 0, &u32), ODG_OK);
+    CHECK_EQ(u32, 42u);
+    CHECK(odg_ptr_u16(&td, 0x1017, 0) == &td_persist_comm.x1017);
+    CHECK(odg_ptr_u32(&td, 0x1000, 0) == NULL);
+    CHECK(odg_ptr_u16(&td, 0x2007, 0) == NULL);
+    CHECK(odg_ptr(&td, 0x6FFF, 0, 4) == NULL);
+    CHECK_EQ(odg_init(&td, NODE), ODG_OK);
+}
+
+/* A client that records what it hears. */
+typedef struct {
+    odg_client_t client; /* first: the callbacks cast back */
+    unsigned changes, commands, all;
+    uint16_t last_index;
+    uint8_t last_sub, restore;
+    odg_abort_t answer;
+} probe_t;
+
+static void probe_changed(odg_client_t *self, const odg_ref_t *ref)
+{
+    probe_t *p = (probe_t *)(void *)self;
+    p->changes++;
+    if (ref == NULL) {
+        p->all++;
+    } else {
+        p->last_index = ref->entry->index;
+        p->last_sub = ref->sub->sub;
+    }
+}
+
+static odg_abort_t probe_command(odg_client_t *self, const odg_dict_t *dict, uint8_t sub,
+                                 int restore)
+{
+    probe_t *p = (probe_t *)(void *)self;
+    (void)dict;
+    p->commands++;
+    p->last_sub = sub;
+    p->restore = (uint8_t)restore;
+    return p->answer;
+}
+
+static void test_clients(void)
+{
+    probe_t a, b;
+    memset(&a, 0, sizeof a);
+    memset(&b, 0, sizeof b);
+    a.client.changed = probe_changed;
+    b.client.changed = probe_changed;
+    b.client.command = probe_command;
+    CHECK_EQ(odg_init(&td, NODE), ODG_OK);
+    /* without a client answering, 0x1010/0x1011 abort as without persistence */
+    CHECK_EQ(wr(0x1010, 1, "save", 4), ODG_ABORT_DATA_STORE);
+    odg_attach(&td, &a.client);
+    odg_attach(&td, &a.client); /* once only */
+    CHECK_EQ(wr(0x1010, 1, "save", 4), ODG_ABORT_DATA_STORE);
+    CHECK_EQ(a.changes, 0);
+    /* every writer reaches the client: SDO/PDO writes, the application, parts, odg_changed */
+    CHECK_EQ(wr(0x2007, 0, "\x01\x02\x03\x04", 4), ODG_OK);
+    CHECK_EQ(a.changes, 1);
+    CHECK_EQ(a.last_index, 0x2007);
+    CHECK_EQ(wr(0x2200, 2, "\xFF\xFF\xFF\xFF", 4), ODG_ABORT_VALUE_HIGH); /* refused: nothing changed */
+    CHECK_EQ(a.changes, 1);
+    CHECK_EQ(odg_set_u8(&td, 0x1400, 2, 0xFE), ODG_OK);
+    CHECK_EQ(a.changes, 2);
+    CHECK(a.last_index == 0x1400 && a.last_sub == 2);
+    CHECK_EQ(odg_set_u32(&td, 0x1000, 0, 1u), ODG_ABORT_READ_ONLY);
+    CHECK_EQ(a.changes, 2);
+    CHECK_EQ(wr_part(0x2009, 0, 0, "ab", 2, 4), ODG_OK);
+    CHECK_EQ(a.changes, 2); /* not complete yet */
+    CHECK_EQ(wr_part(0x2009, 0, 2, "cd", 2, 4), ODG_OK);
+    CHECK(a.changes == 3 && a.last_index == 0x2009);
+    odg_changed(&td, NULL);
+    CHECK(a.changes == 4 && a.all == 1);
+    /* the first client with a command answers 0x1010/0x1011, after the command word */
+    odg_attach(&td, &b.client);
+    b.answer = ODG_OK;
+    CHECK_EQ(wr(0x1010, 3, "save", 4), ODG_OK);
+    CHECK(b.commands == 1 && b.last_sub == 3 && b.restore == 0);
+    CHECK_EQ(wr(0x1011, 2, "load", 4), ODG_OK);
+    CHECK(b.commands == 2 && b.last_sub == 2 && b.restore == 1);
+    CHECK_EQ(wr(0x1011, 2, "save", 4), ODG_ABORT_DATA_STORE);
+    CHECK_EQ(b.commands, 2);
+    b.answer = ODG_ABORT_HARDWARE;
+    CHECK_EQ(wr(0x1010, 1, "save", 4), ODG_ABORT_HARDWARE);
+    CHECK_EQ(a.changes, 4); /* a command changes no value */
+    CHECK_EQ(odg_set_u32(&td, 0x2007, 0, 9u), ODG_OK);
+    CHECK(a.changes == 5 && b.changes == 1); /* both hear it */
+    /* odg_init detaches them all */
+    CHECK_EQ(odg_init(&td, NODE), ODG_OK);
+    CHECK(td.state->clients == NULL);
+    CHECK_EQ(odg_set_u32(&td, 0x2007, 0, 9u), ODG_OK);
+    CHECK(a.changes == 5 && b.changes == 1);
+    CHECK_EQ(wr(0x1010, 1, "save", 4), ODG_ABORT_DATA_STORE);
 }
 
 int main(void)
@@ -1257,7 +1414,9 @@ int main(void)
     test_node_id();
     test_mapping();
     test_signed_zero();
-    CHECK_EQ(odg_init(&td, NODE, NULL, NULL), ODG_OK);
+    test_typed();
+    test_clients();
+    CHECK_EQ(odg_init(&td, NODE), ODG_OK);
     CHECK_EQ(odg_verify(&td, NULL), ODG_OK);
     return done();
 }

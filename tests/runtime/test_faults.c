@@ -72,13 +72,17 @@ static uint32_t store_bytes(uint8_t g)
     return ODG_PERSIST_SLOT_SIZE(msize(g)) + msize(g) + HDR; /* erase, image, header */
 }
 
+static odg_persist_t persist;
+
 static odg_abort_t boot(void)
 {
+    odg_abort_t ac;
     nv_fault_power_on(&nv);
     memset(mirror(0), 0xA5, msize(0));
     memset(mirror(1), 0xA5, msize(1));
     bs[0] = bs[1] = (odg_boot_status_t)99;
-    return odg_init(&td, NODE, &nv.driver, bs);
+    ac = odg_init(&td, NODE);
+    return ac != ODG_OK ? ac : odg_persist_init(&persist, &td, &nv.driver, bs);
 }
 
 /* Which of the group's candidate images the mirror equals, as bits (1 << DEF ...); 0: a mix. */

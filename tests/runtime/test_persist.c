@@ -226,6 +226,14 @@ odg_abort_t td_notice(const odg_ref_t *ref, odg_hook_kind_t kind, const void *da
 /* ---- values -------------------------------------------------------------------------------- */
 
 static odg_boot_status_t bs[2];
+static odg_persist_t persist;
+
+/* odg_init, then the persistence layer with driver `nv`. */
+static odg_abort_t start(uint8_t node, const odg_nv_driver_t *nv, odg_boot_status_t *boot)
+{
+    odg_abort_t ac = odg_init(&td, node);
+    return ac != ODG_OK ? ac : odg_persist_init(&persist, &td, nv, boot);
+}
 
 static odg_abort_t reboot(uint8_t node)
 {
@@ -233,7 +241,7 @@ static odg_abort_t reboot(uint8_t node)
     memset(&td_persist_comm, 0xA5, sizeof td_persist_comm);
     memset(&td_persist_app, 0xA5, sizeof td_persist_app);
     bs[0] = bs[1] = (odg_boot_status_t)99;
-    return odg_init(&td, node, &drv, bs);
+    return start(node, &drv, bs);
 }
 
 static int comm_is_default(uint8_t node)
@@ -316,7 +324,7 @@ static void test_boot_and_commands(void)
     long calls;
     nv_blank();
     /* first boot: no image, defaults, written to slot 0 */
-    CHECK_EQ(odg_init(&td, NODE, &drv, bs), ODG_OK);
+    CHECK_EQ(start(NODE, &drv, bs), ODG_OK);
     CHECK_EQ(bs[0], ODG_BOOT_DEFAULTS);
     CHECK_EQ(bs[1], ODG_BOOT_DEFAULTS);
     CHECK(comm_is_default(NODE));
@@ -415,13 +423,13 @@ static void test_boot_and_commands(void)
     /* API misuse */
     CHECK_EQ(odg_persist_store(&td, 2), ODG_ABORT_DATA_STORE);
     CHECK_EQ(odg_persist_restore(&td, 2), ODG_ABORT_DATA_STORE);
-    CHECK_EQ(odg_persist_boot(&td, NULL, bs), ODG_ABORT_DATA_STORE);
+    CHECK_EQ(odg_persist_init(&persist, &td, NULL, bs), ODG_ABORT_DATA_STORE);
     CHECK(bs[0] == ODG_BOOT_NV_ERROR && bs[1] == ODG_BOOT_NV_ERROR);
-    CHECK_EQ(odg_init(&td, NODE, NULL, NULL), ODG_OK);
+    CHECK_EQ(odg_init(&td, NODE), ODG_OK);
     CHECK_EQ(odg_persist_store(&td, 0), ODG_ABORT_DATA_STORE);
     CHECK_EQ(odg_persist_restore(&td, 0), ODG_ABORT_DATA_STORE);
     CHECK_EQ(command(0x1010, 1, "save"), ODG_ABORT_DATA_STORE);
-    CHECK_EQ(odg_init(&td, NODE, &drv, NULL), ODG_OK); /* boot status may be NULL */
+    CHECK_EQ(start(NODE, &drv, NULL), ODG_OK); /* boot status may be NULL */
 }
 
 /* Stores alternate between the slots with increasing sequence numbers. */
@@ -567,7 +575,7 @@ static void sweep_first_boot(void)
         nv_blank();
         nvm.budget = (long)k;
         memset(&td_persist_comm, 0, sizeof td_persist_comm);
-        ac = odg_init(&td, NODE, &drv, bs);
+        ac = start(NODE, &drv, bs);
         CHECK_EQ_AT(ac, k == total ? ODG_OK : ODG_ABORT_HARDWARE, k);
         CHECK_EQ_AT(bs[1], k == total ? ODG_BOOT_DEFAULTS : ODG_BOOT_NV_ERROR, k);
         CHECK(comm_is_default(NODE) && app_is_default(NODE)); /* defaults in RAM either way */
@@ -736,7 +744,7 @@ static void test_nv_errors(void)
     memcpy(snap, nvm.mem, NV_SIZE);
     power_on();
     nvm.reads = 0;
-    CHECK_EQ(odg_init(&td, NODE, &drv, bs), ODG_OK);
+    CHECK_EQ(start(NODE, &drv, bs), ODG_OK);
     reads = nvm.reads;
     for (mode = 0; mode < 2; mode++) {
         for (n = 1; n <= reads; n++) {
@@ -747,7 +755,7 @@ static void test_nv_errors(void)
             nvm.fail_read_at = n;
             nvm.corrupt_read = mode;
             memset(&td_persist_comm, 0xA5, sizeof td_persist_comm);
-            ac = odg_init(&td, NODE, &drv, bs);
+            ac = start(NODE, &drv, bs);
             CHECK(app_is_default(NODE));
             if (bs[0] == ODG_BOOT_LOADED) {
                 /* a read that lies about the newest slot may make the older one win */
@@ -770,7 +778,7 @@ static void test_nv_errors(void)
     memcpy(nvm.mem, snap, NV_SIZE);
     power_on();
     nvm.dead = 1;
-    CHECK_EQ(odg_init(&td, NODE, &drv, bs), ODG_ABORT_HARDWARE);
+    CHECK_EQ(start(NODE, &drv, bs), ODG_ABORT_HARDWARE);
     CHECK(bs[0] == ODG_BOOT_NV_ERROR && bs[1] == ODG_BOOT_NV_ERROR);
     CHECK(comm_is_default(NODE) && app_is_default(NODE));
     CHECK(memcmp(nvm.mem, snap, NV_SIZE) == 0);
@@ -815,7 +823,7 @@ static void test_file_driver(const char *dir)
     CHECK_EQ(f.driver.write(f.driver.ctx, 298, buf, 3), -1);
     CHECK_EQ(f.driver.erase(f.driver.ctx, 301, 0), -1);
     CHECK_EQ(f.driver.read(f.driver.ctx, 300, buf, 0), 0);
-    CHECK_EQ(odg_init(&td, NODE, &f.driver, bs), ODG_OK);
+    CHECK_EQ(start(NODE, &f.driver, bs), ODG_OK);
     CHECK(bs[0] == ODG_BOOT_DEFAULTS && bs[1] == ODG_BOOT_DEFAULTS);
     td_persist_comm.x1017 = 4242;
     memcpy(td_persist_app.x2500_s2, "file", 5);
@@ -825,14 +833,14 @@ static void test_file_driver(const char *dir)
     /* power cycle; a larger area keeps what was there */
     CHECK_EQ(odg_nv_file_open(&f, path, 400), 0);
     f.sync = 0;
-    CHECK_EQ(odg_init(&td, NODE, &f.driver, bs), ODG_OK);
+    CHECK_EQ(start(NODE, &f.driver, bs), ODG_OK);
     CHECK(bs[0] == ODG_BOOT_LOADED && bs[1] == ODG_BOOT_LOADED);
     CHECK_EQ(td_persist_comm.x1017, 4242);
     CHECK(memcmp(td_persist_app.x2500_s2, "file", 5) == 0);
     CHECK_EQ(f.driver.read(f.driver.ctx, 300, buf, 100), 0);
     CHECK(buf[0] == 0xFF && buf[99] == 0xFF);
     CHECK_EQ(f.driver.erase(f.driver.ctx, 0, 400), 0);
-    CHECK_EQ(odg_init(&td, NODE, &f.driver, bs), ODG_OK);
+    CHECK_EQ(start(NODE, &f.driver, bs), ODG_OK);
     CHECK_EQ(bs[0], ODG_BOOT_DEFAULTS);
     CHECK_EQ(odg_nv_file_close(&f), 0);
     CHECK_EQ(f.driver.read(f.driver.ctx, 0, buf, 1), -1); /* closed */

@@ -63,124 +63,125 @@ ODG_ATTR_ROM static const alltypes_persist_comm_t alltypes_persist_comm_defaults
 };
 
 ODG_ATTR_ROM static const odg_domain_t alltypes_domains[1] = {
-    {alltypes_ram.x200E_domain_value_buf, &alltypes_ram.x200E_domain_value_len, 16u}, /* x200E_domain_value */
+    {.data = alltypes_ram.x200E_domain_value_buf, .length = &alltypes_ram.x200E_domain_value_len, .capacity = 16u}, /* x200E_domain_value */
 };
 
 /* Offsets into a value block are 16-bit. */
 typedef char alltypes_assert_block_sizes[(sizeof(alltypes_rom_t) <= 65535u && sizeof(alltypes_ram_t) <= 65535u && sizeof(alltypes_persist_app_t) <= 65535u && sizeof(alltypes_persist_comm_t) <= 65535u && 1) ? 1 : -1];
 
 ODG_ATTR_ROM static const odg_entry_t alltypes_entries[35] = {
-    {0x1000, 0, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Device type */
-    {0x1001, 1, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Error register */
-    {0x1010, 2, 4, ODG_OBJ_ARRAY | ODG_E_DENSE}, /* Store parameters */
-    {0x1011, 6, 4, ODG_OBJ_ARRAY | ODG_E_DENSE}, /* Restore default parameters */
-    {0x1017, 10, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Producer heartbeat time */
-    {0x1018, 11, 2, ODG_OBJ_RECORD | ODG_E_DENSE}, /* Identity */
-    {0x2001, 13, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Bool flag */
-    {0x2002, 14, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Int8 value */
-    {0x2003, 15, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Int16 value */
-    {0x2004, 16, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Int32 value */
-    {0x2005, 17, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Uint8 value */
-    {0x2006, 18, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Uint16 value */
-    {0x2007, 19, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Uint32 value */
-    {0x2008, 20, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Real32 value */
-    {0x2009, 21, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Device label */
-    {0x200A, 22, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Octet value */
-    {0x200B, 23, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Unicode label */
-    {0x200C, 24, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Time of day */
-    {0x200D, 25, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Time difference */
-    {0x200E, 26, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Domain value */
-    {0x200F, 27, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Int24 value */
-    {0x2010, 28, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Real64 value */
-    {0x2011, 29, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Int40 value */
-    {0x2012, 30, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Int48 value */
-    {0x2013, 31, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Int56 value */
-    {0x2014, 32, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Int64 value */
-    {0x2015, 33, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Uint24 value */
-    {0x2016, 34, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Uint40 value */
-    {0x2017, 35, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Uint48 value */
-    {0x2018, 36, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Uint56 value */
-    {0x2019, 37, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Uint64 value */
-    {0x2100, 38, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Firmware build */
-    {0x2101, 39, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Status word */
-    {0x2102, 40, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Command word */
-    {0x2103, 41, 3, ODG_OBJ_RECORD}, /* Sparse record */
+    {.index = 0x1000, .first = 0, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Device type */
+    {.index = 0x1001, .first = 1, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Error register */
+    {.index = 0x1010, .first = 2, .count = 4, .code = ODG_OBJ_ARRAY | ODG_E_DENSE}, /* Store parameters */
+    {.index = 0x1011, .first = 6, .count = 4, .code = ODG_OBJ_ARRAY | ODG_E_DENSE}, /* Restore default parameters */
+    {.index = 0x1017, .first = 10, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Producer heartbeat time */
+    {.index = 0x1018, .first = 11, .count = 2, .code = ODG_OBJ_RECORD | ODG_E_DENSE}, /* Identity */
+    {.index = 0x2001, .first = 13, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Bool flag */
+    {.index = 0x2002, .first = 14, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Int8 value */
+    {.index = 0x2003, .first = 15, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Int16 value */
+    {.index = 0x2004, .first = 16, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Int32 value */
+    {.index = 0x2005, .first = 17, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Uint8 value */
+    {.index = 0x2006, .first = 18, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Uint16 value */
+    {.index = 0x2007, .first = 19, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Uint32 value */
+    {.index = 0x2008, .first = 20, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Real32 value */
+    {.index = 0x2009, .first = 21, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Device label */
+    {.index = 0x200A, .first = 22, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Octet value */
+    {.index = 0x200B, .first = 23, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Unicode label */
+    {.index = 0x200C, .first = 24, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Time of day */
+    {.index = 0x200D, .first = 25, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Time difference */
+    {.index = 0x200E, .first = 26, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Domain value */
+    {.index = 0x200F, .first = 27, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Int24 value */
+    {.index = 0x2010, .first = 28, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Real64 value */
+    {.index = 0x2011, .first = 29, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Int40 value */
+    {.index = 0x2012, .first = 30, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Int48 value */
+    {.index = 0x2013, .first = 31, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Int56 value */
+    {.index = 0x2014, .first = 32, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Int64 value */
+    {.index = 0x2015, .first = 33, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Uint24 value */
+    {.index = 0x2016, .first = 34, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Uint40 value */
+    {.index = 0x2017, .first = 35, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Uint48 value */
+    {.index = 0x2018, .first = 36, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Uint56 value */
+    {.index = 0x2019, .first = 37, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Uint64 value */
+    {.index = 0x2100, .first = 38, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Firmware build */
+    {.index = 0x2101, .first = 39, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Status word */
+    {.index = 0x2102, .first = 40, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Command word */
+    {.index = 0x2103, .first = 41, .count = 3, .code = ODG_OBJ_RECORD}, /* Sparse record */
 };
 
-/* offset, size, sub, type, attr, storage */
 ODG_ATTR_ROM static const odg_sub_t alltypes_subs[44] = {
-    {offsetof(alltypes_rom_t, x1000_device_type), 4, 0, 0x07, ODG_A_READ, ODG_S_ROM}, /* Device type */
-    {offsetof(alltypes_ram_t, x1001_error_register), 1, 0, 0x05, ODG_A_READ | ODG_A_TPDO, ODG_S_RAM}, /* Error register */
-    {offsetof(alltypes_rom_t, x1010_store_parameters_s0_highest_sub_index_supported), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
-    {0, 4, 1, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_STORE}, /* Save all parameters */
-    {0, 4, 2, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_STORE}, /* Save communication parameters */
-    {0, 4, 3, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_STORE}, /* Save application parameters */
-    {offsetof(alltypes_rom_t, x1011_restore_default_parameters_s0_highest_sub_index_supported), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
-    {0, 4, 1, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_STORE | ODG_S_RESTORE_FLAG}, /* Restore all parameters */
-    {0, 4, 2, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_STORE | ODG_S_RESTORE_FLAG}, /* Restore communication parameters */
-    {0, 4, 3, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_STORE | ODG_S_RESTORE_FLAG}, /* Restore application parameters */
-    {offsetof(alltypes_persist_comm_t, x1017_producer_heartbeat_time), 2, 0, 0x06, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Producer heartbeat time */
-    {offsetof(alltypes_rom_t, x1018_identity_s0_highest_sub_index_supported), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
-    {offsetof(alltypes_rom_t, x1018_identity_s1_vendor_id), 4, 1, 0x07, ODG_A_READ, ODG_S_ROM}, /* Vendor-ID */
-    {offsetof(alltypes_persist_comm_t, x2001_bool_flag), 1, 0, 0x01, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Bool flag */
-    {offsetof(alltypes_persist_comm_t, x2002_int8_value), 1, 0, 0x02, ODG_A_READ | ODG_A_WRITE | ODG_A_TPDO | ODG_A_RPDO | ODG_A_LIMIT, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Int8 value */
-    {offsetof(alltypes_persist_comm_t, x2003_int16_value), 2, 0, 0x03, ODG_A_READ | ODG_A_WRITE | ODG_A_TPDO | ODG_A_RPDO | ODG_A_LIMIT, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Int16 value */
-    {offsetof(alltypes_persist_comm_t, x2004_int32_value), 4, 0, 0x04, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Int32 value */
-    {offsetof(alltypes_persist_comm_t, x2005_uint8_value), 1, 0, 0x05, ODG_A_READ | ODG_A_WRITE | ODG_A_TPDO | ODG_A_RPDO | ODG_A_HOOK | ODG_A_LIMIT, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Uint8 value */
-    {offsetof(alltypes_persist_comm_t, x2006_uint16_value), 2, 0, 0x06, ODG_A_READ | ODG_A_WRITE | ODG_A_TPDO | ODG_A_RPDO | ODG_A_HOOK | ODG_A_LIMIT, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Uint16 value */
-    {offsetof(alltypes_persist_comm_t, x2007_uint32_value), 4, 0, 0x07, ODG_A_READ | ODG_A_WRITE | ODG_A_TPDO | ODG_A_RPDO | ODG_A_NODEID, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Uint32 value */
-    {offsetof(alltypes_persist_comm_t, x2008_real32_value), 4, 0, 0x08, ODG_A_READ | ODG_A_WRITE | ODG_A_LIMIT, ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Real32 value */
-    {offsetof(alltypes_ram_t, x2009_device_label), 40, 0, 0x09, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Device label */
-    {offsetof(alltypes_ram_t, x200A_octet_value), 4, 0, 0x0A, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Octet value */
-    {offsetof(alltypes_ram_t, x200B_unicode_label), 6, 0, 0x0B, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Unicode label */
-    {offsetof(alltypes_ram_t, x200C_time_of_day), 6, 0, 0x0C, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Time of day */
-    {offsetof(alltypes_ram_t, x200D_time_difference), 6, 0, 0x0D, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Time difference */
-    {0, 16, 0, 0x0F, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Domain value */
-    {offsetof(alltypes_ram_t, x200F_int24_value), 3, 0, 0x10, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Int24 value */
-    {offsetof(alltypes_persist_app_t, x2010_real64_value), 8, 0, 0x11, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Real64 value */
-    {offsetof(alltypes_persist_app_t, x2011_int40_value), 5, 0, 0x12, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Int40 value */
-    {offsetof(alltypes_persist_app_t, x2012_int48_value), 6, 0, 0x13, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Int48 value */
-    {offsetof(alltypes_persist_app_t, x2013_int56_value), 7, 0, 0x14, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Int56 value */
-    {offsetof(alltypes_persist_app_t, x2014_int64_value), 8, 0, 0x15, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Int64 value */
-    {offsetof(alltypes_persist_app_t, x2015_uint24_value), 3, 0, 0x16, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Uint24 value */
-    {offsetof(alltypes_persist_app_t, x2016_uint40_value), 5, 0, 0x18, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Uint40 value */
-    {offsetof(alltypes_persist_app_t, x2017_uint48_value), 6, 0, 0x19, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Uint48 value */
-    {offsetof(alltypes_persist_app_t, x2018_uint56_value), 7, 0, 0x1A, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Uint56 value */
-    {offsetof(alltypes_persist_app_t, x2019_uint64_value), 8, 0, 0x1B, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Uint64 value */
-    {offsetof(alltypes_rom_t, x2100_firmware_build), 4, 0, 0x07, ODG_A_READ, ODG_S_ROM}, /* Firmware build */
-    {offsetof(alltypes_ram_t, x2101_status_word), 2, 0, 0x06, ODG_A_READ | ODG_A_TPDO | ODG_A_HOOK, ODG_S_RAM}, /* Status word */
-    {offsetof(alltypes_ram_t, x2102_command_word), 2, 0, 0x06, ODG_A_WRITE, ODG_S_RAM}, /* Command word */
-    {offsetof(alltypes_persist_app_t, x2103_sparse_record_s0_highest_sub_index_supported), 1, 0, 0x05, ODG_A_READ, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Highest sub-index supported */
-    {offsetof(alltypes_persist_app_t, x2103_sparse_record_s1_first), 2, 1, 0x06, ODG_A_READ | ODG_A_WRITE, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* First */
-    {offsetof(alltypes_persist_app_t, x2103_sparse_record_s4_fourth), 4, 4, 0x04, ODG_A_READ | ODG_A_WRITE | ODG_A_HOOK | ODG_A_LIMIT, ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Fourth */
+    {.offset = offsetof(alltypes_rom_t, x1000_device_type), .size = 4, .sub = 0, .type = 0x07, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Device type */
+    {.offset = offsetof(alltypes_ram_t, x1001_error_register), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ | ODG_A_TPDO, .storage = ODG_S_RAM}, /* Error register */
+    {.offset = offsetof(alltypes_rom_t, x1010_store_parameters_s0_highest_sub_index_supported), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Highest sub-index supported */
+    {.offset = 0, .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_STORE}, /* Save all parameters */
+    {.offset = 0, .size = 4, .sub = 2, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_STORE}, /* Save communication parameters */
+    {.offset = 0, .size = 4, .sub = 3, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_STORE}, /* Save application parameters */
+    {.offset = offsetof(alltypes_rom_t, x1011_restore_default_parameters_s0_highest_sub_index_supported), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Highest sub-index supported */
+    {.offset = 0, .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_STORE | ODG_S_RESTORE_FLAG}, /* Restore all parameters */
+    {.offset = 0, .size = 4, .sub = 2, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_STORE | ODG_S_RESTORE_FLAG}, /* Restore communication parameters */
+    {.offset = 0, .size = 4, .sub = 3, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_STORE | ODG_S_RESTORE_FLAG}, /* Restore application parameters */
+    {.offset = offsetof(alltypes_persist_comm_t, x1017_producer_heartbeat_time), .size = 2, .sub = 0, .type = 0x06, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Producer heartbeat time */
+    {.offset = offsetof(alltypes_rom_t, x1018_identity_s0_highest_sub_index_supported), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Highest sub-index supported */
+    {.offset = offsetof(alltypes_rom_t, x1018_identity_s1_vendor_id), .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Vendor-ID */
+    {.offset = offsetof(alltypes_persist_comm_t, x2001_bool_flag), .size = 1, .sub = 0, .type = 0x01, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Bool flag */
+    {.offset = offsetof(alltypes_persist_comm_t, x2002_int8_value), .size = 1, .sub = 0, .type = 0x02, .attr = ODG_A_READ | ODG_A_WRITE | ODG_A_TPDO | ODG_A_RPDO | ODG_A_LIMIT, .storage = ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Int8 value */
+    {.offset = offsetof(alltypes_persist_comm_t, x2003_int16_value), .size = 2, .sub = 0, .type = 0x03, .attr = ODG_A_READ | ODG_A_WRITE | ODG_A_TPDO | ODG_A_RPDO | ODG_A_LIMIT, .storage = ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Int16 value */
+    {.offset = offsetof(alltypes_persist_comm_t, x2004_int32_value), .size = 4, .sub = 0, .type = 0x04, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Int32 value */
+    {.offset = offsetof(alltypes_persist_comm_t, x2005_uint8_value), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ | ODG_A_WRITE | ODG_A_TPDO | ODG_A_RPDO | ODG_A_HOOK | ODG_A_LIMIT, .storage = ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Uint8 value */
+    {.offset = offsetof(alltypes_persist_comm_t, x2006_uint16_value), .size = 2, .sub = 0, .type = 0x06, .attr = ODG_A_READ | ODG_A_WRITE | ODG_A_TPDO | ODG_A_RPDO | ODG_A_HOOK | ODG_A_LIMIT, .storage = ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Uint16 value */
+    {.offset = offsetof(alltypes_persist_comm_t, x2007_uint32_value), .size = 4, .sub = 0, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE | ODG_A_TPDO | ODG_A_RPDO | ODG_A_NODEID, .storage = ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Uint32 value */
+    {.offset = offsetof(alltypes_persist_comm_t, x2008_real32_value), .size = 4, .sub = 0, .type = 0x08, .attr = ODG_A_READ | ODG_A_WRITE | ODG_A_LIMIT, .storage = ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Real32 value */
+    {.offset = offsetof(alltypes_ram_t, x2009_device_label), .size = 40, .sub = 0, .type = 0x09, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_RAM}, /* Device label */
+    {.offset = offsetof(alltypes_ram_t, x200A_octet_value), .size = 4, .sub = 0, .type = 0x0A, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_RAM}, /* Octet value */
+    {.offset = offsetof(alltypes_ram_t, x200B_unicode_label), .size = 6, .sub = 0, .type = 0x0B, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_RAM}, /* Unicode label */
+    {.offset = offsetof(alltypes_ram_t, x200C_time_of_day), .size = 6, .sub = 0, .type = 0x0C, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_RAM}, /* Time of day */
+    {.offset = offsetof(alltypes_ram_t, x200D_time_difference), .size = 6, .sub = 0, .type = 0x0D, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_RAM}, /* Time difference */
+    {.offset = 0, .size = 16, .sub = 0, .type = 0x0F, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_RAM}, /* Domain value */
+    {.offset = offsetof(alltypes_ram_t, x200F_int24_value), .size = 3, .sub = 0, .type = 0x10, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_RAM}, /* Int24 value */
+    {.offset = offsetof(alltypes_persist_app_t, x2010_real64_value), .size = 8, .sub = 0, .type = 0x11, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Real64 value */
+    {.offset = offsetof(alltypes_persist_app_t, x2011_int40_value), .size = 5, .sub = 0, .type = 0x12, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Int40 value */
+    {.offset = offsetof(alltypes_persist_app_t, x2012_int48_value), .size = 6, .sub = 0, .type = 0x13, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Int48 value */
+    {.offset = offsetof(alltypes_persist_app_t, x2013_int56_value), .size = 7, .sub = 0, .type = 0x14, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Int56 value */
+    {.offset = offsetof(alltypes_persist_app_t, x2014_int64_value), .size = 8, .sub = 0, .type = 0x15, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Int64 value */
+    {.offset = offsetof(alltypes_persist_app_t, x2015_uint24_value), .size = 3, .sub = 0, .type = 0x16, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Uint24 value */
+    {.offset = offsetof(alltypes_persist_app_t, x2016_uint40_value), .size = 5, .sub = 0, .type = 0x18, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Uint40 value */
+    {.offset = offsetof(alltypes_persist_app_t, x2017_uint48_value), .size = 6, .sub = 0, .type = 0x19, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Uint48 value */
+    {.offset = offsetof(alltypes_persist_app_t, x2018_uint56_value), .size = 7, .sub = 0, .type = 0x1A, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Uint56 value */
+    {.offset = offsetof(alltypes_persist_app_t, x2019_uint64_value), .size = 8, .sub = 0, .type = 0x1B, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Uint64 value */
+    {.offset = offsetof(alltypes_rom_t, x2100_firmware_build), .size = 4, .sub = 0, .type = 0x07, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Firmware build */
+    {.offset = offsetof(alltypes_ram_t, x2101_status_word), .size = 2, .sub = 0, .type = 0x06, .attr = ODG_A_READ | ODG_A_TPDO | ODG_A_HOOK, .storage = ODG_S_RAM}, /* Status word */
+    {.offset = offsetof(alltypes_ram_t, x2102_command_word), .size = 2, .sub = 0, .type = 0x06, .attr = ODG_A_WRITE, .storage = ODG_S_RAM}, /* Command word */
+    {.offset = offsetof(alltypes_persist_app_t, x2103_sparse_record_s0_highest_sub_index_supported), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ, .storage = ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Highest sub-index supported */
+    {.offset = offsetof(alltypes_persist_app_t, x2103_sparse_record_s1_first), .size = 2, .sub = 1, .type = 0x06, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* First */
+    {.offset = offsetof(alltypes_persist_app_t, x2103_sparse_record_s4_fourth), .size = 4, .sub = 4, .type = 0x04, .attr = ODG_A_READ | ODG_A_WRITE | ODG_A_HOOK | ODG_A_LIMIT, .storage = ODG_S_PERSIST | (ALLTYPES_GROUP_APP << 2)}, /* Fourth */
 };
 
 ODG_ATTR_ROM static const odg_limit_t alltypes_limits[6] = {
-    {UINT64_C(0xFFFFFFFFFFFFFF9C), UINT64_C(0x0000000000000064), 14}, /* -100 .. 100 */
-    {UINT64_C(0xFFFFFFFFFFFFFC18), UINT64_C(0x00000000000003E8), 15}, /* -1000 .. 1000 */
-    {UINT64_C(0x0000000000000001), UINT64_C(0x00000000000000C8), 17}, /* 1 .. 200 */
-    {UINT64_C(0x0000000000000000), UINT64_C(0x0000000000008000), 18}, /* 0 .. 32768 */
-    {UINT64_C(0xC024000000000000), UINT64_C(0x4024000000000000), 20}, /* -10.0 .. 10.0 */
-    {UINT64_C(0xFFFFFFFFFFFFFFF6), UINT64_C(0x000000000000000A), 43}, /* -10 .. 10 */
+    {.low = UINT64_C(0xFFFFFFFFFFFFFF9C), .high = UINT64_C(0x0000000000000064), .sub_pos = 14}, /* -100 .. 100 */
+    {.low = UINT64_C(0xFFFFFFFFFFFFFC18), .high = UINT64_C(0x00000000000003E8), .sub_pos = 15}, /* -1000 .. 1000 */
+    {.low = UINT64_C(0x0000000000000001), .high = UINT64_C(0x00000000000000C8), .sub_pos = 17}, /* 1 .. 200 */
+    {.low = UINT64_C(0x0000000000000000), .high = UINT64_C(0x0000000000008000), .sub_pos = 18}, /* 0 .. 32768 */
+    {.low = UINT64_C(0xC024000000000000), .high = UINT64_C(0x4024000000000000), .sub_pos = 20}, /* -10.0 .. 10.0 */
+    {.low = UINT64_C(0xFFFFFFFFFFFFFFF6), .high = UINT64_C(0x000000000000000A), .sub_pos = 43}, /* -10 .. 10 */
 };
 
 ODG_ATTR_ROM static const odg_hook_map_t alltypes_hook_map[4] = {
-    {17, ODG_HOOK_PRE_WRITE}, /* 0x2005sub0 */
-    {18, ODG_HOOK_POST_WRITE}, /* 0x2006sub0 */
-    {39, ODG_HOOK_PRE_READ}, /* 0x2101sub0 */
-    {43, ODG_HOOK_PRE_READ | ODG_HOOK_PRE_WRITE | ODG_HOOK_POST_WRITE}, /* 0x2103sub4 */
+    {.sub_pos = 17, .kinds = ODG_HOOK_PRE_WRITE}, /* 0x2005sub0 */
+    {.sub_pos = 18, .kinds = ODG_HOOK_POST_WRITE}, /* 0x2006sub0 */
+    {.sub_pos = 39, .kinds = ODG_HOOK_PRE_READ}, /* 0x2101sub0 */
+    {.sub_pos = 43, .kinds = ODG_HOOK_PRE_READ | ODG_HOOK_PRE_WRITE | ODG_HOOK_POST_WRITE}, /* 0x2103sub4 */
 };
 
 ODG_ATTR_RAM static odg_hook_slot_t alltypes_hook_slots[4] = {
-    {NULL, NULL}, /* 0x2005sub0 */
-    {alltypes_notice, NULL}, /* 0x2006sub0 */
-    {NULL, NULL}, /* 0x2101sub0 */
-    {NULL, NULL}, /* 0x2103sub4 */
+    {.fn = NULL, .ctx = NULL}, /* 0x2005sub0 */
+    {.fn = alltypes_notice, .ctx = NULL}, /* 0x2006sub0 */
+    {.fn = NULL, .ctx = NULL}, /* 0x2101sub0 */
+    {.fn = NULL, .ctx = NULL}, /* 0x2103sub4 */
 };
 
 ODG_ATTR_ROM static const odg_group_t alltypes_groups[2] = {
-    {&alltypes_persist_app, &alltypes_persist_app_defaults, sizeof(alltypes_persist_app_t), 0x528A6BFCu, ALLTYPES_NV_BASE + 0u, 3},
-    {&alltypes_persist_comm, &alltypes_persist_comm_defaults, sizeof(alltypes_persist_comm_t), 0xB2AD448Bu, ALLTYPES_NV_BASE + 0u + 2u * ODG_PERSIST_SLOT_SIZE(sizeof(alltypes_persist_app_t)), 2},
+    {.mirror = &alltypes_persist_app, .defaults = &alltypes_persist_app_defaults, .size = sizeof(alltypes_persist_app_t),
+     .signature = 0x528A6BFCu, .nv_addr = ALLTYPES_NV_BASE + 0u, .store_sub = 3},
+    {.mirror = &alltypes_persist_comm, .defaults = &alltypes_persist_comm_defaults, .size = sizeof(alltypes_persist_comm_t),
+     .signature = 0xB2AD448Bu, .nv_addr = ALLTYPES_NV_BASE + 0u + 2u * ODG_PERSIST_SLOT_SIZE(sizeof(alltypes_persist_app_t)), .store_sub = 2},
 };
 
 ODG_ATTR_RAM static odg_state_t alltypes_state;
@@ -237,22 +238,22 @@ static void alltypes_reset(const odg_dict_t *dict)
 }
 
 ODG_ATTR_ROM const odg_dict_t alltypes = {
-    alltypes_entries,
-    alltypes_subs,
-    &alltypes_rom,
-    &alltypes_ram,
-    alltypes_domains,
-    alltypes_limits,
-    alltypes_hook_map,
-    alltypes_hook_slots,
-    alltypes_groups,
-    &alltypes_state,
-    alltypes_find,
-    alltypes_reset,
-    35,
-    44,
-    4,
-    6,
-    1,
-    2
+    .entries = alltypes_entries,
+    .subs = alltypes_subs,
+    .rom = &alltypes_rom,
+    .ram = &alltypes_ram,
+    .domains = alltypes_domains,
+    .limits = alltypes_limits,
+    .hook_map = alltypes_hook_map,
+    .hook_slots = alltypes_hook_slots,
+    .groups = alltypes_groups,
+    .state = &alltypes_state,
+    .find = alltypes_find,
+    .reset = alltypes_reset,
+    .n_entries = 35,
+    .n_subs = 44,
+    .n_hooks = 4,
+    .n_limits = 6,
+    .n_domains = 1,
+    .n_groups = 2
 };

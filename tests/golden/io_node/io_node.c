@@ -51,61 +51,60 @@ ODG_ATTR_ROM static const io_node_ram_t io_node_ram_defaults = {
 typedef char io_node_assert_block_sizes[(sizeof(io_node_rom_t) <= 65535u && sizeof(io_node_ram_t) <= 65535u && 1) ? 1 : -1];
 
 ODG_ATTR_ROM static const odg_entry_t io_node_entries[14] = {
-    {0x1000, 0, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Device type */
-    {0x1001, 1, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Error register */
-    {0x1010, 2, 2, ODG_OBJ_ARRAY | ODG_E_DENSE}, /* Store parameters */
-    {0x1011, 4, 2, ODG_OBJ_ARRAY | ODG_E_DENSE}, /* Restore default parameters */
-    {0x1017, 6, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Producer heartbeat time */
-    {0x1018, 7, 5, ODG_OBJ_RECORD | ODG_E_DENSE}, /* Identity */
-    {0x1200, 12, 3, ODG_OBJ_RECORD | ODG_E_DENSE}, /* SDO server parameter */
-    {0x1400, 15, 3, ODG_OBJ_RECORD | ODG_E_DENSE}, /* RPDO communication parameter */
-    {0x1600, 18, 2, ODG_OBJ_RECORD | ODG_E_DENSE}, /* RPDO mapping parameter */
-    {0x1800, 20, 6, ODG_OBJ_RECORD}, /* TPDO communication parameter */
-    {0x1A00, 26, 2, ODG_OBJ_RECORD | ODG_E_DENSE}, /* TPDO mapping parameter */
-    {0x2000, 28, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Debounce time ms */
-    {0x6000, 29, 2, ODG_OBJ_ARRAY | ODG_E_DENSE}, /* Read input 8-bit */
-    {0x6200, 31, 2, ODG_OBJ_ARRAY | ODG_E_DENSE}, /* Write output 8-bit */
+    {.index = 0x1000, .first = 0, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Device type */
+    {.index = 0x1001, .first = 1, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Error register */
+    {.index = 0x1010, .first = 2, .count = 2, .code = ODG_OBJ_ARRAY | ODG_E_DENSE}, /* Store parameters */
+    {.index = 0x1011, .first = 4, .count = 2, .code = ODG_OBJ_ARRAY | ODG_E_DENSE}, /* Restore default parameters */
+    {.index = 0x1017, .first = 6, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Producer heartbeat time */
+    {.index = 0x1018, .first = 7, .count = 5, .code = ODG_OBJ_RECORD | ODG_E_DENSE}, /* Identity */
+    {.index = 0x1200, .first = 12, .count = 3, .code = ODG_OBJ_RECORD | ODG_E_DENSE}, /* SDO server parameter */
+    {.index = 0x1400, .first = 15, .count = 3, .code = ODG_OBJ_RECORD | ODG_E_DENSE}, /* RPDO communication parameter */
+    {.index = 0x1600, .first = 18, .count = 2, .code = ODG_OBJ_RECORD | ODG_E_DENSE}, /* RPDO mapping parameter */
+    {.index = 0x1800, .first = 20, .count = 6, .code = ODG_OBJ_RECORD}, /* TPDO communication parameter */
+    {.index = 0x1A00, .first = 26, .count = 2, .code = ODG_OBJ_RECORD | ODG_E_DENSE}, /* TPDO mapping parameter */
+    {.index = 0x2000, .first = 28, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Debounce time ms */
+    {.index = 0x6000, .first = 29, .count = 2, .code = ODG_OBJ_ARRAY | ODG_E_DENSE}, /* Read input 8-bit */
+    {.index = 0x6200, .first = 31, .count = 2, .code = ODG_OBJ_ARRAY | ODG_E_DENSE}, /* Write output 8-bit */
 };
 
-/* offset, size, sub, type, attr, storage */
 ODG_ATTR_ROM static const odg_sub_t io_node_subs[33] = {
-    {offsetof(io_node_rom_t, x1000_device_type), 4, 0, 0x07, ODG_A_READ, ODG_S_ROM}, /* Device type */
-    {offsetof(io_node_ram_t, x1001_error_register), 1, 0, 0x05, ODG_A_READ | ODG_A_TPDO, ODG_S_RAM}, /* Error register */
-    {offsetof(io_node_rom_t, x1010_store_parameters_s0_highest_sub_index_supported), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
-    {0, 4, 1, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_STORE}, /* Save all parameters */
-    {offsetof(io_node_rom_t, x1011_restore_default_parameters_s0_highest_sub_index_supported), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
-    {0, 4, 1, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_STORE | ODG_S_RESTORE_FLAG}, /* Restore all default parameters */
-    {offsetof(io_node_ram_t, x1017_producer_heartbeat_time), 2, 0, 0x06, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Producer heartbeat time */
-    {offsetof(io_node_rom_t, x1018_identity_s0_highest_sub_index_supported), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
-    {offsetof(io_node_rom_t, x1018_identity_s1_vendor_id), 4, 1, 0x07, ODG_A_READ, ODG_S_ROM}, /* Vendor-ID */
-    {offsetof(io_node_rom_t, x1018_identity_s2_product_code), 4, 2, 0x07, ODG_A_READ, ODG_S_ROM}, /* Product code */
-    {offsetof(io_node_rom_t, x1018_identity_s3_revision_number), 4, 3, 0x07, ODG_A_READ, ODG_S_ROM}, /* Revision number */
-    {offsetof(io_node_rom_t, x1018_identity_s4_serial_number), 4, 4, 0x07, ODG_A_READ, ODG_S_ROM}, /* Serial number */
-    {offsetof(io_node_rom_t, x1200_sdo_server_parameter_s0_highest_sub_index_supported), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
-    {offsetof(io_node_ram_t, x1200_sdo_server_parameter_s1_cob_id_client_to_server_rx), 4, 1, 0x07, ODG_A_READ | ODG_A_NODEID, ODG_S_RAM}, /* COB-ID client to server (rx) */
-    {offsetof(io_node_ram_t, x1200_sdo_server_parameter_s2_cob_id_server_to_client_tx), 4, 2, 0x07, ODG_A_READ | ODG_A_NODEID, ODG_S_RAM}, /* COB-ID server to client (tx) */
-    {offsetof(io_node_rom_t, x1400_rpdo_communication_parameter_s0_highest_sub_index_supported), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
-    {offsetof(io_node_ram_t, x1400_rpdo_communication_parameter_s1_cob_id_used_by_rpdo), 4, 1, 0x07, ODG_A_READ | ODG_A_WRITE | ODG_A_NODEID, ODG_S_RAM}, /* COB-ID used by RPDO */
-    {offsetof(io_node_ram_t, x1400_rpdo_communication_parameter_s2_transmission_type), 1, 2, 0x05, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Transmission type */
-    {offsetof(io_node_ram_t, x1600_rpdo_mapping_parameter_s0_number_of_mapped_application_objects_in_pdo), 1, 0, 0x05, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Number of mapped application objects in PDO */
-    {offsetof(io_node_ram_t, x1600_rpdo_mapping_parameter_s1_application_object_1), 4, 1, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Application object 1 */
-    {offsetof(io_node_rom_t, x1800_tpdo_communication_parameter_s0_highest_sub_index_supported), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
-    {offsetof(io_node_ram_t, x1800_tpdo_communication_parameter_s1_cob_id_used_by_tpdo), 4, 1, 0x07, ODG_A_READ | ODG_A_WRITE | ODG_A_NODEID, ODG_S_RAM}, /* COB-ID used by TPDO */
-    {offsetof(io_node_ram_t, x1800_tpdo_communication_parameter_s2_transmission_type), 1, 2, 0x05, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Transmission type */
-    {offsetof(io_node_ram_t, x1800_tpdo_communication_parameter_s3_inhibit_time), 2, 3, 0x06, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Inhibit time */
-    {offsetof(io_node_ram_t, x1800_tpdo_communication_parameter_s5_event_timer), 2, 5, 0x06, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Event timer */
-    {offsetof(io_node_ram_t, x1800_tpdo_communication_parameter_s6_sync_start_value), 1, 6, 0x05, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* SYNC start value */
-    {offsetof(io_node_ram_t, x1A00_tpdo_mapping_parameter_s0_number_of_mapped_application_objects_in_pdo), 1, 0, 0x05, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Number of mapped application objects in PDO */
-    {offsetof(io_node_ram_t, x1A00_tpdo_mapping_parameter_s1_application_object_1), 4, 1, 0x07, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Application object 1 */
-    {offsetof(io_node_ram_t, x2000_debounce_time_ms), 2, 0, 0x06, ODG_A_READ | ODG_A_WRITE | ODG_A_LIMIT, ODG_S_RAM}, /* Debounce time ms */
-    {offsetof(io_node_rom_t, x6000_read_input_8_bit_s0_highest_sub_index_supported), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
-    {offsetof(io_node_ram_t, x6000_read_input_8_bit_s1_read_input_1h_to_8h), 1, 1, 0x05, ODG_A_READ | ODG_A_TPDO, ODG_S_RAM}, /* Read input 1h to 8h */
-    {offsetof(io_node_rom_t, x6200_write_output_8_bit_s0_highest_sub_index_supported), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
-    {offsetof(io_node_ram_t, x6200_write_output_8_bit_s1_write_output_1h_to_8h), 1, 1, 0x05, ODG_A_READ | ODG_A_WRITE | ODG_A_RPDO, ODG_S_RAM}, /* Write output 1h to 8h */
+    {.offset = offsetof(io_node_rom_t, x1000_device_type), .size = 4, .sub = 0, .type = 0x07, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Device type */
+    {.offset = offsetof(io_node_ram_t, x1001_error_register), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ | ODG_A_TPDO, .storage = ODG_S_RAM}, /* Error register */
+    {.offset = offsetof(io_node_rom_t, x1010_store_parameters_s0_highest_sub_index_supported), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Highest sub-index supported */
+    {.offset = 0, .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_STORE}, /* Save all parameters */
+    {.offset = offsetof(io_node_rom_t, x1011_restore_default_parameters_s0_highest_sub_index_supported), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Highest sub-index supported */
+    {.offset = 0, .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_STORE | ODG_S_RESTORE_FLAG}, /* Restore all default parameters */
+    {.offset = offsetof(io_node_ram_t, x1017_producer_heartbeat_time), .size = 2, .sub = 0, .type = 0x06, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_RAM}, /* Producer heartbeat time */
+    {.offset = offsetof(io_node_rom_t, x1018_identity_s0_highest_sub_index_supported), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Highest sub-index supported */
+    {.offset = offsetof(io_node_rom_t, x1018_identity_s1_vendor_id), .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Vendor-ID */
+    {.offset = offsetof(io_node_rom_t, x1018_identity_s2_product_code), .size = 4, .sub = 2, .type = 0x07, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Product code */
+    {.offset = offsetof(io_node_rom_t, x1018_identity_s3_revision_number), .size = 4, .sub = 3, .type = 0x07, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Revision number */
+    {.offset = offsetof(io_node_rom_t, x1018_identity_s4_serial_number), .size = 4, .sub = 4, .type = 0x07, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Serial number */
+    {.offset = offsetof(io_node_rom_t, x1200_sdo_server_parameter_s0_highest_sub_index_supported), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Highest sub-index supported */
+    {.offset = offsetof(io_node_ram_t, x1200_sdo_server_parameter_s1_cob_id_client_to_server_rx), .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ | ODG_A_NODEID, .storage = ODG_S_RAM}, /* COB-ID client to server (rx) */
+    {.offset = offsetof(io_node_ram_t, x1200_sdo_server_parameter_s2_cob_id_server_to_client_tx), .size = 4, .sub = 2, .type = 0x07, .attr = ODG_A_READ | ODG_A_NODEID, .storage = ODG_S_RAM}, /* COB-ID server to client (tx) */
+    {.offset = offsetof(io_node_rom_t, x1400_rpdo_communication_parameter_s0_highest_sub_index_supported), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Highest sub-index supported */
+    {.offset = offsetof(io_node_ram_t, x1400_rpdo_communication_parameter_s1_cob_id_used_by_rpdo), .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE | ODG_A_NODEID, .storage = ODG_S_RAM}, /* COB-ID used by RPDO */
+    {.offset = offsetof(io_node_ram_t, x1400_rpdo_communication_parameter_s2_transmission_type), .size = 1, .sub = 2, .type = 0x05, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_RAM}, /* Transmission type */
+    {.offset = offsetof(io_node_ram_t, x1600_rpdo_mapping_parameter_s0_number_of_mapped_application_objects_in_pdo), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_RAM}, /* Number of mapped application objects in PDO */
+    {.offset = offsetof(io_node_ram_t, x1600_rpdo_mapping_parameter_s1_application_object_1), .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_RAM}, /* Application object 1 */
+    {.offset = offsetof(io_node_rom_t, x1800_tpdo_communication_parameter_s0_highest_sub_index_supported), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Highest sub-index supported */
+    {.offset = offsetof(io_node_ram_t, x1800_tpdo_communication_parameter_s1_cob_id_used_by_tpdo), .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE | ODG_A_NODEID, .storage = ODG_S_RAM}, /* COB-ID used by TPDO */
+    {.offset = offsetof(io_node_ram_t, x1800_tpdo_communication_parameter_s2_transmission_type), .size = 1, .sub = 2, .type = 0x05, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_RAM}, /* Transmission type */
+    {.offset = offsetof(io_node_ram_t, x1800_tpdo_communication_parameter_s3_inhibit_time), .size = 2, .sub = 3, .type = 0x06, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_RAM}, /* Inhibit time */
+    {.offset = offsetof(io_node_ram_t, x1800_tpdo_communication_parameter_s5_event_timer), .size = 2, .sub = 5, .type = 0x06, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_RAM}, /* Event timer */
+    {.offset = offsetof(io_node_ram_t, x1800_tpdo_communication_parameter_s6_sync_start_value), .size = 1, .sub = 6, .type = 0x05, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_RAM}, /* SYNC start value */
+    {.offset = offsetof(io_node_ram_t, x1A00_tpdo_mapping_parameter_s0_number_of_mapped_application_objects_in_pdo), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_RAM}, /* Number of mapped application objects in PDO */
+    {.offset = offsetof(io_node_ram_t, x1A00_tpdo_mapping_parameter_s1_application_object_1), .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_RAM}, /* Application object 1 */
+    {.offset = offsetof(io_node_ram_t, x2000_debounce_time_ms), .size = 2, .sub = 0, .type = 0x06, .attr = ODG_A_READ | ODG_A_WRITE | ODG_A_LIMIT, .storage = ODG_S_RAM}, /* Debounce time ms */
+    {.offset = offsetof(io_node_rom_t, x6000_read_input_8_bit_s0_highest_sub_index_supported), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Highest sub-index supported */
+    {.offset = offsetof(io_node_ram_t, x6000_read_input_8_bit_s1_read_input_1h_to_8h), .size = 1, .sub = 1, .type = 0x05, .attr = ODG_A_READ | ODG_A_TPDO, .storage = ODG_S_RAM}, /* Read input 1h to 8h */
+    {.offset = offsetof(io_node_rom_t, x6200_write_output_8_bit_s0_highest_sub_index_supported), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Highest sub-index supported */
+    {.offset = offsetof(io_node_ram_t, x6200_write_output_8_bit_s1_write_output_1h_to_8h), .size = 1, .sub = 1, .type = 0x05, .attr = ODG_A_READ | ODG_A_WRITE | ODG_A_RPDO, .storage = ODG_S_RAM}, /* Write output 1h to 8h */
 };
 
 ODG_ATTR_ROM static const odg_limit_t io_node_limits[1] = {
-    {UINT64_C(0x0000000000000001), UINT64_C(0x00000000000001F4), 28}, /* 1 .. 500 */
+    {.low = UINT64_C(0x0000000000000001), .high = UINT64_C(0x00000000000001F4), .sub_pos = 28}, /* 1 .. 500 */
 };
 
 ODG_ATTR_RAM static odg_state_t io_node_state;
@@ -142,22 +141,22 @@ static void io_node_reset(const odg_dict_t *dict)
 }
 
 ODG_ATTR_ROM const odg_dict_t io_node = {
-    io_node_entries,
-    io_node_subs,
-    &io_node_rom,
-    &io_node_ram,
-    NULL,
-    io_node_limits,
-    NULL,
-    NULL,
-    NULL,
-    &io_node_state,
-    io_node_find,
-    io_node_reset,
-    14,
-    33,
-    0,
-    1,
-    0,
-    0
+    .entries = io_node_entries,
+    .subs = io_node_subs,
+    .rom = &io_node_rom,
+    .ram = &io_node_ram,
+    .domains = NULL,
+    .limits = io_node_limits,
+    .hook_map = NULL,
+    .hook_slots = NULL,
+    .groups = NULL,
+    .state = &io_node_state,
+    .find = io_node_find,
+    .reset = io_node_reset,
+    .n_entries = 14,
+    .n_subs = 33,
+    .n_hooks = 0,
+    .n_limits = 1,
+    .n_domains = 0,
+    .n_groups = 0
 };

@@ -26,21 +26,20 @@ ODG_ATTR_ROM static const plain_bsearch_ram_t plain_bsearch_ram_defaults = {
 typedef char plain_bsearch_assert_block_sizes[(sizeof(plain_bsearch_rom_t) <= 65535u && sizeof(plain_bsearch_ram_t) <= 65535u && 1) ? 1 : -1];
 
 ODG_ATTR_ROM static const odg_entry_t plain_bsearch_entries[5] = {
-    {0x1000, 0, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Device type */
-    {0x1001, 1, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Error register */
-    {0x1017, 2, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Producer heartbeat time */
-    {0x1018, 3, 2, ODG_OBJ_RECORD | ODG_E_DENSE}, /* Identity */
-    {0x2000, 5, 1, ODG_OBJ_VAR | ODG_E_DENSE}, /* Speed */
+    {.index = 0x1000, .first = 0, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Device type */
+    {.index = 0x1001, .first = 1, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Error register */
+    {.index = 0x1017, .first = 2, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Producer heartbeat time */
+    {.index = 0x1018, .first = 3, .count = 2, .code = ODG_OBJ_RECORD | ODG_E_DENSE}, /* Identity */
+    {.index = 0x2000, .first = 5, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Speed */
 };
 
-/* offset, size, sub, type, attr, storage */
 ODG_ATTR_ROM static const odg_sub_t plain_bsearch_subs[6] = {
-    {offsetof(plain_bsearch_rom_t, x1000_device_type), 4, 0, 0x07, ODG_A_READ, ODG_S_ROM}, /* Device type */
-    {offsetof(plain_bsearch_ram_t, x1001_error_register), 1, 0, 0x05, ODG_A_READ | ODG_A_TPDO, ODG_S_RAM}, /* Error register */
-    {offsetof(plain_bsearch_ram_t, x1017_producer_heartbeat_time), 2, 0, 0x06, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Producer heartbeat time */
-    {offsetof(plain_bsearch_rom_t, x1018_identity_s0_highest_sub_index_supported), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM}, /* Highest sub-index supported */
-    {offsetof(plain_bsearch_rom_t, x1018_identity_s1_vendor_id), 4, 1, 0x07, ODG_A_READ, ODG_S_ROM}, /* Vendor-ID */
-    {offsetof(plain_bsearch_ram_t, x2000_speed), 2, 0, 0x06, ODG_A_READ | ODG_A_WRITE, ODG_S_RAM}, /* Speed */
+    {.offset = offsetof(plain_bsearch_rom_t, x1000_device_type), .size = 4, .sub = 0, .type = 0x07, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Device type */
+    {.offset = offsetof(plain_bsearch_ram_t, x1001_error_register), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ | ODG_A_TPDO, .storage = ODG_S_RAM}, /* Error register */
+    {.offset = offsetof(plain_bsearch_ram_t, x1017_producer_heartbeat_time), .size = 2, .sub = 0, .type = 0x06, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_RAM}, /* Producer heartbeat time */
+    {.offset = offsetof(plain_bsearch_rom_t, x1018_identity_s0_highest_sub_index_supported), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Highest sub-index supported */
+    {.offset = offsetof(plain_bsearch_rom_t, x1018_identity_s1_vendor_id), .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Vendor-ID */
+    {.offset = offsetof(plain_bsearch_ram_t, x2000_speed), .size = 2, .sub = 0, .type = 0x06, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_RAM}, /* Speed */
 };
 
 ODG_ATTR_RAM static odg_state_t plain_bsearch_state;
@@ -52,22 +51,22 @@ static void plain_bsearch_reset(const odg_dict_t *dict)
 }
 
 ODG_ATTR_ROM const odg_dict_t plain_bsearch = {
-    plain_bsearch_entries,
-    plain_bsearch_subs,
-    &plain_bsearch_rom,
-    &plain_bsearch_ram,
-    NULL,
-    NULL,
-    NULL,
-    NULL,
-    NULL,
-    &plain_bsearch_state,
-    NULL,
-    plain_bsearch_reset,
-    5,
-    6,
-    0,
-    0,
-    0,
-    0
+    .entries = plain_bsearch_entries,
+    .subs = plain_bsearch_subs,
+    .rom = &plain_bsearch_rom,
+    .ram = &plain_bsearch_ram,
+    .domains = NULL,
+    .limits = NULL,
+    .hook_map = NULL,
+    .hook_slots = NULL,
+    .groups = NULL,
+    .state = &plain_bsearch_state,
+    .find = NULL,
+    .reset = plain_bsearch_reset,
+    .n_entries = 5,
+    .n_subs = 6,
+    .n_hooks = 0,
+    .n_limits = 0,
+    .n_domains = 0,
+    .n_groups = 0
 };
