@@ -8,6 +8,7 @@ from pathlib import Path
 
 from .diagnostics import Diagnostic, Diagnostics, Severity
 from .formats import load_path
+from .gcpause import no_cyclic_gc
 from .model import ObjectDictionary
 from .rules import LintOptions, run_rules
 
@@ -37,7 +38,8 @@ class RuleFilter:
 
 
 def lint_model(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
-    run_rules(od, diags, options)
+    with no_cyclic_gc():
+        run_rules(od, diags, options)
 
 
 def lint_path(path: str | Path, options: LintOptions, rule_filter: RuleFilter = RuleFilter(),

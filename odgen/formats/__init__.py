@@ -13,6 +13,7 @@ from pathlib import Path
 from ..catalogue.syntax import SYN018
 from ..diagnostics import Diagnostics, Loc
 from ..errors import OdgenError
+from ..gcpause import no_cyclic_gc
 from ..model import ObjectDictionary
 
 MAX_BYTES = 16 * 1024 * 1024  # larger files are refused unread (SYN018): memory stays bounded
@@ -41,6 +42,11 @@ def read_bytes(path: Path, limit: int | None = None) -> bytes:
 
 
 def load_bytes(data: bytes, source: str, fmt: str) -> tuple[ObjectDictionary | None, Diagnostics]:
+    with no_cyclic_gc():
+        return _load_bytes(data, source, fmt)
+
+
+def _load_bytes(data: bytes, source: str, fmt: str) -> tuple[ObjectDictionary | None, Diagnostics]:
     diags = Diagnostics()
     if len(data) > MAX_BYTES:
         diags.add(SYN018, Loc(source), f"file is larger than {MAX_BYTES >> 20} MiB; not read")

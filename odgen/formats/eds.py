@@ -13,7 +13,7 @@ from ..catalogue.rule import Rule
 from ..catalogue.syntax import SYN010, SYN012, SYN013, SYN014, SYN015, SYN016, SYN017, SYN019
 from ..diagnostics import Diagnostics, Loc
 from ..model import VAR, Field, Obj, ObjectDictionary, ObjectList, Section, Sub
-from ..model.datatypes import BASIC_TYPES
+from ..model.datatypes import BASIC_TYPES, DataType
 from ..model.od import SINGLE_VALUE_CODES
 from ..model.values import Value, parse_int_literal, parse_value
 from . import ini
@@ -164,33 +164,38 @@ class _Reader:
 
     def _sub(self, index: int, subindex: int, section: ini.IniSection, name: str | None = None) -> Sub:
         entries = section.entries  # lower-case keys: this runs once per sub-entry, keep it lean
-        sub = Sub(subindex=subindex, line=section.line)
-        sub.name = name if name is not None else _text(entries.get("parametername")) or ""
-        sub.lines = {key: entry.line for key, entry in entries.items()}
+        get = entries.get
+        data_type = self._int_entry(get("datatype"))
+        dtype = BASIC_TYPES.get(data_type) if data_type is not None else None
+        access = get("accesstype")
+        object_type = None
         if name is None and "objecttype" in entries:  # only real sub-object sections carry their own
-            sub.object_type = self._int_entry(entries["objecttype"])
-        sub.data_type = self._int_entry(entries.get("datatype"))
-        access = entries.get("accesstype")
-        sub.access = self._strip_hash_comment(access).strip().lower() if access is not None else None
-        sub.pdo_mapping = self._flag(entries.get("pdomapping"))
-        sub.obj_flags = self._int_entry(entries.get("objflags"))
-        sub.default = self._value(entries.get("defaultvalue"), sub)
-        sub.low = self._value(entries.get("lowlimit"), sub)
-        sub.high = self._value(entries.get("highlimit"), sub)
-        sub.parameter_value = self._value(entries.get("parametervalue"), sub)
-        sub.denotation = _text(entries.get("denotation"))
-        sub.upload_file = _text(entries.get("uploadfile"))
-        sub.download_file = _text(entries.get("downloadfile"))
-        sub.storage = _text(entries.get("storagelocation"))
-        for key, entry in entries.items():
-            if key not in VALUE_KEYS:
-                sub.extra[key] = Field(entry.key, entry.value, entry.line)
-        return sub
+            object_type = self._int_entry(entries["objecttype"])
+        return Sub(
+            subindex=subindex,
+            name=name if name is not None else _text(get("parametername")) or "",
+            line=section.line,
+            object_type=object_type,
+            data_type=data_type,
+            access=self._strip_hash_comment(access).strip().lower() if access is not None else None,
+            pdo_mapping=self._flag(get("pdomapping")),
+            obj_flags=self._int_entry(get("objflags")),
+            default=self._value(get("defaultvalue"), dtype),
+            low=self._value(get("lowlimit"), dtype),
+            high=self._value(get("highlimit"), dtype),
+            parameter_value=self._value(get("parametervalue"), dtype),
+            denotation=_text(get("denotation")),
+            upload_file=_text(get("uploadfile")),
+            download_file=_text(get("downloadfile")),
+            storage=_text(get("storagelocation")),
+            extra={key: Field(entry.key, entry.value, entry.line)
+                   for key, entry in entries.items() if key not in VALUE_KEYS},
+            lines={key: entry.line for key, entry in entries.items()},
+        )
 
-    def _value(self, entry: ini.IniEntry | None, sub: Sub) -> Value | None:
+    def _value(self, entry: ini.IniEntry | None, dtype: DataType | None) -> Value | None:
         if entry is None:
             return None
-        dtype = BASIC_TYPES.get(sub.data_type) if sub.data_type is not None else None
         text = entry.value
         if dtype is not None and dtype.kind not in _STRINGLIKE:
             text = self._strip_hash_comment(entry)

@@ -9,6 +9,7 @@ ASCII start say so (reported); else Windows-1252 (reported).
 from __future__ import annotations
 
 import re
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 
 from ..catalogue.syntax import SYN001, SYN002, SYN003, SYN004, SYN005, SYN014
@@ -17,9 +18,7 @@ from ..diagnostics import Diagnostics, Loc
 _SECTION_RE = re.compile(r"^\[([^\]]*)\]\s*(?:[;#].*)?$")
 _COMMENT_KEY_RE = re.compile(r"^;\s*([A-Za-z_][A-Za-z0-9_]*)\s*=(.*)$")
 _INLINE_COMMENT_RE = re.compile(r"\s+;.*$")
-# Lines end at CR LF, LF or CR only: str.splitlines() would also split at form feeds, U+0085,
-# U+2028 and others that other EDS readers keep inside a value.
-_LINE_END = re.compile(r"\r\n|\r|\n")
+_NAMES_KEPT = 4096
 
 
 @dataclass(slots=True)
@@ -99,7 +98,9 @@ def parse(text: str, source: str, diags: Diagnostics, comment_keys: frozenset[st
     """Read INI text; `;Key=Value` lines are kept as entries for the lower-case `comment_keys`."""
     ini = IniFile()
     current: IniSection | None = None
-    for number, raw in enumerate(_LINE_END.split(text), start=1):
+    entries: dict[str, IniEntry] = {}
+    names: dict[str, tuple[str, str]] = {}  # a key as written -> (that key, lower case), shared by every entry
+    for number, raw in enumerate(_lines(text), start=1):
         line = raw.strip()
         if not line:
             continue
@@ -107,13 +108,43 @@ def parse(text: str, source: str, diags: Diagnostics, comment_keys: frozenset[st
         match = _SECTION_RE.match(line) if first == "[" else None
         if match:
             current = _open_section(ini, match.group(1).strip(), number, source, diags)
+            entries = current.entries
         elif first in ";#":
             _comment_line(current, line, number, comment_keys)
         elif "=" in line:
-            _key_line(current, line, number, source, diags)
+            # the common line, a new key without an inline comment, is read here: this loop runs
+            # once per line of the file, and a call per line costs a third of the reading time
+            written, _, value = line.partition("=")
+            key, lower = names.get(written) or _names(written, names)
+            if current is None or ";" in value or lower in entries:
+                _key_line(current, line, number, source, diags)
+            else:
+                entries[lower] = IniEntry(key, value.lstrip(), number)
         else:
             diags.add(SYN001, Loc(source, number), f"'{_clip(line)}' is neither [section] nor key=value")
     return ini
+
+
+def _lines(text: str, chunk: int = 1 << 20) -> Iterator[str]:
+    """The lines of `text`, a block at a time: a list of every line of a large file costs more
+    memory than the file itself. Lines end at CR LF, LF or CR only: str.splitlines() would also
+    split at form feeds, U+0085, U+2028 and others that other EDS readers keep inside a value."""
+    if "\r" in text:
+        text = text.replace("\r\n", "\n").replace("\r", "\n")
+    start = 0
+    while start <= len(text):
+        end = text.find("\n", start + chunk)
+        end = len(text) if end < 0 else end
+        yield from text[start:end].split("\n")
+        start = end + 1
+
+
+def _names(written: str, names: dict[str, tuple[str, str]]) -> tuple[str, str]:
+    key = written.rstrip()
+    spelled = key, key.lower()
+    if len(names) < _NAMES_KEPT:  # a description uses a few dozen key spellings; a hostile file, millions
+        names[written] = spelled
+    return spelled
 
 
 def _open_section(ini: IniFile, name: str, line: int, source: str, diags: Diagnostics) -> IniSection:

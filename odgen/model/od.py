@@ -23,7 +23,7 @@ READABLE = ("ro", "rw", "rwr", "rww", "const")
 WRITABLE = ("wo", "rw", "rwr", "rww")
 
 
-@dataclass
+@dataclass(slots=True)
 class Field:
     """A key/value pair kept verbatim: header keys and keys odgen does not interpret."""
 
@@ -32,7 +32,7 @@ class Field:
     line: int = field(default=0, compare=False)
 
 
-@dataclass
+@dataclass(slots=True)
 class Sub:
     subindex: int
     name: str = ""
@@ -71,7 +71,7 @@ class Sub:
         return BASIC_TYPES.get(self.data_type) if self.data_type is not None else None
 
 
-@dataclass
+@dataclass(slots=True)
 class Obj:
     index: int
     name: str = ""
@@ -113,7 +113,7 @@ class Obj:
         return self.object_code
 
 
-@dataclass
+@dataclass(slots=True)
 class Section:
     """A header section ([FileInfo], [DeviceInfo], ...) as ordered key/value fields."""
 
@@ -132,7 +132,7 @@ class Section:
         self.fields[key.lower()] = Field(key, text, line)
 
 
-@dataclass
+@dataclass(slots=True)
 class ObjectList:
     """[MandatoryObjects] / [OptionalObjects] / [ManufacturerObjects] as written."""
 
@@ -142,7 +142,7 @@ class ObjectList:
     entries: list[Field] = field(default_factory=list)  # key "1".."N", text the index
 
 
-@dataclass
+@dataclass(slots=True)
 class ObjectDictionary:
     source: str  # the file name used in diagnostics
     format: str  # eds | dcf | xdd | xdc

@@ -12,6 +12,7 @@ import math
 import re
 import struct
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 from ..catalogue.rule import Rule
 from ..catalogue.syntax import SYN006, SYN007, SYN008, SYN009, SYN020
@@ -29,7 +30,7 @@ _TIME_PAIR_RE = re.compile(r"^(\d+)\s+(\d+)$")
 _FLOAT_RE = re.compile(r"^[+-]?(\d+\.?\d*([eE][+-]?\d+)?|\.\d+([eE][+-]?\d+)?|inf|nan)$", re.I)
 
 
-@dataclass
+@dataclass(slots=True)
 class Value:
     """A value as written (`text`) and as understood (`parsed`).
 
@@ -61,13 +62,16 @@ def bounded_int(digits: str, base: int = 10) -> int | None:
     return int(significant or "0", base) if len(significant) <= MAX_DIGITS else None
 
 
-def parse_int_literal(text: str) -> tuple[int | None, list[Note]]:
-    """Read one integer literal; None when it is not one."""
+@lru_cache(maxsize=4096)
+def parse_int_literal(text: str) -> tuple[int | None, tuple[Note, ...]]:
+    """Read one integer literal; None when it is not one.
+
+    Cached: a description repeats a few literals (0x7, 0x0007, 0, 1, rw) thousands of times."""
     m = _INT_RE.match(text.strip())
     if not m:
-        return None, []
+        return None, ()
     sign, digits = m.groups()
-    notes: list[Note] = []
+    notes: tuple[Note, ...] = ()
     if digits[:2] in ("0x", "0X"):
         value = bounded_int(digits[2:], 16)
     elif len(digits) > 1 and digits[0] == "0":
@@ -75,21 +79,21 @@ def parse_int_literal(text: str) -> tuple[int | None, list[Note]]:
     else:
         value = bounded_int(digits)
     if value is None:
-        return None, []
+        return None, ()
     return (-value if sign == "-" else value), notes
 
 
-def _leading_zero(digits: str) -> tuple[int | None, list[Note]]:
+def _leading_zero(digits: str) -> tuple[int | None, tuple[Note, ...]]:
     """`001` is octal in CiA 306 (strtoul base 0); say so when it matters."""
     decimal = bounded_int(digits)
     if decimal is None:
-        return None, []
+        return None, ()
     if any(c in "89" for c in digits):
-        return decimal, [(SYN006, f"'{digits}' has a leading zero but is not octal; read as {decimal}")]
+        return decimal, ((SYN006, f"'{digits}' has a leading zero but is not octal; read as {decimal}"),)
     octal = int(digits.lstrip("0") or "0", 8)  # as long as the decimal, which is bounded
     if octal != decimal:
-        return octal, [(SYN006, f"'{digits}' is octal ({octal}) under CiA 306, not {decimal}")]
-    return octal, []
+        return octal, ((SYN006, f"'{digits}' is octal ({octal}) under CiA 306, not {decimal}"),)
+    return octal, ()
 
 
 def split_nodeid(text: str) -> tuple[bool, str, list[Note]]:
@@ -130,8 +134,8 @@ def _read_integer(value: Value, text: str, dtype: DataType) -> None:
     value.nodeid = relative
     value.notes.extend(notes)
     rest = _without_c_suffix(value, rest)
-    number, notes = parse_int_literal(rest)
-    value.notes.extend(notes)
+    number, int_notes = parse_int_literal(rest)
+    value.notes.extend(int_notes)
     if number is None:
         number = _bool_word(rest) if dtype.kind == "bool" else None
     if number is None:
