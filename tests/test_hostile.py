@@ -252,3 +252,32 @@ def test_deeply_nested_xml_is_refused_in_bounded_memory(tmp_path: Path) -> None:
     got = _lint_in_subprocess(path)
     assert got["rules"] == {"XML001": 1} and not got["model"], got
     assert got["rss_mb"] < _baseline_mb() + 150, got
+
+
+def _short_keys(path: Path, keys_per_section: int | None) -> int:
+    """16 MiB of `<hex>=1` lines, in one section or in sections of `keys_per_section` keys."""
+    lines, size, n = ["[FileInfo]\n"], 11, 0
+    while size < 16 * 1024 * 1024 - 64:
+        if keys_per_section and n and n % keys_per_section == 0:
+            lines.append(f"[S{n}]\n")
+            size += len(lines[-1])
+        lines.append(f"{n:x}=1\n")
+        size += len(lines[-1])
+        n += 1
+    path.write_text("".join(lines), encoding="ascii")
+    return n
+
+
+@pytest.mark.parametrize("keys_per_section", [None, 60_000], ids=["one-section", "many-sections"])
+def test_millions_of_short_keys_stay_under_20_times_the_file_in_memory(tmp_path: Path,
+                                                                      keys_per_section: int | None) -> None:
+    path = tmp_path / "keys.eds"
+    keys = _short_keys(path, keys_per_section)
+    size_mb = path.stat().st_size / 2**20
+    try:
+        got = _lint_in_subprocess(path)
+    finally:
+        path.unlink()
+    assert keys > 1_900_000 and got["model"]
+    assert got["rules"]["SYN021"] == 1, got  # the one place where keys stop being kept
+    assert got["rss_mb"] < 20 * size_mb, got

@@ -152,3 +152,12 @@ SYN020 = define(
     "python canopen refuses it. The digits are unambiguous, so odgen reads them and drops the suffix.",
     example="[2120sub1]\nDataType=0x0015\nDefaultValue=0x1234567890ABCDEFLL",
     fix="Write the number without the suffix: `DefaultValue=0x1234567890ABCDEF`.")
+
+SYN021 = define(
+    "SYN021", E, "section with too many keys", ref="S1",
+    why="No CiA 306 section needs more than 65,600 keys: an object list names at most 65,535 indices. "
+    "Keys beyond that are counted and reported, not kept, so a corrupt or hostile file of millions of "
+    "keys cannot fill memory; the description is incomplete, so generation refuses it.",
+    example="[FileInfo]\n0=1\n1=1\n... (70,000 keys)",
+    fix="Check that the file is a device description; remove the repeated or generated keys.",
+    blocks=True)

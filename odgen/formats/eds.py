@@ -8,6 +8,7 @@ CompactSubObj are expanded into sub-entries marked `compact`.
 from __future__ import annotations
 
 import re
+from collections.abc import Iterable
 
 from ..catalogue.rule import Rule
 from ..catalogue.syntax import SYN010, SYN012, SYN013, SYN014, SYN015, SYN016, SYN017, SYN019
@@ -46,9 +47,8 @@ HASH_COMMENT = re.compile(r"\s+#.*$")
 
 def load_eds(data: bytes, source: str, diags: Diagnostics, fmt: str = "eds") -> ObjectDictionary:
     text = ini.decode(data, source, diags)
-    parsed = ini.parse(text, source, diags, COMMENT_KEYS)
-    od = _Reader(source, fmt, diags).read(parsed)
-    return od
+    names: dict[str, int] = {}  # every section name read so far (the INI reader fills it)
+    return _Reader(source, fmt, diags).read(ini.sections(text, source, diags, COMMENT_KEYS, names), names)
 
 
 class _Reader:
@@ -56,6 +56,7 @@ class _Reader:
         self.od = ObjectDictionary(source=source, format=fmt)
         self.diags = diags
         self.spellings: set[str] = set()
+        self.compact: list[tuple[int, ini.IniSection]] = []  # [XXXXName]/[XXXXValue], read last
 
     def loc(self, line: int) -> Loc:
         return Loc(self.od.source, line)
@@ -63,32 +64,45 @@ class _Reader:
     def report(self, rule: Rule, line: int, message: str, index: int | None = None) -> None:
         self.diags.add(rule, self.loc(line), message, index)
 
-    def read(self, parsed: ini.IniFile) -> ObjectDictionary:
-        subs, compact = [], []
-        for key, section in parsed.sections.items():
-            match = _OBJECT_SECTION.match(self._padded(key, section, parsed))
-            if match is None:
-                self._header_section(key, section)
-            elif match.group(2):
-                subs.append((int(match.group(1), 16), match.group(3), section))
-            elif match.group(4) or match.group(5):
-                compact.append((int(match.group(1), 16), section))
-            else:
-                self._object(int(match.group(1), 16), section)
-        for index, sub_text, section in subs:
-            self._sub_section(index, sub_text, section)
-        for index, section in compact:
+    def read(self, stream: Iterable[tuple[str, ini.IniSection]], names: dict[str, int]) -> ObjectDictionary:
+        """Sections are converted as they are read and then dropped; what needs a section further on
+        waits: a sub-object whose object comes later, [XXXXName]/[XXXXValue] (after every sub-object),
+        and an index written without leading zeros (it depends on whether [00A0] exists)."""
+        later: list[tuple[str, ini.IniSection]] = []
+        for key, section in stream:
+            if _SHORT_INDEX.match(key) or not self._section(key, section, waiting=True):
+                later.append((key, section))
+        for key, section in sorted(later, key=lambda item: "sub" in item[0]):  # objects before sub-objects
+            self._section(self._padded(key, section, names), section, waiting=False)
+        for index, section in self.compact:
             self._compact_section(index, section)
         self._node_id()
         return self.od
 
-    def _padded(self, key: str, section: ini.IniSection, parsed: ini.IniFile) -> str:
+    def _section(self, key: str, section: ini.IniSection, waiting: bool) -> bool:
+        """Convert one section; False when it has to wait for the rest of the file."""
+        match = _OBJECT_SECTION.match(key)
+        if match is None:
+            self._header_section(key, section)
+            return True
+        index = int(match.group(1), 16)
+        if match.group(2):
+            if waiting and index not in self.od.objects:
+                return False
+            self._sub_section(index, match.group(3), section)
+        elif match.group(4) or match.group(5):
+            self.compact.append((index, section))
+        else:
+            self._object(index, section)
+        return True
+
+    def _padded(self, key: str, section: ini.IniSection, names: dict[str, int]) -> str:
         """An object section written without leading zeros ([A0]) is read as [00A0], unless that exists too."""
         short = _SHORT_INDEX.match(key)
         if short is None:
             return key
         padded = short.group(1).zfill(4) + (short.group(2) or "")
-        if padded.lower() in parsed.sections:
+        if padded.lower() in names:
             return key
         self.diags.add(SYN019, self.loc(section.line),
                        f"section [{section.name}] writes the index without leading zeros; read as [{padded.upper()}]")
@@ -110,8 +124,7 @@ class _Reader:
             self.od.object_lists[key] = self._object_list(canonical, section)
             return
         target = Section(canonical or section.name, section.line)
-        for entry in section.entries.values():
-            target.set(entry.key, entry.value, entry.line)
+        target.fields = {lower: Field(entry.key, entry.value, entry.line) for lower, entry in section.entries.items()}
         self.od.sections[key] = target
 
     def _object_list(self, name: str, section: ini.IniSection) -> ObjectList:

@@ -12,13 +12,19 @@ import re
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 
-from ..catalogue.syntax import SYN001, SYN002, SYN003, SYN004, SYN005, SYN014
+from ..catalogue.syntax import SYN001, SYN002, SYN003, SYN004, SYN005, SYN014, SYN021
 from ..diagnostics import Diagnostics, Loc
 
 _SECTION_RE = re.compile(r"^\[([^\]]*)\]\s*(?:[;#].*)?$")
 _COMMENT_KEY_RE = re.compile(r"^;\s*([A-Za-z_][A-Za-z0-9_]*)\s*=(.*)$")
 _INLINE_COMMENT_RE = re.compile(r"\s+;.*$")
 _NAMES_KEPT = 4096
+# Keys one section may hold: an object list names at most 65535 indices (plus SupportedObjects); no
+# CiA 306 section needs more, and a file of millions of short keys would otherwise fill memory.
+MAX_KEYS = 65600
+# Keys one file may hold: more than a 16 MiB description of real objects has (its lines are longer
+# than 16 bytes); the bound keeps the memory of any accepted file under 20 times its size.
+MAX_FILE_KEYS = 1_000_000
 
 
 @dataclass(slots=True)
@@ -96,10 +102,17 @@ def _cp1252_char(byte: int) -> str:
 
 def parse(text: str, source: str, diags: Diagnostics, comment_keys: frozenset[str] = frozenset()) -> IniFile:
     """Read INI text; `;Key=Value` lines are kept as entries for the lower-case `comment_keys`."""
-    ini = IniFile()
-    current: IniSection | None = None
-    entries: dict[str, IniEntry] = {}
-    names: dict[str, tuple[str, str]] = {}  # a key as written -> (that key, lower case), shared by every entry
+    return IniFile(dict(sections(text, source, diags, comment_keys)))
+
+
+def sections(text: str, source: str, diags: Diagnostics, comment_keys: frozenset[str] = frozenset(),
+             seen: dict[str, int] | None = None) -> Iterator[tuple[str, IniSection]]:
+    """The sections of INI text in file order as (lower-case name, section), each once it is complete,
+    so a reader can convert and drop it: a large file is never held as entries and model at once.
+    A repeated section is reported and left out; at most MAX_KEYS keys of a section are kept.
+    `seen` collects the lower-case name and line of every section read so far."""
+    seen = {} if seen is None else seen
+    reader = _SectionReader(source, diags, comment_keys)
     for number, raw in enumerate(_lines(text), start=1):
         line = raw.strip()
         if not line:
@@ -107,22 +120,83 @@ def parse(text: str, source: str, diags: Diagnostics, comment_keys: frozenset[st
         first = line[0]
         match = _SECTION_RE.match(line) if first == "[" else None
         if match:
-            current = _open_section(ini, match.group(1).strip(), number, source, diags)
-            entries = current.entries
+            done = reader.close()
+            if done is not None:
+                yield done
+            reader.open(match.group(1).strip(), number, seen)
         elif first in ";#":
-            _comment_line(current, line, number, comment_keys)
+            _comment_line(reader.section, line, number, comment_keys)
         elif "=" in line:
-            # the common line, a new key without an inline comment, is read here: this loop runs
-            # once per line of the file, and a call per line costs a third of the reading time
-            written, _, value = line.partition("=")
-            key, lower = names.get(written) or _names(written, names)
-            if current is None or ";" in value or lower in entries:
-                _key_line(current, line, number, source, diags)
-            else:
-                entries[lower] = IniEntry(key, value.lstrip(), number)
+            reader.key_line(line, number)
         else:
             diags.add(SYN001, Loc(source, number), f"'{_clip(line)}' is neither [section] nor key=value")
-    return ini
+    done = reader.close()
+    if done is not None:
+        yield done
+    reader.finish()
+
+
+class _SectionReader:
+    """The section being read: its entries, and the keys past MAX_KEYS that are counted, not kept."""
+
+    def __init__(self, source: str, diags: Diagnostics, comment_keys: frozenset[str]) -> None:
+        self.source, self.diags = source, diags
+        self.section: IniSection | None = None
+        self.kept = False  # False for a repeated section, read but left out
+        self.entries: dict[str, IniEntry] = {}
+        self.names: dict[str, tuple[str, str]] = {}  # a key as written -> (that key, lower case)
+        self.dropped, self.first_dropped = 0, 0
+        self.total = 0  # keys kept in the whole file
+        self.file_dropped, self.file_first_dropped = 0, 0
+
+    def open(self, name: str, line: int, seen: dict[str, int]) -> None:
+        key = name.lower()
+        self.section = IniSection(name, line)
+        self.entries = self.section.entries
+        self.kept = key not in seen
+        if self.kept:
+            seen[key] = line
+        else:
+            self.diags.add(SYN002, Loc(self.source, line),
+                           f"section [{name}] repeats line {seen[key]}; this copy is ignored")
+
+    def key_line(self, line: str, number: int) -> None:
+        # the common line, a new key without an inline comment, is read here: this runs once per
+        # line of the file, and a call more per line costs a third of the reading time
+        written, _, value = line.partition("=")
+        key, lower = self.names.get(written) or _names(written, self.names)
+        entries = self.entries
+        if self.section is None or lower in entries:  # SYN005, or a repeated key (SYN003)
+            _key_line(self.section, line, number, self.source, self.diags)
+        elif len(entries) >= MAX_KEYS:
+            self.dropped += 1
+            self.first_dropped = self.first_dropped or number
+        elif self.total >= MAX_FILE_KEYS:
+            self.file_dropped += 1
+            self.file_first_dropped = self.file_first_dropped or number
+        elif ";" in value:  # an inline comment to cut off and report
+            _key_line(self.section, line, number, self.source, self.diags)
+            self.total += 1
+        else:
+            entries[lower] = IniEntry(key, value.lstrip(), number)
+            self.total += 1
+
+    def close(self) -> tuple[str, IniSection] | None:
+        section, self.section = self.section, None
+        if section is None:
+            return None
+        if self.dropped:
+            self.diags.add(SYN021, Loc(self.source, self.first_dropped),
+                           f"[{section.name}] has more than {MAX_KEYS} keys; the {self.dropped} from here on "
+                           "are not read")
+            self.dropped, self.first_dropped = 0, 0
+        return (section.name.lower(), section) if self.kept else None
+
+    def finish(self) -> None:
+        if self.file_dropped:
+            self.diags.add(SYN021, Loc(self.source, self.file_first_dropped),
+                           f"the file has more than {MAX_FILE_KEYS} keys; the {self.file_dropped} from here on "
+                           "are not read")
 
 
 def _lines(text: str, chunk: int = 1 << 20) -> Iterator[str]:
@@ -141,21 +215,11 @@ def _lines(text: str, chunk: int = 1 << 20) -> Iterator[str]:
 
 def _names(written: str, names: dict[str, tuple[str, str]]) -> tuple[str, str]:
     key = written.rstrip()
-    spelled = key, key.lower()
+    lower = key.lower()
+    spelled = key, key if lower == key else lower  # one string where the key is written in lower case
     if len(names) < _NAMES_KEPT:  # a description uses a few dozen key spellings; a hostile file, millions
         names[written] = spelled
     return spelled
-
-
-def _open_section(ini: IniFile, name: str, line: int, source: str, diags: Diagnostics) -> IniSection:
-    key = name.lower()
-    first = ini.sections.get(key)
-    section = IniSection(name, line)
-    if first is None:
-        ini.sections[key] = section
-    else:
-        diags.add(SYN002, Loc(source, line), f"section [{name}] repeats line {first.line}; this copy is ignored")
-    return section
 
 
 def _comment_line(section: IniSection | None, line: str, number: int, keys: frozenset[str]) -> None:
