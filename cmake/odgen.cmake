@@ -5,7 +5,8 @@
 #                   OUTPUT_VARIABLE ODGEN_CMAKE_DIR OUTPUT_STRIP_TRAILING_WHITESPACE)
 #   include("${ODGEN_CMAKE_DIR}/odgen.cmake")
 #   odgen_add_object_dictionary(my_od NAME my_od EDS device.eds
-#                               [OPTIONS device.toml] [NODE_ID 5] [LOOKUP switch|bsearch])
+#                               [OPTIONS device.toml] [NODE_ID 5] [LOOKUP switch|bsearch]
+#                               [REPORT html|md])   # also odgen/NAME/NAME-report.html (or .md)
 #   target_link_libraries(firmware PRIVATE my_od)     # brings odgen::runtime along
 #
 # odgen::runtime is the C runtime built from the sources packaged with odgen; the source
@@ -60,8 +61,25 @@ function(_odgen_write_if_changed path content)
   file(WRITE "${path}" "${content}")
 endfunction()
 
+# `odgen report` of the description, run by the same rule as the dictionary (so under its stamp).
+function(_odgen_report_command format out eds name options node_id)
+  if(NOT format MATCHES "^(html|md)$")
+    message(FATAL_ERROR "odgen_add_object_dictionary: REPORT is html or md, not '${format}'")
+  endif()
+  set(report "${out}/${name}-report.${format}")
+  set(command "${ODGEN_EXECUTABLE}" report "${eds}" -o "${report}" --format "${format}")
+  if(options)
+    list(APPEND command --options "${options}")
+  endif()
+  if(node_id)
+    list(APPEND command --node-id "${node_id}")
+  endif()
+  set(_odgen_report_file "${report}" PARENT_SCOPE)
+  set(_odgen_report_command COMMAND ${command} PARENT_SCOPE)
+endfunction()
+
 function(odgen_add_object_dictionary target)
-  cmake_parse_arguments(ARG "" "NAME;EDS;OPTIONS;NODE_ID;LOOKUP" "" ${ARGN})
+  cmake_parse_arguments(ARG "" "NAME;EDS;OPTIONS;NODE_ID;LOOKUP;REPORT" "" ${ARGN})
   if(NOT ARG_NAME OR NOT ARG_EDS)
     message(FATAL_ERROR "odgen_add_object_dictionary(${target}): NAME and EDS are required")
   endif()
@@ -69,6 +87,7 @@ function(odgen_add_object_dictionary target)
   set(out "${CMAKE_CURRENT_BINARY_DIR}/odgen/${ARG_NAME}")
   set(args generate "${eds}" -o "${out}" --name "${ARG_NAME}")
   set(deps "${eds}")
+  set(options "")
   if(ARG_OPTIONS)
     get_filename_component(options "${ARG_OPTIONS}" ABSOLUTE)
     list(APPEND args --options "${options}")
@@ -82,14 +101,20 @@ function(odgen_add_object_dictionary target)
   endif()
   # The key of everything else the output depends on: odgen's version and the arguments.
   set(key "${out}.key")
-  _odgen_write_if_changed("${key}" "odgen ${ODGEN_VERSION}\n${args}\n")
+  _odgen_write_if_changed("${key}" "odgen ${ODGEN_VERSION}\n${args}\nreport ${ARG_REPORT}\n")
   # The stamp is the rule's output; the sources are byproducts, left untouched when unchanged
   # (ninja restats them; make compares their kept mtimes with the objects').
   set(stamp "${out}.stamp")
+  set(_odgen_report_file "")
+  set(_odgen_report_command "")
+  if(ARG_REPORT)
+    _odgen_report_command("${ARG_REPORT}" "${out}" "${eds}" "${ARG_NAME}" "${options}" "${ARG_NODE_ID}")
+  endif()
   add_custom_command(
     OUTPUT "${stamp}"
-    BYPRODUCTS "${out}/${ARG_NAME}.c" "${out}/${ARG_NAME}.h"
+    BYPRODUCTS "${out}/${ARG_NAME}.c" "${out}/${ARG_NAME}.h" ${_odgen_report_file}
     COMMAND "${ODGEN_EXECUTABLE}" ${args}
+    ${_odgen_report_command}
     COMMAND "${CMAKE_COMMAND}" -E touch "${stamp}"
     DEPENDS ${deps} "${key}"
     COMMENT "odgen: object dictionary ${ARG_NAME} from ${ARG_EDS}"

@@ -89,6 +89,8 @@ def test_cmake_firmware_example_builds_and_runs(tmp_path: Path) -> None:
         assert done.returncode == 0, done.stdout + done.stderr
     ran = subprocess.run([str(tmp_path / "firmware")], capture_output=True, text=True, check=False)
     assert ran.returncode == 0 and "looped back" in ran.stdout, ran.stdout + ran.stderr
+    report = (tmp_path / "odgen" / "io_node" / "io_node-report.html").read_text(encoding="utf-8")
+    assert report.startswith("<!DOCTYPE html>") and "0x6200" in report  # REPORT html: the page of the same input
 
 
 def test_string_longer_than_c99_literal_limit(tmp_path: Path) -> None:
