@@ -13,11 +13,10 @@ from dataclasses import dataclass
 from ..catalogue.comm import COM016, COM017, COM018
 from ..diagnostics import Diagnostics, Loc, where
 from ..model import Obj, ObjectDictionary, Sub
+from ..model.cia301 import COB_EXTENDED, COB_INVALID, SDO_SERVER
 from . import LintOptions, check
 from .common import addr, at, node_span, value_in_force, value_line
 
-SDO_SERVER = 0x1200
-INVALID, EXTENDED = 0x80000000, 0x20000000
 READ_ONLY = ("ro", "const")
 
 
@@ -53,7 +52,7 @@ def _uses(od: ObjectDictionary, node_id: int) -> Iterator[tuple[int, Use]]:
             continue
         value, keyword = value_in_force(od, sub)
         raw = at(value, node_id) if value is not None else None
-        if not isinstance(raw, int) or raw < 0 or raw & (INVALID | EXTENDED) or not raw & 0x7FF:
+        if not isinstance(raw, int) or raw < 0 or raw & (COB_INVALID | COB_EXTENDED) or not raw & 0x7FF:
             continue  # disabled, a 29-bit identifier, or not yet configured (0)
         if obj.index in (0x1005, 0x1012) and not raw & 0x40000000:
             continue  # SYNC/TIME consumed only: receiving what another node produces is the point

@@ -12,6 +12,7 @@ from ..catalogue.lists import (
     LST001, LST002, LST003, LST004, LST005, LST006, LST007, LST008, LST009, LST010, LST011, LST012)
 from ..diagnostics import Diagnostics, Loc
 from ..model import Field, ObjectDictionary, ObjectList
+from ..model.cia301 import MANDATORY
 from ..model.values import bounded_int, parse_int_literal
 from . import LintOptions, check
 from .common import gaps
@@ -20,7 +21,6 @@ from .common import gaps
 
 LISTS = (("mandatoryobjects", "MandatoryObjects"), ("optionalobjects", "OptionalObjects"),
          ("manufacturerobjects", "ManufacturerObjects"))
-MANDATORY = (0x1000, 0x1001, 0x1018)
 
 
 def _proper_list(index: int) -> str:

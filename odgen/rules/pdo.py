@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from ..catalogue.pdo import PDO001, PDO002, PDO003, PDO004, PDO005, PDO006, PDO007, PDO008, PDO009, PDO010, PDO011
 from ..diagnostics import Diagnostics, Loc, where
 from ..model import ARRAY, RECORD, Obj, ObjectDictionary, Sub, Value
+from ..model.cia301 import RPDO_COMM, RPDO_MAPPING, TPDO_COMM, TPDO_MAPPING
 from ..model.datatypes import BASIC_TYPES, DataType
 from . import LintOptions, check
 from .common import (disabled, dummy_enabled, granularity, header_field, header_int, number, plain_int,
@@ -20,7 +21,7 @@ from .common import (disabled, dummy_enabled, granularity, header_field, header_
 
 
 
-MAPPINGS = {0x1600: ("RPDO", 0x1400), 0x1A00: ("TPDO", 0x1800)}
+MAPPINGS = {RPDO_MAPPING: ("RPDO", RPDO_COMM), TPDO_MAPPING: ("TPDO", TPDO_COMM)}
 FRAME_BITS, FD_FRAME_BITS = 64, 512
 MPDO = (0xFE, 0xFF)  # mapping sub0 of a multiplexed PDO: SAM-MPDO / DAM-MPDO (CiA 301)
 
