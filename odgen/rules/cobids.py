@@ -14,7 +14,7 @@ from ..catalogue.comm import COM016, COM017, COM018
 from ..diagnostics import Diagnostics, Loc, where
 from ..model import Obj, ObjectDictionary, Sub
 from ..model.cia301 import COB_EXTENDED, COB_INVALID, SDO_SERVER
-from . import LintOptions, check
+from . import LintOptions, lint_pass
 from .common import addr, at, node_span, value_in_force, value_line
 
 READ_ONLY = ("ro", "const")
@@ -70,7 +70,7 @@ def _collisions(od: ObjectDictionary, node_id: int) -> dict[tuple[Use, Use], int
     return found
 
 
-@check
+@lint_pass
 def cob_id_collisions(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     """Collisions at every node-id the file must work for: a fixed COB-ID that meets a `$NODEID` one at a
     single node-id (a master receiving node 127's TPDO1 on 0x1FF) is left to `lint --network`."""
@@ -88,7 +88,7 @@ def cob_id_collisions(od: ObjectDictionary, diags: Diagnostics, options: LintOpt
                   f"{first.name} ({where(first.index, first.sub)})", use.index, use.sub)
 
 
-@check
+@lint_pass
 def default_sdo_server(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     obj = od.objects.get(SDO_SERVER)
     if obj is None or obj.is_var:
@@ -107,7 +107,7 @@ def default_sdo_server(od: ObjectDictionary, diags: Diagnostics, options: LintOp
                       f"COB-ID {value.text.strip()} is not $NODEID+0x{base:X}", SDO_SERVER, subindex)
 
 
-@check
+@lint_pass
 def error_history_count(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     obj = od.objects.get(0x1003)
     sub0 = obj.subs.get(0) if obj is not None and not obj.is_var else None

@@ -20,14 +20,14 @@ from ..model.cia301 import (
     PRODUCER_HEARTBEAT, READ_ONLY, RESTRICTED_CAN_IDS, RPDO_COMM, SDO_CLIENT, SDO_COUNT, SDO_SERVER, SDO_TYPES,
     TPDO_COMM, TPDO_MAPPING, U32, VAR_TYPES, is_pdo_mapping, is_sdo_parameter, pdo_communication, predefined_cob_id)
 from ..model.datatypes import BASIC_TYPES
-from . import LintOptions, check
+from . import LintOptions, lint_pass
 from .common import addr, at, default_line, node_span, number, plain_int, value_in_force, value_line
 
 
 
 # -- mandatory objects, data types, access -----------------------------------------
 
-@check
+@lint_pass
 def mandatory_objects(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for index, name in MANDATORY.items():
         if index not in od.objects:
@@ -52,7 +52,7 @@ def _expected_type(obj: Obj, sub: Sub) -> int | None:
     return table.get(sub.subindex, table.get(0))
 
 
-@check
+@lint_pass
 def comm_data_types(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for index, obj in od.objects.items():
         if not DEVICE_TYPE <= index < TPDO_MAPPING + PDO_COUNT:
@@ -69,7 +69,7 @@ def comm_data_types(od: ObjectDictionary, diags: Diagnostics, options: LintOptio
                       f"CiA 301 defines {BASIC_TYPES[expected].name}", index, addr(obj, sub))
 
 
-@check
+@lint_pass
 def read_only_identity(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for index in READ_ONLY:
         obj = od.objects.get(index)
@@ -103,7 +103,7 @@ def _cob_entries(od: ObjectDictionary) -> Iterator[tuple[Obj, Sub, tuple[int, st
                 yield obj, sub, known
 
 
-@check
+@lint_pass
 def predefined_cob_ids(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for obj, sub, (base, name) in _cob_entries(od):
         value, keyword = value_in_force(od, sub)
@@ -127,7 +127,7 @@ def _not_predefined(od: ObjectDictionary, value: Value, raw: int, base: int, nam
     return f"is fixed; the predefined {name} COB-ID is $NODEID+0x{base:X}"
 
 
-@check
+@lint_pass
 def pdo_cob_ids(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     span = node_span(od, options)
     for index, obj in od.objects.items():
@@ -167,7 +167,7 @@ def _cob_problem(value: Value, span: tuple[int, int]) -> str | None:
 
 # -- C7: identity and error control -----------------------------------------------------
 
-@check
+@lint_pass
 def identity(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     obj = od.objects.get(IDENTITY)
     if obj is not None and (obj.is_var or 1 not in obj.subs):
@@ -190,7 +190,7 @@ def _var_int(od: ObjectDictionary, index: int) -> tuple[Sub | None, int | None]:
     return sub, (plain_int(value_in_force(od, sub)[0]) if sub is not None else None)
 
 
-@check
+@lint_pass
 def error_control(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     guard, life = od.objects.get(GUARD_TIME), od.objects.get(LIFE_TIME_FACTOR)
     if PRODUCER_HEARTBEAT not in od.objects and guard is None and life is None:
@@ -206,7 +206,7 @@ def error_control(od: ObjectDictionary, diags: Diagnostics, options: LintOptions
                   PRODUCER_HEARTBEAT)
 
 
-@check
+@lint_pass
 def heartbeat_consumers(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     obj = od.objects.get(CONSUMER_HEARTBEAT)
     if obj is None or obj.is_var:
@@ -239,7 +239,7 @@ def _consumer_problem(reserved: int, node: int, time: int, seen: dict[int, int])
     return None
 
 
-@check
+@lint_pass
 def device_profile(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     sub, device_type = _var_int(od, DEVICE_TYPE)
     if sub is None or device_type is None or device_type & 0xFFFF:
@@ -253,7 +253,7 @@ def device_profile(od: ObjectDictionary, diags: Diagnostics, options: LintOption
 
 # -- C8: PDO and SDO parameter records -------------------------------------------------
 
-@check
+@lint_pass
 def comm_records(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for index, obj in od.objects.items():
         kind = pdo_communication(index)

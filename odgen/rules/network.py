@@ -1,4 +1,4 @@
-"""NET: a CANopen network of nodes (`odgen lint --network NET.toml`, driven by odgen.network).
+"""NET: a CANopen network of nodes (`odgen lint --network NET.toml`, driven by odgen.lint_network).
 
 No per-file checks: `check_network` looks across the nodes' PDOs once every file is linted.
 COB-IDs are read from the value in force (a DCF's ParameterValue, else the DefaultValue)
