@@ -14,6 +14,7 @@ from ..catalogue.header import (
     HDR015)
 from ..diagnostics import Diagnostics, Loc
 from ..model import Field, ObjectDictionary, Section, Sub, Value
+from ..model.cia301 import IDENTITY
 from . import LintOptions, lint_pass
 from .common import gaps, granularity, header_field, header_int, number
 
@@ -212,7 +213,7 @@ _IDENTITY = (("DeviceInfo", "VendorNumber", 1), ("DeviceInfo", "ProductNumber", 
 
 @lint_pass
 def identity_numbers(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
-    identity = od.objects.get(0x1018)
+    identity = od.objects.get(IDENTITY)
     if identity is None or identity.is_var:
         return
     for section_name, key, subindex in _IDENTITY:

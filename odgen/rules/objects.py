@@ -12,6 +12,7 @@ from ..catalogue.rule import Rule
 from ..diagnostics import Diagnostics, Loc
 from ..model import (ACCESS_TYPES, ARRAY, DEFSTRUCT, DEFTYPE, DOMAIN, RECORD, VAR, Field, Obj, ObjectDictionary, Sub,
                      Value)
+from ..model.cia301 import ERROR_HISTORY, PDO_COUNT, RPDO_MAPPING, TPDO_MAPPING
 from ..model.datatypes import BASIC_TYPES, DataType
 from ..model.od import OBJECT_CODES
 from . import LintOptions, lint_pass
@@ -32,7 +33,8 @@ KNOWN_KEYS = frozenset((
 HEADER_VALUE_KEYS = ("datatype", "accesstype", "defaultvalue", "lowlimit", "highlimit", "pdomapping",
                      "parametervalue")
 # Objects whose sub0 is not "highest sub-index supported".
-_SUB0_COUNTS = ((0x1003, 0x1003), (0x1600, 0x17FF), (0x1A00, 0x1BFF))
+_SUB0_COUNTS = ((ERROR_HISTORY, ERROR_HISTORY), (RPDO_MAPPING, RPDO_MAPPING + PDO_COUNT - 1),
+                (TPDO_MAPPING, TPDO_MAPPING + PDO_COUNT - 1))
 
 
 # -- entries -------------------------------------------------------------------
