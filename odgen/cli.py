@@ -306,7 +306,7 @@ def cmd_lint(args: argparse.Namespace) -> int:
     results: list[FileResult] = []
     unreadable = failed = False
     if args.network:
-        from .network import lint_network
+        from .lint_network import lint_network
 
         rule_filter, options, strict = _lint_settings(args, args.network)
         results, unreadable = lint_network(args.network, options, rule_filter)

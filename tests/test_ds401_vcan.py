@@ -20,8 +20,9 @@ import pytest
 
 from odgen.codegen.generate import Request
 from odgen.model import ObjectDictionary
-from odgen.profiles.ds401 import (PROFILE, RPDO, TPDO, Ds401, build, glue_files, mapping_layout, options_toml,
-                                  write)
+from odgen.model.cia301 import RPDO_COMM as RPDO
+from odgen.model.cia301 import TPDO_COMM as TPDO
+from odgen.profiles.ds401 import PROFILE, Ds401, build, glue_files, mapping_layout, options_toml, write
 from odgen.roundtrip.build import build_node
 
 from .conftest import ROOT

@@ -17,13 +17,9 @@ from dataclasses import dataclass
 from ..catalogue.gen import GEN002, GEN003
 from ..diagnostics import Diagnostics, Loc
 from ..model import Obj, ObjectDictionary, Sub
+from ..model.cia301 import RESTORE, RUNTIME_UPDATED, STORE
 from .names import identifier
 from .options import OptionEntry, Options
-
-STORE, RESTORE = 0x1010, 0x1011
-# ro by access type, yet written by the communication stack itself: error register, status
-# register, pre-defined error field.
-RUNTIME_UPDATED = frozenset({0x1001, 0x1002, 0x1003})
 
 
 @dataclass

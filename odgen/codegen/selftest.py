@@ -1,19 +1,20 @@
 """Expectations for the generated self-test, computed from the model by a second path.
 
 The view-model turns values into C initializers; this module turns the same model
-values into CANopen wire bytes (little-endian) directly, so the self-test compares
+values into CANopen wire bytes (odgen.model.wire) directly, so the self-test compares
 what the compiled dictionary serves with what the description says.
 """
 
 from __future__ import annotations
 
-import struct
 from dataclasses import dataclass, field
 
 from ..model import Obj, ObjectDictionary, Sub, Value
+from ..model.cia301 import COMMUNICATION_AREA, RESTORE, STORE, unused_manufacturer_index
 from ..model.datatypes import BASIC_TYPES, DataType
+from ..model.wire import wire_bytes
 from .memory import value_rows
-from .placement import RESTORE, STORE, Placement
+from .placement import Placement
 from .viewmodel import DictView, initial_number
 
 MAX_WRITE_CASES = 3
@@ -55,19 +56,6 @@ class SelfTest:
     @property
     def test_persistence(self) -> bool:
         return self.groups > 0 and self.has_store
-
-
-def wire_bytes(value: int | float | bytes | str, dtype: DataType) -> bytes:
-    if dtype.kind == "real":
-        return struct.pack("<f" if dtype.bits == 32 else "<d", float(value))
-    if dtype.kind in ("int", "uint", "bool", "time"):
-        size = max(dtype.bits // 8, 1)
-        return (int(value) & ((1 << (8 * size)) - 1)).to_bytes(size, "little")
-    if isinstance(value, bytes):
-        return value
-    if dtype.kind == "ustring":
-        return str(value).encode("utf-16-le")
-    return str(value).encode("utf-8")
 
 
 def c_bytes(data: bytes) -> str:
@@ -137,7 +125,7 @@ def _write_cases(sub: Sub, dtype: DataType) -> list[WriteCase]:
 
 def _expect(od: ObjectDictionary, obj: Obj, sub: Sub, placement: Placement, node_id: int) -> Expect | None:
     dtype = BASIC_TYPES.get(sub.data_type or 0)
-    if dtype is None or obj.index < 0x1000 or (obj.index in (STORE, RESTORE) and sub.subindex > 0):
+    if dtype is None or obj.index < COMMUNICATION_AREA[0] or (obj.index in (STORE, RESTORE) and sub.subindex > 0):
         return None
     expected = expected_bytes(od, sub, dtype, node_id, placement.capacity)
     label = f"0x{obj.index:04X}sub{sub.subindex}"
@@ -161,7 +149,7 @@ def build_selftest(od: ObjectDictionary, placements: dict[tuple[int, int], Place
             exp = _expect(od, obj, sub, placements[(obj.index, sub.subindex)], node_id)
             if exp is not None:
                 expects.append(exp)
-    missing = next(i for i in range(0x5FFF, 0x1FFF, -1) if i not in od.objects)
+    missing = unused_manufacturer_index(od.objects)
     structs = [(row.label, row.var, row.where) for row in value_rows(view)]
     store = od.objects.get(STORE)
     return SelfTest(view.name, node_id, expects, view.functions, missing, len(view.groups),

@@ -11,6 +11,8 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from ..model import Obj, ObjectDictionary, Sub, Value
+from ..model.cia301 import (
+    EMCY_COB_ID, SYNC_COB_ID, TIME_COB_ID, is_pdo_mapping, is_sdo_parameter, pdo_communication)
 from ..model.od import OBJECT_CODES
 from .changes import Change
 
@@ -115,13 +117,11 @@ def _limits(a: Sub, b: Sub, change: Callable[[str, str, str], Change]) -> list[C
 
 # CiA 301 communication entries whose defaults a master's configuration builds on.
 def communication_default(index: int, sub: int) -> bool:
-    if index in (0x1005, 0x1012, 0x1014):  # SYNC, TIME, EMCY COB-IDs
+    if index in (SYNC_COB_ID, TIME_COB_ID, EMCY_COB_ID):
         return True
-    if 0x1200 <= index <= 0x12FF:  # SDO server/client COB-IDs
+    if is_sdo_parameter(index) or pdo_communication(index):  # COB-IDs; a PDO's transmission type
         return sub in (1, 2)
-    if 0x1400 <= index <= 0x15FF or 0x1800 <= index <= 0x19FF:  # PDO COB-ID, transmission type
-        return sub in (1, 2)
-    return 0x1600 <= index <= 0x17FF or 0x1A00 <= index <= 0x1BFF  # PDO mappings
+    return is_pdo_mapping(index)
 
 
 def _value(value: Value | None) -> object:

@@ -10,9 +10,10 @@ from __future__ import annotations
 import re
 
 from ..model import ObjectDictionary, Value
+from ..model.cia301 import IDENTITY
 from .changes import BREAKING, STORED, Change, worst
 
-IDENTITY, REVISION = 0x1018, 3
+REVISION = 3  # sub-index of 0x1018
 
 
 def version_changes(old: ObjectDictionary, new: ObjectDictionary, changes: list[Change]) -> list[Change]:

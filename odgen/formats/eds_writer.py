@@ -10,10 +10,10 @@ from __future__ import annotations
 from collections.abc import Iterable
 
 from ..model import Field, Obj, ObjectDictionary, Sub
+from ..model.cia301 import MANDATORY
 from ..model.od import VAR
 from .eds import HASH_COMMENT, KEYWORDS, OBJECT_LISTS
 
-MANDATORY = (0x1000, 0x1001, 0x1018)
 _KEYWORDS = {k.lower(): k for k in KEYWORDS}
 _LEADING_SECTIONS = ("FileInfo", "DeviceInfo", "DeviceComissioning", "DummyUsage", "Comments")
 

@@ -15,7 +15,7 @@ from ..diagnostics import Diagnostics
 from ..errors import OdgenError
 from ..formats import load_path
 from ..lint import RuleFilter
-from ..network import lint_network, parse_network
+from ..lint_network import lint_network, parse_network
 from ..rules import LintOptions
 from ..rules.network import Node, pdos
 from ..rules.network import Pdo as NetPdo

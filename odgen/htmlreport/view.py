@@ -18,6 +18,7 @@ from ..codegen.memory import MemoryRow, memory_rows
 from ..codegen.placement import Placement
 from ..diagnostics import RULES, Diagnostic, Diagnostics, Severity, where
 from ..model import ObjectDictionary, Obj, Sub
+from ..model.cia301 import RPDO_MAPPING, TPDO_MAPPING
 from ..model.datatypes import BASIC_TYPES
 from ..model.od import OBJECT_CODES
 from ..rules.common import value_in_force
@@ -262,7 +263,7 @@ def _pdos(od: ObjectDictionary, can_fd: bool) -> list[Pdo]:
     found = []
     frame = FD_FRAME_BITS if can_fd else FRAME_BITS
     for obj, kind in sorted(mapping_objects(od), key=lambda pair: (pair[1] != "TPDO", pair[0].index)):
-        base = 0x1A00 if kind == "TPDO" else 0x1600
+        base = TPDO_MAPPING if kind == "TPDO" else RPDO_MAPPING
         comm = MAPPINGS[base][1] + obj.index - base
         found.append(Pdo(kind, obj.index - base + 1, comm, obj.index, frame, _comm_params(od, comm),
                          [Lane(f"{kind}{obj.index - base + 1}", pdo_boxes(od, obj))]))

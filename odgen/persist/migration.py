@@ -24,6 +24,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 from ..model.datatypes import BASIC_TYPES, DataType
+from ..model.wire import wire_bytes, wire_number
 
 KEEP, CONVERT, RESIZE, DROP, DEFAULT = "keep", "convert", "resize", "drop", "default"
 ACTIONS = (KEEP, CONVERT, RESIZE, DROP, DEFAULT)
@@ -224,17 +225,13 @@ def _restore(action: str, old: EntryLayout, new: EntryLayout, raw: bytes) -> tup
 def decode(e: EntryLayout, raw: bytes) -> Number:
     dtype = e.dtype
     assert dtype is not None and dtype.is_numeric
-    if dtype.kind == "real":
-        return float(struct.unpack("<f" if dtype.bits == 32 else "<d", raw)[0])
-    return int.from_bytes(raw, "little", signed=dtype.kind == "int")
+    return wire_number(raw, dtype)
 
 
 def encode(e: EntryLayout, number: Number) -> bytes:
     dtype = e.dtype
     assert dtype is not None and dtype.is_numeric
-    if dtype.kind == "real":
-        return struct.pack("<f" if dtype.bits == 32 else "<d", number)
-    return int(number).to_bytes(e.length, "little", signed=dtype.kind == "int")
+    return wire_bytes(number, dtype)
 
 
 def within(e: EntryLayout, number: Number) -> bool:

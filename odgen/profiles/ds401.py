@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING
 
 from ..fileio import write_atomic
 from ..model import ARRAY, RECORD, VAR, BASIC_TYPES, Obj, ObjectDictionary, Sub, parse_value
+from ..model.cia301 import COB_INVALID, PDO_BASE_STEP, RPDO_BASE, RPDO_COMM, TPDO_BASE, TPDO_COMM
 
 if TYPE_CHECKING:
     from ..codegen.generate import Result
@@ -118,7 +119,6 @@ PROFILE = (
 
 PROCESS_OBJECTS = {("di", 8): 0x6000, ("do", 8): 0x6200, ("ai", 8): 0x6400, ("ai", 16): 0x6401,
                    ("ai", 32): 0x6402, ("ao", 8): 0x6410, ("ao", 16): 0x6411, ("ao", 32): 0x6412}
-TPDO, RPDO = 0x1800, 0x1400
 MAP_SUBS = 8  # every mapping record offers 8 entries, used or not
 
 
@@ -143,7 +143,7 @@ def container(index: int, name: str, subs: list[Sub], code: int = ARRAY, highest
 def mapping_layout(p: Ds401) -> dict[int, list[tuple[int, int, int]]]:
     """CiA 401 default mapping: PDO communication index -> [(index, sub, bits)], within 64 bits each."""
     layout: dict[int, list[tuple[int, int, int]]] = {}
-    for kind, base in (("di", TPDO), ("do", RPDO), ("ai", TPDO), ("ao", RPDO)):
+    for kind, base in (("di", TPDO_COMM), ("do", RPDO_COMM), ("ai", TPDO_COMM), ("ao", RPDO_COMM)):
         width, count = p.width(kind), p.channels(kind)
         index = PROCESS_OBJECTS[(kind, width)]
         if kind in ("di", "do"):
@@ -160,9 +160,9 @@ def _pdo_objects(p: Ds401) -> list[Obj]:
     objects = []
     layout = mapping_layout(p)
     for n in range(4):
-        for base, kind, cob in ((RPDO, "RPDO", 0x200), (TPDO, "TPDO", 0x180)):
+        for base, kind, cob in ((RPDO_COMM, "RPDO", RPDO_BASE), (TPDO_COMM, "TPDO", TPDO_BASE)):
             entries = layout[base + n]
-            cob_id = f"$NODEID+0x{(0 if entries else 0x80000000) + cob + 0x100 * n:X}"
+            cob_id = f"$NODEID+0x{(0 if entries else COB_INVALID) + cob + PDO_BASE_STEP * n:X}"
             comm = [value_sub(1, f"COB-ID used by {kind}", U32, "rw", cob_id),
                     value_sub(2, "Transmission type", U8, "rw", "0xFF")]
             if kind == "TPDO":

@@ -23,19 +23,23 @@ from pathlib import Path
 
 from ..codegen.placement import Placement
 from ..errors import OdgenError
-from ..codegen.selftest import expected_bytes, wire_bytes, write_cases
+from ..codegen.selftest import expected_bytes, write_cases
 from ..formats.eds_writer import write_eds
 from ..model import ARRAY, RECORD, Obj, ObjectDictionary, Sub
-from ..model.datatypes import BASIC_TYPES, DataType
+from ..model.cia301 import (
+    ABORT_CODES, COMMUNICATION_AREA, EMCY_COB_ID, EMCY_INHIBIT, LOAD, PDO_COUNT, PRODUCER_HEARTBEAT, RESTORE, RPDO_COMM,
+    RPDO_MAPPING, SAVE, SDO_SERVER, STORE, SYNC_COB_ID, SYNC_PERIOD, SYNC_WINDOW, TIME_COB_ID, TPDO_COMM,
+    TPDO_MAPPING, is_pdo_mapping, unused_manufacturer_index)
+from ..model.datatypes import BASIC_TYPES, UNSIGNED16, DataType
+from ..model.wire import wire_bytes
 
-ABORTS = {"ODG_OK": 0, "ODG_ABORT_TOO_LONG": 0x06070012, "ODG_ABORT_TOO_SHORT": 0x06070013,
-          "ODG_ABORT_VALUE_HIGH": 0x06090031,
-          "ODG_ABORT_VALUE_LOW": 0x06090032, "ODG_ABORT_READ_ONLY": 0x06010002}
-WRITE_ONLY, NO_OBJECT, NO_SUB = 0x06010001, 0x06020000, 0x06090011
+ABORTS = {"ODG_OK": 0, **ABORT_CODES}
+WRITE_ONLY, NO_OBJECT, NO_SUB = (ABORT_CODES["ODG_ABORT_WRITE_ONLY"], ABORT_CODES["ODG_ABORT_NO_OBJECT"],
+                                 ABORT_CODES["ODG_ABORT_NO_SUB"])
 # Objects whose writes change how the node talks (SDO/PDO/SYNC/EMCY/heartbeat) or act as
 # commands: checked by their own steps, not by the generic downloads.
-ACTIVE = frozenset({0x1005, 0x1006, 0x1007, 0x1010, 0x1011, 0x1012, 0x1014, 0x1015, 0x1017}) | frozenset(
-    range(0x1200, 0x1C00))
+ACTIVE = frozenset({SYNC_COB_ID, SYNC_PERIOD, SYNC_WINDOW, STORE, RESTORE, TIME_COB_ID, EMCY_COB_ID, EMCY_INHIBIT,
+                    PRODUCER_HEARTBEAT}) | frozenset(range(SDO_SERVER, TPDO_MAPPING + PDO_COUNT))
 BOOT_TIMEOUT = 5.0
 
 
@@ -166,7 +170,7 @@ def _expanded(od: ObjectDictionary) -> ObjectDictionary:
     the sub0 it reads from the device, so a remap (sub0 = 0, entries, sub0 = n) would write no entry."""
     copy = deepcopy(od)
     for obj in copy.objects.values():
-        if (0x1600 <= obj.index <= 0x17FF or 0x1A00 <= obj.index <= 0x1BFF) and obj.object_code == ARRAY:
+        if is_pdo_mapping(obj.index) and obj.object_code == ARRAY:
             obj.object_code = RECORD
         if obj.compact_sub_obj:
             obj.compact_sub_obj, obj.sub_number = None, len(obj.subs)
@@ -194,7 +198,7 @@ def _entries(od: ObjectDictionary, placements: dict[tuple[int, int], Placement])
     for obj in od.sorted_objects():
         for sub in obj.sorted_subs():
             dtype = BASIC_TYPES.get(sub.data_type or 0)
-            if dtype is not None and (obj.index, sub.subindex) in placements and obj.index >= 0x1000:
+            if dtype is not None and (obj.index, sub.subindex) in placements and obj.index >= COMMUNICATION_AREA[0]:
                 out.append(Entry(obj, sub, dtype, placements[(obj.index, sub.subindex)]))
     return out
 
@@ -248,7 +252,7 @@ def check_downloads(s: Session) -> Check:
 
 def check_unknown(s: Session) -> Check:
     check = Check("unknown index and sub-index abort 0x06020000 / 0x06090011")
-    missing = next(i for i in range(0x5FFF, 0x1FFF, -1) if i not in s.od.objects)
+    missing = unused_manufacturer_index(s.od.objects)
     check.expect(s.upload(missing, 0)[1] == NO_OBJECT, f"0x{missing:04X}: no 0x06020000")
     obj = s.od.sorted_objects()[0]
     absent = next(i for i in range(0xFE, 0, -1) if i not in obj.subs)
@@ -292,12 +296,13 @@ def _block_round_trip(s: Session, e: Entry, data: bytes) -> bool:
 
 def check_nmt(s: Session) -> Check:
     check = Check("NMT transitions and heartbeat period")
-    hb = s.od.find(0x1017)
+    hb = s.od.find(PRODUCER_HEARTBEAT)
     if hb is None or not hb.writable:
         check.skipped = "no writable 0x1017"
         return check
-    original, _ = s.upload(0x1017, 0)
-    check.expect(s.download(0x1017, 0, (100).to_bytes(2, "little")) == 0, "0x1017 = 100 ms refused")
+    original, _ = s.upload(PRODUCER_HEARTBEAT, 0)
+    check.expect(s.download(PRODUCER_HEARTBEAT, 0, wire_bytes(100, UNSIGNED16)) == 0,
+                 "0x1017 = 100 ms refused")
     for command, state in (("OPERATIONAL", 0x05), ("STOPPED", 0x04), ("PRE-OPERATIONAL", 0x7F)):
         s.node.nmt.state = command
         check.expect(_state_seen(s, state), f"{command}: heartbeat state 0x{state:02X} not seen")
@@ -307,7 +312,7 @@ def check_nmt(s: Session) -> Check:
     s.node.nmt.state = "RESET"
     check.expect(s.booted.wait(BOOT_TIMEOUT), "reset node: no boot-up")
     if original is not None:
-        s.download(0x1017, 0, original)
+        s.download(PRODUCER_HEARTBEAT, 0, original)
     return check
 
 
@@ -328,9 +333,9 @@ def check_pdos(s: Session) -> Check:
     check = Check("remap a TPDO and an RPDO by SDO, SYNC, compare values")
     tpdo_var = _mappable(s, tpdo=True)
     rpdo_var = _mappable(s, tpdo=False)
-    if _remappable(s, 0x1800, 0x1A00) and tpdo_var is not None:
+    if _remappable(s, TPDO_COMM, TPDO_MAPPING) and tpdo_var is not None:
         _tpdo(s, check, tpdo_var)
-    if _remappable(s, 0x1400, 0x1600) and rpdo_var is not None:
+    if _remappable(s, RPDO_COMM, RPDO_MAPPING) and rpdo_var is not None:
         _rpdo(s, check, rpdo_var)
     if not check.passed and not check.failures:
         check.skipped = "no remappable PDO pair with a mappable entry"
@@ -408,18 +413,19 @@ def check_persistence(s: Session) -> Check:
     check = Check("store (0x1010), restart, kept; restore (0x1011), restart, defaults")
     target = next((e for e in s.entries if e.placement.group and e.sub.writable and e.sub.readable
                    and e.obj.index not in ACTIVE and write_cases(e.sub, e.dtype)), None)
-    if target is None or s.od.find(0x1010, 1) is None or s.od.find(0x1011, 1) is None:
+    if target is None or s.od.find(STORE, 1) is None or s.od.find(RESTORE, 1) is None:
         check.skipped = "no persistent writable entry or no 0x1010/0x1011 sub 1"
         return check
     value = write_cases(target.sub, target.dtype)[1][0]
     default = expected_bytes(s.od, target.sub, target.dtype, s.node_id, target.placement.capacity)
     check.expect(s.download(target.obj.index, target.sub.subindex, value) == 0, f"{target.label}: write refused")
-    check.expect(s.download(0x1010, 1, b"save") == 0, "0x1010sub1 'save' refused")
-    check.expect(s.download(0x1010, 1, b"nope") == 0x08000020, "0x1010sub1 without 'save' did not abort 0x08000020")
+    check.expect(s.download(STORE, 1, SAVE) == 0, "0x1010sub1 'save' refused")
+    check.expect(s.download(STORE, 1, b"nope") == ABORT_CODES["ODG_ABORT_DATA_STORE"],
+                 "0x1010sub1 without 'save' did not abort 0x08000020")
     s.stop()
     check.expect(s.start(), "no boot-up after restart")
     check.expect(s.upload(target.obj.index, target.sub.subindex)[0] == value, f"{target.label}: not kept")
-    check.expect(s.download(0x1011, 1, b"load") == 0, "0x1011sub1 'load' refused")
+    check.expect(s.download(RESTORE, 1, LOAD) == 0, "0x1011sub1 'load' refused")
     s.stop()
     check.expect(s.start(), "no boot-up after restart")
     check.expect(s.upload(target.obj.index, target.sub.subindex)[0] == default, f"{target.label}: default not back")

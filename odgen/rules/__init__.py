@@ -1,8 +1,10 @@
-"""The lint pass: rule families, each a module of small checks over the model.
+"""Linting: rule families, each a module of small passes over the model.
 
-A family module holds the checks (the `@check` decorator) of the rules its
-family defines in the catalogue (odgen.catalogue); readers report most SYN and
-all XML rules themselves, the generator the GEN rules.
+A family module holds the lint passes (functions registered with `@lint_pass`,
+each reporting one or more of the rules its family defines in the catalogue,
+odgen.catalogue); readers report most SYN and all XML rules themselves, the
+generator the GEN rules. "check" is kept for checking built code against the
+description (`odgen check`, the round-trip checks).
 """
 
 from __future__ import annotations
@@ -21,12 +23,12 @@ class LintOptions:
     can_fd: bool = False  # PDO payload up to 512 bits instead of 64
 
 
-Check = Callable[[ObjectDictionary, Diagnostics, LintOptions], None]
-CHECKS: list[Check] = []
+LintPass = Callable[[ObjectDictionary, Diagnostics, LintOptions], None]
+LINT_PASSES: list[LintPass] = []
 
 
-def check(fn: Check) -> Check:
-    CHECKS.append(fn)
+def lint_pass(fn: LintPass) -> LintPass:
+    LINT_PASSES.append(fn)
     return fn
 
 
@@ -37,5 +39,5 @@ for _family in FAMILIES:
 
 
 def run_rules(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
-    for fn in CHECKS:
+    for fn in LINT_PASSES:
         fn(od, diags, options)

@@ -13,12 +13,14 @@ from dataclasses import dataclass
 from ..catalogue.comm import COM016, COM017, COM018
 from ..diagnostics import Diagnostics, Loc, where
 from ..model import Obj, ObjectDictionary, Sub
-from . import LintOptions, check
+from ..model.cia301 import (
+    COB_EXTENDED, COB_INVALID, COB_PRODUCER, EMCY_COB_ID, ERROR_HISTORY, SDO_CLIENT, SDO_SERVER, SYNC_COB_ID,
+    TIME_COB_ID, is_sdo_parameter, pdo_communication)
+from . import LintOptions, lint_pass
 from .common import addr, at, node_span, value_in_force, value_line
 
-SDO_SERVER = 0x1200
-INVALID, EXTENDED = 0x80000000, 0x20000000
 READ_ONLY = ("ro", "const")
+SERVICES = {SYNC_COB_ID: "SYNC", TIME_COB_ID: "TIME", EMCY_COB_ID: "EMCY"}
 
 
 @dataclass(frozen=True)
@@ -35,15 +37,15 @@ def _named_entries(od: ObjectDictionary) -> Iterator[tuple[str, Obj, Sub | None]
     """(name, object, sub-entry) of every COB-ID entry CiA 301 defines (PDO, SDO, EMCY, SYNC, TIME)."""
     for index in sorted(od.objects):
         obj = od.objects[index]
-        if 0x1400 <= index <= 0x15FF or 0x1800 <= index <= 0x19FF:
-            kind = "RPDO" if index < 0x1800 else "TPDO"
-            yield f"{kind}{(index & 0x1FF) + 1}", obj, obj.subs.get(1)
-        elif 0x1200 <= index <= 0x12FF:
-            kind = "SDO server" if index < 0x1280 else "SDO client"
+        pdo = pdo_communication(index)
+        if pdo is not None:
+            yield f"{pdo}{(index & 0x1FF) + 1}", obj, obj.subs.get(1)
+        elif is_sdo_parameter(index):
+            kind = "SDO server" if index < SDO_CLIENT else "SDO client"
             yield f"{kind} {index & 0x7F} client-to-server", obj, obj.subs.get(1)
             yield f"{kind} {index & 0x7F} server-to-client", obj, obj.subs.get(2)
-        elif index in (0x1005, 0x1012, 0x1014) and obj.is_var:
-            yield {0x1005: "SYNC", 0x1012: "TIME", 0x1014: "EMCY"}[index], obj, obj.var
+        elif index in SERVICES and obj.is_var:
+            yield SERVICES[index], obj, obj.var
 
 
 def _uses(od: ObjectDictionary, node_id: int) -> Iterator[tuple[int, Use]]:
@@ -53,9 +55,9 @@ def _uses(od: ObjectDictionary, node_id: int) -> Iterator[tuple[int, Use]]:
             continue
         value, keyword = value_in_force(od, sub)
         raw = at(value, node_id) if value is not None else None
-        if not isinstance(raw, int) or raw < 0 or raw & (INVALID | EXTENDED) or not raw & 0x7FF:
+        if not isinstance(raw, int) or raw < 0 or raw & (COB_INVALID | COB_EXTENDED) or not raw & 0x7FF:
             continue  # disabled, a 29-bit identifier, or not yet configured (0)
-        if obj.index in (0x1005, 0x1012) and not raw & 0x40000000:
+        if obj.index in (SYNC_COB_ID, TIME_COB_ID) and not raw & COB_PRODUCER:
             continue  # SYNC/TIME consumed only: receiving what another node produces is the point
         yield raw & 0x7FF, Use(name, obj.index, addr(obj, sub), value_line(sub, value, keyword))
 
@@ -71,7 +73,7 @@ def _collisions(od: ObjectDictionary, node_id: int) -> dict[tuple[Use, Use], int
     return found
 
 
-@check
+@lint_pass
 def cob_id_collisions(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     """Collisions at every node-id the file must work for: a fixed COB-ID that meets a `$NODEID` one at a
     single node-id (a master receiving node 127's TPDO1 on 0x1FF) is left to `lint --network`."""
@@ -89,7 +91,7 @@ def cob_id_collisions(od: ObjectDictionary, diags: Diagnostics, options: LintOpt
                   f"{first.name} ({where(first.index, first.sub)})", use.index, use.sub)
 
 
-@check
+@lint_pass
 def default_sdo_server(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     obj = od.objects.get(SDO_SERVER)
     if obj is None or obj.is_var:
@@ -108,10 +110,10 @@ def default_sdo_server(od: ObjectDictionary, diags: Diagnostics, options: LintOp
                       f"COB-ID {value.text.strip()} is not $NODEID+0x{base:X}", SDO_SERVER, subindex)
 
 
-@check
+@lint_pass
 def error_history_count(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
-    obj = od.objects.get(0x1003)
+    obj = od.objects.get(ERROR_HISTORY)
     sub0 = obj.subs.get(0) if obj is not None and not obj.is_var else None
     if sub0 is not None and sub0.access is not None and not sub0.writable:
         diags.add(COM018, Loc(od.source, sub0.line_of("accesstype")),
-                  f"is {sub0.access}; writing 0 to it clears the error history", 0x1003, 0)
+                  f"is {sub0.access}; writing 0 to it clears the error history", ERROR_HISTORY, 0)

@@ -14,49 +14,20 @@ from ..catalogue.comm import (
     COM015)
 from ..diagnostics import Diagnostics, Loc
 from ..model import Obj, ObjectDictionary, Sub, Value
+from ..model.cia301 import (
+    ARRAY_TYPES, COB_EXTENDED, COB_INVALID, CONSUMER_HEARTBEAT, DEVICE_TYPE, EMCY_COB_ID, GUARD_TIME, IDENTITY,
+    LIFE_TIME_FACTOR, MANDATORY, PDO_COMM_TYPES, PDO_COUNT, PDO_MAPPING_ENTRIES, PREDEFINED_PDOS,
+    PRODUCER_HEARTBEAT, READ_ONLY, RESTRICTED_CAN_IDS, RPDO_COMM, SDO_CLIENT, SDO_COUNT, SDO_SERVER, SDO_TYPES,
+    TPDO_COMM, TPDO_MAPPING, U32, VAR_TYPES, is_pdo_mapping, is_sdo_parameter, pdo_communication, predefined_cob_id)
 from ..model.datatypes import BASIC_TYPES
-from . import LintOptions, check
+from . import LintOptions, lint_pass
 from .common import addr, at, default_line, node_span, number, plain_int, value_in_force, value_line
 
 
 
-U8, U16, U32, VSTR = 0x0005, 0x0006, 0x0007, 0x0009
-MANDATORY = {0x1000: "device type", 0x1001: "error register", 0x1018: "identity"}
-# Single-value communication objects and their data type.
-VAR_TYPES = {0x1000: U32, 0x1001: U8, 0x1002: U32, 0x1005: U32, 0x1006: U32, 0x1007: U32,
-             0x1008: VSTR, 0x1009: VSTR, 0x100A: VSTR, 0x100C: U16, 0x100D: U8, 0x1012: U32,
-             0x1013: U32, 0x1014: U32, 0x1015: U16, 0x1017: U16, 0x1019: U8}
-# Records/arrays: sub-index -> type (key 0 = "every sub-index from 1").
-ARRAY_TYPES = {0x1003: {0: U32}, 0x1010: {0: U32}, 0x1011: {0: U32}, 0x1016: {0: U32},
-               0x1018: {1: U32, 2: U32, 3: U32, 4: U32}, 0x1029: {0: U8}}
-PDO_COMM_TYPES = {1: U32, 2: U8, 3: U16, 4: U8, 5: U16, 6: U8}
-SDO_TYPES = {1: U32, 2: U32, 3: U8}
-READ_ONLY = (0x1000, 0x1001, 0x1008, 0x1009, 0x100A, 0x1018)
-RESTRICTED = ((0x000, 0x07F), (0x101, 0x180), (0x581, 0x5FF), (0x601, 0x67F), (0x6E0, 0x6FF),
-              (0x701, 0x7FF))
-RPDO, TPDO, SDO_SERVER, SDO_CLIENT = 0x1400, 0x1800, 0x1200, 0x1280
-
-
-def _in(index: int, base: int, size: int = 0x200) -> bool:
-    return base <= index < base + size
-
-
-def _is_sdo(index: int) -> bool:
-    """An SDO server or client parameter record."""
-    return _in(index, SDO_SERVER, 0x80) or _in(index, SDO_CLIENT, 0x80)
-
-
-def _pdo_comm(index: int) -> str | None:
-    if _in(index, RPDO):
-        return "RPDO"
-    if _in(index, TPDO):
-        return "TPDO"
-    return None
-
-
 # -- mandatory objects, data types, access -----------------------------------------
 
-@check
+@lint_pass
 def mandatory_objects(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for index, name in MANDATORY.items():
         if index not in od.objects:
@@ -69,11 +40,11 @@ def _expected_type(obj: Obj, sub: Sub) -> int | None:
         return VAR_TYPES.get(index)
     if sub.subindex == 0:
         return None  # sub0 is UNSIGNED8 everywhere: OBJ010
-    if _pdo_comm(index) is not None:
+    if pdo_communication(index) is not None:
         return PDO_COMM_TYPES.get(sub.subindex)
-    if _in(index, 0x1600) or _in(index, 0x1A00):
-        return U32 if sub.subindex <= 0x40 else None
-    if _is_sdo(index):
+    if is_pdo_mapping(index):
+        return U32 if sub.subindex <= PDO_MAPPING_ENTRIES else None
+    if is_sdo_parameter(index):
         return SDO_TYPES.get(sub.subindex)
     table = ARRAY_TYPES.get(index)
     if table is None:
@@ -81,10 +52,10 @@ def _expected_type(obj: Obj, sub: Sub) -> int | None:
     return table.get(sub.subindex, table.get(0))
 
 
-@check
+@lint_pass
 def comm_data_types(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for index, obj in od.objects.items():
-        if not 0x1000 <= index <= 0x1BFF:
+        if not DEVICE_TYPE <= index < TPDO_MAPPING + PDO_COUNT:
             continue
         for sub in obj.subs.values():
             expected = _expected_type(obj, sub)
@@ -98,7 +69,7 @@ def comm_data_types(od: ObjectDictionary, diags: Diagnostics, options: LintOptio
                       f"CiA 301 defines {BASIC_TYPES[expected].name}", index, addr(obj, sub))
 
 
-@check
+@lint_pass
 def read_only_identity(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for index in READ_ONLY:
         obj = od.objects.get(index)
@@ -112,17 +83,6 @@ def read_only_identity(od: ObjectDictionary, diags: Diagnostics, options: LintOp
 
 # -- C6: COB-IDs -------------------------------------------------------------------
 
-def _predefined(index: int, subindex: int) -> tuple[int, str] | None:
-    """(base CAN-ID, name) of an entry the predefined connection set fixes."""
-    if _in(index, RPDO, 4) and subindex == 1:
-        return 0x200 + 0x100 * (index - RPDO), f"RPDO{index - RPDO + 1}"
-    if _in(index, TPDO, 4) and subindex == 1:
-        return 0x180 + 0x100 * (index - TPDO), f"TPDO{index - TPDO + 1}"
-    if index == 0x1014 and subindex == 0:
-        return 0x80, "EMCY"
-    return None
-
-
 def _entry(obj: Obj | None, subindex: int) -> Sub | None:
     """Sub-index 0 of a single-value object, or a sub-index 1.. of an ARRAY/RECORD; else None."""
     if obj is None or obj.is_var != (subindex == 0):
@@ -131,18 +91,19 @@ def _entry(obj: Obj | None, subindex: int) -> Sub | None:
 
 
 def _cob_entries(od: ObjectDictionary) -> Iterator[tuple[Obj, Sub, tuple[int, str]]]:
-    for index in [0x1014, *range(RPDO, RPDO + 4), *range(TPDO, TPDO + 4)]:  # 0x1200: COM017
+    pdos = [*range(RPDO_COMM, RPDO_COMM + PREDEFINED_PDOS), *range(TPDO_COMM, TPDO_COMM + PREDEFINED_PDOS)]
+    for index in [EMCY_COB_ID, *pdos]:  # 0x1200: COM017
         obj = od.objects.get(index)
         if obj is None:
             continue
         for subindex in (0, 1, 2):
             sub = _entry(obj, subindex)
-            known = _predefined(index, subindex)
+            known = predefined_cob_id(index, subindex)
             if sub is not None and known is not None:
                 yield obj, sub, known
 
 
-@check
+@lint_pass
 def predefined_cob_ids(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for obj, sub, (base, name) in _cob_entries(od):
         value, keyword = value_in_force(od, sub)
@@ -159,25 +120,25 @@ def _not_predefined(od: ObjectDictionary, value: Value, raw: int, base: int, nam
     """How a COB-ID (`raw`, the offset of a `$NODEID` value) misses the predefined `$NODEID+base`."""
     if value.nodeid:
         return f"is not the predefined {name} COB-ID $NODEID+0x{base:X}" if raw & 0x7FF != base else None
-    if od.is_config or raw & 0x80000000 or not raw & 0x7FF:
+    if od.is_config or raw & COB_INVALID or not raw & 0x7FF:
         return None
     if raw & 0x7FF == base:  # CANopenNode adds the node-id to a bare base; CiA 301 does not
         return f"lacks the node-id; write $NODEID+0x{base:X}, the predefined {name} COB-ID"
     return f"is fixed; the predefined {name} COB-ID is $NODEID+0x{base:X}"
 
 
-@check
+@lint_pass
 def pdo_cob_ids(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     span = node_span(od, options)
     for index, obj in od.objects.items():
-        if _pdo_comm(index) is None or obj.is_var or 1 not in obj.subs:
+        if pdo_communication(index) is None or obj.is_var or 1 not in obj.subs:
             continue
         sub = obj.subs[1]
         value, keyword = value_in_force(od, sub)
         raw = number(value)
         if value is None or not isinstance(raw, int):
             continue
-        known = _predefined(index, 1)
+        known = predefined_cob_id(index, 1)
         if known and not value.nodeid and raw & 0x7FF == known[0]:
             continue  # a bare predefined base: COM004 says what is missing
         problem = _cob_problem(value, span)
@@ -190,13 +151,13 @@ def _cob_problem(value: Value, span: tuple[int, int]) -> str | None:
     ids: list[int] = []
     for node_id in span:
         raw = at(value, node_id)
-        if not isinstance(raw, int) or raw < 0 or raw & 0x80000000 or raw & 0x20000000:
+        if not isinstance(raw, int) or raw < 0 or raw & (COB_INVALID | COB_EXTENDED):
             return None  # disabled, or a 29-bit identifier
         if raw & 0x1FFFF800:
             return "sets CAN-ID bits above 0x7FF without the 29-bit flag (bit 29)"
         ids.append(raw & 0x7FF)
     lo, hi = ids
-    for first, last in RESTRICTED:
+    for first, last in RESTRICTED_CAN_IDS:
         if lo <= last and first <= hi:
             can_id = max(lo, first)
             node = f" for node-id {can_id - (lo - span[0])}" if value.nodeid else ""
@@ -206,19 +167,19 @@ def _cob_problem(value: Value, span: tuple[int, int]) -> str | None:
 
 # -- C7: identity and error control -----------------------------------------------------
 
-@check
+@lint_pass
 def identity(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
-    obj = od.objects.get(0x1018)
+    obj = od.objects.get(IDENTITY)
     if obj is not None and (obj.is_var or 1 not in obj.subs):
-        diags.add(COM006, Loc(od.source, obj.line), "has no Vendor-ID (sub1)", 0x1018)
-    for index, subindex in ((0x1000, 0), (0x1018, 1)):
+        diags.add(COM006, Loc(od.source, obj.line), "has no Vendor-ID (sub1)", IDENTITY)
+    for index, subindex in ((DEVICE_TYPE, 0), (IDENTITY, 1)):
         target = od.objects.get(index)
         sub = _entry(target, subindex)
         if target is None or sub is None:
             continue
         value, _ = value_in_force(od, sub)
         if value is None or value.empty:
-            what = "device type" if index == 0x1000 else "Vendor-ID"
+            what = "device type" if index == DEVICE_TYPE else "Vendor-ID"
             diags.add(COM013, Loc(od.source, sub.line), f"{what} has no DefaultValue", index, addr(target, sub))
 
 
@@ -229,25 +190,25 @@ def _var_int(od: ObjectDictionary, index: int) -> tuple[Sub | None, int | None]:
     return sub, (plain_int(value_in_force(od, sub)[0]) if sub is not None else None)
 
 
-@check
+@lint_pass
 def error_control(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
-    guard, life = od.objects.get(0x100C), od.objects.get(0x100D)
-    if 0x1017 not in od.objects and guard is None and life is None:
+    guard, life = od.objects.get(GUARD_TIME), od.objects.get(LIFE_TIME_FACTOR)
+    if PRODUCER_HEARTBEAT not in od.objects and guard is None and life is None:
         diags.add(COM007, Loc(od.source), "neither heartbeat (0x1017) nor node guarding (0x100C/0x100D)")
-    present, absent = (guard, 0x100D) if life is None else (life, 0x100C)
+    present, absent = (guard, LIFE_TIME_FACTOR) if life is None else (life, GUARD_TIME)
     if present is not None and (guard is None or life is None):
         diags.add(COM014, Loc(od.source, present.line), f"is defined but 0x{absent:04X} is not", present.index)
-    heartbeat, hb_time = _var_int(od, 0x1017)
-    guard_time, life_factor = _var_int(od, 0x100C)[1], _var_int(od, 0x100D)[1]
+    heartbeat, hb_time = _var_int(od, PRODUCER_HEARTBEAT)
+    guard_time, life_factor = _var_int(od, GUARD_TIME)[1], _var_int(od, LIFE_TIME_FACTOR)[1]
     if heartbeat is not None and hb_time and guard_time and life_factor:
         diags.add(COM008, Loc(od.source, default_line(heartbeat)),
                   f"heartbeat {hb_time} ms and node guarding {guard_time} ms x {life_factor} are both enabled",
-                  0x1017)
+                  PRODUCER_HEARTBEAT)
 
 
-@check
+@lint_pass
 def heartbeat_consumers(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
-    obj = od.objects.get(0x1016)
+    obj = od.objects.get(CONSUMER_HEARTBEAT)
     if obj is None or obj.is_var:
         return
     seen: dict[int, int] = {}
@@ -262,7 +223,7 @@ def heartbeat_consumers(od: ObjectDictionary, diags: Diagnostics, options: LintO
         problem = _consumer_problem(raw >> 24, node, time, seen)
         if problem:
             diags.add(COM015, Loc(od.source, value_line(sub, value, keyword)),
-                      f"{value.text.strip()} {problem}", 0x1016, sub.subindex)
+                      f"{value.text.strip()} {problem}", CONSUMER_HEARTBEAT, sub.subindex)
         elif time:
             seen[node] = sub.subindex
 
@@ -278,30 +239,30 @@ def _consumer_problem(reserved: int, node: int, time: int, seen: dict[int, int])
     return None
 
 
-@check
+@lint_pass
 def device_profile(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
-    sub, device_type = _var_int(od, 0x1000)
+    sub, device_type = _var_int(od, DEVICE_TYPE)
     if sub is None or device_type is None or device_type & 0xFFFF:
         return
     profile = next((i for i in sorted(od.objects) if 0x6000 <= i <= 0x9FFF), None)
     if profile is not None:
         diags.add(COM012, Loc(od.source, default_line(sub)),
                   f"device type 0x{device_type:08X} names no device profile, but the file defines "
-                  f"profile objects (first 0x{profile:04X})", 0x1000)
+                  f"profile objects (first 0x{profile:04X})", DEVICE_TYPE)
 
 
 # -- C8: PDO and SDO parameter records -------------------------------------------------
 
-@check
+@lint_pass
 def comm_records(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for index, obj in od.objects.items():
-        kind = _pdo_comm(index)
-        if obj.is_var or not 0x1200 <= index <= 0x19FF:
+        kind = pdo_communication(index)
+        if obj.is_var or not SDO_SERVER <= index < TPDO_MAPPING:
             continue
         if kind is not None:
             _pdo_record(od, obj, kind, diags)
-        elif _is_sdo(index):
-            required = (1, 2, 3) if _in(index, SDO_CLIENT, 0x80) else (1, 2)
+        elif is_sdo_parameter(index):
+            required = (1, 2, 3) if SDO_CLIENT <= index < SDO_CLIENT + SDO_COUNT else (1, 2)
             _required(od, obj, required, diags)
 
 

@@ -14,7 +14,8 @@ from ..catalogue.header import (
     HDR015)
 from ..diagnostics import Diagnostics, Loc
 from ..model import Field, ObjectDictionary, Section, Sub, Value
-from . import LintOptions, check
+from ..model.cia301 import IDENTITY
+from . import LintOptions, lint_pass
 from .common import gaps, granularity, header_field, header_int, number
 
 
@@ -62,7 +63,7 @@ def _loc(od: ObjectDictionary, fld: Field | Section | None) -> Loc:
 
 # -- H1, H2 ----------------------------------------------------------------------
 
-@check
+@lint_pass
 def required_sections(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     if od.format not in ("eds", "dcf"):
         return
@@ -74,7 +75,7 @@ def required_sections(od: ObjectDictionary, diags: Diagnostics, options: LintOpt
         diags.add(HDR001, Loc(od.source), "[MandatoryObjects] is missing")
 
 
-@check
+@lint_pass
 def header_keys(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for name, keys in KNOWN_KEYS.items():
         section = od.section(name)
@@ -88,7 +89,7 @@ def header_keys(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) 
 
 # -- H3 --------------------------------------------------------------------------
 
-@check
+@lint_pass
 def header_numbers(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for key, (section_name, valid, said) in NUMBERS.items():
         fld = header_field(od, section_name, key)
@@ -102,7 +103,7 @@ def header_numbers(od: ObjectDictionary, diags: Diagnostics, options: LintOption
             diags.add(HDR003, _loc(od, fld), f"{fld.key}={fld.text.strip()} is {what}")
 
 
-@check
+@lint_pass
 def file_info_formats(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     section = od.section("FileInfo")
     if section is None:
@@ -132,7 +133,7 @@ def _valid_time(text: str) -> bool:
 
 # -- H4 --------------------------------------------------------------------------
 
-@check
+@lint_pass
 def device_flags(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     section = od.section("DeviceInfo")
     if section is None:
@@ -167,7 +168,7 @@ def _commissioned_rate(od: ObjectDictionary, rates: set[int], diags: Diagnostics
 
 # -- H5 --------------------------------------------------------------------------
 
-@check
+@lint_pass
 def granularity_range(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     value, fld = granularity(od)
     if fld is not None and fld.text.strip() and (value is None or not 0 <= value <= 64):
@@ -176,7 +177,7 @@ def granularity_range(od: ObjectDictionary, diags: Diagnostics, options: LintOpt
 
 # -- H8 --------------------------------------------------------------------------
 
-@check
+@lint_pass
 def dynamic_channels(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     fld = header_field(od, "DeviceInfo", "DynamicChannelsSupported")
     count = header_int(fld)
@@ -191,7 +192,7 @@ def dynamic_channels(od: ObjectDictionary, diags: Diagnostics, options: LintOpti
 
 # -- H9 --------------------------------------------------------------------------
 
-@check
+@lint_pass
 def dummy_usage(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     section = od.section("DummyUsage")
     if section is None:
@@ -210,9 +211,9 @@ _IDENTITY = (("DeviceInfo", "VendorNumber", 1), ("DeviceInfo", "ProductNumber", 
              ("DeviceInfo", "RevisionNumber", 3), ("DeviceComissioning", "LSS_SerialNumber", 4))
 
 
-@check
+@lint_pass
 def identity_numbers(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
-    identity = od.objects.get(0x1018)
+    identity = od.objects.get(IDENTITY)
     if identity is None or identity.is_var:
         return
     for section_name, key, subindex in _IDENTITY:
@@ -238,7 +239,7 @@ def _identity_value(od: ObjectDictionary, sub: Sub | None) -> Value | None:
 
 # -- H11 -------------------------------------------------------------------------
 
-@check
+@lint_pass
 def comment_lines(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     section = od.section("Comments")
     if section is None:

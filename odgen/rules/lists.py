@@ -12,15 +12,15 @@ from ..catalogue.lists import (
     LST001, LST002, LST003, LST004, LST005, LST006, LST007, LST008, LST009, LST010, LST011, LST012)
 from ..diagnostics import Diagnostics, Loc
 from ..model import Field, ObjectDictionary, ObjectList
+from ..model.cia301 import MANDATORY
 from ..model.values import bounded_int, parse_int_literal
-from . import LintOptions, check
+from . import LintOptions, lint_pass
 from .common import gaps
 
 
 
 LISTS = (("mandatoryobjects", "MandatoryObjects"), ("optionalobjects", "OptionalObjects"),
          ("manufacturerobjects", "ManufacturerObjects"))
-MANDATORY = (0x1000, 0x1001, 0x1018)
 
 
 def _proper_list(index: int) -> str:
@@ -37,7 +37,7 @@ def _uses_lists(od: ObjectDictionary) -> bool:
 
 # -- L1 --------------------------------------------------------------------------
 
-@check
+@lint_pass
 def list_counts(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     if not _uses_lists(od):
         return
@@ -104,7 +104,7 @@ def listed_indices(od: ObjectDictionary) -> dict[int, tuple[str, Field]]:
     return seen
 
 
-@check
+@lint_pass
 def list_entries(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     if not _uses_lists(od):
         return
@@ -166,7 +166,7 @@ def _misread_decimals(od: ObjectDictionary) -> set[int]:
     return found
 
 
-@check
+@lint_pass
 def unlisted_objects(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     if not _uses_lists(od) or not od.object_lists:
         return
@@ -180,7 +180,7 @@ def unlisted_objects(od: ObjectDictionary, diags: Diagnostics, options: LintOpti
 
 # -- L4 --------------------------------------------------------------------------
 
-@check
+@lint_pass
 def index_ranges(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for index, obj in od.objects.items():
         if index == 0 or 0x0260 <= index <= 0x0FFF:

@@ -1,4 +1,4 @@
-"""NET: a CANopen network of nodes (`odgen lint --network NET.toml`, driven by odgen.network).
+"""NET: a CANopen network of nodes (`odgen lint --network NET.toml`, driven by odgen.lint_network).
 
 No per-file checks: `check_network` looks across the nodes' PDOs once every file is linted.
 COB-IDs are read from the value in force (a DCF's ParameterValue, else the DefaultValue)
@@ -12,13 +12,15 @@ from dataclasses import dataclass
 from ..catalogue.network import NET004, NET005, NET006, NET007
 from ..diagnostics import Diagnostics, Loc
 from ..model import ObjectDictionary
+from ..model.cia301 import (
+    EMCY_BASE, HEARTBEAT, RPDO_COMM, RPDO_MAPPING, SDO_REQUEST, SDO_RESPONSE, TPDO_COMM, TPDO_MAPPING)
 from .common import at, number, value_in_force, value_line
 from .pdo import MPDO, mapping_entries
 
 
 
-FIXED = ((0x80, "EMCY"), (0x580, "SDO response"), (0x600, "SDO request"), (0x700, "heartbeat"))
-KINDS = (("RPDO", 0x1400, 0x1600), ("TPDO", 0x1800, 0x1A00))
+FIXED = ((EMCY_BASE, "EMCY"), (SDO_RESPONSE, "SDO response"), (SDO_REQUEST, "SDO request"), (HEARTBEAT, "heartbeat"))
+KINDS = (("RPDO", RPDO_COMM, RPDO_MAPPING), ("TPDO", TPDO_COMM, TPDO_MAPPING))
 
 
 @dataclass(frozen=True)

@@ -12,9 +12,10 @@ from ..catalogue.rule import Rule
 from ..diagnostics import Diagnostics, Loc
 from ..model import (ACCESS_TYPES, ARRAY, DEFSTRUCT, DEFTYPE, DOMAIN, RECORD, VAR, Field, Obj, ObjectDictionary, Sub,
                      Value)
+from ..model.cia301 import ERROR_HISTORY, PDO_COUNT, RPDO_MAPPING, TPDO_MAPPING
 from ..model.datatypes import BASIC_TYPES, DataType
 from ..model.od import OBJECT_CODES
-from . import LintOptions, check
+from . import LintOptions, lint_pass
 from .common import addr, at, default_line, node_span, number, plain_int, value_in_force, value_line
 
 
@@ -32,7 +33,8 @@ KNOWN_KEYS = frozenset((
 HEADER_VALUE_KEYS = ("datatype", "accesstype", "defaultvalue", "lowlimit", "highlimit", "pdomapping",
                      "parametervalue")
 # Objects whose sub0 is not "highest sub-index supported".
-_SUB0_COUNTS = ((0x1003, 0x1003), (0x1600, 0x17FF), (0x1A00, 0x1BFF))
+_SUB0_COUNTS = ((ERROR_HISTORY, ERROR_HISTORY), (RPDO_MAPPING, RPDO_MAPPING + PDO_COUNT - 1),
+                (TPDO_MAPPING, TPDO_MAPPING + PDO_COUNT - 1))
 
 
 # -- entries -------------------------------------------------------------------
@@ -70,7 +72,7 @@ def _show(value: Value) -> str:
 
 # -- O1, O2 --------------------------------------------------------------------
 
-@check
+@lint_pass
 def parameter_names(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for obj in od.objects.values():
         if not obj.name.strip():
@@ -86,7 +88,7 @@ def parameter_names(od: ObjectDictionary, diags: Diagnostics, options: LintOptio
                       f"has no ParameterName{more}", obj.index, nameless[0].subindex)
 
 
-@check
+@lint_pass
 def object_types(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for obj in od.objects.values():
         if obj.object_code not in VALID_OBJECT_CODES:
@@ -116,7 +118,7 @@ def _attribute_holders(obj: Obj) -> Iterator[tuple[Sub, int | None, int]]:
         yield sub, sub.subindex, sub.line
 
 
-@check
+@lint_pass
 def required_attributes(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for obj in od.objects.values():
         for sub, subindex, line in _attribute_holders(obj):
@@ -131,7 +133,7 @@ def required_attributes(od: ObjectDictionary, diags: Diagnostics, options: LintO
                           obj.index, subindex)
 
 
-@check
+@lint_pass
 def container_keywords(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for obj in od.objects.values():
         if obj.object_code not in VALID_OBJECT_CODES:
@@ -164,7 +166,7 @@ def _container_shape(od: ObjectDictionary, obj: Obj, has_number: bool, has_compa
 
 # -- O4, O5 --------------------------------------------------------------------
 
-@check
+@lint_pass
 def sub_counts(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for obj in od.objects.values():
         if obj.object_code not in CONTAINER_CODES or obj.compact_sub_obj or obj.sub_number is None:
@@ -176,7 +178,7 @@ def sub_counts(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -
                       f"{'' if present == 1 else 's'} {'is' if present == 1 else 'are'} defined", obj.index)
 
 
-@check
+@lint_pass
 def sub0_entries(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for obj in od.objects.values():
         if obj.object_code not in (ARRAY, RECORD) or not obj.subs:
@@ -211,7 +213,7 @@ def _sub0_value(od: ObjectDictionary, obj: Obj, sub0: Sub, diags: Diagnostics) -
 
 # -- O9 ------------------------------------------------------------------------
 
-@check
+@lint_pass
 def data_types(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     defined = defined_types(od)
     for obj in od.objects.values():
@@ -226,7 +228,7 @@ def data_types(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -
 
 # -- O10, O11 ------------------------------------------------------------------
 
-@check
+@lint_pass
 def limits(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     span = node_span(od, options)
     for obj in od.objects.values():
@@ -308,7 +310,7 @@ def _ordered(od: ObjectDictionary, index: int, where_sub: int | None, sub: Sub, 
               f"LowLimit={_show(sub.low)} is above HighLimit={_show(sub.high)}{node}", index, where_sub)
 
 
-@check
+@lint_pass
 def value_ranges(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     span = node_span(od, options)
     for obj in od.objects.values():
@@ -344,7 +346,7 @@ def _within_limits(od: ObjectDictionary, obj: Obj, sub: Sub, keyword: str, value
 
 # -- O8 ------------------------------------------------------------------------
 
-@check
+@lint_pass
 def pdo_mapping_flags(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for obj in od.objects.values():
         undirected = None
@@ -365,7 +367,7 @@ def pdo_mapping_flags(od: ObjectDictionary, diags: Diagnostics, options: LintOpt
 
 # -- O12 -----------------------------------------------------------------------
 
-@check
+@lint_pass
 def string_values(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for obj in od.objects.values():
         for sub in value_subs(obj):
@@ -390,7 +392,7 @@ def _visible(od: ObjectDictionary, obj: Obj, sub: Sub, diags: Diagnostics) -> No
                       obj.index, addr(obj, sub))
 
 
-@check
+@lint_pass
 def file_keywords(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for obj in od.objects.values():
         for sub in written_subs(obj):
@@ -408,7 +410,7 @@ def file_keywords(od: ObjectDictionary, diags: Diagnostics, options: LintOptions
 
 # -- O13, O15, unknown keys ----------------------------------------------------
 
-@check
+@lint_pass
 def obj_flags(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for obj in od.objects.values():
         holders: list[tuple[int | None, int | None, int]] = [(obj.obj_flags, None, obj.line_of("objflags"))]
@@ -423,7 +425,7 @@ def obj_flags(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) ->
 _DCF_ONLY = (("parametervalue", "ParameterValue"), ("denotation", "Denotation"), ("paramrefd", "ParamRefd"))
 
 
-@check
+@lint_pass
 def dcf_only_content(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     """Once per keyword and file: such files carry the keyword on every entry."""
     if od.format != "eds":
@@ -446,7 +448,7 @@ def dcf_only_content(od: ObjectDictionary, diags: Diagnostics, options: LintOpti
                   obj.index, addr(obj, sub))
 
 
-@check
+@lint_pass
 def unknown_keywords(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     if od.format not in ("eds", "dcf"):
         return  # XDD extensions are attributes, checked against the schema by the XML reader
@@ -462,7 +464,7 @@ def unknown_keywords(od: ObjectDictionary, diags: Diagnostics, options: LintOpti
 
 # -- ARRAY element types -------------------------------------------------------
 
-@check
+@lint_pass
 def array_elements(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for obj in od.objects.values():
         if obj.object_code != ARRAY or obj.compact_sub_obj:
@@ -482,7 +484,7 @@ def array_elements(od: ObjectDictionary, diags: Diagnostics, options: LintOption
 
 # -- strings the runtime serves as C strings -----------------------------------
 
-@check
+@lint_pass
 def visible_strings(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for obj in od.objects.values():
         for sub in obj.subs.values():

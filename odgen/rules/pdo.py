@@ -13,14 +13,15 @@ from dataclasses import dataclass
 from ..catalogue.pdo import PDO001, PDO002, PDO003, PDO004, PDO005, PDO006, PDO007, PDO008, PDO009, PDO010, PDO011
 from ..diagnostics import Diagnostics, Loc, where
 from ..model import ARRAY, RECORD, Obj, ObjectDictionary, Sub, Value
+from ..model.cia301 import RPDO_COMM, RPDO_MAPPING, TPDO_COMM, TPDO_MAPPING
 from ..model.datatypes import BASIC_TYPES, DataType
-from . import LintOptions, check
+from . import LintOptions, lint_pass
 from .common import (disabled, dummy_enabled, granularity, header_field, header_int, number, plain_int,
                      value_in_force, value_line)
 
 
 
-MAPPINGS = {0x1600: ("RPDO", 0x1400), 0x1A00: ("TPDO", 0x1800)}
+MAPPINGS = {RPDO_MAPPING: ("RPDO", RPDO_COMM), TPDO_MAPPING: ("TPDO", TPDO_COMM)}
 FRAME_BITS, FD_FRAME_BITS = 64, 512
 MPDO = (0xFE, 0xFF)  # mapping sub0 of a multiplexed PDO: SAM-MPDO / DAM-MPDO (CiA 301)
 
@@ -52,7 +53,7 @@ def mapping_objects(od: ObjectDictionary) -> Iterator[tuple[Obj, str]]:
             yield obj, kind[0]
 
 
-@check
+@lint_pass
 def mappings(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     gran, _ = granularity(od)
     limit = FD_FRAME_BITS if options.can_fd else FRAME_BITS
@@ -226,7 +227,7 @@ def _half_pdo(od: ObjectDictionary, comm_index: int, map_index: int) -> tuple[Ob
     return None
 
 
-@check
+@lint_pass
 def pairing(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     compact = _compact_pdo(od)
     for map_base, (kind, comm_base) in MAPPINGS.items():
@@ -241,7 +242,7 @@ def pairing(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> N
                       f"{kind}{n + 1} has no {what} object 0x{absent:04X}", present.index)
 
 
-@check
+@lint_pass
 def pdo_counts(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     section = od.section("DeviceInfo")
     if section is None:

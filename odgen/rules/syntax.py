@@ -10,11 +10,11 @@ from __future__ import annotations
 from ..catalogue.syntax import SYN011
 from ..diagnostics import Diagnostics, Loc
 from ..model import ObjectDictionary, Value
-from . import LintOptions, check
+from . import LintOptions, lint_pass
 
 
 
-@check
+@lint_pass
 def value_notes(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     """Report what parsing each value noticed, and values that did not parse."""
     for obj in od.objects.values():
