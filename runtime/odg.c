@@ -407,6 +407,17 @@ static odg_abort_t check(const odg_ref_t *r, uint64_t v)
     return v < limit_key(s, l->low) ? ODG_ABORT_VALUE_LOW : ODG_OK;
 }
 
+/* The range check of a write, for the persistence layer's restored values. */
+odg_abort_t odg_check_(const odg_dict_t *d, uint16_t pos, uint64_t v)
+{
+    odg_ref_t r;
+    r.dict = d;
+    r.entry = NULL;
+    r.sub = &d->subs[pos];
+    r.sub_pos = pos;
+    return check(&r, v);
+}
+
 /* ---- clients ------------------------------------------------------------------------------ */
 
 void odg_attach(const odg_dict_t *dict, odg_client_t *client)
