@@ -374,9 +374,11 @@ static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
     }
 }
 
-/* Write the mirror of group `g` as its newest image: into slot A unless the newest is there,
- * else into slot B at the middle of the current region (past the whole old region when the
- * region grew), never over the newest image (DATA_STORE when that is impossible). */
+/* Write the mirror of group `g` as its newest image: into slot A when the newest is in slot B
+ * of the current region, else into that slot B (past the whole old region when the region
+ * grew). Slot A, which names the old region, stays until the newest is in the current slot B,
+ * so an image in the old slot B is found until then. Never over the newest image (DATA_STORE
+ * when that is impossible: a region that shrank below an image of the old one). */
 static odg_abort_t store2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
 {
     const odg_group_t *gr = &d->groups[g];
@@ -389,7 +391,7 @@ static odg_abort_t store2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_
     }
     if (k) {
         seq = get32(t + 4) + 1u;
-        addr = at == gr->nv_addr ? gr->nv_addr + half : gr->nv_addr;
+        addr = at == gr->nv_addr + half ? gr->nv_addr : gr->nv_addr + half;
         if (addr < at + HDR2 + get32(t + 16) && at < addr + half) {
             return ODG_ABORT_DATA_STORE;
         }

@@ -26,6 +26,10 @@ class Region:
     size: int  # both slots; slot B starts at offset + size // 2
     need: int  # two slots of the current image
 
+    @property
+    def fits(self) -> bool:
+        return self.need <= self.size
+
 
 def image_bytes(layout: GroupLayout) -> int:
     return COUNT_BYTES + DESCRIPTOR_BYTES * len(layout.entries) + sum(value_size(e) for e in layout.entries)
@@ -35,12 +39,19 @@ def slot_bytes(layout: GroupLayout, align: int = 8) -> int:
     return _round_up(HEADER_BYTES + image_bytes(layout), align)
 
 
-def nv_map(layouts: dict[str, GroupLayout], align: int = 8) -> dict[str, Region]:
+def nv_map(layouts: dict[str, GroupLayout], align: int = 8, headroom: int = 50,
+           pinned: dict[str, int] | None = None, migration: bool = True) -> dict[str, Region]:
+    """Regions in NV-map order. `headroom` is the percentage of the need kept free before rounding
+    up to a power of two; a `pinned` region keeps its size (`Region.fits` says whether the group
+    fits). Without `migration` an image carries no descriptor (but the mirror, which the C
+    compiler lays out: the generated code checks that it fits)."""
     order = [g for g in FIRST if g in layouts] + sorted(g for g in layouts if g not in FIRST)
     regions, offset = {}, 0
     for group in order:
-        need = 2 * slot_bytes(layouts[group], align)
-        size = max(MIN_REGION, 1 << (need + need // 2 - 1).bit_length(), align)
+        layout = layouts[group] if migration else GroupLayout(group, ())
+        need = 2 * slot_bytes(layout, align) + (0 if migration else 2 * sum(value_size(e) for e in layouts[group].entries))
+        grown = need + need * headroom // 100
+        size = (pinned or {}).get(group) or max(MIN_REGION, 1 << (grown - 1).bit_length(), align)
         regions[group] = Region(group, offset, size, need)
         offset = _round_up(offset + size, align)
     return regions
