@@ -217,7 +217,12 @@ typedef struct odg_group {
 #define ODG_PERSIST_ALIGN 8u
 #endif
 #define ODG_PERSIST_HEADER_SIZE 20u
-#define ODG_PERSIST_HEADER2_SIZE 24u /* "ODG2": magic, sequence, id, region, length, CRC */
+#define ODG_PERSIST_HEADER2_SIZE 24u
+/* Boot looks for a group's slot B at the middle of its region and of every region of 64, 128,
+ * ... bytes up to this one (the region of another firmware version, see docs/persistence.md). */
+#ifndef ODG_PERSIST_MAX_REGION
+#define ODG_PERSIST_MAX_REGION 0x10000u
+#endif /* "ODG2": magic, sequence, id, region, length, CRC */
 #define ODG_PERSIST_SLOT_SIZE(size)                                                     \
     ((((uint32_t)(size)) + ODG_PERSIST_HEADER_SIZE + ((uint32_t)ODG_PERSIST_ALIGN - 1u)) \
      & ~((uint32_t)ODG_PERSIST_ALIGN - 1u))

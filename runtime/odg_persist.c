@@ -280,31 +280,46 @@ static int slot2_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t
     return sum == len;
 }
 
-/* The newest valid slot of group `gr` (address in *at, header in h): slot A, slot B at the
- * middle of the region, and slot B at the middle of the region slot A names (a region that
- * grew or shrank keeps its images). 1 found, 0 none, -1 the driver failed. */
+/* Where a slot of group `gr` may lie, from its region's start: k = 0 slot A, 1 slot B of the
+ * current region, then slot B of a region of 64, 128, ... ODG_PERSIST_MAX_REGION bytes, where
+ * the image of a region that grew or shrank stays until a store in the current region lands.
+ * SKIP for the current region again, END after the last. */
+#define SKIP 1u
+#define END 0xFFFFFFFFu
+static uint32_t probe(const odg_group_t *gr, uint32_t k)
+{
+    uint32_t r = k >= 2u && k < 26u ? 64u << (k - 2u) : 0u;
+    if (k < 2u) {
+        return k ? gr->region / 2u : 0u;
+    }
+    return r == 0u || r > ODG_PERSIST_MAX_REGION ? END : (r == gr->region ? SKIP : r / 2u);
+}
+
+/* The newest valid slot of group `gr` (address in *at, header in h): 1 found, 0 none, -1 the
+ * driver failed (inside the region; past it a failing read means no NV there). */
 static int newest2(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t *at, uint8_t *h)
 {
     uint8_t t[HDR2];
-    uint32_t cand[3];
-    int k, v, found = 0;
-    cand[0] = gr->nv_addr;
-    cand[1] = cand[2] = gr->nv_addr + gr->region / 2u;
-    for (k = 0; k < 3 && (k < 2 || cand[2] != cand[1]); k++) {
-        v = slot2_read(nv, gr, cand[k], t, 1);
-        if (v < 0) {
+    uint32_t k, off;
+    int v, found = 0;
+    for (k = 0; (off = probe(gr, k)) != END; k++) {
+        v = off == SKIP ? 0 : slot2_read(nv, gr, gr->nv_addr + off, t, 1);
+        if (v < 0 && off < gr->region) {
             return -1;
         }
-        if (v && (!found || newer(get32(t + 4), get32(h + 4)))) {
+        if (v > 0 && (!found || newer(get32(t + 4), get32(h + 4)))) {
             found = 1;
-            *at = cand[k];
+            *at = gr->nv_addr + off;
             memcpy(h, t, HDR2);
-        }
-        if (k == 0 && v) {
-            cand[2] = gr->nv_addr + get32(t + 12) / 2u;
         }
     }
     return found;
+}
+
+/* The bytes a slot's image takes, rounded up to the slot alignment. */
+static uint32_t extent(const uint8_t *h)
+{
+    return (HDR2 + get32(h + 16) + ODG_PERSIST_ALIGN - 1u) & ~((uint32_t)ODG_PERSIST_ALIGN - 1u);
 }
 
 /* Image bytes on their way to NV, CRC-32 on the fly. */
@@ -424,26 +439,32 @@ static odg_abort_t store2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_
     return ODG_OK;
 }
 
-/* Erase the region of group `g`: all but the newest image first, then the newest, so a power
- * cut in between leaves the newest (as if nothing happened), never an older one. */
+/* Make the next boot of group `g` use the defaults: erase its images outside the region (of
+ * a region that shrank) and the region, all but the newest image first and then the newest, so
+ * a power cut in between leaves the newest (as if nothing happened), never an older one. */
 static odg_abort_t erase2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
 {
     const odg_group_t *gr = &d->groups[g];
-    uint8_t t[HDR2];
-    uint32_t at = 0, start = gr->nv_addr, end = gr->nv_addr + gr->region, e;
-    int k = newest2(nv, gr, &at, t), fail;
-    if (k < 0) {
-        return ODG_ABORT_HARDWARE;
+    uint8_t h[HDR2], t[HDR2];
+    uint32_t at = 0, start = gr->nv_addr, end = gr->nv_addr + gr->region, e = 0, k, off;
+    int found = newest2(nv, gr, &at, h), fail = found < 0;
+    for (k = 2; !fail && (off = probe(gr, k)) != END; k++) {
+        if (off >= gr->region && off != SKIP && start + off != at &&
+            slot2_read(nv, gr, start + off, t, 1) == 1) {
+            fail = nv->erase(nv->ctx, start + off, extent(t)) != 0;
+        }
     }
-    if (!k || at >= end) {
-        fail = nv->erase(nv->ctx, start, gr->region);
+    if (found > 0) {
+        e = at + extent(h);
+        e = at < end && e > end ? end : e; /* the header is what counts */
+    }
+    if (found <= 0 || at >= end) {
+        fail = fail || nv->erase(nv->ctx, start, gr->region) != 0;
     } else {
-        e = at + get32(t + 12) / 2u;
-        e = e < end ? e : end;
-        fail = (at > start && nv->erase(nv->ctx, start, at - start) != 0) ||
-               (e < end && nv->erase(nv->ctx, e, end - e) != 0) ||
-               nv->erase(nv->ctx, at, e - at) != 0;
+        fail = fail || (at > start && nv->erase(nv->ctx, start, at - start) != 0) ||
+               (e < end && nv->erase(nv->ctx, e, end - e) != 0);
     }
+    fail = fail || (found > 0 && nv->erase(nv->ctx, at, e - at) != 0);
     return fail ? ODG_ABORT_HARDWARE : ODG_OK;
 }
 

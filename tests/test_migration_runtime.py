@@ -25,7 +25,7 @@ from .cprog import build
 
 RUNTIME = ROOT / "runtime"
 CTESTS = ROOT / "tests" / "runtime"
-LOADED, MIGRATED = 0, 5
+LOADED, DEFAULTS, MIGRATED = 0, 1, 5
 
 HEADER = """[FileInfo]
 FileName=od.eds
@@ -322,6 +322,10 @@ def test_migration_matches_policy(name: str, tmp_path: Path) -> None:
     again = run(v2, nv, "dump")  # the migrated image was stored: the next boot loads it
     assert all(b["status"] == LOADED for b in again.groups), again.groups
     assert again.values == got.values
+    run(v2, nv, "restore")  # 0x1011: the defaults at the next boot, whatever the old regions held
+    restored = run(v2, nv, "dump")
+    assert all(b["status"] == DEFAULTS for b in restored.groups), restored.groups
+    assert restored.values == fresh.values
     if any(b["status"] == MIGRATED for b in got.groups):
         cut = tmp_path / "cut.nv"
         cut.write_bytes(nv_before)

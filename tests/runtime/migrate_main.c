@@ -5,6 +5,7 @@
  *   migrate_main NVFILE OP...      every run boots `od` from NVFILE first, then:
  *     set:IIII:SS:HEX              odg_write of the wire bytes HEX to index IIII sub SS (hex)
  *     store                        store every group (as 0x1010 sub 1 "save")
+ *     restore                      restore every group's defaults (as 0x1011 sub 1 "load")
  *     dump                         the boot of each group and every persisted value (wire hex)
  *     cuts                         the power cut after every byte of the boot's migration store,
  *                                  on a NOR model of NVFILE: each next boot must serve the same
@@ -173,6 +174,14 @@ int main(int argc, char **argv)
             for (g = 0; g < od.n_groups; g++) {
                 if (odg_persist_store(&od, g) != ODG_OK) {
                     printf("store %u failed\n", g);
+                    return 1;
+                }
+            }
+        } else if (strcmp(argv[i], "restore") == 0) {
+            uint8_t g;
+            for (g = 0; g < od.n_groups; g++) {
+                if (odg_persist_restore(&od, g) != ODG_OK) {
+                    printf("restore %u failed\n", g);
                     return 1;
                 }
             }
