@@ -434,6 +434,10 @@ odg_abort_t odg_persist_init(odg_persist_t *p, const odg_dict_t *dict, const odg
 odg_abort_t odg_persist_boot(odg_persist_t *p, const odg_dict_t *dict, const odg_nv_driver_t *nv,
                              odg_boot_t *boot);
 
+/* NV bytes the groups of `dict` use from address 0: the end of the last group's region (of its
+ * two "ODG1" slots for a group without a layout). */
+uint32_t odg_persist_nv_size(const odg_dict_t *dict);
+
 /* Bytes one slot of a group of `size` bytes takes in NV: ODG_PERSIST_SLOT_SIZE(size). */
 uint32_t odg_persist_slot_size(uint32_t size);
 

@@ -71,6 +71,18 @@ uint32_t odg_persist_slot_size(uint32_t size)
     return ODG_PERSIST_SLOT_SIZE(size);
 }
 
+uint32_t odg_persist_nv_size(const odg_dict_t *dict)
+{
+    uint32_t end = 0, e;
+    uint8_t g;
+    for (g = 0; g < dict->n_groups; g++) {
+        const odg_group_t *gr = &dict->groups[g];
+        e = gr->nv_addr + (gr->layout != NULL ? gr->region : 2u * ODG_PERSIST_SLOT_SIZE(gr->size));
+        end = e > end ? e : end;
+    }
+    return end;
+}
+
 static uint32_t slot_addr(const odg_group_t *g, int k)
 {
     return g->nv_addr + (k ? ODG_PERSIST_SLOT_SIZE(g->size) : 0u);

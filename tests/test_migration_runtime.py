@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import shutil
 import subprocess
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
@@ -25,7 +25,7 @@ from .cprog import build
 
 RUNTIME = ROOT / "runtime"
 CTESTS = ROOT / "tests" / "runtime"
-LOADED, DEFAULTS, MIGRATED = 0, 1, 5
+LOADED, DEFAULTS, SIGNATURE, MIGRATED = 0, 1, 2, 5
 
 HEADER = """[FileInfo]
 FileName=od.eds
@@ -156,7 +156,6 @@ class Case:
     stored: dict[int, str]  # index -> wire hex written with v1 before the store
     heartbeat: tuple[int, int] = (1000, 1000)  # 0x1017 default in v1, v2 (group comm)
     order: tuple[bool, bool] = (False, False)  # list v1's / v2's objects in reverse order
-    extra: dict[str, str] = field(default_factory=dict)
 
 
 U8, U16, U32, I16, I32, R32, VS, OS = 0x05, 0x06, 0x07, 0x03, 0x04, 0x08, 0x09, 0x0A
@@ -211,6 +210,7 @@ def eds(params: tuple[Param, ...], heartbeat: int, reverse: bool) -> str:
 
 def options(params: tuple[Param, ...], extra: str = "") -> str:
     text = '[[entry]]\nmatch = "0x2000-0x2FFF"\nstorage = "persist:app"\n'
+    text += '\n[[entry]]\nmatch = "0x1017"\nstorage = "persist:comm"\n'
     for p in params:
         if p.capacity is not None:
             text += f'\n[[entry]]\nmatch = "0x{p.index:04X}"\ncapacity = {p.capacity}\n'
@@ -332,3 +332,27 @@ def test_migration_matches_policy(name: str, tmp_path: Path) -> None:
         done = subprocess.run([str(v2), str(cut), "cuts"], capture_output=True, text=True, check=False, timeout=300)
         assert done.returncode == 0, done.stdout[-3000:]
         assert done.stdout.split()[-1] == "0" and int(done.stdout.split()[-3]) >= 64, done.stdout[-300:]
+
+
+@pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
+@pytest.mark.parametrize("name", ["unchanged", "added", "widened"])
+def test_without_migration(name: str, tmp_path: Path) -> None:
+    """[persist] migration = false: "ODG1" images of the mirror in the group's region; an unchanged
+    layout loads, any change gives the defaults (SIGNATURE), while the other group keeps its values."""
+    case = CASES[name]
+    off = "[persist]\nmigration = false\n"
+    v1, _ = firmware(tmp_path, "v1", case.v1, 1000, False, off)
+    v2, _ = firmware(tmp_path, "v2", case.v2, 1000, False, off)
+    nv = tmp_path / "od.nv"
+    stored = run(v1, nv, *(f"set:{i:04X}:00:{h}" for i, h in case.stored.items()), "set:1017:00:FA00", "store",
+                 "dump")
+    fresh = run(v2, tmp_path / "fresh.nv", "dump")
+    got = run(v2, nv, "dump")
+    app, comm = got.groups  # NAME_GROUP_APP, NAME_GROUP_COMM
+    assert comm["status"] == LOADED and got.values[(0x1017, 0)] == "FA00"
+    if name == "unchanged":
+        assert app["status"] == LOADED
+        assert got.values == stored.values
+    else:
+        assert app["status"] == SIGNATURE and got.seen[0] & 1 << SIGNATURE
+        assert all(got.values[k] == fresh.values[k] for k in fresh.values if k[0] >= 0x2000)
