@@ -262,7 +262,8 @@ static int slot2_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t
     }
     region = get32(h + 12);
     len = get32(h + 16);
-    if (get32(h) != MAGIC2 || region > 0x01000000u || len < 2u || len + HDR2 > region / 2u ||
+    if (get32(h) != MAGIC2 || region > 0x01000000u || region / 2u < HDR2 + 2u || len < 2u ||
+        len > region / 2u - HDR2 ||
         (ours && (get32(h + 8) != gr->id ||
                   (addr != gr->nv_addr && addr - gr->nv_addr != region / 2u)))) {
         return 0;
@@ -422,6 +423,9 @@ static odg_abort_t store2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_
         if (addr < at + HDR2 + get32(t + 16) && at < addr + half) {
             return ODG_ABORT_DATA_STORE;
         }
+    }
+    if (HDR2 + image_size(gr) > half) {
+        return ODG_ABORT_DATA_STORE; /* odg_verify: never for a generated dictionary */
     }
     put32(h, MAGIC2);
     put32(h + 4, seq);

@@ -19,13 +19,14 @@ import pytest
 from odgen.codegen.generate import Request, prepare
 from odgen.persist.layout import group_layouts
 from odgen.persist.migration import DOMAIN_TYPE, EntryLayout, GroupLayout, migrate, value_size
+from odgen.persist.nvmap import nv_map
 
 from .conftest import ROOT
 from .cprog import build
 
 RUNTIME = ROOT / "runtime"
 CTESTS = ROOT / "tests" / "runtime"
-LOADED, DEFAULTS, SIGNATURE, MIGRATED = 0, 1, 2, 5
+LOADED, DEFAULTS, SIGNATURE, DAMAGED, MIGRATED = 0, 1, 2, 4, 5
 
 HEADER = """[FileInfo]
 FileName=od.eds
@@ -356,3 +357,23 @@ def test_without_migration(name: str, tmp_path: Path) -> None:
     else:
         assert app["status"] == SIGNATURE and got.seen[0] & 1 << SIGNATURE
         assert all(got.values[k] == fresh.values[k] for k in fresh.values if k[0] >= 0x2000)
+
+
+@pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
+def test_damaged_only_when_bytes_are_corrupt(tmp_path: Path) -> None:
+    """A bit flipped in both slots of group app: DAMAGED, with an EMCY-worthy boot_seen and the
+    defaults; group comm, in its own region, keeps its value."""
+    exe, layouts = firmware(tmp_path, "v1", BASE, 1000, False)
+    nv = tmp_path / "od.nv"
+    run(exe, nv, *(f"set:{i:04X}:00:{h}" for i, h in BASE_VALUES.items()), "set:1017:00:FA00", "store", "store")
+    fresh = run(exe, tmp_path / "fresh.nv", "dump")
+    region = nv_map(layouts)["app"]
+    data = bytearray(nv.read_bytes())
+    for slot in (region.offset, region.offset + region.size // 2):
+        data[slot + 30] ^= 0x04
+    nv.write_bytes(bytes(data))
+    got = run(exe, nv, "dump")
+    assert [b["status"] for b in got.groups] == [DAMAGED, LOADED]
+    assert got.seen[0] == 1 << DAMAGED | 1 << LOADED
+    assert got.values[(0x1017, 0)] == "FA00"
+    assert all(got.values[(i, 0)] == fresh.values[(i, 0)] for i in BASE_VALUES)
