@@ -3,7 +3,8 @@
 Parts (each its own module): startup (whole-process `odgen --version` and `odgen lint` of a
 small EDS against the bare interpreter), speed (whole-process generation speed against the peers),
 profile (where `odgen generate` spends its time), footprint (Cortex-M4 sizes against
-CANopenNode v4), lookup (callgrind instructions per lookup). Every target of the benchmark
+CANopenNode v4), lookup (callgrind instructions per lookup), migration (FLASH and NV cost of
+the boot migration of stored parameters, on and off). Every target of the benchmark
 issue is listed at the top of the results with the ratio this run measured, met or not.
 """
 
@@ -21,12 +22,13 @@ from pathlib import Path
 
 import footprint
 import lookup_cost
+import migration_cost
 import profile_generate
 import speed
 import startup
 from common import PEER_PYTHON, RESULTS, SYNTH_SIZES, Target, inputs, synth_label, targets_json
 
-PARTS = ("startup", "speed", "profile", "footprint", "lookup")
+PARTS = ("startup", "speed", "profile", "footprint", "lookup", "migration")
 BUDGET_S = 600
 
 
@@ -101,6 +103,8 @@ def main() -> None:
         broken = {(str(r["input"]), str(r["lookup"])): str(r["compile_failed"])
                   for r in rows if "compile_failed" in r}  # type: ignore[attr-defined]
         results["lookup"] = lookup_cost.run(labels, broken)
+    if "migration" in parts:
+        results["migration"] = migration_cost.run(labels)
     wall = time.time() - started
     info["load_average_end"] = os.getloadavg()
     targets: list[Target] = [t for r in results.values() for t in r.get("targets", [])]  # type: ignore[attr-defined]

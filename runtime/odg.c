@@ -407,6 +407,17 @@ static odg_abort_t check(const odg_ref_t *r, uint64_t v)
     return v < limit_key(s, l->low) ? ODG_ABORT_VALUE_LOW : ODG_OK;
 }
 
+/* The range check of a write, for the persistence layer's restored values. */
+odg_abort_t odg_check_(const odg_dict_t *d, uint16_t pos, uint64_t v)
+{
+    odg_ref_t r;
+    r.dict = d;
+    r.entry = NULL;
+    r.sub = &d->subs[pos];
+    r.sub_pos = pos;
+    return check(&r, v);
+}
+
 /* ---- clients ------------------------------------------------------------------------------ */
 
 void odg_attach(const odg_dict_t *dict, odg_client_t *client)
@@ -810,6 +821,40 @@ static int pos_table_ok(const odg_dict_t *d, const void *base, uint32_t layout, 
     return 1;
 }
 
+/* NV bytes group `g` uses: its region, or two "ODG1" slots without a layout. */
+static uint32_t nv_len(const odg_group_t *g)
+{
+    return g->layout != NULL ? g->region : 2u * ODG_PERSIST_SLOT_SIZE(g->size);
+}
+
+/* The layout descriptor of group `gi` names its persisted sub-entries in order, with their types
+ * and sizes, and the image fits a slot (half the region). */
+static int layout_ok(const odg_dict_t *d, uint8_t gi)
+{
+    const odg_group_t *g = &d->groups[gi];
+    uint32_t e, p, n = 0, bytes = 2u;
+    if (g->layout == NULL) {
+        return 1;
+    }
+    for (e = 0; e < d->n_entries; e++) {
+        const odg_entry_t *en = &d->entries[e];
+        for (p = en->first; p < (uint32_t)en->first + en->count; p++) {
+            const odg_sub_t *s = &d->subs[p];
+            const uint8_t *r = g->layout + 6u * n;
+            if (s->storage != (uint8_t)(ODG_S_PERSIST | (unsigned)gi << 2)) {
+                continue;
+            }
+            if (n >= g->n_layout || (r[0] | r[1] << 8) != en->index || r[2] != s->sub ||
+                r[3] != s->type || (r[4] | r[5] << 8) != s->size) {
+                return 0;
+            }
+            bytes += 6u + s->size + (s->type == ODG_T_DOMAIN ? 4u : 0u);
+            n++;
+        }
+    }
+    return n == g->n_layout && bytes + ODG_PERSIST_HEADER2_SIZE <= g->region / 2u;
+}
+
 odg_abort_t odg_verify(const odg_dict_t *dict, uint16_t *bad_index)
 {
     uint16_t dummy;
@@ -872,16 +917,15 @@ odg_abort_t odg_verify(const odg_dict_t *dict, uint16_t *bad_index)
     }
     for (i = 0; i < d->n_groups; i++) {
         const odg_group_t *g = &d->groups[i];
-        uint32_t len = 2u * ODG_PERSIST_SLOT_SIZE(g->size);
+        uint32_t len;
         if (g->mirror == NULL || g->defaults == NULL || g->size == 0u ||
             g->size > 0x7FFFFFF0u - 2u * ODG_PERSIST_HEADER_SIZE - 2u * ODG_PERSIST_ALIGN ||
-            g->nv_addr > 0xFFFFFFFFu - len) {
+            g->nv_addr > 0xFFFFFFFFu - (len = nv_len(g)) || !layout_ok(d, (uint8_t)i)) {
             return ODG_ABORT_INTERNAL;
         }
         for (k = 0; k < i; k++) {
             const odg_group_t *h = &d->groups[k];
-            if (g->nv_addr < h->nv_addr + 2u * ODG_PERSIST_SLOT_SIZE(h->size) &&
-                h->nv_addr < g->nv_addr + len) {
+            if (g->nv_addr < h->nv_addr + nv_len(h) && h->nv_addr < g->nv_addr + len) {
                 return ODG_ABORT_INTERNAL;
             }
         }

@@ -24,7 +24,7 @@ extern "C" {
 #endif
 
 /* Generated code checks this and stops with #error on a mismatch. */
-#define ODG_FORMAT_VERSION 1
+#define ODG_FORMAT_VERSION 2
 
 /* ---- result codes: CiA 301 SDO abort codes, from one table ------------------ */
 
@@ -198,6 +198,15 @@ typedef struct odg_group {
     uint32_t signature;      /* layout signature (index, sub, type, size, order) */
     uint32_t nv_addr;        /* first of two slots, each odg_persist_slot_size(size) bytes */
     uint8_t store_sub;       /* its sub-index in 0x1010/0x1011 (1 = all groups) */
+    /* Boot migration (docs/persistence.md): the layout descriptor, 6 bytes per persisted
+     * sub-entry in dict->subs order (index u16, sub u8, type u8, length u16; little endian).
+     * NULL: "ODG1" images, the mirror byte for byte, and any layout change gives the defaults.
+     * Else "ODG2" self-describing images in the group's own region of NV from nv_addr: slot A
+     * at its start, slot B at its middle; the group is known by `id` (CRC-32 of its name). */
+    const uint8_t *layout;
+    uint16_t n_layout;       /* entries in `layout` */
+    uint32_t region;         /* bytes of NV the group owns */
+    uint32_t id;
 } odg_group_t;
 
 /* NV layout of a group: two slots, at nv_addr and nv_addr + ODG_PERSIST_SLOT_SIZE(size); a slot
@@ -208,6 +217,12 @@ typedef struct odg_group {
 #define ODG_PERSIST_ALIGN 8u
 #endif
 #define ODG_PERSIST_HEADER_SIZE 20u
+#define ODG_PERSIST_HEADER2_SIZE 24u
+/* Boot looks for a group's slot B at the middle of its region and of every region of 64, 128,
+ * ... bytes up to this one (the region of another firmware version, see docs/persistence.md). */
+#ifndef ODG_PERSIST_MAX_REGION
+#define ODG_PERSIST_MAX_REGION 0x10000u
+#endif /* "ODG2": magic, sequence, id, region, length, CRC */
 #define ODG_PERSIST_SLOT_SIZE(size)                                                     \
     ((((uint32_t)(size)) + ODG_PERSIST_HEADER_SIZE + ((uint32_t)ODG_PERSIST_ALIGN - 1u)) \
      & ~((uint32_t)ODG_PERSIST_ALIGN - 1u))
@@ -218,13 +233,29 @@ typedef enum odg_boot_status {
     ODG_BOOT_DEFAULTS = 1,   /* both slots erased (first boot, restore requested): defaults, written to NV */
     ODG_BOOT_SIGNATURE = 2,  /* an image of another layout was found: defaults, written to NV */
     ODG_BOOT_NV_ERROR = 3,   /* the driver failed: defaults in RAM, NV untouched */
-    ODG_BOOT_DAMAGED = 4     /* no valid image, but a slot was not erased either (bits flipped,
+    ODG_BOOT_DAMAGED = 4,    /* no valid image, but a slot was not erased either (bits flipped,
                               * a torn write or erase): stored values lost; defaults, written to NV */
+    ODG_BOOT_MIGRATED = 5    /* an image of another layout: entries converted, defaulted or
+                              * dropped (odg_boot_t counts them); the migrated image written to NV */
 } odg_boot_status_t;
+
+/* odg_state_t.boot_seen bit (beside 1 << status): a migration defaulted or dropped an entry. */
+#define ODG_BOOT_ENTRIES_LOST 0x80u
 
 /* odg_state_t.boot_seen bits meaning that values stored in NV did not come back at boot. */
 #define ODG_BOOT_LOST_MASK \
-    (1u << ODG_BOOT_SIGNATURE | 1u << ODG_BOOT_NV_ERROR | 1u << ODG_BOOT_DAMAGED)
+    (1u << ODG_BOOT_SIGNATURE | 1u << ODG_BOOT_NV_ERROR | 1u << ODG_BOOT_DAMAGED | ODG_BOOT_ENTRIES_LOST)
+
+/* What the boot did to one group: the status and, when an image was found, its entries kept,
+ * converted (widened, or a string or domain cut), defaulted (new, retyped, narrowed, out of the
+ * current limits) and dropped (no longer in the group). */
+typedef struct odg_boot {
+    uint8_t status;          /* odg_boot_status_t */
+    uint16_t kept;
+    uint16_t converted;
+    uint16_t defaulted;
+    uint16_t dropped;
+} odg_boot_t;
 
 /* ---- the dictionary ------------------------------------------------------------- */
 
@@ -251,6 +282,8 @@ typedef struct odg_state { /* pointer first: no padding between the bytes */
     uint8_t boot_seen;          /* bit (1 << status) for each odg_boot_status_t a persistence
                                  * group reported: odg_init sets NV_ERROR for every group (no
                                  * driver yet), odg_persist_init the statuses it found */
+    uint8_t boot_counts[3];     /* over the groups: entries defaulted, dropped, converted at
+                                 * boot (each saturating at 255), for the storage EMCY */
 } odg_state_t;
 
 typedef struct odg_dict {
@@ -272,6 +305,8 @@ typedef struct odg_dict {
     uint16_t n_limits;
     uint16_t n_domains;
     uint8_t n_groups;
+    uint16_t persist_status; /* index of the boot status object (RECORD, sub n = group n - 1:
+                              * status | converted << 8 | defaulted << 16 | dropped << 24), 0: none */
 } odg_dict_t;
 
 /* A located sub-entry: what odg_find returns and the other calls take. */
@@ -393,6 +428,15 @@ typedef struct odg_persist {
  * failed (that group runs on defaults); DATA_STORE, nothing attached, when `nv` is NULL. */
 odg_abort_t odg_persist_init(odg_persist_t *p, const odg_dict_t *dict, const odg_nv_driver_t *nv,
                              odg_boot_status_t *boot);
+
+/* odg_persist_init that also reports the counts of each group (dict->n_groups entries of
+ * `boot`; may be NULL). */
+odg_abort_t odg_persist_boot(odg_persist_t *p, const odg_dict_t *dict, const odg_nv_driver_t *nv,
+                             odg_boot_t *boot);
+
+/* NV bytes the groups of `dict` use from address 0: the end of the last group's region (of its
+ * two "ODG1" slots for a group without a layout). */
+uint32_t odg_persist_nv_size(const odg_dict_t *dict);
 
 /* Bytes one slot of a group of `size` bytes takes in NV: ODG_PERSIST_SLOT_SIZE(size). */
 uint32_t odg_persist_slot_size(uint32_t size);

@@ -18,4 +18,8 @@ void odg_store_(void *p, uint32_t size, uint64_t v);
  * offset indexes dict->domains). Writable except for ODG_S_ROM, which is only ever read. */
 uint8_t *odg_value_(const odg_dict_t *d, const odg_sub_t *s);
 
+/* The range check of a write (BOOLEAN 0/1, NaN, limits) for the numeric sub-entry at position
+ * `pos` of dict->subs, on its value sign-extended to 64 bits (REAL as its bits). */
+odg_abort_t odg_check_(const odg_dict_t *d, uint16_t pos, uint64_t v);
+
 #endif /* ODG_IMPL_H */

@@ -104,14 +104,19 @@ void odg_node_reload(odg_node_t *node)
 enum { BOOT_COMM = 0, BOOT_RESET = 1, BOOT_POWER_ON = 2 }; /* boot(): what is reset */
 
 /* After the dictionary was initialised with an NV driver: when a persistence group did not get
- * its stored values back (an image of another layout, a damaged image, a failing driver), an
- * EMCY 0x5530 (data storage) with the generic error bit, and in byte 3 the boot statuses seen
- * (bit 1 << odg_boot_status_t). The application learns the details from cfg.boot. */
+ * its stored values back (an image of another layout, a damaged image, a failing driver, an
+ * entry defaulted or dropped by migration), an EMCY 0x5530 (data storage) with the generic
+ * error bit, in byte 3 the boot statuses seen (bit 1 << odg_boot_status_t, and
+ * ODG_BOOT_ENTRIES_LOST), in bytes 4-6 the entries defaulted, dropped and converted. The
+ * application learns the details from cfg.boot. */
 static void stored_values_lost(odg_node_t *n)
 {
-    uint8_t seen = n->cfg.dict->state->boot_seen;
-    if (n->cfg.nv != NULL && (seen & ODG_BOOT_LOST_MASK) != 0u) {
-        (void)odg_node_emcy(n, ODG_NODE_EMCY_STORAGE, (uint8_t)(n->error_register | 0x01u), &seen, 1);
+    const odg_state_t *s = n->cfg.dict->state;
+    uint8_t data[4];
+    if (n->cfg.nv != NULL && (s->boot_seen & ODG_BOOT_LOST_MASK) != 0u) {
+        data[0] = s->boot_seen;
+        memcpy(data + 1, s->boot_counts, 3);
+        (void)odg_node_emcy(n, ODG_NODE_EMCY_STORAGE, (uint8_t)(n->error_register | 0x01u), data, 4);
     }
 }
 

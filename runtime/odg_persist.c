@@ -71,6 +71,18 @@ uint32_t odg_persist_slot_size(uint32_t size)
     return ODG_PERSIST_SLOT_SIZE(size);
 }
 
+uint32_t odg_persist_nv_size(const odg_dict_t *dict)
+{
+    uint32_t end = 0, e;
+    uint8_t g;
+    for (g = 0; g < dict->n_groups; g++) {
+        const odg_group_t *gr = &dict->groups[g];
+        e = gr->nv_addr + (gr->layout != NULL ? gr->region : 2u * ODG_PERSIST_SLOT_SIZE(gr->size));
+        end = e > end ? e : end;
+    }
+    return end;
+}
+
 static uint32_t slot_addr(const odg_group_t *g, int k)
 {
     return g->nv_addr + (k ? ODG_PERSIST_SLOT_SIZE(g->size) : 0u);
@@ -160,17 +172,544 @@ static odg_boot_status_t no_image(const odg_nv_driver_t *nv, const odg_group_t *
     return b < 0 ? ODG_BOOT_NV_ERROR : (b ? ODG_BOOT_DEFAULTS : ODG_BOOT_DAMAGED);
 }
 
-/* Write the mirror of group `g` as the new newest image. */
-static odg_abort_t store(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
+/* Defaults into the mirror of group `g`, with the node-id added to $NODEID values (what the
+ * generated reset does for the whole dictionary). */
+static void defaults(const odg_dict_t *d, uint8_t g)
 {
-    const odg_group_t *gr;
+    const odg_group_t *gr = &d->groups[g];
+    uint32_t p;
+    memcpy(gr->mirror, gr->defaults, gr->size);
+    for (p = 0; p < d->n_subs; p++) {
+        const odg_sub_t *s = &d->subs[p];
+        if ((s->attr & ODG_A_NODEID) && s->storage == (uint8_t)(ODG_S_PERSIST | (unsigned)g << 2)) {
+            uint8_t *v = odg_value_(d, s);
+            odg_store_(v, s->size, odg_load_(v, s->size) + d->state->node_id);
+        }
+    }
+}
+
+#ifndef ODG_NO_MIGRATION
+/* ---- "ODG2": self-describing images, migrated at boot (docs/persistence.md) -------------- */
+
+#define HDR2 ODG_PERSIST_HEADER2_SIZE
+#define MAGIC2 0x3247444Fu /* "ODG2" */
+#define REC 6u             /* a layout descriptor record: index u16, sub u8, type u8, length u16 */
+
+/* Wire size of the numeric types by CiA 301 code; 0 for strings, domains and unknown codes. */
+static const uint8_t num_size[0x1C] = {0, 1, 1, 2, 4, 1, 2, 4, 4, 0, 0, 0, 6, 6, 0, 0,
+                                       3, 8, 5, 6, 7, 8, 3, 0, 5, 6, 7, 8};
+
+#define BIT(t) ((uint32_t)1u << (t))
+#define SIGNED_INTS                                                                           \
+    (BIT(ODG_T_INTEGER8) | BIT(ODG_T_INTEGER16) | BIT(ODG_T_INTEGER24) | BIT(ODG_T_INTEGER32) | \
+     BIT(ODG_T_INTEGER40) | BIT(ODG_T_INTEGER48) | BIT(ODG_T_INTEGER56) | BIT(ODG_T_INTEGER64))
+#define UNSIGNED_INTS                                                                            \
+    (BIT(ODG_T_UNSIGNED8) | BIT(ODG_T_UNSIGNED16) | BIT(ODG_T_UNSIGNED24) | BIT(ODG_T_UNSIGNED32) | \
+     BIT(ODG_T_UNSIGNED40) | BIT(ODG_T_UNSIGNED48) | BIT(ODG_T_UNSIGNED56) | BIT(ODG_T_UNSIGNED64))
+#define STREAMS                                                                                \
+    (BIT(ODG_T_VISIBLE_STRING) | BIT(ODG_T_OCTET_STRING) | BIT(ODG_T_UNICODE_STRING) |         \
+     BIT(ODG_T_DOMAIN))
+
+static uint32_t type_bit(uint8_t t)
+{
+    return t < 0x1Cu ? BIT(t) : 0u;
+}
+
+static uint16_t get16(const uint8_t *p)
+{
+    return (uint16_t)(p[0] | p[1] << 8);
+}
+
+static uint32_t rec_key(const uint8_t *rec)
+{
+    return (uint32_t)get16(rec) << 8 | rec[2];
+}
+
+/* Bytes of an entry's value in an image: a domain's used length (u32) precedes its bytes. */
+static uint32_t value_size(const uint8_t *rec)
+{
+    return get16(rec + 4) + (rec[3] == ODG_T_DOMAIN ? 4u : 0u);
+}
+
+static uint32_t image_size(const odg_group_t *gr)
+{
+    uint32_t n = 2u + REC * gr->n_layout, i;
+    for (i = 0; i < gr->n_layout; i++) {
+        n += value_size(gr->layout + REC * i);
+    }
+    return n;
+}
+
+/* The position in dict->subs of the next persisted sub-entry of group `g` from `pos`. */
+static uint32_t next_sub(const odg_dict_t *d, uint8_t g, uint32_t pos)
+{
+    while (pos < d->n_subs && d->subs[pos].storage != (uint8_t)(ODG_S_PERSIST | (unsigned)g << 2)) {
+        pos++;
+    }
+    return pos;
+}
+
+/* Read and check the "ODG2" slot at `addr` (header into `h`). `ours`: of group `gr`, and at
+ * slot A or at the middle of the region it names. A valid image has a descriptor of records
+ * with increasing keys whose values fill it. 1 valid, 0 not, -1 the driver failed. */
+static int slot2_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t addr, uint8_t *h,
+                      int ours)
+{
+    uint8_t c[CHUNK];
+    uint32_t crc, len, region, off, n, cnt, sum, prev = 0, i;
+    if (nv->read(nv->ctx, addr, h, HDR2) != 0) {
+        return -1;
+    }
+    region = get32(h + 12);
+    len = get32(h + 16);
+    if (get32(h) != MAGIC2 || region > 0x01000000u || region / 2u < HDR2 + 2u || len < 2u ||
+        len > region / 2u - HDR2 ||
+        (ours && (get32(h + 8) != gr->id ||
+                  (addr != gr->nv_addr && addr - gr->nv_addr != region / 2u)))) {
+        return 0;
+    }
+    crc = odg_crc32(0, h, 20);
+    for (off = 0; off < len; off += n) {
+        n = len - off < CHUNK ? len - off : CHUNK;
+        if (nv->read(nv->ctx, addr + HDR2 + off, c, n) != 0) {
+            return -1;
+        }
+        crc = odg_crc32(crc, c, n);
+    }
+    if (crc != get32(h + 20) || nv->read(nv->ctx, addr + HDR2, c, 2) != 0) {
+        return crc != get32(h + 20) ? 0 : -1;
+    }
+    cnt = get16(c);
+    for (i = 0, sum = 2u + REC * cnt; i < cnt && sum <= len; i++) {
+        if (nv->read(nv->ctx, addr + HDR2 + 2u + REC * i, c, REC) != 0) {
+            return -1;
+        }
+        if (i > 0u && rec_key(c) <= prev) {
+            return 0;
+        }
+        prev = rec_key(c);
+        sum += value_size(c);
+    }
+    return sum == len;
+}
+
+/* Where a slot of group `gr` may lie, from its region's start: k = 0 slot A, 1 slot B of the
+ * current region, then slot B of a region of 64, 128, ... ODG_PERSIST_MAX_REGION bytes, where
+ * the image of a region that grew or shrank stays until a store in the current region lands.
+ * SKIP for the current region again, END after the last. */
+#define SKIP 1u
+#define END 0xFFFFFFFFu
+static uint32_t probe(const odg_group_t *gr, uint32_t k)
+{
+    uint32_t r = k >= 2u && k < 26u ? 64u << (k - 2u) : 0u;
+    if (k < 2u) {
+        return k ? gr->region / 2u : 0u;
+    }
+    return r == 0u || r > ODG_PERSIST_MAX_REGION ? END : (r == gr->region ? SKIP : r / 2u);
+}
+
+/* The newest valid slot of group `gr` (address in *at, header in h): 1 found, 0 none, -1 the
+ * driver failed (inside the region; past it a failing read means no NV there). */
+static int newest2(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t *at, uint8_t *h)
+{
+    uint8_t t[HDR2];
+    uint32_t k, off;
+    int v, found = 0;
+    for (k = 0; (off = probe(gr, k)) != END; k++) {
+        v = off == SKIP ? 0 : slot2_read(nv, gr, gr->nv_addr + off, t, 1);
+        if (v < 0 && off < gr->region) {
+            return -1;
+        }
+        if (v > 0 && (!found || newer(get32(t + 4), get32(h + 4)))) {
+            found = 1;
+            *at = gr->nv_addr + off;
+            memcpy(h, t, HDR2);
+        }
+    }
+    return found;
+}
+
+/* The bytes a slot's image takes, rounded up to the slot alignment. */
+static uint32_t extent(const uint8_t *h)
+{
+    return (HDR2 + get32(h + 16) + ODG_PERSIST_ALIGN - 1u) & ~((uint32_t)ODG_PERSIST_ALIGN - 1u);
+}
+
+/* Image bytes on their way to NV, CRC-32 on the fly. */
+typedef struct out {
+    const odg_nv_driver_t *nv;
+    uint32_t addr; /* where buf goes */
+    uint32_t crc;
+    uint32_t n;    /* bytes in buf */
+    int fail;
+    uint8_t buf[CHUNK];
+} out_t;
+
+static void flush(out_t *o)
+{
+    if (o->n > 0u && !o->fail) {
+        o->fail = o->nv->write(o->nv->ctx, o->addr, o->buf, o->n) != 0;
+        o->crc = odg_crc32(o->crc, o->buf, o->n);
+        o->addr += o->n;
+    }
+    o->n = 0;
+}
+
+/* The `n` low bytes of `v`, little endian. */
+static void emit(out_t *o, uint64_t v, uint32_t n)
+{
+    while (n-- > 0u) {
+        o->buf[o->n++] = (uint8_t)v;
+        v >>= 8;
+        if (o->n == CHUNK) {
+            flush(o);
+        }
+    }
+}
+
+/* One value in wire format: strings padded with zeros after their terminator, a domain as its
+ * used length and then `size` bytes of its buffer. */
+static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
+{
+    uint32_t i, n = s->size, zero = 0;
+    const uint8_t *p;
+    if (s->type == ODG_T_DOMAIN) {
+        const odg_domain_t *dm = &d->domains[s->offset];
+        uint32_t used = *dm->length;
+        used = used < n ? used : n;
+        used = used < dm->capacity ? used : dm->capacity;
+        emit(o, used, 4);
+        for (i = 0; i < n; i++) {
+            emit(o, i < used ? dm->data[i] : 0u, 1);
+        }
+        return;
+    }
+    p = odg_value_(d, s);
+    if (!(type_bit(s->type) & STREAMS)) {
+        emit(o, odg_load_(p, n), n);
+    } else if (s->type == ODG_T_UNICODE_STRING) {
+        for (i = 0; i < n; i += 2u) {
+            uint16_t u;
+            memcpy(&u, p + i, 2);
+            zero |= u == 0u;
+            emit(o, zero ? 0u : u, n - i < 2u ? 1u : 2u);
+        }
+    } else {
+        for (i = 0; i < n; i++) {
+            zero |= s->type == ODG_T_VISIBLE_STRING && p[i] == 0u;
+            emit(o, zero ? 0u : p[i], 1);
+        }
+    }
+}
+
+/* Write the mirror of group `g` as its newest image: into slot A when the newest is in slot B
+ * of the current region, else into that slot B (past the whole old region when the region
+ * grew). Slot A, which names the old region, stays until the newest is in the current slot B,
+ * so an image in the old slot B is found until then. Never over the newest image (DATA_STORE
+ * when that is impossible: a region that shrank below an image of the old one). */
+static odg_abort_t store2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
+{
+    const odg_group_t *gr = &d->groups[g];
+    uint8_t h[HDR2], t[HDR2];
+    uint32_t at = 0, seq = 1, half = gr->region / 2u, addr = gr->nv_addr, i, pos = 0;
+    out_t o;
+    int k = newest2(nv, gr, &at, t);
+    if (k < 0) {
+        return ODG_ABORT_HARDWARE;
+    }
+    if (k) {
+        seq = get32(t + 4) + 1u;
+        addr = at == gr->nv_addr + half ? gr->nv_addr : gr->nv_addr + half;
+        if (addr < at + HDR2 + get32(t + 16) && at < addr + half) {
+            return ODG_ABORT_DATA_STORE;
+        }
+    }
+    if (HDR2 + image_size(gr) > half) {
+        return ODG_ABORT_DATA_STORE; /* odg_verify: never for a generated dictionary */
+    }
+    put32(h, MAGIC2);
+    put32(h + 4, seq);
+    put32(h + 8, gr->id);
+    put32(h + 12, gr->region);
+    put32(h + 16, image_size(gr));
+    o.nv = nv;
+    o.addr = addr + HDR2;
+    o.crc = odg_crc32(0, h, 20);
+    o.n = 0;
+    o.fail = nv->erase(nv->ctx, addr, half) != 0;
+    emit(&o, gr->n_layout, 2);
+    for (i = 0; i < REC * gr->n_layout; i++) {
+        emit(&o, gr->layout[i], 1);
+    }
+    for (i = 0; i < gr->n_layout && (pos = next_sub(d, g, pos)) < d->n_subs; i++, pos++) {
+        emit_value(&o, d, &d->subs[pos]);
+    }
+    flush(&o);
+    /* the CRC covers the bytes written; the read-back below checks that they landed */
+    put32(h + 20, o.crc);
+    if (o.fail || nv->write(nv->ctx, addr + 4u, h + 4, HDR2 - 4u) != 0 ||
+        nv->write(nv->ctx, addr, h, 4u) != 0 || slot2_read(nv, gr, addr, t, 1) != 1 ||
+        memcmp(t, h, HDR2) != 0) {
+        return ODG_ABORT_HARDWARE;
+    }
+    return ODG_OK;
+}
+
+/* Make the next boot of group `g` use the defaults: erase its images outside the region (of
+ * a region that shrank) and the region, all but the newest image first and then the newest, so
+ * a power cut in between leaves the newest (as if nothing happened), never an older one. */
+static odg_abort_t erase2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
+{
+    const odg_group_t *gr = &d->groups[g];
+    uint8_t h[HDR2], t[HDR2];
+    uint32_t at = 0, start = gr->nv_addr, end = gr->nv_addr + gr->region, e = 0, k, off;
+    int found = newest2(nv, gr, &at, h), fail = found < 0;
+    for (k = 2; !fail && (off = probe(gr, k)) != END; k++) {
+        if (off >= gr->region && off != SKIP && start + off != at &&
+            slot2_read(nv, gr, start + off, t, 1) == 1) {
+            fail = nv->erase(nv->ctx, start + off, extent(t)) != 0;
+        }
+    }
+    if (found > 0) {
+        e = at + extent(h);
+        e = at < end && e > end ? end : e; /* the header is what counts */
+    }
+    if (found <= 0 || at >= end) {
+        fail = fail || nv->erase(nv->ctx, start, gr->region) != 0;
+    } else {
+        fail = fail || (at > start && nv->erase(nv->ctx, start, at - start) != 0) ||
+               (e < end && nv->erase(nv->ctx, e, end - e) != 0);
+    }
+    fail = fail || (found > 0 && nv->erase(nv->ctx, at, e - at) != 0);
+    return fail ? ODG_ABORT_HARDWARE : ODG_OK;
+}
+
+/* ---- boot migration: docs/persistence.md section 3, odgen/persist/migration.py ----------- */
+
+enum { KEPT = 0, CONVERTED = 1, DEFAULTED = 2, FAILED = -1 };
+
+/* UNSIGNEDn -> UNSIGNEDm, INTEGERn -> INTEGERm, UNSIGNEDn -> INTEGERm with m > n. */
+static int widens(uint8_t from, uint8_t to)
+{
+    uint32_t a = type_bit(from), b = type_bit(to);
+    if (!(a & (SIGNED_INTS | UNSIGNED_INTS)) || !(b & (SIGNED_INTS | UNSIGNED_INTS)) ||
+        num_size[to] <= num_size[from]) {
+        return 0;
+    }
+    return (a & SIGNED_INTS) ? (b & SIGNED_INTS) != 0u : 1;
+}
+
+/* A string (unit 1, or 2 for UNICODE_STRING): what fits, up to its terminator; converted when
+ * the stored content went on past the new capacity. */
+static int resize_string(const odg_nv_driver_t *nv, const odg_sub_t *s, uint8_t *p, uint32_t sl,
+                         uint32_t addr)
+{
+    uint32_t unit = s->type == ODG_T_UNICODE_STRING ? 2u : 1u, fl = s->size, i;
+    uint8_t c[2] = {0, 0};
+    uint16_t u;
+    memset(p, 0, fl - fl % unit + unit);
+    for (i = 0; i + unit <= fl && i + unit <= sl; i += unit) {
+        if (nv->read(nv->ctx, addr + i, c, unit) != 0) {
+            return FAILED;
+        }
+        u = (uint16_t)(c[0] | c[1] << 8);
+        if (u == 0u) {
+            return KEPT;
+        }
+        if (unit == 2u) {
+            memcpy(p + i, &u, 2);
+        } else {
+            p[i] = c[0];
+        }
+    }
+    if (i + unit > sl) {
+        return KEPT;
+    }
+    if (nv->read(nv->ctx, addr + i, c, unit) != 0) {
+        return FAILED;
+    }
+    return c[0] != 0u || c[1] != 0u ? CONVERTED : KEPT;
+}
+
+/* A string or domain of the same type: keep what fits (resize). */
+static int resize(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_sub_t *s, uint32_t sl,
+                  uint32_t addr)
+{
+    const odg_domain_t *dm;
+    uint8_t c[4];
+    uint32_t used, n;
+    if (s->type != ODG_T_DOMAIN) {
+        uint8_t *p = odg_value_(d, s);
+        if (s->type == ODG_T_OCTET_STRING) {
+            n = sl < s->size ? sl : s->size;
+            memset(p, 0, s->size);
+            return nv->read(nv->ctx, addr, p, n) != 0 ? FAILED : (sl > s->size ? CONVERTED : KEPT);
+        }
+        return resize_string(nv, s, p, sl, addr);
+    }
+    dm = &d->domains[s->offset];
+    if (nv->read(nv->ctx, addr, c, 4) != 0) {
+        return FAILED;
+    }
+    used = get32(c);
+    used = used < sl ? used : sl;
+    n = used < s->size ? used : s->size;
+    n = n < dm->capacity ? n : dm->capacity;
+    if (n > 0u && nv->read(nv->ctx, addr + 4u, dm->data, n) != 0) {
+        return FAILED;
+    }
+    *dm->length = n;
+    return n < used ? CONVERTED : KEPT;
+}
+
+/* Restore the firmware's entry `fw` (its sub-entry at `pos`) from the stored entry `st`, whose
+ * value lies at `addr`: kept, converted, or defaulted (the mirror keeps the default). */
+static int restore(const odg_dict_t *d, const odg_nv_driver_t *nv, uint32_t pos,
+                   const uint8_t *fw, const uint8_t *st, uint32_t addr)
+{
+    const odg_sub_t *s = &d->subs[pos];
+    uint32_t sl = get16(st + 4), i;
+    uint8_t c[8];
+    uint64_t v;
+    if (fw[3] == st[3] && (type_bit(fw[3]) & STREAMS)) {
+        return resize(d, nv, s, sl, addr);
+    }
+    if ((fw[3] != st[3] && !widens(st[3], fw[3])) || type_bit(st[3]) == 0u ||
+        num_size[st[3]] == 0u || sl != num_size[st[3]] || get16(fw + 4) != s->size) {
+        return DEFAULTED; /* narrowed, retyped, or a length that does not fit its type */
+    }
+    if (nv->read(nv->ctx, addr, c, sl) != 0) {
+        return FAILED;
+    }
+    v = (type_bit(st[3]) & SIGNED_INTS) && (c[sl - 1u] & 0x80u) ? ~(uint64_t)0 : 0u;
+    for (i = sl; i-- > 0u;) {
+        v = v << 8 | c[i];
+    }
+    if (odg_check_(d, (uint16_t)pos, v) != ODG_OK) {
+        return DEFAULTED; /* outside the current limits */
+    }
+    odg_store_(odg_value_(d, s), s->size, v);
+    return fw[3] == st[3] ? KEPT : CONVERTED;
+}
+
+/* Every entry of group `g` from the image at `at`, merged by key with the firmware's layout;
+ * the mirror holds the defaults before. Counts into `b`; -1 when the driver failed. */
+static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, uint32_t at,
+                   odg_boot_t *b)
+{
+    const odg_group_t *gr = &d->groups[g];
+    uint8_t st[REC];
+    uint32_t base = at + HDR2, cnt, j = 0, vo, i, pos = 0;
+    int have = 0, r;
+    if (nv->read(nv->ctx, base, st, 2) != 0) {
+        return -1;
+    }
+    cnt = get16(st);
+    vo = base + 2u + REC * cnt;
+    for (i = 0; i < gr->n_layout && (pos = next_sub(d, g, pos)) < d->n_subs; i++, pos++) {
+        const uint8_t *fw = gr->layout + REC * i;
+        for (;;) { /* stored entries before this key are no longer in the group */
+            if (!have && j < cnt && nv->read(nv->ctx, base + 2u + REC * j, st, REC) != 0) {
+                return -1;
+            }
+            have = j < cnt;
+            if (!have || rec_key(st) >= rec_key(fw)) {
+                break;
+            }
+            b->dropped++;
+            vo += value_size(st);
+            j++;
+            have = 0;
+        }
+        r = have && rec_key(st) == rec_key(fw) ? restore(d, nv, pos, fw, st, vo) : DEFAULTED;
+        if (r == FAILED) {
+            return -1;
+        }
+        if (have && rec_key(st) == rec_key(fw)) {
+            vo += value_size(st);
+            j++;
+            have = 0;
+        }
+        b->kept = (uint16_t)(b->kept + (r == KEPT));
+        b->converted = (uint16_t)(b->converted + (r == CONVERTED));
+        b->defaulted = (uint16_t)(b->defaulted + (r == DEFAULTED));
+    }
+    b->dropped = (uint16_t)(b->dropped + (cnt - j));
+    return 0;
+}
+
+/* No valid image of ours: DEFAULTS when both slots are erased or hold another group's images
+ * (its region moved), SIGNATURE for an "ODG1" image (the format before), else DAMAGED. */
+static odg_boot_status_t no_image2(const odg_nv_driver_t *nv, const odg_group_t *gr)
+{
+    uint8_t t[HDR2];
+    uint32_t half = gr->region / 2u, addr;
+    odg_boot_status_t st = ODG_BOOT_DEFAULTS;
+    int k, v;
+    for (k = 0; k < 2; k++) {
+        addr = gr->nv_addr + (k ? half : 0u);
+        v = slot_blank(nv, addr, half);
+        if (v == 0) {
+            v = slot2_read(nv, gr, addr, t, 0);
+        }
+        if (v == 0 && (v = slot_read(nv, addr, half - HDR, t, NULL)) == 1) {
+            st = ODG_BOOT_SIGNATURE;
+        }
+        if (v < 0) {
+            return ODG_BOOT_NV_ERROR;
+        }
+        if (v == 0) {
+            return ODG_BOOT_DAMAGED;
+        }
+    }
+    return st;
+}
+
+static odg_boot_status_t boot2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g,
+                               odg_boot_t *b)
+{
+    const odg_group_t *gr = &d->groups[g];
+    uint8_t h[HDR2], t[HDR2];
+    uint32_t at = 0;
+    odg_boot_status_t st;
+    odg_abort_t ac;
+    int k = newest2(nv, gr, &at, h);
+    if (k < 0) {
+        st = ODG_BOOT_NV_ERROR;
+    } else if (k == 0) {
+        st = no_image2(nv, gr);
+    } else {
+        defaults(d, g);
+        st = ODG_BOOT_NV_ERROR; /* unless the image reads the same a second time */
+        if (migrate(d, nv, g, at, b) == 0 && slot2_read(nv, gr, at, t, 1) == 1 &&
+            memcmp(t, h, HDR2) == 0) {
+            if (!b->converted && !b->defaulted && !b->dropped) {
+                return ODG_BOOT_LOADED;
+            }
+            /* the migrated image, with the A/B commit; the old one stays until it lands
+             * (DATA_STORE: no slot beside the old image, which is then migrated again) */
+            ac = store2(d, nv, g);
+            if (ac == ODG_OK || ac == ODG_ABORT_DATA_STORE) {
+                return ODG_BOOT_MIGRATED;
+            }
+        }
+        b->kept = b->converted = b->defaulted = b->dropped = 0;
+    }
+    defaults(d, g);
+    if (st != ODG_BOOT_NV_ERROR && store2(d, nv, g) != ODG_OK) {
+        st = ODG_BOOT_NV_ERROR;
+    }
+    return st;
+}
+#endif /* ODG_NO_MIGRATION */
+
+/* Write the mirror of group `g` as the new newest "ODG1" image. */
+static odg_abort_t store1(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
+{
+    const odg_group_t *gr = &d->groups[g];
     uint8_t hdr[2][HDR], h[HDR];
     uint32_t addr, seq = 1;
     int k;
-    if (nv == NULL || g >= d->n_groups) {
-        return ODG_ABORT_DATA_STORE;
-    }
-    gr = &d->groups[g];
     k = newest(nv, gr, hdr);
     if (k == -2) {
         return ODG_ABORT_HARDWARE;
@@ -196,16 +735,12 @@ static odg_abort_t store(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t
     return ODG_OK;
 }
 
-/* Make the next boot of group `g` use the defaults: erase both slots. */
-static odg_abort_t erase(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
+/* Make the next boot of group `g` ("ODG1") use the defaults: erase both slots. */
+static odg_abort_t erase1(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
 {
-    const odg_group_t *gr;
+    const odg_group_t *gr = &d->groups[g];
     uint8_t hdr[2][HDR];
     int k;
-    if (nv == NULL || g >= d->n_groups) {
-        return ODG_ABORT_DATA_STORE;
-    }
-    gr = &d->groups[g];
     k = newest(nv, gr, hdr);
     if (k == -2) {
         return ODG_ABORT_HARDWARE;
@@ -218,6 +753,34 @@ static odg_abort_t erase(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t
         return ODG_ABORT_HARDWARE;
     }
     return ODG_OK;
+}
+
+/* Store group `g` in the format of its group: "ODG2" with a layout, else "ODG1". */
+static odg_abort_t store(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
+{
+    if (nv == NULL || g >= d->n_groups) {
+        return ODG_ABORT_DATA_STORE;
+    }
+#ifndef ODG_NO_MIGRATION
+    if (d->groups[g].layout != NULL) {
+        return store2(d, nv, g);
+    }
+#endif
+    return store1(d, nv, g);
+}
+
+/* Make the next boot of group `g` use the defaults. */
+static odg_abort_t erase(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
+{
+    if (nv == NULL || g >= d->n_groups) {
+        return ODG_ABORT_DATA_STORE;
+    }
+#ifndef ODG_NO_MIGRATION
+    if (d->groups[g].layout != NULL) {
+        return erase2(d, nv, g);
+    }
+#endif
+    return erase1(d, nv, g);
 }
 
 /* 0x1010 / 0x1011 sub `sub`, handed over by the core: sub 1 acts on every group, another on
@@ -259,28 +822,20 @@ odg_abort_t odg_persist_restore(const odg_dict_t *dict, uint8_t g)
     return erase(dict, driver(dict), g);
 }
 
-/* Defaults into the mirror of group `g`, with the node-id added to $NODEID values (what the
- * generated reset does for the whole dictionary). */
-static void defaults(const odg_dict_t *d, uint8_t g)
-{
-    const odg_group_t *gr = &d->groups[g];
-    uint32_t p;
-    memcpy(gr->mirror, gr->defaults, gr->size);
-    for (p = 0; p < d->n_subs; p++) {
-        const odg_sub_t *s = &d->subs[p];
-        if ((s->attr & ODG_A_NODEID) && s->storage == (uint8_t)(ODG_S_PERSIST | (unsigned)g << 2)) {
-            uint8_t *v = odg_value_(d, s);
-            odg_store_(v, s->size, odg_load_(v, s->size) + d->state->node_id);
-        }
-    }
-}
-
-static odg_boot_status_t boot_group(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
+static odg_boot_status_t boot_group(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g,
+                                     odg_boot_t *b)
 {
     const odg_group_t *gr = &d->groups[g];
     uint8_t hdr[2][HDR], h[HDR];
     odg_boot_status_t st = ODG_BOOT_DEFAULTS;
-    int k = newest(nv, gr, hdr);
+    int k;
+#ifndef ODG_NO_MIGRATION
+    if (gr->layout != NULL) {
+        return boot2(d, nv, g, b);
+    }
+#endif
+    (void)b;
+    k = newest(nv, gr, hdr);
     if (k == -2) {
         st = ODG_BOOT_NV_ERROR;
     } else if (k == -1) {
@@ -302,10 +857,28 @@ static odg_boot_status_t boot_group(const odg_dict_t *d, const odg_nv_driver_t *
     return st;
 }
 
-odg_abort_t odg_persist_init(odg_persist_t *p, const odg_dict_t *dict, const odg_nv_driver_t *nv,
-                             odg_boot_status_t *boot)
+static uint8_t add_sat(uint8_t total, uint16_t n)
+{
+    return (uint8_t)(total + n > 255u ? 255u : total + n);
+}
+
+/* The boot status object: sub g + 1 = status | converted << 8 | defaulted << 16 | dropped << 24 */
+static void report(const odg_dict_t *d, uint8_t g, const odg_boot_t *b)
+{
+    uint32_t v = (uint32_t)b->status | (uint32_t)add_sat(0, b->converted) << 8 |
+                 (uint32_t)add_sat(0, b->defaulted) << 16 | (uint32_t)add_sat(0, b->dropped) << 24;
+    if (d->persist_status != 0u) {
+        (void)odg_set(d, d->persist_status, (uint8_t)(g + 1u), &v, (uint32_t)sizeof v);
+    }
+}
+
+/* Attach the layer and boot every group; the statuses into `st`, the counts into `boot`
+ * (either may be NULL). */
+static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_nv_driver_t *nv,
+                            odg_boot_status_t *st, odg_boot_t *boot)
 {
     odg_abort_t ac = nv != NULL ? ODG_OK : ODG_ABORT_DATA_STORE;
+    odg_state_t *s = dict->state;
     uint8_t g;
     if (nv != NULL) {
         p->client.command = command;
@@ -313,17 +886,41 @@ odg_abort_t odg_persist_init(odg_persist_t *p, const odg_dict_t *dict, const odg
         p->nv = nv;
         odg_attach(dict, &p->client);
     }
-    dict->state->boot_seen = 0;
+    s->boot_seen = 0;
+    memset(s->boot_counts, 0, sizeof s->boot_counts);
     for (g = 0; g < dict->n_groups; g++) {
-        odg_boot_status_t st = nv != NULL ? boot_group(dict, nv, g) : ODG_BOOT_NV_ERROR;
-        dict->state->boot_seen = (uint8_t)(dict->state->boot_seen | 1u << st);
-        if (st == ODG_BOOT_NV_ERROR && ac == ODG_OK) {
+        odg_boot_t b = {ODG_BOOT_NV_ERROR, 0, 0, 0, 0};
+        if (nv != NULL) {
+            b.status = (uint8_t)boot_group(dict, nv, g, &b);
+        }
+        s->boot_seen = (uint8_t)(s->boot_seen | 1u << b.status |
+                                 (b.defaulted || b.dropped ? ODG_BOOT_ENTRIES_LOST : 0u));
+        s->boot_counts[0] = add_sat(s->boot_counts[0], b.defaulted);
+        s->boot_counts[1] = add_sat(s->boot_counts[1], b.dropped);
+        s->boot_counts[2] = add_sat(s->boot_counts[2], b.converted);
+        if (b.status == ODG_BOOT_NV_ERROR && ac == ODG_OK) {
             ac = ODG_ABORT_HARDWARE;
         }
+        report(dict, g, &b);
+        if (st != NULL) {
+            st[g] = (odg_boot_status_t)b.status;
+        }
         if (boot != NULL) {
-            boot[g] = st;
+            boot[g] = b;
         }
     }
     odg_changed(dict, NULL);
     return ac;
+}
+
+odg_abort_t odg_persist_boot(odg_persist_t *p, const odg_dict_t *dict, const odg_nv_driver_t *nv,
+                             odg_boot_t *boot)
+{
+    return boot_all(p, dict, nv, NULL, boot);
+}
+
+odg_abort_t odg_persist_init(odg_persist_t *p, const odg_dict_t *dict, const odg_nv_driver_t *nv,
+                             odg_boot_status_t *boot)
+{
+    return boot_all(p, dict, nv, boot, NULL);
 }

@@ -18,7 +18,8 @@ from ..lint import RuleFilter, lint_model
 from ..model import ObjectDictionary
 from ..rules import LintOptions
 from .names import comment, identifier, is_identifier, name_clash
-from .options import Options, load_options, parse_options
+from .options import Options, PersistOptions, load_options, parse_options
+from .persistview import add_status_object, persist_view
 from .placement import Placement, place
 from .viewmodel import DictView, build
 
@@ -46,6 +47,7 @@ class Result:
     od: ObjectDictionary | None = None
     placements: dict[tuple[int, int], Placement] | None = None
     view: DictView | None = None
+    persist: PersistOptions = field(default_factory=PersistOptions)
     refused: list[Diagnostic] = field(default_factory=list)  # the findings that stopped generation
 
 
@@ -111,9 +113,12 @@ def prepare(request: Request) -> Result:
     if request.options:
         user = load_options(request.options, diags)
         options.entries += user.entries
+        options.persist = user.persist
     if _refuse(result, request):
         return result
     result.placements = place(od, options, diags)
+    result.persist = options.persist
+    add_status_object(od, result.placements, options.persist, diags)
     return result
 
 
@@ -129,6 +134,7 @@ def _generate(request: Request) -> Result:
         return result
     view = build(result.od, result.placements, name, version=__version__, digest=digest(request, name),
                  lookup=request.lookup, diags=result.diags)
+    view.persist = persist_view(result.od, result.placements, result.persist, result.diags)
     if _refuse(result, request):
         return result
     env = environment()

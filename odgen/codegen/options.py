@@ -7,6 +7,15 @@
     function = "app_outputs"                     # optional: generated prototype, registered at init
     capacity = 64                                # bytes, for strings and domains
 
+    [persist]                                    # stored parameters (docs/persistence.md)
+    migration = true                             # self-describing images, migrated at boot
+    headroom = 50                                # % of a region's need kept free for growth
+    status_object = 0x2FF0                       # the boot status object (RECORD), absent if unset
+
+    [[group]]
+    name = "app"
+    region = 1024                                # pin the group's NV region (bytes)
+
 Entries apply in file order; for each key, the last entry that sets it wins.
 """
 
@@ -58,10 +67,19 @@ class OptionEntry:
 
 
 @dataclass
+class PersistOptions:
+    migration: bool = True
+    headroom: int = 50
+    status_object: int | None = None
+    regions: dict[str, int] = field(default_factory=dict)  # pinned, by group name
+
+
+@dataclass
 class Options:
     source: str = ""
     text: str = ""
     entries: list[OptionEntry] = field(default_factory=list)
+    persist: PersistOptions = field(default_factory=PersistOptions)
 
 
 def parse_pattern(text: str) -> Pattern | None:
@@ -99,9 +117,11 @@ def parse_options(text: str, source: str, diags: Diagnostics) -> Options:
     except tomllib.TOMLDecodeError as err:
         diags.add(GEN001, Loc(source, _error_line(err)), f"not valid TOML: {err}")
         return options
-    unknown = sorted(set(doc) - {"entry"})
+    unknown = sorted(set(doc) - {"entry", "persist", "group"})
     if unknown:
-        diags.add(GEN001, Loc(source, 1), f"unknown top-level key(s) {', '.join(unknown)}; only [[entry]] tables")
+        diags.add(GEN001, Loc(source, 1),
+                  f"unknown top-level key(s) {', '.join(unknown)}; only [[entry]], [persist] and [[group]]")
+    _persist(doc, text, source, options.persist, diags)
     lines = [n for n, line in enumerate(text.splitlines(), start=1) if line.strip().startswith("[[entry]]")]
     raw_entries = doc.get("entry", [])
     if not isinstance(raw_entries, list):
@@ -190,3 +210,57 @@ def _capacity(entry: OptionEntry, raw: dict, loc: Loc, diags: Diagnostics) -> bo
         return False
     entry.capacity = value
     return True
+
+
+PERSIST_KEYS = ("migration", "headroom", "status_object")
+_GROUP_RE = re.compile(r"^[a-z][a-z0-9_]{0,15}$")
+
+
+def _line_of(text: str, header: str, n: int = 0) -> int:
+    lines = [k for k, line in enumerate(text.splitlines(), start=1) if line.strip().startswith(header)]
+    return lines[n] if n < len(lines) else 1
+
+
+def _persist(doc: dict, text: str, source: str, persist: PersistOptions, diags: Diagnostics) -> None:
+    """[persist] and [[group]]: migration on/off, headroom, status object, pinned regions."""
+    raw = doc.get("persist", {})
+    loc = Loc(source, _line_of(text, "[persist]"))
+    if not isinstance(raw, dict):
+        diags.add(GEN001, loc, "'persist' must be a table ([persist])")
+        raw = {}
+    for key in sorted(set(raw) - set(PERSIST_KEYS)):
+        diags.add(GEN001, loc, f"unknown key {key} in [persist]; use {', '.join(PERSIST_KEYS)}")
+    migration = raw.get("migration", True)
+    if isinstance(migration, bool):
+        persist.migration = migration
+    else:
+        diags.add(GEN001, loc, f"migration {migration!r} must be true or false")
+    headroom = raw.get("headroom", 50)
+    if isinstance(headroom, int) and not isinstance(headroom, bool) and 0 <= headroom <= 1000:
+        persist.headroom = headroom
+    else:
+        diags.add(GEN001, loc, f"headroom {headroom!r} must be a percentage 0..1000")
+    status = raw.get("status_object")
+    if isinstance(status, int) and not isinstance(status, bool) and 0x2000 <= status <= 0x5FFF:
+        persist.status_object = status
+    elif status is not None:
+        diags.add(GEN001, loc, f"status_object {status!r} must be an index in 0x2000..0x5FFF (manufacturer area)")
+    groups = doc.get("group", [])
+    if not isinstance(groups, list):
+        diags.add(GEN001, Loc(source, 1), "'group' must be an array of tables ([[group]])")
+        return
+    for n, group in enumerate(groups):
+        _group(group, Loc(source, _line_of(text, "[[group]]", n)), persist, diags)
+
+
+def _group(raw: object, loc: Loc, persist: PersistOptions, diags: Diagnostics) -> None:
+    if not isinstance(raw, dict) or set(raw) != {"name", "region"}:
+        diags.add(GEN001, loc, "[[group]] needs name and region, and nothing else")
+        return
+    name, region = raw["name"], raw["region"]
+    if not isinstance(name, str) or not _GROUP_RE.match(name):
+        diags.add(GEN001, loc, f"group name {name!r} is not a persistence group name (persist:<group>)")
+    elif not isinstance(region, int) or isinstance(region, bool) or not 64 <= region <= 0x1000000 or region % 16:
+        diags.add(GEN001, loc, f"region {region!r} must be a number of bytes 64..16 MiB, a multiple of 16")
+    else:
+        persist.regions[name] = region

@@ -11,6 +11,7 @@ import math
 import struct
 import zlib
 from dataclasses import dataclass, field
+from typing import Any
 
 from ..catalogue.gen import GEN004, GEN005, GEN006, GEN007
 from ..diagnostics import Diagnostics, Loc
@@ -153,6 +154,7 @@ class DictView:
     nodeid_fixes: list[NodeIdFix] = field(default_factory=list)
     macros: list[NameMacro] = field(default_factory=list)
     accessors: list[Accessor] = field(default_factory=list)
+    persist: Any = None  # persistview.PersistView: NV regions, layouts, status object
 
     def _table(self, suffix: str, present: bool) -> str:
         return f"{self.name}_{suffix}" if present else "NULL"

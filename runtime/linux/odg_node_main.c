@@ -64,15 +64,10 @@ static uint64_t now_ms(void)
     return (uint64_t)ts.tv_sec * 1000u + (uint64_t)ts.tv_nsec / 1000000u;
 }
 
-/* NV bytes the persistence groups need: both slots of every group. */
+/* NV bytes the persistence groups need: the region of every group. */
 static uint32_t nv_size(const odg_dict_t *d)
 {
-    uint32_t end = 0, g;
-    for (g = 0; g < d->n_groups; g++) {
-        uint32_t e = d->groups[g].nv_addr + 2u * odg_persist_slot_size(d->groups[g].size);
-        end = e > end ? e : end;
-    }
-    return end;
+    return odg_persist_nv_size(d);
 }
 
 static int usage(const char *prog)

@@ -45,15 +45,10 @@ odg_abort_t io_node_apply_outputs(const odg_ref_t *ref, odg_hook_kind_t kind, co
 
 static odg_nv_file_t nvf;
 
-/* NV bytes of both slots of both groups */
+/* NV bytes of both groups */
 static uint32_t nv_size(void)
 {
-    uint32_t end = 0, g;
-    for (g = 0; g < io_node.n_groups; g++) {
-        uint32_t e = io_node.groups[g].nv_addr + 2u * odg_persist_slot_size(io_node.groups[g].size);
-        end = e > end ? e : end;
-    }
-    return end;
+    return odg_persist_nv_size(&io_node);
 }
 
 static void power_on(void)

@@ -300,9 +300,12 @@ static void lost_values_emcy(void)
 {
     const odg_group_t *g = &alltypes.groups[ALLTYPES_GROUP_COMM];
     const odg_frame_t *e;
+    /* the first image byte of slots A and B ("ODG2" images with a layout, else "ODG1") */
+    uint32_t a = g->nv_addr + (g->layout != NULL ? ODG_PERSIST_HEADER2_SIZE : ODG_PERSIST_HEADER_SIZE);
+    uint32_t b = a + (g->layout != NULL ? g->region / 2u : odg_persist_slot_size(g->size));
     hb_watch = 0; /* the period goes back to its default */
-    nv_mem[g->nv_addr + ODG_PERSIST_HEADER_SIZE] ^= 0x01u;
-    nv_mem[g->nv_addr + odg_persist_slot_size(g->size) + ODG_PERSIST_HEADER_SIZE] ^= 0x10u;
+    nv_mem[a] ^= 0x01u;
+    nv_mem[b] ^= 0x10u;
     clear();
     nmt(ODG_NMT_RESET_NODE, NID);
     CHECK_EQ(n_sent, 2);
@@ -321,7 +324,7 @@ static void lost_values_emcy(void)
     CHECK_EQ(n_sent, 1);
     CHECK_EQ(upload_u32(0x1001, 0), 0);
     /* also at power-on, from odg_node_init (slot 1 still damaged: spoil the defaults in slot 0) */
-    nv_mem[g->nv_addr + ODG_PERSIST_HEADER_SIZE] ^= 0x01u;
+    nv_mem[a] ^= 0x01u;
     {
         odg_node_config_t cfg;
         memset(&cfg, 0, sizeof cfg);

@@ -8,8 +8,8 @@
 #include <stdint.h>
 #include "odg.h"
 
-#if !defined(ODG_FORMAT_VERSION) || ODG_FORMAT_VERSION != 1
-#error "io_node.h needs the odg runtime of format version 1"
+#if !defined(ODG_FORMAT_VERSION) || ODG_FORMAT_VERSION != 2
+#error "io_node.h needs the odg runtime of format version 2"
 #endif
 
 /* Placement: define these to section attributes to place each class with the linker script. */

@@ -8,8 +8,8 @@
 #include <stdint.h>
 #include "odg.h"
 
-#if !defined(ODG_FORMAT_VERSION) || ODG_FORMAT_VERSION != 1
-#error "io_node_persist.h needs the odg runtime of format version 1"
+#if !defined(ODG_FORMAT_VERSION) || ODG_FORMAT_VERSION != 2
+#error "io_node_persist.h needs the odg runtime of format version 2"
 #endif
 
 /* Placement: define these to section attributes to place each class with the linker script. */
@@ -28,6 +28,17 @@
 /* First NV byte of the persistence groups. */
 #ifndef IO_NODE_PERSIST_NV_BASE
 #define IO_NODE_PERSIST_NV_BASE 0u
+#endif
+/* NV map: each persistence group owns a region from IO_NODE_PERSIST_NV_BASE (docs/persistence.md). */
+#define IO_NODE_PERSIST_NV_APP_OFFSET 512u
+#define IO_NODE_PERSIST_NV_APP_REGION 128u
+#define IO_NODE_PERSIST_NV_COMM_OFFSET 0u
+#define IO_NODE_PERSIST_NV_COMM_REGION 512u
+#define IO_NODE_PERSIST_NV_SIZE 640u
+/* Stored images migrate at boot ([persist] migration); the runtime needs its migration code. */
+#define IO_NODE_PERSIST_PERSIST_MIGRATION 1
+#if IO_NODE_PERSIST_PERSIST_MIGRATION && defined(ODG_NO_MIGRATION)
+#error "io_node_persist migrates stored images: build the runtime without ODG_NO_MIGRATION, or set [persist] migration = false"
 #endif
 
 #ifdef __cplusplus

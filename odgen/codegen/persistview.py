@@ -1,0 +1,90 @@
+"""Persistence groups in the generated C (docs/persistence.md): each group's NV region from
+`odgen.persist.nvmap`, its layout descriptor for boot migration, and the optional boot status object.
+
+Kept apart from the view-model of the tables: `add_status_object` runs on the placed dictionary
+(before the view is built), `persist_view` on the placed dictionary once the view exists.
+"""
+
+from __future__ import annotations
+
+import zlib
+from dataclasses import dataclass, field
+
+from ..catalogue.gen import GEN001
+from ..diagnostics import Diagnostics, Loc
+from ..model import ObjectDictionary
+from ..model.datatypes import BASIC_TYPES
+from ..model.od import RECORD, Obj, Sub
+from ..model.values import parse_value
+from ..persist.layout import group_layouts
+from ..persist.migration import descriptor
+from ..persist.nvmap import FIRST, nv_map
+from .options import PersistOptions
+from .placement import Placement
+
+UNSIGNED8, UNSIGNED32 = 0x05, 0x07
+
+
+@dataclass
+class GroupNv:
+    name: str
+    offset: int  # from NAME_NV_BASE
+    region: int
+    id: int  # CRC-32 of the name: a slot of another group is never taken
+    records: list[tuple[str, str]] = field(default_factory=list)  # (C bytes, note) per entry
+
+
+@dataclass
+class PersistView:
+    migration: bool
+    status_object: int | None
+    groups: dict[str, GroupNv] = field(default_factory=dict)
+    size: int = 0  # NV bytes of all regions
+
+
+def group_order(names: set[str]) -> list[str]:
+    return [g for g in FIRST if g in names] + sorted(g for g in names if g not in FIRST)
+
+
+def add_status_object(od: ObjectDictionary, placements: dict[tuple[int, int], Placement],
+                      persist: PersistOptions, diags: Diagnostics) -> None:
+    """The boot status object at `[persist] status_object`: a RECORD, sub n (UNSIGNED32, ro) the
+    n-th group in NV-map order (status | converted << 8 | defaulted << 16 | dropped << 24), set by
+    the runtime at boot; in RAM."""
+    index = persist.status_object
+    if index is None:
+        return
+    if index in od.objects:
+        diags.add(GEN001, Loc(od.source), f"status_object 0x{index:04X} is an object of the description; "
+                  "choose a free index in [persist]", index)
+        return
+    groups = sorted({p.group for p in placements.values() if p.group is not None})  # NAME_GROUP_* order
+    obj = Obj(index, "Stored parameters boot status", object_code=RECORD)
+    obj.subs[0] = Sub(0, "Number of groups", data_type=UNSIGNED8, access="ro",
+                      default=parse_value(str(len(groups)), BASIC_TYPES[UNSIGNED8]))
+    for n, group in enumerate(groups, start=1):
+        obj.subs[n] = Sub(n, f"Group {group}", data_type=UNSIGNED32, access="ro",
+                          default=parse_value("0", BASIC_TYPES[UNSIGNED32]))
+    od.objects[index] = obj
+    for subindex in obj.subs:
+        placements[(index, subindex)] = Placement("ram", "[persist] status_object")
+
+
+def persist_view(od: ObjectDictionary, placements: dict[tuple[int, int], Placement],
+                 persist: PersistOptions, diags: Diagnostics) -> PersistView:
+    layouts = group_layouts(od, placements)
+    regions = nv_map(layouts, headroom=persist.headroom, pinned=persist.regions, migration=persist.migration)
+    view = PersistView(persist.migration, persist.status_object)
+    for name, region in regions.items():
+        if not region.fits:
+            diags.add(GEN001, Loc(od.source), f"persistence group {name} needs {region.need} bytes of NV, "
+                      f"its pinned region has {region.size}; raise region in [[group]] or move entries")
+        group = GroupNv(name, region.offset, region.size, zlib.crc32(name.encode("ascii")))
+        for e in layouts[name].entries if persist.migration else ():
+            data = ", ".join(f"0x{b:02X}" for b in descriptor((e,)))
+            group.records.append((data, f"0x{e.index:04X}sub{e.sub}"))
+        view.groups[name] = group
+        view.size = max(view.size, region.offset + region.size)
+    for name in sorted(set(persist.regions) - set(regions)):
+        diags.add(GEN001, Loc(od.source), f"[[group]] {name} names no persistence group of the dictionary")
+    return view

@@ -1,0 +1,98 @@
+"""The options file's [persist] and [[group]] keys (docs/persistence.md) and what generation makes
+of them: migration on/off, headroom, pinned regions, the boot status object."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from odgen.codegen.generate import Request, generate
+from odgen.codegen.options import parse_options
+from odgen.diagnostics import Diagnostics
+from odgen.persist.migration import EntryLayout, GroupLayout
+from odgen.persist.nvmap import nv_map
+
+from .test_migration_runtime import BASE, eds, options
+
+
+def parsed(text: str) -> tuple[object, list[str]]:
+    diags = Diagnostics()
+    result = parse_options(text, "o.toml", diags)
+    return result.persist, [f"{d.loc.line}:{d.rule}:{d.message}" for d in diags.items]
+
+
+def test_persist_keys_read() -> None:
+    persist, found = parsed('[persist]\nmigration = false\nheadroom = 100\nstatus_object = 0x2FF0\n\n'
+                            '[[group]]\nname = "app"\nregion = 1024\n')
+    assert found == []
+    assert persist.migration is False and persist.headroom == 100  # type: ignore[attr-defined]
+    assert persist.status_object == 0x2FF0 and persist.regions == {"app": 1024}  # type: ignore[attr-defined]
+
+
+def test_persist_defaults() -> None:
+    persist, found = parsed("")
+    assert found == []
+    assert persist.migration is True and persist.headroom == 50 and persist.status_object is None  # type: ignore
+
+
+@pytest.mark.parametrize("text, line, words", [
+    ("[persist]\nmigration = 1\n", 1, "migration 1 must be true or false"),
+    ("x = 1\n[persist]\nheadroom = -5\n", 2, "headroom -5 must be a percentage"),
+    ("[persist]\nstatus_object = 0x1000\n", 1, "status_object 4096 must be an index in 0x2000..0x5FFF"),
+    ("[persist]\nmigrate = true\n", 1, "unknown key migrate in [persist]"),
+    ('[[entry]]\nmatch = "*"\n\n[[group]]\nname = "app"\n', 4, "[[group]] needs name and region"),
+    ('[[group]]\nname = "app"\nregion = 100\n', 1, "region 100 must be a number of bytes 64..16 MiB"),
+    ('[[group]]\nname = "App"\nregion = 128\n', 1, "group name 'App' is not a persistence group name"),
+])
+def test_persist_mistakes(text: str, line: int, words: str) -> None:
+    _, found = parsed(text)
+    assert any(f.startswith(f"{line}:GEN001:") and words in f for f in found), found
+
+
+def test_nv_map_pinned_and_headroom() -> None:
+    layout = GroupLayout("app", tuple(EntryLayout(0x2000 + k, 0, 0x07, 4) for k in range(10)))
+    comm = GroupLayout("comm", (EntryLayout(0x1017, 0, 0x06, 2),))
+    need = nv_map({"app": layout})["app"].need  # 2 * (24 + 2 + 60 + 40 -> 128) = 256
+    assert need == 256
+    assert nv_map({"app": layout})["app"].size == 512  # 256 + 50 % -> 512
+    assert nv_map({"app": layout}, headroom=0)["app"].size == 256
+    pinned = nv_map({"app": layout, "comm": comm}, pinned={"comm": 1024})
+    assert pinned["comm"].size == 1024 and pinned["app"].offset == 1024 and pinned["comm"].offset == 0
+    assert not nv_map({"app": layout}, pinned={"app": 128})["app"].fits
+
+
+def generated(tmp_path: Path, extra: str) -> tuple[int, dict[str, str], list[str]]:
+    (tmp_path / "od.eds").write_text(eds(BASE, 1000, False), encoding="utf-8")
+    (tmp_path / "od.toml").write_text(options(BASE, extra), encoding="utf-8")
+    result = generate(Request(tmp_path / "od.eds", name="od", options=tmp_path / "od.toml"))
+    return len(result.refused), result.files, [f"{d.rule}:{d.message}" for d in result.diags.items]
+
+
+def test_generated_nv_map_and_layouts(tmp_path: Path) -> None:
+    refused, files, _ = generated(tmp_path, '[[group]]\nname = "comm"\nregion = 256\n')
+    assert refused == 0
+    h, c = files["od.h"], files["od.c"]
+    assert "#define OD_NV_COMM_OFFSET 0u" in h and "#define OD_NV_COMM_REGION 256u" in h
+    assert "#define OD_NV_APP_OFFSET 256u" in h and "#define OD_PERSIST_MIGRATION 1" in h
+    assert "od_persist_app_layout[18]" in c and "0x00, 0x20, 0x00, 0x05, 0x01, 0x00, /* 0x2000sub0 */" in c
+    assert ".persist_status" not in c
+
+
+def test_generated_without_migration_and_with_status(tmp_path: Path) -> None:
+    refused, files, _ = generated(tmp_path, "[persist]\nmigration = false\nstatus_object = 0x2FF0\n")
+    assert refused == 0
+    h, c = files["od.h"], files["od.c"]
+    assert "_layout[" not in c and ".layout = NULL" in c and "#define OD_PERSIST_MIGRATION 0" in h
+    assert ".persist_status = 0x2FF0" in c and "0x2FF0" in h
+
+
+@pytest.mark.parametrize("extra, words", [
+    ("[persist]\nstatus_object = 0x2001\n", "status_object 0x2001 is an object of the description"),
+    ('[[group]]\nname = "app"\nregion = 64\n', "persistence group app needs"),
+    ('[[group]]\nname = "nosuch"\nregion = 64\n', "[[group]] nosuch names no persistence group"),
+])
+def test_generation_refuses(tmp_path: Path, extra: str, words: str) -> None:
+    refused, files, found = generated(tmp_path, extra)
+    assert refused and files == {}
+    assert any(f.startswith("GEN001:") and words in f for f in found), found
