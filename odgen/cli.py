@@ -25,7 +25,7 @@ if TYPE_CHECKING:
 
 # Commands import what they use when they run: `odgen lint` of an EDS and `odgen --version`
 # start without jinja2, lxml or canopen (a pre-commit hook pays the start-up on every commit).
-LOOKUPS = ("switch", "bsearch")  # codegen.generate.LOOKUPS, checked equal by a test
+LOOKUPS = ("switch", "bsearch", "hash")  # codegen.generate.LOOKUPS, checked equal by a test
 REPORT_FORMATS = ("github", "json", "sarif", "text")  # report.RENDERERS, checked equal by a test
 INPUT_FORMATS = ("eds", "dcf", "xdd", "xdc")  # formats.INPUT_FORMATS, checked equal by a test
 DIFF_FORMATS = ("json", "sarif", "text")  # diff.report.RENDERERS, checked equal by a test

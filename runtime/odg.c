@@ -6,7 +6,9 @@
  * built byte by byte (little-endian), never by copying a native multi-byte integer, so the
  * code is endian-portable. All numeric types share one path: a value is widened to 64 bits,
  * packed to / unpacked from `size` wire bytes, sign-extended for signed types.
- * Build option: -DODG_NO_ABORT_TEXT (odg_abort_text returns "").
+ * Build options: -DODG_NO_ABORT_TEXT (odg_abort_text returns ""); the ODG_CFG_* switches of
+ * odg.h, set by a dictionary's generated NAME_config.h, leave out what it does not use (each
+ * `#if ODG_CFG_...` below), and ODG_LITTLE_ENDIAN copies wire bytes on little-endian targets.
  * Layers above (persistence, the node) attach as odg_client_t: the core calls them through
  * their function pointers and knows nothing else of them.
  */
@@ -23,10 +25,24 @@
      TBIT(ODG_T_INTEGER24) | TBIT(ODG_T_INTEGER40) | TBIT(ODG_T_INTEGER48) |               \
      TBIT(ODG_T_INTEGER56) | TBIT(ODG_T_INTEGER64))
 #define T_REAL (TBIT(ODG_T_REAL32) | TBIT(ODG_T_REAL64))
+/* Strings and domains of the types this build serves: 0 when it serves none, so that the
+ * compiler drops their code. */
 #define T_STREAM                                                                           \
-    (TBIT(ODG_T_VISIBLE_STRING) | TBIT(ODG_T_OCTET_STRING) | TBIT(ODG_T_UNICODE_STRING) |  \
-     TBIT(ODG_T_DOMAIN))
+    ((ODG_CFG_STRINGS ? TBIT(ODG_T_VISIBLE_STRING) | TBIT(ODG_T_OCTET_STRING) : 0u) |       \
+     (ODG_CFG_UNICODE ? TBIT(ODG_T_UNICODE_STRING) : 0u) | (ODG_CFG_DOMAINS ? TBIT(ODG_T_DOMAIN) : 0u))
 #define IS_STREAM(s) ((TBIT((s)->type) & T_STREAM) != 0u)
+#define IS_UNICODE(s) (ODG_CFG_UNICODE && (s)->type == ODG_T_UNICODE_STRING)
+#define IS_DOMAIN(s) (ODG_CFG_DOMAINS && (s)->type == ODG_T_DOMAIN)
+#define IS_COMMAND(s) (ODG_CFG_STORE && ODG_S_CLASS((s)->storage) == ODG_S_STORE)
+
+/* Numbers on the way between wire and storage: 64 bits, or 32 when no type is wider. */
+#if ODG_CFG_INT64
+typedef uint64_t num_t;
+#else
+typedef uint32_t num_t;
+#endif
+#define NUM_BITS (8u * (uint32_t)sizeof(num_t))
+#define SIGN ((num_t)1u << (NUM_BITS - 1u))
 
 /* 0x1010 / 0x1011 command words ("save" / "load" read as a little-endian UNSIGNED32). */
 #define CMD_SAVE 0x65766173u
@@ -114,9 +130,12 @@ void odg_store_(void *p, uint32_t size, uint64_t v)
 uint8_t *odg_value_(const odg_dict_t *d, const odg_sub_t *s)
 {
     uint32_t c = ODG_S_CLASS(s->storage);
-    const void *b = c == ODG_S_RAM ? d->ram
-                    : c == ODG_S_ROM ? d->rom
-                                     : d->groups[ODG_S_GROUP(s->storage)].mirror;
+    const void *b = c == ODG_S_RAM ? d->ram : d->rom;
+#if ODG_CFG_GROUPS
+    if (c == ODG_S_PERSIST) {
+        b = d->groups[ODG_S_GROUP(s->storage)].mirror;
+    }
+#endif
     return (uint8_t *)odg_mut_(b) + s->offset;
 }
 
@@ -125,46 +144,62 @@ static void pack(const odg_ref_t *r, uint8_t *b)
 {
     const odg_sub_t *s = r->sub;
     /* a 0x1010/0x1011 command reads 1: "saves / restores on command" */
-    uint64_t v = 1u;
+    num_t v = 1u;
     unsigned i;
-    if (ODG_S_CLASS(s->storage) != ODG_S_STORE) {
-        v = odg_load_(odg_value_(r->dict, s), s->size);
+    if (!IS_COMMAND(s)) {
+#if ODG_LITTLE_ENDIAN
+        /* the wire bytes are the first bytes of the C type that holds the value */
+        memcpy(b, odg_value_(r->dict, s), s->size);
+        return;
+#else
+        v = (num_t)odg_load_(odg_value_(r->dict, s), s->size);
+#endif
     }
-    for (i = 0; i < 8u; i++, v >>= 8) {
+    for (i = 0; i < sizeof v; i++, v >>= 8) {
         b[i] = (uint8_t)v;
     }
 }
 
-/* The value of `size` wire bytes, sign-extended to 64 bits for signed types. */
-static uint64_t unpack(const odg_sub_t *s, const uint8_t *b)
+/* The value of `size` wire bytes, sign-extended for signed types. */
+static num_t unpack(const odg_sub_t *s, const uint8_t *b)
 {
-    uint32_t i = s->size;
-    uint64_t v = (TBIT(s->type) & T_SIGNED) && (b[i - 1u] & 0x80u) ? ~(uint64_t)0 : 0u;
+    uint32_t n = s->size;
+    num_t v = 0, m;
+#if ODG_LITTLE_ENDIAN
+    memcpy(&v, b, n); /* n <= sizeof v: odg_verify and the dictionary's configuration check */
+#else
+    uint32_t i = n;
     while (i-- > 0u) {
         v = v << 8 | b[i];
+    }
+#endif
+    if (TBIT(s->type) & T_SIGNED) {
+        m = (num_t)1u << (8u * n - 1u);
+        v = (v ^ m) - m;
     }
     return v;
 }
 
-#define SIGN64 ((uint64_t)1u << 63)
-
 /* An unsigned key that orders values of the sub-entry's type: signed integers with the sign
- * bit flipped; IEEE 754 bits (REAL32 moved to the top 32 bits) as sign and magnitude turned
- * into an order, -0 as +0. */
-static uint64_t key(const odg_sub_t *s, uint64_t v)
+ * bit flipped; IEEE 754 bits (REAL32 moved to the top 32 bits of a 64-bit num_t) as sign and
+ * magnitude turned into an order, -0 as +0. */
+static num_t key(const odg_sub_t *s, num_t v)
 {
-    if (!(TBIT(s->type) & T_REAL)) {
-        return (TBIT(s->type) & T_SIGNED) ? v ^ SIGN64 : v;
+#if ODG_CFG_REAL_LIMITS
+    if (TBIT(s->type) & T_REAL) {
+        if (v == SIGN) {
+            v = 0;
+        }
+        return (v & SIGN) ? ~v : v | SIGN;
     }
-    if (v == SIGN64) {
-        v = 0;
-    }
-    return (v & SIGN64) ? ~v : v | SIGN64;
+#endif
+    return (TBIT(s->type) & T_SIGNED) ? v ^ SIGN : v;
 }
 
-/* A limit (double bits) as a key; for REAL32 first rounded to the nearest float. */
-static uint64_t limit_key(const odg_sub_t *s, uint64_t bits)
+/* A limit (its 64-bit pattern) as a key; for REAL32 first rounded to the nearest float. */
+static num_t limit_key(const odg_sub_t *s, uint64_t bits)
 {
+#if ODG_CFG_REAL_LIMITS
     if (s->type == ODG_T_REAL32) {
         double d;
         float f;
@@ -172,9 +207,10 @@ static uint64_t limit_key(const odg_sub_t *s, uint64_t bits)
         memcpy(&d, &bits, sizeof d);
         f = (float)d; /* odg_verify: REAL32 limits are within the float range */
         memcpy(&w, &f, sizeof w);
-        bits = (uint64_t)w << 32;
+        bits = (uint64_t)w << (NUM_BITS - 32u);
     }
-    return key(s, bits);
+#endif
+    return key(s, (num_t)bits);
 }
 
 /* ---- strings and domains ------------------------------------------------------------- */
@@ -187,26 +223,26 @@ static const odg_domain_t *dom_of(const odg_ref_t *r)
 
 static uint32_t capacity(const odg_ref_t *r)
 {
-    return r->sub->type == ODG_T_DOMAIN ? dom_of(r)->capacity : r->sub->size;
+    return IS_DOMAIN(r->sub) ? dom_of(r)->capacity : r->sub->size;
 }
 
 /* The bytes of a string (the uint16_t units of a UNICODE_STRING) or of a domain's buffer. */
 static uint8_t *bytes_of(const odg_ref_t *r)
 {
-    return r->sub->type == ODG_T_DOMAIN ? dom_of(r)->data : odg_value_(r->dict, r->sub);
+    return IS_DOMAIN(r->sub) ? dom_of(r)->data : odg_value_(r->dict, r->sub);
 }
 
 uint32_t odg_length(const odg_ref_t *ref)
 {
     const odg_sub_t *s = ref->sub;
-    uint32_t n = 0, w = s->type == ODG_T_UNICODE_STRING ? 2u : 1u;
+    uint32_t n = 0, w = IS_UNICODE(s) ? 2u : 1u;
     const uint8_t *p;
-    if (s->type == ODG_T_DOMAIN) {
+    if (IS_DOMAIN(s)) {
         const odg_domain_t *dom = dom_of(ref);
         n = *dom->length;
         return n < dom->capacity ? n : dom->capacity;
     }
-    if (s->type != ODG_T_VISIBLE_STRING && w == 1u) {
+    if (!(ODG_CFG_STRINGS && s->type == ODG_T_VISIBLE_STRING) && w == 1u) {
         return s->size; /* numbers, OCTET_STRING, 0x1010/0x1011 commands */
     }
     /* up to the terminating char 0 or uint16_t 0 (both of its bytes 0, in either byte order) */
@@ -243,13 +279,22 @@ static int32_t bsearch16(const void *base, uint32_t layout, uint32_t n, uint16_t
     return -1;
 }
 
+#if ODG_CFG_HOOKS
 static int32_t hook_slot(const odg_dict_t *d, uint16_t sub_pos)
 {
     return bsearch16(d->hook_map, KEYED(odg_hook_map_t, sub_pos), d->n_hooks, sub_pos);
 }
+#endif
 
 static odg_abort_t hook(const odg_ref_t *r, unsigned kind, const void *data, uint32_t len)
 {
+#if !ODG_CFG_HOOKS
+    (void)r;
+    (void)kind;
+    (void)data;
+    (void)len;
+    return ODG_OK;
+#else
     const odg_dict_t *d = r->dict;
     const odg_hook_slot_t *slot;
     int32_t i;
@@ -261,18 +306,24 @@ static odg_abort_t hook(const odg_ref_t *r, unsigned kind, const void *data, uin
         return ODG_OK;
     }
     return slot->fn(r, (odg_hook_kind_t)kind, data, len, slot->ctx);
+#endif
 }
 
 odg_abort_t odg_hook_register(const odg_dict_t *dict, uint16_t index, uint8_t sub, odg_hook_fn fn,
                               void *ctx)
 {
     odg_ref_t r;
-    int32_t i;
+    int32_t i = -1;
     odg_abort_t ac = odg_find(dict, index, sub, &r);
     if (ac != ODG_OK) {
         return ac;
     }
-    if (!(r.sub->attr & ODG_A_HOOK) || (i = hook_slot(dict, r.sub_pos)) < 0) {
+#if ODG_CFG_HOOKS
+    if (r.sub->attr & ODG_A_HOOK) {
+        i = hook_slot(dict, r.sub_pos);
+    }
+#endif
+    if (i < 0) {
         return ODG_ABORT_UNSUPPORTED;
     }
     dict->hook_slots[i].fn = NULL;
@@ -344,7 +395,7 @@ odg_abort_t odg_read(const odg_ref_t *ref, uint32_t offset, void *buf, uint32_t 
     }
     for (i = 0; i < len; i++) {
         uint32_t k = offset + i;
-        out[i] = s->type == ODG_T_UNICODE_STRING
+        out[i] = IS_UNICODE(s)
                      ? (uint8_t)(((const uint16_t *)(const void *)src)[k >> 1] >> ((k & 1u) * 8u))
                      : src[k];
     }
@@ -368,7 +419,7 @@ static odg_abort_t wcheck(const odg_ref_t *r, uint32_t off, uint32_t len, uint32
     if (total < c && (s->type == ODG_T_OCTET_STRING || !IS_STREAM(s))) {
         return ODG_ABORT_TOO_SHORT;
     }
-    if (s->type == ODG_T_UNICODE_STRING && (total & 1u)) {
+    if (IS_UNICODE(s) && (total & 1u)) {
         return ODG_ABORT_TYPE_LENGTH;
     }
     return ODG_OK;
@@ -380,8 +431,16 @@ static int32_t limit_of(const odg_dict_t *d, uint16_t pos)
     return bsearch16(d->limits, KEYED(odg_limit_t, sub_pos), d->n_limits, pos);
 }
 
+/* Infinity's bits as num_t (REAL32 in the top 32 bits); anything above is NaN. */
+#define INF32 ((num_t)0x7F800000u << (NUM_BITS - 32u))
+#if ODG_CFG_INT64
+#define INF64 ((num_t)0x7FF0000000000000u)
+#else
+#define INF64 INF32 /* no REAL64 */
+#endif
+
 /* Range of a numeric value (sign-extended; REAL as its bits). */
-static odg_abort_t check(const odg_ref_t *r, uint64_t v)
+static odg_abort_t check(const odg_ref_t *r, num_t v)
 {
     const odg_sub_t *s = r->sub;
     const odg_limit_t *l;
@@ -389,17 +448,19 @@ static odg_abort_t check(const odg_ref_t *r, uint64_t v)
     if (s->type == ODG_T_BOOLEAN && v > 1u) {
         return ODG_ABORT_VALUE_RANGE;
     }
-    if (!(s->attr & ODG_A_LIMIT) || (i = limit_of(r->dict, r->sub_pos)) < 0) {
+    if (!(ODG_CFG_LIMITS || ODG_CFG_REAL_LIMITS) || !(s->attr & ODG_A_LIMIT) ||
+        (i = limit_of(r->dict, r->sub_pos)) < 0) {
         return ODG_OK; /* odg_verify: every ODG_A_LIMIT entry has its limits */
     }
     l = &r->dict->limits[i];
+#if ODG_CFG_REAL_LIMITS
     if (s->type == ODG_T_REAL32) {
-        v <<= 32;
+        v <<= NUM_BITS - 32u;
     }
-    if ((TBIT(s->type) & T_REAL) &&
-        (v & ~SIGN64) > (s->type == ODG_T_REAL32 ? 0x7F80000000000000u : 0x7FF0000000000000u)) {
+    if ((TBIT(s->type) & T_REAL) && (v & ~SIGN) > (s->type == ODG_T_REAL32 ? INF32 : INF64)) {
         return ODG_ABORT_VALUE_RANGE; /* NaN */
     }
+#endif
     v = key(s, v);
     if (v > limit_key(s, l->high)) {
         return ODG_ABORT_VALUE_HIGH;
@@ -458,7 +519,7 @@ static void put(const odg_ref_t *r, uint32_t off, const uint8_t *b, uint32_t len
     uint8_t *dst = bytes_of(r);
     uint32_t i;
     for (i = 0; i < len; i++, off++) {
-        if (r->sub->type == ODG_T_UNICODE_STRING) {
+        if (IS_UNICODE(r->sub)) {
             uint16_t *u = (uint16_t *)(void *)dst + (off >> 1);
             unsigned sh = (off & 1u) * 8u;
             *u = (uint16_t)((*u & ~(0xFFu << sh)) | ((unsigned)b[i] << sh));
@@ -472,11 +533,11 @@ static void put(const odg_ref_t *r, uint32_t off, const uint8_t *b, uint32_t len
 static odg_abort_t finish(const odg_ref_t *r, uint32_t total)
 {
     const odg_sub_t *s = r->sub;
-    if (s->type == ODG_T_DOMAIN) {
+    if (IS_DOMAIN(s)) {
         *dom_of(r)->length = total;
     } else if (s->type != ODG_T_OCTET_STRING) {
         /* clear the rest: char[size + 1] or uint16_t[size / 2 + 1] */
-        uint32_t w = s->type == ODG_T_UNICODE_STRING ? 2u : 1u;
+        uint32_t w = IS_UNICODE(s) ? 2u : 1u;
         memset(odg_value_(r->dict, s) + total, 0, s->size + w - total);
     }
     odg_changed(r->dict, r);
@@ -487,7 +548,7 @@ odg_abort_t odg_write(const odg_ref_t *ref, const void *buf, uint32_t len)
 {
     const odg_sub_t *s = ref->sub;
     const uint8_t *b = (const uint8_t *)buf;
-    uint64_t v;
+    num_t v;
     odg_abort_t ac = wcheck(ref, 0, len, len);
     if (ac != ODG_OK) {
         return ac;
@@ -500,7 +561,7 @@ odg_abort_t odg_write(const odg_ref_t *ref, const void *buf, uint32_t len)
         return finish(ref, len);
     }
     v = unpack(s, b);
-    if (ODG_S_CLASS(s->storage) == ODG_S_STORE) {
+    if (IS_COMMAND(s)) {
         ac = (v == ((s->storage & ODG_S_RESTORE_FLAG) ? CMD_LOAD : CMD_SAVE) && storage(ref->dict))
                  ? ODG_OK
                  : ODG_ABORT_DATA_STORE;
@@ -510,7 +571,7 @@ odg_abort_t odg_write(const odg_ref_t *ref, const void *buf, uint32_t len)
     if (ac != ODG_OK || (ac = hook(ref, ODG_HOOK_PRE_WRITE, buf, len)) != ODG_OK) {
         return ac;
     }
-    if (ODG_S_CLASS(s->storage) == ODG_S_STORE) {
+    if (IS_COMMAND(s)) {
         odg_client_t *c = storage(ref->dict);
         if (c == NULL) {
             return ODG_ABORT_DATA_STORE; /* the PRE_WRITE hook detached it */
@@ -697,7 +758,7 @@ static int limits_ordered(const odg_sub_t *s, const odg_limit_t *l)
 }
 
 /* The sign-extended value of a native numeric value at `p`. */
-static uint64_t native_value(const odg_sub_t *s, const void *p)
+static num_t native_value(const odg_sub_t *s, const void *p)
 {
     uint8_t b[8];
     uint64_t v = odg_load_(p, s->size);
@@ -706,6 +767,22 @@ static uint64_t native_value(const odg_sub_t *s, const void *p)
         b[i] = (uint8_t)v;
     }
     return unpack(s, b);
+}
+
+/* Whether this build of the runtime serves the sub-entry's type, storage, hooks and limits
+ * (the ODG_CFG_* switches of odg.h). */
+static int configured(const odg_sub_t *s)
+{
+    uint32_t m = TBIT(s->type), cls = ODG_S_CLASS(s->storage);
+    if ((!ODG_CFG_INT64 && wire_size[s->type] > 4u) ||
+        (!ODG_CFG_STRINGS && (s->type == ODG_T_VISIBLE_STRING || s->type == ODG_T_OCTET_STRING)) ||
+        (!ODG_CFG_UNICODE && s->type == ODG_T_UNICODE_STRING) ||
+        (!ODG_CFG_DOMAINS && s->type == ODG_T_DOMAIN) ||
+        (!ODG_CFG_GROUPS && cls == ODG_S_PERSIST) || (!ODG_CFG_STORE && cls == ODG_S_STORE) ||
+        (!ODG_CFG_HOOKS && (s->attr & ODG_A_HOOK))) {
+        return 0;
+    }
+    return !(s->attr & ODG_A_LIMIT) || ((m & T_REAL) ? ODG_CFG_REAL_LIMITS : ODG_CFG_LIMITS);
 }
 
 static int sub_ok(const odg_ref_t *r)
@@ -717,7 +794,8 @@ static int sub_ok(const odg_ref_t *r)
     int32_t li;
     const void *base = cls == ODG_S_ROM ? d->rom : d->ram;
     const uint8_t *value;
-    if (s->type >= sizeof wire_size || wire_size[s->type] == 0xFFu || (s->attr & 0x80u)) {
+    if (s->type >= sizeof wire_size || wire_size[s->type] == 0xFFu || (s->attr & 0x80u) ||
+        !configured(s)) {
         return 0;
     }
     if (cls == ODG_S_STORE) {

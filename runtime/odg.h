@@ -26,6 +26,56 @@ extern "C" {
 /* Generated code checks this and stops with #error on a mismatch. */
 #define ODG_FORMAT_VERSION 2
 
+/* ---- build configuration -------------------------------------------------------------
+ * odgen writes NAME_config.h next to each dictionary, setting each ODG_CFG_* below to what
+ * that dictionary uses. Build the runtime and the dictionary with
+ * -DODG_CONFIG='"NAME_config.h"' to leave out the rest (the dictionary's C stops with #error
+ * when built against a runtime lacking a feature it needs, and odg_verify reports such a
+ * dictionary). Without ODG_CONFIG, or for a macro it leaves undefined, everything is in. */
+#ifdef ODG_CONFIG
+#include ODG_CONFIG
+#endif
+#ifndef ODG_CFG_INT64 /* types wider than 32 bits: INTEGER40..64, UNSIGNED40..64, REAL64, TIME_* */
+#define ODG_CFG_INT64 1
+#endif
+#ifndef ODG_CFG_STRINGS /* VISIBLE_STRING and OCTET_STRING (with segmented writes) */
+#define ODG_CFG_STRINGS 1
+#endif
+#ifndef ODG_CFG_UNICODE /* UNICODE_STRING */
+#define ODG_CFG_UNICODE 1
+#endif
+#ifndef ODG_CFG_DOMAINS /* DOMAIN */
+#define ODG_CFG_DOMAINS 1
+#endif
+#ifndef ODG_CFG_HOOKS /* PRE_READ / PRE_WRITE / POST_WRITE hooks */
+#define ODG_CFG_HOOKS 1
+#endif
+#ifndef ODG_CFG_LIMITS /* LowLimit / HighLimit on integers */
+#define ODG_CFG_LIMITS 1
+#endif
+#ifndef ODG_CFG_REAL_LIMITS /* LowLimit / HighLimit on REAL32 / REAL64 */
+#define ODG_CFG_REAL_LIMITS 1
+#endif
+#ifndef ODG_CFG_GROUPS /* persistence groups (ODG_S_PERSIST values) */
+#define ODG_CFG_GROUPS 1
+#endif
+#ifndef ODG_CFG_STORE /* the 0x1010 / 0x1011 store and restore commands (ODG_S_STORE) */
+#define ODG_CFG_STORE 1
+#endif
+/* Little-endian fast path: on a little-endian target a number's wire bytes are the first bytes
+ * of its C type, copied as they are; elsewhere they are built with shifts. Detected from the
+ * compiler; -DODG_LITTLE_ENDIAN=0 forces the portable path. */
+#ifndef ODG_LITTLE_ENDIAN
+#if defined(__BYTE_ORDER__) && defined(__ORDER_LITTLE_ENDIAN__)
+#if __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+#define ODG_LITTLE_ENDIAN 1
+#endif
+#endif
+#endif
+#ifndef ODG_LITTLE_ENDIAN
+#define ODG_LITTLE_ENDIAN 0
+#endif
+
 /* ---- result codes: CiA 301 SDO abort codes, from one table ------------------ */
 
 #define ODG_ABORT_CODES(X)                                                               \

@@ -110,7 +110,7 @@ def test_output_is_deterministic_and_hash_tracks_options(tmp_path: Path) -> None
     assert main(["generate", str(EXAMPLE), "-o", str(two)]) == 0
     assert main(["generate", str(EXAMPLE), "-o", str(three), "--options", str(EXAMPLE_OPTIONS)]) == 0
     files = sorted(p.name for p in one.iterdir())
-    assert files == ["io_node.c", "io_node.h"]
+    assert files == ["io_node.c", "io_node.h", "io_node_config.h"]
     for name in files:
         assert (one / name).read_bytes() == (two / name).read_bytes()
     assert (one / "io_node.h").read_text() != (three / "io_node.h").read_text()

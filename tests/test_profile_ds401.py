@@ -166,7 +166,7 @@ def test_cli_writes_eds_and_c(tmp_path: Path) -> None:
     args = ["profile", "ds401", "--di", "16", "--do", "16", "--ai", "4", "--ao", "4", "--vendor-id", "0x1234",
             "--name", "Test I/O", "-o", str(out), "--generate", str(gen)]
     assert main(args) == 0
-    assert sorted(p.name for p in gen.iterdir()) == ["ds401_app.h", "io.c", "io.h"]
+    assert sorted(p.name for p in gen.iterdir()) == ["ds401_app.h", "io.c", "io.h", "io_config.h"]
     assert out.read_text(encoding="utf-8") == write(Ds401(16, 16, 4, 4, name="Test I/O", vendor_id=0x1234), out)
     assert main(["lint", "--strict", str(out)]) == 0
 
@@ -195,7 +195,7 @@ def io_16_16_4_4(tmp_path_factory: pytest.TempPathFactory) -> Path:
     spec = GRID["16-16-4-4"]
     write(spec, gen / "io.eds")
     result = generate_c(spec, gen / "io.eds")
-    assert sorted(result.files) == ["ds401_app.h", "io.c", "io.h"]
+    assert sorted(result.files) == ["ds401_app.h", "io.c", "io.h", "io_config.h"]
     for name, text in result.files.items():
         (gen / name).write_text(text, encoding="utf-8")
     return gen

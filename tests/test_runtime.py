@@ -66,8 +66,22 @@ def test_without_abort_texts(tmp_path: Path) -> None:
     run(exe, tmp_path)
 
 
+@pytest.mark.parametrize("program", list(PROGRAMS))
+def test_portable_byte_order_path(program: str, tmp_path: Path) -> None:
+    """The path a big-endian target takes (wire bytes built with shifts), forced on this host."""
+    exe = tmp_path / program
+    build("gcc", ("-O2", "-DODG_LITTLE_ENDIAN=0"), PROGRAMS[program], (RUNTIME, CTESTS), exe)
+    run(exe, tmp_path)
+
+
+# Every ODG_CFG_* switch off (what a generated NAME_config.h may turn off), and the portable path.
+ALL_OFF = tuple(f"-DODG_CFG_{f}=0" for f in ("INT64", "STRINGS", "UNICODE", "DOMAINS", "HOOKS", "LIMITS",
+                                              "REAL_LIMITS", "GROUPS", "STORE"))
+
+
 @pytest.mark.parametrize("cc", ["gcc", "clang"])
-@pytest.mark.parametrize("defines", [(), ("-DODG_NO_ABORT_TEXT",)], ids=["default", "no-text"])
+@pytest.mark.parametrize("defines", [(), ("-DODG_NO_ABORT_TEXT",), ALL_OFF, ("-DODG_LITTLE_ENDIAN=0",)],
+                         ids=["default", "no-text", "config-all-off", "portable-byte-order"])
 def test_runtime_sources_warning_free(cc: str, defines: tuple[str, ...], tmp_path: Path) -> None:
     """Each runtime source compiles alone, also -Wconversion clean, with every build option."""
     for source in ("odg.c", "odg_persist.c", "odg_nv_file.c"):

@@ -135,7 +135,7 @@ def test_interrupted_write_leaves_no_temp_files(tmp_path: Path, monkeypatch: pyt
     monkeypatch.setattr(os, "replace", interrupted)
     assert main(["generate", str(EXAMPLE), "-o", str(out)]) == 130
     monkeypatch.setattr(os, "replace", real_replace)
-    assert sorted(p.name for p in out.iterdir()) == ["io_node.c", "io_node.h"], "temp files removed"
+    assert sorted(p.name for p in out.iterdir()) == ["io_node.c", "io_node.h", "io_node_config.h"], "temp files removed"
     assert main(["generate", str(EXAMPLE), "-o", str(out)]) == 0  # the next run repairs the pair
     assert main(["generate", str(EXAMPLE), "-o", str(out), "--check"]) == 0
 

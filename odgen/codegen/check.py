@@ -26,7 +26,8 @@ def _compile(cc: str, workdir: Path, name: str, extra: tuple[str, ...]) -> subpr
     sources = [str(workdir / f"{name}.c"), str(workdir / f"{name}_selftest.c")]
     sources += [str(p) for p in core_sources()]
     includes = [f"-I{d}" for d in [*include_dirs(), workdir]]
-    cmd = [cc, *CFLAGS, "-O1", *extra, *includes, *sources, "-lm", "-o", str(workdir / "selftest")]
+    config = f'-DODG_CONFIG="{name}_config.h"'  # the runtime built to what the dictionary uses
+    cmd = [cc, *CFLAGS, "-O1", config, *extra, *includes, *sources, "-lm", "-o", str(workdir / "selftest")]
     return subprocess.run(cmd, capture_output=True, text=True, check=False)
 
 

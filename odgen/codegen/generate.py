@@ -21,9 +21,11 @@ from .names import comment, identifier, is_identifier, name_clash
 from .options import Options, PersistOptions, load_options, parse_options
 from .persistview import add_status_object, persist_view
 from .placement import Placement, place
+from .lookup import perfect_hash
+from .runtimecfg import runtime_config
 from .viewmodel import DictView, build
 
-LOOKUPS = ("switch", "bsearch")
+LOOKUPS = ("switch", "bsearch", "hash")
 
 
 @dataclass
@@ -139,9 +141,13 @@ def _generate(request: Request) -> Result:
         return result
     env = environment()
     result.view = view
+    view.config = runtime_config(view)
+    if request.lookup == "hash":
+        view.hash = perfect_hash([e.index for e in view.entries])
     findings = findings_comment(result.diags, request)
     result.files = {f"{name}.h": env.get_template("dict.h.j2").render(v=view, findings=findings),
-                    f"{name}.c": env.get_template("dict.c.j2").render(v=view)}
+                    f"{name}.c": env.get_template("dict.c.j2").render(v=view),
+                    f"{name}_config.h": env.get_template("dict_config.h.j2").render(v=view)}
     return result
 
 

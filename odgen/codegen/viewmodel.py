@@ -155,6 +155,8 @@ class DictView:
     macros: list[NameMacro] = field(default_factory=list)
     accessors: list[Accessor] = field(default_factory=list)
     persist: Any = None  # persistview.PersistView: NV regions, layouts, status object
+    config: list = field(default_factory=list)  # runtimecfg.Switch: the runtime's ODG_CFG_* switches
+    hash: object = None  # lookup.PerfectHash for --lookup hash
 
     def _table(self, suffix: str, present: bool) -> str:
         return f"{self.name}_{suffix}" if present else "NULL"
@@ -193,7 +195,7 @@ class DictView:
 
     @property
     def find_ref(self) -> str:
-        return self._table("find", self.lookup == "switch")
+        return self._table("find", self.lookup in ("switch", "hash"))
 
 
 # ---- values ----------------------------------------------------------------------------

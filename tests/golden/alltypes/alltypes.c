@@ -5,6 +5,35 @@
 #include <math.h>
 #include "alltypes.h"
 
+/* The runtime must serve what this dictionary uses (alltypes_config.h). */
+#if !ODG_CFG_INT64
+#error "alltypes uses types wider than 32 bits: build the runtime with ODG_CFG_INT64 1 (alltypes_config.h)"
+#endif
+#if !ODG_CFG_STRINGS
+#error "alltypes uses VISIBLE_STRING / OCTET_STRING: build the runtime with ODG_CFG_STRINGS 1 (alltypes_config.h)"
+#endif
+#if !ODG_CFG_UNICODE
+#error "alltypes uses UNICODE_STRING: build the runtime with ODG_CFG_UNICODE 1 (alltypes_config.h)"
+#endif
+#if !ODG_CFG_DOMAINS
+#error "alltypes uses DOMAIN: build the runtime with ODG_CFG_DOMAINS 1 (alltypes_config.h)"
+#endif
+#if !ODG_CFG_HOOKS
+#error "alltypes uses hooks: build the runtime with ODG_CFG_HOOKS 1 (alltypes_config.h)"
+#endif
+#if !ODG_CFG_LIMITS
+#error "alltypes uses limits on integers: build the runtime with ODG_CFG_LIMITS 1 (alltypes_config.h)"
+#endif
+#if !ODG_CFG_REAL_LIMITS
+#error "alltypes uses limits on REAL32 / REAL64: build the runtime with ODG_CFG_REAL_LIMITS 1 (alltypes_config.h)"
+#endif
+#if !ODG_CFG_GROUPS
+#error "alltypes uses persistence groups: build the runtime with ODG_CFG_GROUPS 1 (alltypes_config.h)"
+#endif
+#if !ODG_CFG_STORE
+#error "alltypes uses 0x1010 / 0x1011 commands: build the runtime with ODG_CFG_STORE 1 (alltypes_config.h)"
+#endif
+
 /* REAL32/REAL64 values are IEEE 754 single and double. */
 typedef char alltypes_assert_real_sizes[(sizeof(float) == 4 && sizeof(double) == 8) ? 1 : -1];
 

@@ -5,6 +5,20 @@
 #include <math.h>
 #include "io_node_persist.h"
 
+/* The runtime must serve what this dictionary uses (io_node_persist_config.h). */
+#if !ODG_CFG_HOOKS
+#error "io_node_persist uses hooks: build the runtime with ODG_CFG_HOOKS 1 (io_node_persist_config.h)"
+#endif
+#if !ODG_CFG_LIMITS
+#error "io_node_persist uses limits on integers: build the runtime with ODG_CFG_LIMITS 1 (io_node_persist_config.h)"
+#endif
+#if !ODG_CFG_GROUPS
+#error "io_node_persist uses persistence groups: build the runtime with ODG_CFG_GROUPS 1 (io_node_persist_config.h)"
+#endif
+#if !ODG_CFG_STORE
+#error "io_node_persist uses 0x1010 / 0x1011 commands: build the runtime with ODG_CFG_STORE 1 (io_node_persist_config.h)"
+#endif
+
 /* REAL32/REAL64 values are IEEE 754 single and double. */
 typedef char io_node_persist_assert_real_sizes[(sizeof(float) == 4 && sizeof(double) == 8) ? 1 : -1];
 

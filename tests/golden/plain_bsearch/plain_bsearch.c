@@ -5,6 +5,8 @@
 #include <math.h>
 #include "plain_bsearch.h"
 
+/* The runtime must serve what this dictionary uses (plain_bsearch_config.h). */
+
 /* REAL32/REAL64 values are IEEE 754 single and double. */
 typedef char plain_bsearch_assert_real_sizes[(sizeof(float) == 4 && sizeof(double) == 8) ? 1 : -1];
 

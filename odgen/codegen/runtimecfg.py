@@ -1,0 +1,52 @@
+"""The runtime compiled to what a dictionary uses: the ODG_CFG_* switches of NAME_config.h.
+
+Each switch turns a feature of runtime/odg.c on when the dictionary has something that needs it;
+the rest is left out of the build (64-bit arithmetic on a 32-bit core, string and domain
+handling, hooks, limit checks, persistence groups, the 0x1010/0x1011 commands).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .viewmodel import DictView
+
+WIDE = {0x0C, 0x0D, 0x11, 0x12, 0x13, 0x14, 0x15, 0x18, 0x19, 0x1A, 0x1B}  # wider than 32 bits
+STRINGS = {0x09, 0x0A}
+UNICODE = 0x0B
+DOMAIN = 0x0F
+REALS = {0x08, 0x11}
+
+
+@dataclass
+class Switch:
+    macro: str
+    what: str
+    on: bool
+    why: str  # the first entry that needs it, or ""
+
+
+def _first(view: DictView, positions: list[int]) -> str:
+    """'0xIIIIsubS' of the first sub-entry position."""
+    if not positions:
+        return ""
+    pos = min(positions)
+    entry = next(e for e in view.entries if e.first <= pos < e.first + e.count)
+    return f"0x{entry.index:04X}sub{view.subs[pos].sub}"
+
+
+def runtime_config(view: DictView) -> list[Switch]:
+    subs = list(enumerate(view.subs))
+    limited = {lim.sub_pos for lim in view.limits}
+    needs = [
+        ("ODG_CFG_INT64", "types wider than 32 bits", [p for p, s in subs if s.type in WIDE]),
+        ("ODG_CFG_STRINGS", "VISIBLE_STRING / OCTET_STRING", [p for p, s in subs if s.type in STRINGS]),
+        ("ODG_CFG_UNICODE", "UNICODE_STRING", [p for p, s in subs if s.type == UNICODE]),
+        ("ODG_CFG_DOMAINS", "DOMAIN", [p for p, s in subs if s.type == DOMAIN]),
+        ("ODG_CFG_HOOKS", "hooks", [h.sub_pos for h in view.hooks]),
+        ("ODG_CFG_LIMITS", "limits on integers", [p for p in limited if view.subs[p].type not in REALS]),
+        ("ODG_CFG_REAL_LIMITS", "limits on REAL32 / REAL64", [p for p in limited if view.subs[p].type in REALS]),
+        ("ODG_CFG_GROUPS", "persistence groups", [p for p, s in subs if "ODG_S_PERSIST" in s.storage]),
+        ("ODG_CFG_STORE", "0x1010 / 0x1011 commands", [p for p, s in subs if "ODG_S_STORE" in s.storage]),
+    ]
+    return [Switch(macro, what, bool(where), _first(view, where)) for macro, what, where in needs]
