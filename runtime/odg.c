@@ -476,7 +476,7 @@ odg_abort_t odg_check_(const odg_dict_t *d, uint16_t pos, uint64_t v)
     r.entry = NULL;
     r.sub = &d->subs[pos];
     r.sub_pos = pos;
-    return check(&r, v);
+    return check(&r, (num_t)v); /* without 64-bit types (ODG_CFG_INT64=0) every value fits 32 bits */
 }
 
 /* ---- clients ------------------------------------------------------------------------------ */
