@@ -96,14 +96,8 @@ def is_pdo_mapping(index: int) -> bool:
     return _in(index, RPDO_MAPPING, PDO_COUNT) or _in(index, TPDO_MAPPING, PDO_COUNT)
 
 
-def is_pdo_parameter(index: int) -> bool:
-    """Any PDO communication or mapping record (0x1400-0x1BFF)."""
-    return RPDO_COMM <= index < TPDO_MAPPING + PDO_COUNT
-
-
 # -- COB-IDs: the predefined connection set and the flag bits ----------------------------
 EMCY_BASE = 0x80
-SYNC_DEFAULT = 0x80
 TPDO_BASE, RPDO_BASE, PDO_BASE_STEP = 0x180, 0x200, 0x100  # TPDO1/RPDO1, then +0x100 up to the fourth
 PREDEFINED_PDOS = 4
 SDO_RESPONSE, SDO_REQUEST = 0x580, 0x600
