@@ -160,18 +160,12 @@ static odg_boot_status_t no_image(const odg_nv_driver_t *nv, const odg_group_t *
     return b < 0 ? ODG_BOOT_NV_ERROR : (b ? ODG_BOOT_DEFAULTS : ODG_BOOT_DAMAGED);
 }
 
-/* Write the mirror of group `g` as the new newest image. */
-static odg_abort_t store(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
+/* Write the mirror of `gr` as the new newest image. */
+static odg_abort_t store_group(const odg_nv_driver_t *nv, const odg_group_t *gr)
 {
-    const odg_group_t *gr;
     uint8_t hdr[2][HDR], h[HDR];
     uint32_t addr, seq = 1;
-    int k;
-    if (nv == NULL || g >= d->n_groups) {
-        return ODG_ABORT_DATA_STORE;
-    }
-    gr = &d->groups[g];
-    k = newest(nv, gr, hdr);
+    int k = newest(nv, gr, hdr);
     if (k == -2) {
         return ODG_ABORT_HARDWARE;
     }
@@ -194,6 +188,33 @@ static odg_abort_t store(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t
         return ODG_ABORT_HARDWARE;
     }
     return ODG_OK;
+}
+
+/* Write the mirror of group `g` as the new newest image. */
+static odg_abort_t store(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
+{
+    if (nv == NULL || g >= d->n_groups) {
+        return ODG_ABORT_DATA_STORE;
+    }
+    return store_group(nv, &d->groups[g]);
+}
+
+odg_abort_t odg_persist_store_record(const odg_nv_driver_t *nv, const odg_group_t *rec)
+{
+    return nv != NULL ? store_group(nv, rec) : ODG_ABORT_DATA_STORE;
+}
+
+int odg_persist_load_record(const odg_nv_driver_t *nv, const odg_group_t *rec)
+{
+    uint8_t hdr[2][HDR], h[HDR];
+    int k = nv != NULL ? newest(nv, rec, hdr) : -2;
+    if (k < 0) {
+        return k == -1 ? 0 : -1;
+    }
+    if (get32(hdr[k] + 8) != rec->signature || get32(hdr[k] + 12) != rec->size) {
+        return 0;
+    }
+    return slot_read(nv, slot_addr(rec, k), rec->size, h, (uint8_t *)rec->mirror) == 1 ? 1 : -1;
 }
 
 /* Make the next boot of group `g` use the defaults: erase both slots. */
