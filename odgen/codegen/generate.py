@@ -19,6 +19,7 @@ from ..formats import load_path, read_bytes
 from ..lint import RuleFilter, lint_model
 from ..model import ObjectDictionary
 from ..rules import LintOptions
+from ..rules.common import header_field, header_int
 from .names import comment, identifier, is_identifier, name_clash
 from .options import Options, load_options, parse_options
 from .placement import Placement, place
@@ -49,6 +50,7 @@ class Result:
     placements: dict[tuple[int, int], Placement] | None = None
     view: DictView | None = None
     refused: list[Diagnostic] = field(default_factory=list)  # the findings that stopped generation
+    lss: bool = False  # build a node with the LSS slave: LSS_Supported=1 or the options' [node] lss
 
 
 def reported(diags: Diagnostics, request: Request) -> list[Diagnostic]:
@@ -113,6 +115,8 @@ def prepare(request: Request) -> Result:
     if request.options:
         user = load_options(request.options, diags)
         options.entries += user.entries
+        options.node_lss = options.node_lss or user.node_lss
+    result.lss = options.node_lss or header_int(header_field(od, "DeviceInfo", "LSS_Supported")) == 1
     if _refuse(result, request):
         return result
     result.placements = place(od, options, diags)

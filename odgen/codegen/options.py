@@ -7,6 +7,9 @@
     function = "app_outputs"                     # optional: generated prototype, registered at init
     capacity = 64                                # bytes, for strings and domains
 
+    [node]
+    lss = true      # build the node with the LSS slave even when the description has no LSS_Supported=1
+
 Entries apply in file order; for each key, the last entry that sets it wins.
 """
 
@@ -62,6 +65,7 @@ class Options:
     source: str = ""
     text: str = ""
     entries: list[OptionEntry] = field(default_factory=list)
+    node_lss: bool = False  # [node] lss
 
 
 def parse_pattern(text: str) -> Pattern | None:
@@ -99,9 +103,14 @@ def parse_options(text: str, source: str, diags: Diagnostics) -> Options:
     except tomllib.TOMLDecodeError as err:
         diags.add(GEN001, Loc(source, _error_line(err)), f"not valid TOML: {err}")
         return options
-    unknown = sorted(set(doc) - {"entry"})
+    unknown = sorted(set(doc) - {"entry", "node"})
     if unknown:
-        diags.add(GEN001, Loc(source, 1), f"unknown top-level key(s) {', '.join(unknown)}; only [[entry]] tables")
+        diags.add(GEN001, Loc(source, 1), f"unknown top-level key(s) {', '.join(unknown)}; only [[entry]] and [node]")
+    node = doc.get("node", {})
+    if not isinstance(node, dict) or set(node) - {"lss"} or not isinstance(node.get("lss", False), bool):
+        diags.add(GEN001, Loc(source, 1), "[node] takes only lss = true or false")
+    else:
+        options.node_lss = node.get("lss", False)
     lines = [n for n, line in enumerate(text.splitlines(), start=1) if line.strip().startswith("[[entry]]")]
     raw_entries = doc.get("entry", [])
     if not isinstance(raw_entries, list):
