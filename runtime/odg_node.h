@@ -158,6 +158,8 @@ typedef struct odg_node {
     uint32_t sync_cob;        /* 0x1005 */
     uint32_t emcy_cob;        /* 0x1014 */
     uint32_t time_cob;        /* 0x1012 (0 when absent) */
+    uint32_t sync_us;         /* us since the last SYNC (saturating), for the window 0x1007 */
+    uint32_t sync_dropped;    /* synchronous PDOs dropped by the SYNC window: read it, reset it */
 #if ODG_NODE_LSS
     odg_lss_t lss;            /* odg_lss.c */
 #endif

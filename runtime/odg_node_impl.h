@@ -37,6 +37,7 @@ enum {
 #define ODG_PDO_F_STARTED  0x04u /* TPDO: the SYNC start value was seen (or none is used) */
 #define ODG_PDO_F_RECEIVED 0x08u /* RPDO: data waits for the next SYNC */
 #define ODG_PDO_F_LEN_ERR  0x10u /* RPDO: the last frame was too short (EMCY 0x8210 sent) */
+#define ODG_PDO_F_DUE      0x20u /* TPDO: synchronous, not sent yet at the last SYNC (window) */
 
 /* odg_node.c */
 int odg_node_send_(odg_node_t *n, uint32_t cob, const uint8_t *data, uint8_t len);

@@ -48,6 +48,7 @@ PROGRAMS: dict[str, tuple[str, tuple[Path, ...]]] = {
     "test_node_robust": ("alltypes", ()),
     "test_node_lss": ("lss_node", ()),
     "test_node_time": ("lss_node", ()),
+    "test_node_window": ("lss_node", ()),
 }
 LSS = ("-DODG_NODE_LSS=1",)  # the node and the program are built with the LSS slave
 DEFINES: dict[str, tuple[str, ...]] = {"test_node_lss": LSS}
