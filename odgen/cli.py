@@ -162,7 +162,7 @@ def build_parser() -> argparse.ArgumentParser:
     node = commands.add_parser("node", help="build a CANopen node from a description and run it on SocketCAN")
     node.add_argument("input", type=Path, metavar="FILE")
     node.add_argument("--iface", default="vcan0")
-    node.add_argument("--node-id", type=_node_id, default=5)
+    node.add_argument("--node-id", type=_node_id, help="default 5; none waits for an LSS master when the node has LSS")
     node.add_argument("--nv", type=Path, help="file that keeps stored parameters (default: none)")
     node.add_argument("--options", type=_existing_file("options file"), metavar="OPTS")
     _input_format(node)
@@ -468,12 +468,13 @@ def cmd_node(args: argparse.Namespace) -> int:
 
     require_can_extra("node")
     require_socketcan(args.iface)
-    program, result = build_node(Request(args.input, name="od", options=args.options, node_id=args.node_id,
+    program, result = build_node(Request(args.input, name="od", options=args.options, node_id=args.node_id or 5,
                                          input_format=args.input_format))
     _print_findings(result.diags)
     import subprocess
 
-    cmd = [str(program), "--iface", args.iface, "--node-id", str(args.node_id)]
+    node_id = [] if args.node_id is None and result.lss else ["--node-id", str(args.node_id or 5)]
+    cmd = [str(program), "--iface", args.iface, *node_id]
     if args.nv is not None:
         cmd += ["--nv", str(args.nv)]
     return subprocess.call(cmd)

@@ -498,6 +498,14 @@ odg_abort_t odg_persist_store(const odg_dict_t *dict, uint8_t g);
 /* Make the next boot of group `g` use the defaults (invalidates both slots). */
 odg_abort_t odg_persist_restore(const odg_dict_t *dict, uint8_t g);
 
+/* A record of another layer (not a dictionary group: the LSS configuration, say) kept in two
+ * slots of the same power-safe format at rec->nv_addr; `mirror` holds its bytes, `defaults`
+ * is not used. Store: OK, HARDWARE (driver failed), DATA_STORE (no driver). Load into the
+ * mirror: 1 loaded, 0 none stored (or of another signature or size), -1 the driver failed or
+ * the newest image could not be read back. */
+odg_abort_t odg_persist_store_record(const odg_nv_driver_t *nv, const odg_group_t *rec);
+int odg_persist_load_record(const odg_nv_driver_t *nv, const odg_group_t *rec);
+
 /* CRC-32 (IEEE 802.3, reflected, init and final xor 0xFFFFFFFF). */
 uint32_t odg_crc32(uint32_t crc, const void *data, uint32_t len);
 

@@ -67,6 +67,7 @@ static void load_cobs(odg_node_t *n)
     n->sdo_tx = 0x580u + id;
     n->sync_cob = odg_node_get_or_(n, 0x1005, 0, 0x80u);
     n->emcy_cob = odg_node_get_or_(n, 0x1014, 0, 0x80u + id);
+    n->time_cob = odg_node_get_or_(n, 0x1012, 0, 0);
 }
 
 /* A value changed, whoever wrote it (SDO server, application, persistence layer): re-read
@@ -82,7 +83,7 @@ static void comm_changed(odg_client_t *self, const odg_ref_t *ref)
     index = ref->entry->index;
     if (index >= 0x1400u && index < 0x1C00u) {
         odg_pdo_load_(n, index >= 0x1800u, (uint16_t)(index & 0x1FFu));
-    } else if (index == 0x1005u || index == 0x1014u) {
+    } else if (index == 0x1005u || index == 0x1014u || index == 0x1012u) {
         load_cobs(n);
     }
 }
@@ -135,7 +136,7 @@ static odg_abort_t init_dict(odg_node_t *n, int keep_clients)
     if (keep_clients) {
         d->state->clients = clients;
     }
-    if (n->cfg.nv != NULL) {
+    if (n->cfg.nv != NULL && n->cfg.node_id != ODG_LSS_UNCONFIGURED) { /* no $NODEID values yet */
         ac = odg_persist_init(&n->persist, d, n->cfg.nv, n->cfg.boot);
     }
     for (g = 0; n->cfg.nv == NULL && n->cfg.boot != NULL && g < d->n_groups; g++) {
@@ -155,8 +156,14 @@ static odg_abort_t boot(odg_node_t *n, int what)
     odg_abort_t ac = ODG_OK;
     n->state = ODG_NMT_INITIALISING;
     odg_sdo_drop_(n);
+    if (odg_lss_activate_(n) && what == BOOT_COMM) {
+        what = BOOT_RESET; /* a node-id from LSS: the $NODEID values change */
+    }
     if (what != BOOT_COMM) {
         ac = init_dict(n, what == BOOT_RESET);
+    }
+    if (n->cfg.node_id == ODG_LSS_UNCONFIGURED) {
+        return ac; /* waits for an LSS master, silent */
     }
     n->error_register = (uint8_t)odg_node_get_or_(n, 0x1001, 0, 0);
     odg_node_reload(n);
@@ -188,6 +195,9 @@ static void nmt(odg_node_t *n, const odg_frame_t *f)
     if (f->len < 2u || (f->data[1] != 0u && f->data[1] != n->cfg.node_id)) {
         return;
     }
+    if (n->state == ODG_NMT_INITIALISING && cmd != ODG_NMT_RESET_NODE && cmd != ODG_NMT_RESET_COMM) {
+        return; /* waiting for LSS: only a reset */
+    }
     switch (cmd) {
     case ODG_NMT_START:
         enter(n, ODG_NMT_OPERATIONAL);
@@ -218,24 +228,35 @@ odg_abort_t odg_node_init(odg_node_t *node, const odg_node_config_t *cfg)
 {
     memset(node, 0, sizeof *node);
     node->cfg = *cfg;
-    if (cfg->dict == NULL || cfg->send == NULL || cfg->node_id < 1u || cfg->node_id > 127u) {
+    if (cfg->dict == NULL || cfg->send == NULL ||
+        ((cfg->node_id < 1u || cfg->node_id > 127u) && !(ODG_NODE_LSS && cfg->node_id == ODG_LSS_UNCONFIGURED))) {
         return ODG_ABORT_INCOMPATIBLE;
     }
+    odg_lss_init_(node); /* a node-id stored by an LSS master wins */
     return boot(node, BOOT_POWER_ON);
 }
 
 void odg_node_receive(odg_node_t *node, const odg_frame_t *frame)
 {
     uint32_t id = frame->id;
-    if ((frame->flags & (ODG_FRAME_RTR | ODG_FRAME_EFF)) || frame->len > 8u ||
-        node->state == ODG_NMT_INITIALISING) {
+    if ((frame->flags & (ODG_FRAME_RTR | ODG_FRAME_EFF)) || frame->len > 8u) {
         return;
     }
-    if (id == 0u) {
-        nmt(node, frame);
+    if (ODG_NODE_LSS && id == ODG_LSS_MASTER_COB) {
+        if (frame->len == 8u && odg_lss_receive_(node, frame->data)) {
+            (void)boot(node, BOOT_RESET); /* configured by LSS: boot with the new node-id */
+        }
+    } else if (id == 0u) {
+        nmt(node, frame); /* also while waiting for LSS (initialising): resets only */
+    } else if (node->state == ODG_NMT_INITIALISING) {
+        return;
     } else if (id == ODG_COB_ID(node->sdo_rx) && !(node->sdo_rx & ODG_COB_INVALID)) {
         if (node->state != ODG_NMT_STOPPED) {
             odg_sdo_receive_(node, frame);
+        }
+    } else if (id == ODG_COB_ID(node->time_cob) && (node->time_cob & ODG_TIME_CONSUME)) {
+        if (node->state != ODG_NMT_STOPPED) {
+            odg_time_receive_(node, frame);
         }
     } else if (node->state == ODG_NMT_OPERATIONAL) {
         if (id == ODG_COB_ID(node->sync_cob)) {

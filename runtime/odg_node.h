@@ -26,6 +26,7 @@
 #include <stdint.h>
 
 #include "odg.h"
+#include "odg_lss.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -100,6 +101,12 @@ typedef struct odg_node_config {
      * node, after the dictionary was re-initialised and the boot-up sent). */
     void (*on_nmt)(void *ctx, uint8_t command);
     void *app_ctx;
+    /* Optional: a TIME object received (0x1012 bit 31 set): ms after midnight, days since
+     * 1 January 1984 (CiA 301 TIME_OF_DAY). */
+    void (*on_time)(void *ctx, uint32_t ms, uint16_t days);
+    /* Optional, with ODG_NODE_LSS: bit timing configured or activated by an LSS master (no
+     * callback: the node answers "not supported"). */
+    odg_lss_bit_timing_fn on_bit_timing;
 } odg_node_config_t;
 
 /* One PDO as read from its communication and mapping entries (internal). */
@@ -150,6 +157,12 @@ typedef struct odg_node {
     uint32_t sdo_rx, sdo_tx;  /* COB-IDs from 0x1200 (bit 31: server disabled) */
     uint32_t sync_cob;        /* 0x1005 */
     uint32_t emcy_cob;        /* 0x1014 */
+    uint32_t time_cob;        /* 0x1012 (0 when absent) */
+    uint32_t sync_us;         /* us since the last SYNC (saturating), for the window 0x1007 */
+    uint32_t sync_dropped;    /* synchronous PDOs dropped by the SYNC window: read it, reset it */
+#if ODG_NODE_LSS
+    odg_lss_t lss;            /* odg_lss.c */
+#endif
     uint32_t hb_timer;        /* ms since the last heartbeat */
     uint8_t state;            /* odg_nmt_state_t */
     uint8_t error_register;   /* as last sent in an EMCY (and stored in 0x1001) */
@@ -188,6 +201,12 @@ odg_abort_t odg_node_emcy(odg_node_t *node, uint16_t code, uint8_t error_registe
  * With -DODG_NODE_TPDO_COS=0 such requests (and event timers) are the only events: a changed
  * mapped value alone sends nothing (NODE.md). */
 void odg_node_tpdo_request(odg_node_t *node, uint16_t n);
+
+/* Send a TIME object (ms after midnight, < 2^28; days since 1 January 1984) on the COB-ID of
+ * 0x1012 when its bit 30 (produce) is set. ODG_ABORT_DATA_STATE when that bit is clear or the
+ * node is not pre-operational or operational, VALUE_RANGE for ms >= 2^28, HARDWARE when
+ * `send` failed. */
+odg_abort_t odg_node_time_send(odg_node_t *node, uint32_t ms, uint16_t days);
 
 /* Re-read every communication entry (0x1005, 0x1014, 0x1200, PDOs) after the application
  * changed them behind the dictionary's back (through an odg_ptr pointer, say); writes by

@@ -8,6 +8,9 @@
 
 #define ODG_COB_INVALID 0x80000000u /* bit 31 of a COB-ID entry: not valid / not used */
 #define ODG_COB_ID(c) ((c) & 0x7FFu)
+#define ODG_TIME_CONSUME 0x80000000u /* 0x1012 bit 31 */
+#define ODG_TIME_PRODUCE 0x40000000u /* 0x1012 bit 30 */
+#define ODG_TIME_MS_MASK 0x0FFFFFFFu /* TIME_OF_DAY: 28 bits of ms */
 
 /* odg_sdo_t.state */
 enum {
@@ -34,6 +37,7 @@ enum {
 #define ODG_PDO_F_STARTED  0x04u /* TPDO: the SYNC start value was seen (or none is used) */
 #define ODG_PDO_F_RECEIVED 0x08u /* RPDO: data waits for the next SYNC */
 #define ODG_PDO_F_LEN_ERR  0x10u /* RPDO: the last frame was too short (EMCY 0x8210 sent) */
+#define ODG_PDO_F_DUE      0x20u /* TPDO: synchronous, not sent yet at the last SYNC (window) */
 
 /* odg_node.c */
 int odg_node_send_(odg_node_t *n, uint32_t cob, const uint8_t *data, uint8_t len);
@@ -43,6 +47,9 @@ uint32_t odg_node_get_or_(const odg_node_t *n, uint16_t index, uint8_t sub, uint
 /* Before the SDO server stores a whole value: the CiA 301 rules for PDO parameters. */
 odg_abort_t odg_node_check_(odg_node_t *n, uint16_t index, uint8_t sub, const uint8_t *data,
                             uint32_t len);
+
+/* odg_time.c */
+void odg_time_receive_(odg_node_t *n, const odg_frame_t *f);
 
 /* odg_sdo.c */
 void odg_sdo_receive_(odg_node_t *n, const odg_frame_t *f);

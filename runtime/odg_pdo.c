@@ -230,24 +230,54 @@ static odg_abort_t sample(odg_node_t *n, const odg_pdo_t *p, uint8_t *out, uint8
     return ODG_OK;
 }
 
-/* Sample and send; unless `force`, only when the data differ from the last frame sent. */
-static void transmit(odg_node_t *n, odg_pdo_t *p, int force)
+/* Sample and send; unless `force`, only when the data differ from the last frame sent.
+ * Non-zero when a frame was due but could not be sent. */
+static int transmit(odg_node_t *n, odg_pdo_t *p, int force)
 {
     uint8_t d[8], len;
     if (sample(n, p, d, &len) != ODG_OK) {
-        return;
+        return 1;
     }
     if (!force && (p->flags & ODG_PDO_F_SENT) && len == p->len && memcmp(d, p->data, len) == 0) {
-        return;
+        return 0;
     }
     if (odg_node_send_(n, p->cob, d, len) != 0) {
-        return; /* the event stays pending */
+        return 1; /* the event stays pending */
     }
     memcpy(p->data, d, sizeof d);
     p->len = len;
     p->flags = (uint8_t)((p->flags | ODG_PDO_F_SENT) & ~ODG_PDO_F_REQUEST);
     p->inhibit_left = p->inhibit;
     p->event_left = p->event;
+    return 0;
+}
+
+/* ---- SYNC window (0x1007, us; 0 or absent: none) --------------------------------------------- */
+
+static int in_window(const odg_node_t *n)
+{
+    uint32_t window = odg_node_get_or_(n, 0x1007, 0, 0);
+    return window == 0u || n->sync_us <= window;
+}
+
+/* Time since the SYNC goes on; a synchronous TPDO whose frame could not be sent at the SYNC is
+ * tried again while the window lasts, and dropped (counted in sync_dropped) when it is over. */
+static void window_tick(odg_node_t *n, uint32_t ms)
+{
+    uint16_t k;
+    n->sync_us = ms > (0xFFFFFFFFu - n->sync_us) / 1000u ? 0xFFFFFFFFu : n->sync_us + ms * 1000u;
+    for (k = 0; k < ODG_NODE_MAX_TPDO; k++) {
+        odg_pdo_t *p = &n->tpdo[k];
+        if (!(p->flags & ODG_PDO_F_DUE)) {
+            continue;
+        }
+        if (active(p) && p->type <= TYPE_SYNC_MAX && !in_window(n)) {
+            n->sync_dropped++;
+        } else if (active(p) && p->type <= TYPE_SYNC_MAX && transmit(n, p, 1)) {
+            continue; /* still due */
+        }
+        p->flags &= (uint8_t)~(ODG_PDO_F_DUE | ODG_PDO_F_REQUEST);
+    }
 }
 
 void odg_pdo_request_(odg_node_t *n, uint16_t k)
@@ -255,7 +285,7 @@ void odg_pdo_request_(odg_node_t *n, uint16_t k)
     odg_pdo_t *p = &n->tpdo[k];
     p->flags |= ODG_PDO_F_REQUEST;
     if (active(p) && p->type >= TYPE_EVENT && p->inhibit_left == 0u) {
-        transmit(n, p, 1);
+        (void)transmit(n, p, 1);
     }
 }
 
@@ -267,6 +297,7 @@ void odg_pdo_tick_(odg_node_t *n, uint32_t ms)
     uint32_t ticks = ms > 0x19999999u ? 0xFFFFFFFFu : ms * 10u; /* in 100 us */
     uint16_t k;
     int force;
+    window_tick(n, ms);
     for (k = 0; k < ODG_NODE_MAX_TPDO; k++) {
         odg_pdo_t *p = &n->tpdo[k];
         if (!active(p) || p->type < TYPE_EVENT) {
@@ -276,7 +307,7 @@ void odg_pdo_tick_(odg_node_t *n, uint32_t ms)
         p->event_left = (uint16_t)(p->event_left > ms ? p->event_left - ms : 0u);
         force = (p->flags & ODG_PDO_F_REQUEST) || (p->event != 0u && p->event_left == 0u);
         if (p->inhibit_left == 0u && (force || ODG_NODE_TPDO_COS)) {
-            transmit(n, p, force);
+            (void)transmit(n, p, force);
         }
     }
 }
@@ -348,7 +379,9 @@ void odg_pdo_receive_(odg_node_t *n, const odg_frame_t *f)
         if (f->len < p->len) {
             return;
         }
-        if (p->type <= TYPE_SYNC_MAX) {
+        if (p->type <= TYPE_SYNC_MAX && !in_window(n)) {
+            n->sync_dropped++; /* CiA 301: synchronous data outside the window are discarded */
+        } else if (p->type <= TYPE_SYNC_MAX) {
             memcpy(p->data, f->data, sizeof p->data); /* applied at the next SYNC */
             p->flags |= ODG_PDO_F_RECEIVED;
         } else {
@@ -360,10 +393,18 @@ void odg_pdo_receive_(odg_node_t *n, const odg_frame_t *f)
 
 /* ---- SYNC ---------------------------------------------------------------------------------- */
 
-/* RPDO data received since the last SYNC take effect first, then synchronous TPDOs sample. */
+/* RPDO data received since the last SYNC take effect first, then synchronous TPDOs sample; one
+ * whose frame could not be sent is tried again within the window (window_tick). */
 void odg_pdo_sync_(odg_node_t *n, const odg_frame_t *f)
 {
     uint16_t k;
+    n->sync_us = 0;
+    for (k = 0; k < ODG_NODE_MAX_TPDO; k++) {
+        if (n->tpdo[k].flags & ODG_PDO_F_DUE) {
+            n->tpdo[k].flags &= (uint8_t)~(ODG_PDO_F_DUE | ODG_PDO_F_REQUEST);
+            n->sync_dropped++; /* still not sent at the next SYNC */
+        }
+    }
     for (k = 0; k < ODG_NODE_MAX_RPDO; k++) {
         odg_pdo_t *p = &n->rpdo[k];
         if (active(p) && (p->flags & ODG_PDO_F_RECEIVED)) {
@@ -378,12 +419,15 @@ void odg_pdo_sync_(odg_node_t *n, const odg_frame_t *f)
         }
         if (p->type == 0u) {
             /* on an event (odg_node_tpdo_request), or a change unless the application decides */
-            if ((p->flags & ODG_PDO_F_REQUEST) || ODG_NODE_TPDO_COS) {
-                transmit(n, p, (p->flags & ODG_PDO_F_REQUEST) != 0u);
+            if (((p->flags & ODG_PDO_F_REQUEST) || ODG_NODE_TPDO_COS) &&
+                transmit(n, p, (p->flags & ODG_PDO_F_REQUEST) != 0u)) {
+                p->flags |= ODG_PDO_F_DUE;
             }
         } else if (sync_started(p, f) && ++p->count >= p->type) {
             p->count = 0;
-            transmit(n, p, 1);
+            if (transmit(n, p, 1)) {
+                p->flags |= ODG_PDO_F_DUE;
+            }
         }
     }
 }

@@ -703,10 +703,9 @@ static odg_boot_status_t boot2(const odg_dict_t *d, const odg_nv_driver_t *nv, u
 }
 #endif /* ODG_NO_MIGRATION */
 
-/* Write the mirror of group `g` as the new newest "ODG1" image. */
-static odg_abort_t store1(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
+/* Write the mirror of `gr` as the new newest "ODG1" image. */
+static odg_abort_t store_image1(const odg_nv_driver_t *nv, const odg_group_t *gr)
 {
-    const odg_group_t *gr = &d->groups[g];
     uint8_t hdr[2][HDR], h[HDR];
     uint32_t addr, seq = 1;
     int k;
@@ -733,6 +732,30 @@ static odg_abort_t store1(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_
         return ODG_ABORT_HARDWARE;
     }
     return ODG_OK;
+}
+
+static odg_abort_t store1(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
+{
+    return store_image1(nv, &d->groups[g]);
+}
+
+/* Records of other layers (the LSS configuration) in "ODG1" slots of their own. */
+odg_abort_t odg_persist_store_record(const odg_nv_driver_t *nv, const odg_group_t *rec)
+{
+    return nv != NULL ? store_image1(nv, rec) : ODG_ABORT_DATA_STORE;
+}
+
+int odg_persist_load_record(const odg_nv_driver_t *nv, const odg_group_t *rec)
+{
+    uint8_t hdr[2][HDR], h[HDR];
+    int k = nv != NULL ? newest(nv, rec, hdr) : -2;
+    if (k < 0) {
+        return k == -1 ? 0 : -1;
+    }
+    if (get32(hdr[k] + 8) != rec->signature || get32(hdr[k] + 12) != rec->size) {
+        return 0;
+    }
+    return slot_read(nv, slot_addr(rec, k), rec->size, h, (uint8_t *)rec->mirror) == 1 ? 1 : -1;
 }
 
 /* Make the next boot of group `g` ("ODG1") use the defaults: erase both slots. */

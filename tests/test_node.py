@@ -30,7 +30,7 @@ CHECK_H = ROOT / "tests" / "runtime"  # check.h
 VCAN_RUN = ROOT / "tools" / "vcan" / "run.py"
 
 CORE = tuple(RUNTIME / s for s in ("odg.c", "odg_persist.c"))
-NODE = tuple(RUNTIME / s for s in ("odg_node.c", "odg_sdo.c", "odg_pdo.c"))
+NODE = tuple(RUNTIME / s for s in ("odg_node.c", "odg_sdo.c", "odg_pdo.c", "odg_lss.c", "odg_time.c"))
 PROGRAM_SOURCES = (*CORE, *NODE, RUNTIME / "odg_nv_file.c", LINUX / "odg_socketcan.c", LINUX / "odg_node_main.c")
 
 # name -> (EDS, options file or None)
@@ -38,6 +38,7 @@ DICTS: dict[str, tuple[Path, Path | None]] = {
     "alltypes": (FIXTURES / "generate" / "alltypes.eds", FIXTURES / "generate" / "alltypes.toml"),
     "io_node": (ROOT / "examples" / "io-node" / "io-node.eds", ROOT / "examples" / "io-node" / "io-node.toml"),
     "pdo_node": (NODE_TESTS / "pdo-node.eds", None),
+    "lss_node": (NODE_TESTS / "lss-node.eds", NODE_TESTS / "lss-node.toml"),
 }
 # test program -> (dictionary, extra runtime sources)
 PROGRAMS: dict[str, tuple[str, tuple[Path, ...]]] = {
@@ -45,7 +46,12 @@ PROGRAMS: dict[str, tuple[str, tuple[Path, ...]]] = {
     "test_node_pdo": ("pdo_node", ()),
     "test_node_io": ("io_node", (RUNTIME / "odg_nv_file.c",)),
     "test_node_robust": ("alltypes", ()),
+    "test_node_lss": ("lss_node", ()),
+    "test_node_time": ("lss_node", ()),
+    "test_node_window": ("lss_node", ()),
 }
+LSS = ("-DODG_NODE_LSS=1",)  # the node and the program are built with the LSS slave
+DEFINES: dict[str, tuple[str, ...]] = {"test_node_lss": LSS}
 
 
 
@@ -80,7 +86,7 @@ def test_node_program(program: str, build_name: str, generated: Path, tmp_path: 
     gen = generated / dict_name
     sources = (NODE_TESTS / f"{program}.c", gen / f"{dict_name}.c", *CORE, *NODE, *extra)
     exe = tmp_path / program
-    build(cc, flags, sources, (gen, RUNTIME, NODE_TESTS, CHECK_H), exe)
+    build(cc, (*flags, *DEFINES.get(program, ())), sources, (gen, RUNTIME, NODE_TESTS, CHECK_H), exe)
     run(exe, tmp_path)
 
 
@@ -98,10 +104,11 @@ def test_sdo_small_block_size(generated: Path, tmp_path: Path) -> None:
 
 @pytest.mark.parametrize("cc", ["gcc", "clang"])
 def test_node_sources_warning_free(cc: str, tmp_path: Path) -> None:
-    """The node sources compile alone, -Wconversion clean; the Linux ones too."""
-    for source in (*NODE, LINUX / "odg_socketcan.c"):
-        cmd = [compiler(cc), *STRICT, *EXTRA, "-Os", f"-I{RUNTIME}", f"-I{LINUX}", "-c", str(source), "-o",
-               str(tmp_path / (source.name + ".o"))]
+    """The node sources compile alone, -Wconversion clean, with and without the LSS slave; the
+    Linux ones too."""
+    for source, defines in [(s, d) for s in (*NODE, LINUX / "odg_socketcan.c") for d in ((), LSS)]:
+        cmd = [compiler(cc), *STRICT, *EXTRA, *defines, "-Os", f"-I{RUNTIME}", f"-I{LINUX}", "-c", str(source),
+               "-o", str(tmp_path / (source.name + ".o"))]
         done = subprocess.run(cmd, capture_output=True, text=True, check=False)
         assert done.returncode == 0, f"{' '.join(cmd)}\n{done.stderr}"
 

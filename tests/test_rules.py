@@ -268,3 +268,29 @@ def test_the_audits_writable_sub0_is_not_reported() -> None:
     if not path.is_file():
         pytest.skip("../shared/corpus is absent")
     assert not [d for d in lint(path).diagnostics if d.rule == "OBJ011"]
+
+
+@pytest.mark.parametrize(("value", "found"), [
+    ("0x80000100", ""), ("0x40000100", ""), ("0x00000900", ""),  # not used: the form does not matter
+    ("0xA0012345", ""),  # 29-bit
+    ("0x80000900", "bits above 0x7FF"), ("0x40000701", "restricted CAN-ID 0x701"),
+    ("0x80000000", "restricted CAN-ID 0x000"), ("$NODEID+0x80000100", "depends on $NODEID"),
+])
+def test_time_cob_id_forms(value: str, found: str, tmp_path: Path) -> None:
+    """COM019: a TIME COB-ID in use must be a free 11-bit CAN-ID (or a 29-bit one), the same for every node."""
+    path = tmp_path / "time.eds"
+    path.write_text((RULE_FIXTURES / "COM019.eds").read_text(encoding="utf-8").replace(
+        "DefaultValue=0x80000900", f"DefaultValue={value}"), encoding="utf-8")
+    messages = [d.message for d in lint(path).diagnostics if d.rule == "COM019"]
+    assert messages == ([] if not found else [messages[0]]) and all(found in m for m in messages)
+
+
+@pytest.mark.parametrize(("period", "window", "found"), [
+    ("10000", "10000", False), ("10000", "10001", True), ("0", "20000", False), ("10000", "0", False),
+])
+def test_sync_window_against_period(period: str, window: str, found: bool, tmp_path: Path) -> None:
+    path = tmp_path / "sync.eds"
+    path.write_text((RULE_FIXTURES / "COM020.eds").read_text(encoding="utf-8").replace(
+        "DefaultValue=10000", f"DefaultValue={period}").replace("DefaultValue=20000", f"DefaultValue={window}"),
+        encoding="utf-8")
+    assert [d.rule for d in lint(path).diagnostics if d.rule == "COM020"] == (["COM020"] if found else [])

@@ -156,3 +156,32 @@ COM018 = define(
     "written to it, so it is rw. Read-only, a master cannot clear the errors.",
     example="[1003sub0]\nAccessType=ro",
     fix="Set `AccessType=rw` on 0x1003sub0.")
+
+COM019 = define(
+    "COM019", E, "TIME COB-ID malformed", ref="CiA 301 object 0x1012",
+    why="0x1012 is `consume` (bit 31), `produce` (bit 30), 29-bit frame (bit 29) and the CAN-ID "
+    "(bits 0-10, or 0-28 with bit 29). An 11-bit COB-ID with bits 11-28 set, or a CAN-ID CiA 301 "
+    "restricts (0x000-0x07F, 0x101-0x180, 0x581-0x5FF, 0x601-0x67F, 0x6E0-0x6FF, 0x701-0x7FF: NMT, "
+    "SDO, heartbeat, LSS and reserved ones) for a TIME object in use, makes it collide or be "
+    "dropped. TIME is a broadcast to every node (default 0x100), so a `$NODEID` value gives each "
+    "node another CAN-ID and no producer reaches them all.",
+    example="[1012]\nDefaultValue=0x80000900  (bit 11 set, bit 29 clear)",
+    fix="Write `0x80000100` (consume on 0x100) or `0x40000100` (produce), without `$NODEID`.")
+
+COM020 = define(
+    "COM020", W, "synchronous window longer than the communication cycle period",
+    ref="CiA 301 objects 0x1006, 0x1007",
+    why="The window (0x1007, us) after each SYNC is when synchronous PDOs are sent and received; "
+    "it must end before the next SYNC (0x1006, us). Longer, the device sends and accepts "
+    "synchronous data of one cycle in the next and loses nothing to the window, which is what it "
+    "is for.",
+    example="[1006]\nDefaultValue=10000\n[1007]\nDefaultValue=20000",
+    fix="Make 0x1007 at most 0x1006 (or 0: no window).")
+
+COM021 = define(
+    "COM021", W, "LSS supported but the identity is incomplete", ref="CiA 301 object 0x1018 / CiA 305 LSS address",
+    why="An LSS master addresses a device by its LSS address: 0x1018 sub1-4 (Vendor-ID, product code, "
+    "revision number, serial number). Switch state selective, identify remote slave and fastscan "
+    "compare all four, so a device that says `LSS_Supported=1` without them cannot be found.",
+    example="LSS_Supported=1\n[1018]\nSubNumber=2  (sub1 only)",
+    fix="Add 0x1018 sub2-4 (UNSIGNED32, ro), or write `LSS_Supported=0`.")

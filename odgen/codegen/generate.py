@@ -17,6 +17,7 @@ from ..gcpause import no_cyclic_gc
 from ..lint import RuleFilter, lint_model
 from ..model import ObjectDictionary
 from ..rules import LintOptions
+from ..rules.common import header_field, header_int
 from .names import comment, identifier, is_identifier, name_clash
 from .options import Options, PersistOptions, load_options, parse_options
 from .persistview import add_status_object, persist_view
@@ -51,6 +52,7 @@ class Result:
     view: DictView | None = None
     persist: PersistOptions = field(default_factory=PersistOptions)
     refused: list[Diagnostic] = field(default_factory=list)  # the findings that stopped generation
+    lss: bool = False  # build a node with the LSS slave: LSS_Supported=1 or the options' [node] lss
 
 
 def reported(diags: Diagnostics, request: Request) -> list[Diagnostic]:
@@ -116,6 +118,8 @@ def prepare(request: Request) -> Result:
         user = load_options(request.options, diags)
         options.entries += user.entries
         options.persist = user.persist
+        options.node_lss = options.node_lss or user.node_lss
+    result.lss = options.node_lss or header_int(header_field(od, "DeviceInfo", "LSS_Supported")) == 1
     if _refuse(result, request):
         return result
     result.placements = place(od, options, diags)

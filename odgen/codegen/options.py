@@ -16,6 +16,9 @@
     name = "app"
     region = 1024                                # pin the group's NV region (bytes)
 
+    [node]
+    lss = true      # build the node with the LSS slave even when the description has no LSS_Supported=1
+
 Entries apply in file order; for each key, the last entry that sets it wins.
 """
 
@@ -80,6 +83,7 @@ class Options:
     text: str = ""
     entries: list[OptionEntry] = field(default_factory=list)
     persist: PersistOptions = field(default_factory=PersistOptions)
+    node_lss: bool = False  # [node] lss
 
 
 def parse_pattern(text: str) -> Pattern | None:
@@ -117,11 +121,16 @@ def parse_options(text: str, source: str, diags: Diagnostics) -> Options:
     except tomllib.TOMLDecodeError as err:
         diags.add(GEN001, Loc(source, _error_line(err)), f"not valid TOML: {err}")
         return options
-    unknown = sorted(set(doc) - {"entry", "persist", "group"})
+    unknown = sorted(set(doc) - {"entry", "persist", "group", "node"})
     if unknown:
         diags.add(GEN001, Loc(source, 1),
-                  f"unknown top-level key(s) {', '.join(unknown)}; only [[entry]], [persist] and [[group]]")
+                  f"unknown top-level key(s) {', '.join(unknown)}; only [[entry]], [persist], [[group]] and [node]")
     _persist(doc, text, source, options.persist, diags)
+    node = doc.get("node", {})
+    if not isinstance(node, dict) or set(node) - {"lss"} or not isinstance(node.get("lss", False), bool):
+        diags.add(GEN001, Loc(source, 1), "[node] takes only lss = true or false")
+    else:
+        options.node_lss = node.get("lss", False)
     lines = [n for n, line in enumerate(text.splitlines(), start=1) if line.strip().startswith("[[entry]]")]
     raw_entries = doc.get("entry", [])
     if not isinstance(raw_entries, list):

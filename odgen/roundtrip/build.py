@@ -56,12 +56,14 @@ def build_node(request: Request, extra: Mapping[str, str] | None = None, sources
 
     `extra`: more generated files (name -> text) written beside the dictionary, its .c files
     compiled in; `sources`: application sources (e.g. odg_app_init/odg_app_tick, built with
-    "ODG_APP" among `defines`); `defines`: NAME or NAME=VALUE for every file.
+    "ODG_APP" among `defines`); `defines`: NAME or NAME=VALUE for every file. The LSS slave is
+    built in when the description supports LSS or the options ask for it (result.lss).
     """
     extra = dict(extra or {})
     result = generate(request)
     if not result.files or result.view is None:
         raise OdgenError(f"{request.input}: errors found, no dictionary to build")
+    defines = [*defines, *(["ODG_NODE_LSS=1"] if result.lss else [])]
     node_main = runtime_dir() / NODE_MAIN
     if not node_main.is_file():
         raise OdgenError(f"the node program source {node_main} is missing")

@@ -10,12 +10,12 @@ from __future__ import annotations
 from collections.abc import Iterator
 from dataclasses import dataclass
 
-from ..catalogue.comm import COM016, COM017, COM018
+from ..catalogue.comm import COM016, COM017, COM018, COM019
 from ..diagnostics import Diagnostics, Loc, where
 from ..model import Obj, ObjectDictionary, Sub
 from ..model.cia301 import (
-    COB_EXTENDED, COB_INVALID, COB_PRODUCER, EMCY_COB_ID, ERROR_HISTORY, SDO_CLIENT, SDO_SERVER, SYNC_COB_ID,
-    TIME_COB_ID, is_sdo_parameter, pdo_communication)
+    COB_EXTENDED, COB_INVALID, COB_PRODUCER, EMCY_COB_ID, ERROR_HISTORY, RESTRICTED_CAN_IDS, SDO_CLIENT, SDO_SERVER,
+    SYNC_COB_ID, TIME_COB_ID, is_sdo_parameter, pdo_communication)
 from . import LintOptions, lint_pass
 from .common import addr, at, node_span, value_in_force, value_line
 
@@ -117,3 +117,29 @@ def error_history_count(od: ObjectDictionary, diags: Diagnostics, options: LintO
     if sub0 is not None and sub0.access is not None and not sub0.writable:
         diags.add(COM018, Loc(od.source, sub0.line_of("accesstype")),
                   f"is {sub0.access}; writing 0 to it clears the error history", ERROR_HISTORY, 0)
+
+
+@lint_pass
+def time_cob_id(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    obj = od.objects.get(0x1012)
+    sub = obj.var if obj is not None else None
+    value, keyword = value_in_force(od, sub) if sub is not None else (None, "")
+    if sub is None or value is None or value.error or not isinstance(value.parsed, int):
+        return
+    problem = _time_problem(value.parsed, value.nodeid)
+    if problem:
+        diags.add(COM019, Loc(od.source, value_line(sub, value, keyword)),
+                  f"COB-ID {value.text.strip()} {problem}", 0x1012, 0)
+
+
+def _time_problem(raw: int, nodeid: bool) -> str | None:
+    if nodeid:
+        return "depends on $NODEID; TIME is one CAN-ID for the whole network"
+    if raw < 0 or raw > 0xFFFFFFFF or not raw & 0xC0000000 or raw & COB_EXTENDED:
+        return None  # out of UNSIGNED32 (the value checks say so), not used, or 29-bit
+    if raw & 0x1FFFF800:
+        return "sets CAN-ID bits above 0x7FF without the 29-bit flag (bit 29)"
+    can_id = raw & 0x7FF
+    if any(lo <= can_id <= hi for lo, hi in RESTRICTED_CAN_IDS):
+        return f"gives the restricted CAN-ID 0x{can_id:03X}"
+    return None

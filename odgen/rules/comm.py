@@ -11,7 +11,7 @@ from collections.abc import Iterator
 
 from ..catalogue.comm import (
     COM001, COM002, COM003, COM004, COM005, COM006, COM007, COM008, COM009, COM010, COM011, COM012, COM013, COM014,
-    COM015)
+    COM015, COM020, COM021)
 from ..diagnostics import Diagnostics, Loc
 from ..model import Obj, ObjectDictionary, Sub, Value
 from ..model.cia301 import (
@@ -21,7 +21,8 @@ from ..model.cia301 import (
     TPDO_COMM, TPDO_MAPPING, U32, VAR_TYPES, is_pdo_mapping, is_sdo_parameter, pdo_communication, predefined_cob_id)
 from ..model.datatypes import BASIC_TYPES
 from . import LintOptions, lint_pass
-from .common import addr, at, default_line, node_span, number, plain_int, value_in_force, value_line
+from .common import (addr, at, default_line, header_field, header_int, node_span, number, plain_int, value_in_force,
+                     value_line)
 
 
 
@@ -301,3 +302,27 @@ def _transmission_type(od: ObjectDictionary, obj: Obj, kind: str, diags: Diagnos
                   f"transmission type {ttype} is reserved for {kind}s", obj.index, 2)
 
 
+# -- services: SYNC window, LSS -------------------------------------------------------
+
+@lint_pass
+def sync_window(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    _, period = _var_int(od, 0x1006)
+    window_sub, window = _var_int(od, 0x1007)
+    if window_sub is not None and period and window and window > period:
+        diags.add(COM020, Loc(od.source, value_line(window_sub, *value_in_force(od, window_sub))),
+                  f"window {window} us is longer than the communication cycle period 0x1006 ({period} us)",
+                  0x1007, 0)
+
+
+@lint_pass
+def lss_identity(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+    fld = header_field(od, "DeviceInfo", "LSS_Supported")
+    if header_int(fld) != 1 or fld is None:
+        return
+    obj = od.objects.get(0x1018)
+    missing = [k for k in (1, 2, 3, 4) if obj is None or obj.is_var or k not in obj.subs]
+    if missing:
+        names = ", ".join(f"sub{k}" for k in missing)
+        diags.add(COM021, Loc(od.source, fld.line),
+                  f"lacks {names} while LSS_Supported=1; an LSS master addresses the device by 0x1018 sub1-4",
+                  0x1018)

@@ -5,7 +5,8 @@
  *     cc -std=c99 -O2 -DODG_DICT=dev -Igen -Iruntime -Iruntime/linux \
  *        runtime/linux/odg_node_main.c runtime/linux/odg_socketcan.c gen/dev.c \
  *        runtime/odg.c runtime/odg_persist.c runtime/odg_nv_file.c \
- *        runtime/odg_node.c runtime/odg_sdo.c runtime/odg_pdo.c -o dev-node
+ *        runtime/odg_node.c runtime/odg_sdo.c runtime/odg_pdo.c runtime/odg_lss.c \
+ *        runtime/odg_time.c -o dev-node
  *     ./dev-node --iface vcan0 --node-id 5 [--nv dev.nv]
  *
  * ODG_DICT names the dictionary symbol; its header is ODG_DICT.h unless ODG_DICT_HEADER
@@ -13,6 +14,9 @@
  * must come from another source file on the command line. With --nv the persistence groups
  * live in that file (created when missing), so 0x1010 "save" survives a restart. Prints
  * nothing but errors (stderr); SIGTERM and SIGINT end it with status 0.
+ * Built with -DODG_NODE_LSS=1 (the LSS slave) --node-id may be left out: the node then waits
+ * for an LSS master (or uses the node-id a master stored in --nv); bit timings a master
+ * configures or activates are logged on stdout (the program cannot change the bit rate).
  * With -DODG_APP it calls the application's odg_app_init/odg_app_tick (odg_app.h).
  */
 #if !defined(_POSIX_C_SOURCE) || _POSIX_C_SOURCE < 200809L
@@ -64,15 +68,30 @@ static uint64_t now_ms(void)
     return (uint64_t)ts.tv_sec * 1000u + (uint64_t)ts.tv_nsec / 1000000u;
 }
 
-/* NV bytes the persistence groups need: the region of every group. */
+/* NV bytes the persistence groups (and the stored LSS configuration) need. */
 static uint32_t nv_size(const odg_dict_t *d)
 {
-    return odg_persist_nv_size(d);
+    return odg_lss_nv_size(d);
+}
+
+/* LSS bit timing: accepted and logged; the SocketCAN interface keeps its bit rate. */
+static int on_bit_timing(void *ctx, uint8_t index, uint16_t delay_ms, int activate)
+{
+    static const char *const rates[] = {"1000", "800", "500", "250", "125", "100", "50", "20", "10", "auto"};
+    (void)ctx;
+    if (activate) {
+        printf("odg-node: LSS: activate bit timing %s kbit/s after %u ms\n", rates[index % 10u], delay_ms);
+    } else {
+        printf("odg-node: LSS: bit timing %s kbit/s configured\n", rates[index % 10u]);
+    }
+    fflush(stdout);
+    return 0;
 }
 
 static int usage(const char *prog)
 {
-    fprintf(stderr, "usage: %s --iface IFACE --node-id 1..127 [--nv PATH]\n", prog);
+    fprintf(stderr, "usage: %s --iface IFACE %s [--nv PATH]\n", prog,
+            ODG_NODE_LSS ? "[--node-id 1..127] (none: wait for LSS)" : "--node-id 1..127");
     return 2;
 }
 
@@ -121,7 +140,7 @@ int main(int argc, char **argv)
     const char *iface = NULL, *nv_path = NULL;
     odg_node_config_t cfg;
     struct sigaction sa;
-    long node_id = 0;
+    long node_id = ODG_NODE_LSS ? (long)ODG_LSS_UNCONFIGURED : 0;
     uint16_t bad = 0;
     int i, fd, rc;
     odg_abort_t ac;
@@ -137,11 +156,12 @@ int main(int argc, char **argv)
             return usage(argv[0]);
         }
     }
-    if (i != argc || iface == NULL || node_id < 1 || node_id > 127) {
+    if (i != argc || iface == NULL || node_id < 1 ||
+        (node_id > 127 && !(ODG_NODE_LSS && node_id == (long)ODG_LSS_UNCONFIGURED))) {
         return usage(argv[0]);
     }
     /* defaults in RAM first (no NV yet), as odg_verify also checks the current values */
-    if (odg_init(dict, (uint8_t)node_id) != ODG_OK || odg_verify(dict, &bad) != ODG_OK) {
+    if (odg_init(dict, node_id > 127 ? 1u : (uint8_t)node_id) != ODG_OK || odg_verify(dict, &bad) != ODG_OK) {
         fprintf(stderr, "odg-node: the dictionary's tables are inconsistent at 0x%04X\n", bad);
         return 1;
     }
@@ -165,6 +185,7 @@ int main(int argc, char **argv)
     cfg.nv = nv_path != NULL && nv_size(dict) > 0u ? &nvf.driver : NULL;
     cfg.send = odg_socketcan_send;
     cfg.send_ctx = &fd;
+    cfg.on_bit_timing = on_bit_timing;
     ac = odg_node_init(&node, &cfg);
     if (ac != ODG_OK) {
         fprintf(stderr, "odg-node: init: 0x%08lX %s%s\n", (unsigned long)ac, odg_abort_text(ac),

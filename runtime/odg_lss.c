@@ -1,0 +1,244 @@
+/*
+ * odg_lss.c - LSS slave (CiA 305): switch state global and selective, configure node-id and
+ * bit timing, activate bit timing, store configuration, inquire identity and node-id, identify
+ * (non-configured) remote slave, fastscan. See odg_lss.h and NODE.md.
+ */
+#include <string.h>
+
+#include "odg_node_impl.h"
+
+#define SIGNATURE 0x3153534Cu /* "LSS1": the layout of odg_lss_t.record */
+
+/* End of the persistence groups' regions: the LSS record goes after them. */
+static uint32_t groups_end(const odg_dict_t *d)
+{
+    return odg_persist_nv_size(d);
+}
+
+#if ODG_NODE_LSS
+
+uint32_t odg_lss_nv_size(const odg_dict_t *dict)
+{
+    uint32_t a = (uint32_t)ODG_PERSIST_ALIGN - 1u;
+    return ((groups_end(dict) + a) & ~a) + 2u * ODG_PERSIST_SLOT_SIZE(sizeof(((odg_lss_t *)0)->record));
+}
+
+/* The stored configuration as a persistence record (odg_persist_store_record). */
+static odg_group_t record(odg_node_t *n)
+{
+    odg_group_t r;
+    memset(&r, 0, sizeof r);
+    r.mirror = n->lss.record;
+    r.size = sizeof n->lss.record;
+    r.signature = SIGNATURE;
+    r.nv_addr = odg_lss_nv_size(n->cfg.dict) - 2u * ODG_PERSIST_SLOT_SIZE(r.size);
+    return r;
+}
+
+static int valid_id(uint8_t id)
+{
+    return (id >= 1u && id <= 127u) || id == ODG_LSS_UNCONFIGURED;
+}
+
+void odg_lss_init_(odg_node_t *n)
+{
+    odg_group_t r = record(n);
+    n->lss.mode = ODG_LSS_WAITING;
+    n->lss.pending = n->cfg.node_id;
+    n->lss.bit_index = ODG_LSS_NO_BIT_TIMING;
+    if (n->cfg.nv != NULL && odg_persist_load_record(n->cfg.nv, &r) == 1 && valid_id(n->lss.record[0])) {
+        n->lss.pending = n->lss.record[0];
+        n->lss.bit_index = n->lss.record[1];
+    }
+}
+
+int odg_lss_activate_(odg_node_t *n)
+{
+    if (n->lss.pending == n->cfg.node_id) {
+        return 0;
+    }
+    n->cfg.node_id = n->lss.pending;
+    return 1;
+}
+
+/* 0x1018 sub 1 + part: vendor-ID, product code, revision number, serial number */
+static uint32_t identity(const odg_node_t *n, unsigned part)
+{
+    return odg_node_get_or_(n, 0x1018, (uint8_t)(part + 1u), 0);
+}
+
+static void reply(odg_node_t *n, uint8_t cs, uint32_t value)
+{
+    uint8_t d[8];
+    memset(d, 0, sizeof d);
+    d[0] = cs;
+    d[1] = (uint8_t)value;
+    d[2] = (uint8_t)(value >> 8);
+    d[3] = (uint8_t)(value >> 16);
+    d[4] = (uint8_t)(value >> 24);
+    (void)odg_node_send_(n, ODG_LSS_SLAVE_COB, d, 8);
+}
+
+static uint32_t le32(const uint8_t *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+/* Switch state selective (0x40..0x43): the four parts of the identity in order; a wrong one
+ * starts over. All four matched: configuration mode, answered with 0x44. */
+static void selective(odg_node_t *n, unsigned part, uint32_t v)
+{
+    int match = v == identity(n, part);
+    if (part == 0u) {
+        n->lss.selective = (uint8_t)match;
+    } else {
+        n->lss.selective = (uint8_t)(match && n->lss.selective == part ? part + 1u : 0u);
+    }
+    if (n->lss.selective == 4u) {
+        n->lss.selective = 0;
+        n->lss.mode = ODG_LSS_CONFIGURATION;
+        reply(n, 0x44, 0);
+    }
+}
+
+/* Identify remote slave (0x46..0x4B): vendor, product, revision low/high, serial low/high;
+ * after the last, answer 0x4F when all six checks passed. */
+static void identify(odg_node_t *n, unsigned part, uint32_t v)
+{
+    uint32_t id = identity(n, part < 2u ? part : (part < 4u ? 2u : 3u));
+    int ok = part < 2u ? v == id : ((part & 1u) == 0u ? id >= v : id <= v);
+    if (part == 0u) {
+        n->lss.identify = 0;
+    }
+    if (ok) {
+        n->lss.identify = (uint8_t)(n->lss.identify | 1u << part);
+    }
+    if (part == 5u && n->lss.identify == 0x3Fu) {
+        reply(n, 0x4F, 0);
+    }
+}
+
+/* Fastscan (0x51): only a non-configured slave in waiting mode takes part. bitChecked 0x80
+ * starts a scan (every such slave answers); else the slave answers when the master asks for
+ * its current part (LSSSub) and the bits bitChecked..31 match. A full match (bitChecked 0)
+ * moves it on to LSSNext; going back (LSSNext < LSSSub: the serial number matched) selects it: the slave
+ * enters configuration mode. */
+static void fastscan(odg_node_t *n, const uint8_t *d)
+{
+    uint32_t id = le32(d + 1);
+    uint8_t bit = d[5], sub = d[6], next = d[7];
+    if (n->cfg.node_id != ODG_LSS_UNCONFIGURED || n->lss.mode != ODG_LSS_WAITING) {
+        return;
+    }
+    if (bit == 0x80u) {
+        n->lss.fastscan = 0;
+        reply(n, 0x4F, 0);
+        return;
+    }
+    if (bit > 31u || sub > 3u || next > 3u || sub != n->lss.fastscan ||
+        ((id ^ identity(n, sub)) & (0xFFFFFFFFu << bit)) != 0u) {
+        return;
+    }
+    reply(n, 0x4F, 0);
+    if (bit == 0u) {
+        n->lss.fastscan = next;
+        if (next < sub) { /* back to the vendor-ID: all four parts matched */
+            n->lss.mode = ODG_LSS_CONFIGURATION;
+        }
+    }
+}
+
+/* Commands of configuration mode; others are ignored. */
+static void configure(odg_node_t *n, const uint8_t *d)
+{
+    odg_group_t r;
+    odg_abort_t ac;
+    uint8_t err = 0;
+    switch (d[0]) {
+    case 0x11: /* configure node-id: 1..127, or 0xFF to make the node non-configured */
+        err = (uint8_t)!valid_id(d[1]);
+        n->lss.pending = err ? n->lss.pending : d[1];
+        break;
+    case 0x13: /* configure bit timing: table 0 (CiA), index, accepted by the application */
+        err = d[1] != 0u || d[2] > 9u || n->cfg.on_bit_timing == NULL ||
+              n->cfg.on_bit_timing(n->cfg.app_ctx, d[2], 0, 0) != 0;
+        n->lss.bit_index = err ? n->lss.bit_index : d[2];
+        break;
+    case 0x15: /* activate bit timing: no answer */
+        if (n->cfg.on_bit_timing != NULL && n->lss.bit_index != ODG_LSS_NO_BIT_TIMING) {
+            (void)n->cfg.on_bit_timing(n->cfg.app_ctx, n->lss.bit_index, (uint16_t)(d[1] | d[2] << 8), 1);
+        }
+        return;
+    case 0x17: /* store configuration: 1 no NV, 2 the NV failed */
+        r = record(n);
+        memset(n->lss.record, 0, sizeof n->lss.record);
+        n->lss.record[0] = n->lss.pending;
+        n->lss.record[1] = n->lss.bit_index;
+        ac = odg_persist_store_record(n->cfg.nv, &r);
+        err = (uint8_t)(ac == ODG_OK ? 0u : (ac == ODG_ABORT_DATA_STORE ? 1u : 2u));
+        break;
+    case 0x5A: case 0x5B: case 0x5C: case 0x5D: /* inquire identity */
+        reply(n, d[0], identity(n, d[0] - 0x5Au));
+        return;
+    case 0x5E: /* inquire node-id: the active one */
+        reply(n, 0x5E, n->cfg.node_id);
+        return;
+    default:
+        return;
+    }
+    reply(n, d[0], err);
+}
+
+int odg_lss_receive_(odg_node_t *n, const uint8_t *d)
+{
+    uint8_t cs = d[0];
+    if (cs == 0x04u && d[1] <= 1u) { /* switch state global */
+        n->lss.mode = d[1];
+        n->lss.selective = 0;
+        /* a non-configured node that got a node-id boots when sent back to waiting */
+        return d[1] == ODG_LSS_WAITING && n->cfg.node_id == ODG_LSS_UNCONFIGURED &&
+               n->lss.pending != ODG_LSS_UNCONFIGURED;
+    }
+    if (cs >= 0x40u && cs <= 0x43u) {
+        if (n->lss.mode == ODG_LSS_WAITING) {
+            selective(n, cs - 0x40u, le32(d + 1));
+        }
+    } else if (cs >= 0x46u && cs <= 0x4Bu) {
+        identify(n, cs - 0x46u, le32(d + 1));
+    } else if (cs == 0x4Cu) {
+        if (n->cfg.node_id == ODG_LSS_UNCONFIGURED && n->lss.pending == ODG_LSS_UNCONFIGURED) {
+            reply(n, 0x50, 0);
+        }
+    } else if (cs == 0x51u) {
+        fastscan(n, d);
+    } else if (n->lss.mode == ODG_LSS_CONFIGURATION) {
+        configure(n, d);
+    }
+    return 0;
+}
+
+#else /* without ODG_NODE_LSS: nothing but the NV size */
+
+uint32_t odg_lss_nv_size(const odg_dict_t *dict)
+{
+    return groups_end(dict);
+}
+
+void odg_lss_init_(odg_node_t *n)
+{
+    (void)n;
+}
+
+int odg_lss_activate_(odg_node_t *n)
+{
+    (void)n;
+    return 0;
+}
+
+int odg_lss_receive_(odg_node_t *n, const uint8_t *d)
+{
+    (void)n, (void)d;
+    return 0;
+}
+
+#endif

@@ -1,0 +1,35 @@
+/*
+ * odg_time.c - the TIME object (CiA 301 TIME_OF_DAY) of the node: consumed when 0x1012 bit 31
+ * is set and handed to cfg.on_time, produced by odg_node_time_send when bit 30 is set. Both
+ * in pre-operational and operational. See odg_node.h.
+ */
+#include <string.h>
+
+#include "odg_node_impl.h"
+
+void odg_time_receive_(odg_node_t *n, const odg_frame_t *f)
+{
+    const uint8_t *d = f->data;
+    uint32_t ms;
+    if (f->len < 6u || n->cfg.on_time == NULL) {
+        return; /* TIME_OF_DAY is 6 bytes: a shorter frame carries no time */
+    }
+    ms = ((uint32_t)d[0] | (uint32_t)d[1] << 8 | (uint32_t)d[2] << 16 | (uint32_t)d[3] << 24) & ODG_TIME_MS_MASK;
+    n->cfg.on_time(n->cfg.app_ctx, ms, (uint16_t)(d[4] | d[5] << 8));
+}
+
+odg_abort_t odg_node_time_send(odg_node_t *node, uint32_t ms, uint16_t days)
+{
+    uint8_t d[6];
+    if ((node->state != ODG_NMT_PRE_OPERATIONAL && node->state != ODG_NMT_OPERATIONAL) ||
+        !(node->time_cob & ODG_TIME_PRODUCE) || ms > ODG_TIME_MS_MASK) {
+        return ms > ODG_TIME_MS_MASK ? ODG_ABORT_VALUE_RANGE : ODG_ABORT_DATA_STATE;
+    }
+    d[0] = (uint8_t)ms;
+    d[1] = (uint8_t)(ms >> 8);
+    d[2] = (uint8_t)(ms >> 16);
+    d[3] = (uint8_t)(ms >> 24); /* the 4 reserved bits are 0 */
+    d[4] = (uint8_t)days;
+    d[5] = (uint8_t)(days >> 8);
+    return odg_node_send_(node, node->time_cob, d, 6) == 0 ? ODG_OK : ODG_ABORT_HARDWARE;
+}

@@ -1,0 +1,303 @@
+/*
+ * test_node_lss.c - the LSS slave (CiA 305) over the fake bus, against tests/node/lss-node.eds
+ * (identity 0x000004D2 / 0x00010203 / 0x00020001 / 0x5EA1C0DE) with a RAM NV memory, built
+ * with -DODG_NODE_LSS=1: a node started without a node-id is silent until an LSS master finds
+ * it by fastscan (a wrong identity gets no answer), gives it node-id 10 and stores it; it
+ * then boots as node 10, and again after a power cycle. Every other command, with right and
+ * wrong arguments and identities.
+ */
+#include <stdio.h>
+#include <string.h>
+
+#define NID 10u
+#include "fake.h"
+#include "lss_node.h"
+
+#define M 0x7E5u /* master -> slave */
+#define S 0x7E4u /* slave -> master */
+#define VENDOR 0x000004D2u
+#define PRODUCT 0x00010203u
+#define REVISION 0x00020001u
+#define SERIAL 0x5EA1C0DEu
+
+static const uint32_t ident[4] = {VENDOR, PRODUCT, REVISION, SERIAL};
+static int bt_calls, bt_index, bt_delay, bt_activate, bt_refuse;
+
+static int on_bit_timing(void *ctx, uint8_t index, uint16_t delay_ms, int activate)
+{
+    (void)ctx;
+    bt_calls++;
+    bt_index = index;
+    bt_delay = delay_ms;
+    bt_activate = activate;
+    return bt_refuse;
+}
+
+static odg_abort_t power_on(uint8_t id, const odg_nv_driver_t *nv)
+{
+    odg_node_config_t cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.dict = &lss_node;
+    cfg.node_id = id;
+    cfg.nv = nv;
+    cfg.send = fake_send;
+    cfg.on_bit_timing = on_bit_timing;
+    clear();
+    return odg_node_init(&node, &cfg);
+}
+
+/* One LSS request; returns the slave's answer or NULL when it sent none. */
+static const odg_frame_t *lss(uint8_t cs, uint32_t v, uint8_t b5, uint8_t b6, uint8_t b7)
+{
+    clear();
+    rx(M, cs, (uint8_t)v, (uint8_t)(v >> 8), (uint8_t)(v >> 16), (uint8_t)(v >> 24), b5, b6, b7);
+    CHECK(count_id(S) <= 1u);
+    return count_id(S) == 1u ? last_id(S) : NULL;
+}
+
+static int answered(const odg_frame_t *r, uint8_t cs)
+{
+    return r != NULL && r->data[0] == cs;
+}
+
+/* The configure answers: cs, error code. -1 when there was none. */
+static int configure(uint8_t cs, uint8_t a, uint8_t b)
+{
+    const odg_frame_t *r = lss(cs, (uint32_t)a | (uint32_t)b << 8, 0, 0, 0);
+    return r != NULL && r->data[0] == cs ? r->data[1] : -1;
+}
+
+/* Inquire node-id: the answer, -1 when none came. */
+static int inquire_id(void)
+{
+    const odg_frame_t *r = lss(0x5E, 0, 0, 0, 0);
+    return answered(r, 0x5E) ? r->data[1] : -1;
+}
+
+/* Fastscan as a master runs it (python canopen's LssMaster.fast_scan): 1 when a slave was
+ * found and its identity is in `found`. */
+static int fastscan(uint32_t found[4])
+{
+    int sub, bit;
+    if (!answered(lss(0x51, 0, 0x80, 0, 0), 0x4F)) {
+        return 0;
+    }
+    for (sub = 0; sub < 4; sub++) {
+        found[sub] = 0;
+        for (bit = 31; bit >= 0; bit--) {
+            if (!answered(lss(0x51, found[sub], (uint8_t)bit, (uint8_t)sub, (uint8_t)sub), 0x4F)) {
+                found[sub] |= 1u << bit;
+            }
+        }
+        if (!answered(lss(0x51, found[sub], 0, (uint8_t)sub, (uint8_t)((sub + 1) & 3)), 0x4F)) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+static void unconfigured_is_silent(void)
+{
+    CHECK_EQ(power_on(ODG_LSS_UNCONFIGURED, &nv_ram), 0);
+    CHECK_EQ(n_sent, 0); /* no boot-up */
+    CHECK_EQ(odg_node_state(&node), ODG_NMT_INITIALISING);
+    rx(0, ODG_NMT_START, 0);
+    rx(0x6FF, 0x40, 0x18, 0x10, 1, 0, 0, 0, 0);
+    rx(0x600u + NID, 0x40, 0x18, 0x10, 1, 0, 0, 0, 0);
+    rx(0x600u + NID, 0x2B, 0x17, 0x10, 0, 10, 0, 0, 0);
+    run_ms(500);
+    CHECK_EQ(n_sent, 0); /* no SDO answer, no heartbeat */
+    CHECK_EQ(odg_node_state(&node), ODG_NMT_INITIALISING);
+    CHECK_EQ(odg_node_emcy(&node, 0x1000, 1, NULL, 0), ODG_ABORT_DATA_STATE);
+    CHECK_EQ(n_sent, 0);
+    rx(0, ODG_NMT_RESET_NODE, 0); /* a reset: still unconfigured, still silent */
+    CHECK_EQ(n_sent, 0);
+    /* configuration commands need configuration mode */
+    CHECK(lss(0x5E, 0, 0, 0, 0) == NULL);
+    CHECK_EQ(configure(0x11, 10, 0), -1);
+    CHECK(answered(lss(0x4C, 0, 0, 0, 0), 0x50)); /* identify non-configured remote slave */
+}
+
+static void fastscan_finds_the_identity(void)
+{
+    uint32_t found[4];
+    int sub;
+    /* a wrong identity gets no answer, part by part */
+    for (sub = 0; sub < 4; sub++) {
+        CHECK(answered(lss(0x51, 0, 0x80, 0, 0), 0x4F));
+        for (int k = 0; k < sub; k++) {
+            CHECK(answered(lss(0x51, ident[k], 0, (uint8_t)k, (uint8_t)(k + 1)), 0x4F));
+        }
+        CHECK(lss(0x51, ident[sub] ^ 0x100u, 0, (uint8_t)sub, (uint8_t)((sub + 1) & 3)) == NULL);
+        CHECK(lss(0x51, ident[sub] ^ 0x80000000u, 31, (uint8_t)sub, 0) == NULL);
+        CHECK(answered(lss(0x51, ident[sub] ^ 0x7FFFFFFFu, 31, (uint8_t)sub, 0), 0x4F));
+        CHECK(lss(0x51, ident[sub], 0, (uint8_t)((sub + 1) & 3), 0) == NULL); /* not its part */
+    }
+    CHECK(lss(0x5E, 0, 0, 0, 0) == NULL); /* not selected: still waiting */
+    CHECK(fastscan(found));
+    for (sub = 0; sub < 4; sub++) {
+        CHECK_EQ_AT(found[sub], ident[sub], sub);
+    }
+    /* selected: configuration mode */
+    CHECK_EQ(inquire_id(), ODG_LSS_UNCONFIGURED);
+}
+
+static void configure_and_store(void)
+{
+    const odg_frame_t *r;
+    unsigned k;
+    for (k = 0; k < 4u; k++) { /* inquire identity */
+        r = lss((uint8_t)(0x5A + k), 0, 0, 0, 0);
+        CHECK(answered(r, (uint8_t)(0x5A + k)));
+        CHECK_EQ_AT(r != NULL ? le32(r->data + 1) : 0u, ident[k], k);
+    }
+    CHECK_EQ(configure(0x11, 0, 0), 1);   /* node-id out of range */
+    CHECK_EQ(configure(0x11, 128, 0), 1);
+    CHECK_EQ(configure(0x11, NID, 0), 0);
+    CHECK_EQ(inquire_id(), ODG_LSS_UNCONFIGURED); /* the active one */
+    CHECK_EQ(configure(0x13, 1, 4), 1); /* table 1: not the CiA table */
+    CHECK_EQ(configure(0x13, 0, 10), 1);
+    bt_refuse = 1;
+    CHECK_EQ(configure(0x13, 0, 0), 1); /* the application refuses 1000 kbit/s */
+    bt_refuse = 0;
+    bt_calls = 0;
+    CHECK_EQ(configure(0x13, 0, 4), 0); /* 125 kbit/s */
+    CHECK_EQ(bt_calls, 1);
+    CHECK_EQ(bt_index, 4);
+    CHECK_EQ(bt_activate, 0);
+    CHECK(lss(0x15, 250, 0, 0, 0) == NULL); /* activate: no answer, the application hears */
+    CHECK_EQ(bt_calls, 2);
+    CHECK_EQ(bt_activate, 1);
+    CHECK_EQ(bt_delay, 250);
+    CHECK_EQ(configure(0x17, 0, 0), 0); /* store */
+    CHECK_EQ(n_sent, 1);
+    /* back to waiting: the node boots as node 10 */
+    CHECK(lss(0x04, 0, 0, 0, 0) == NULL);
+    CHECK_EQ(count_id(0x700u + NID), 1);
+    CHECK_EQ(last_id(0x700u + NID)->data[0], 0);
+    CHECK_EQ(odg_node_state(&node), ODG_NMT_PRE_OPERATIONAL);
+    CHECK_EQ(upload_u32(0x1018, 4), SERIAL);
+    CHECK_EQ(upload_u32(0x1014, 0), 0x80u + NID); /* $NODEID values of the new node-id */
+    CHECK(lss(0x4C, 0, 0, 0, 0) == NULL); /* configured now */
+    CHECK(lss(0x51, 0, 0x80, 0, 0) == NULL); /* fastscan is for non-configured slaves */
+}
+
+static void survives_power_cycle(void)
+{
+    /* store a comm value too, so both kinds of stored data come back together */
+    CHECK_EQ(download_u32(0x1017, 0, 100, 2), 0);
+    CHECK_EQ(download(0x1010, 1, "save", 4), 0);
+    CHECK_EQ(power_on(ODG_LSS_UNCONFIGURED, &nv_ram), 0);
+    CHECK_EQ(count_id(0x700u + NID), 1); /* boots as node 10 by itself */
+    CHECK_EQ(upload_u32(0x1017, 0), 100);
+    clear();
+    run_ms(100);
+    CHECK_EQ(count_id(0x700u + NID), 1); /* heartbeat */
+    /* a node-id given by the application does not beat the stored one */
+    CHECK_EQ(power_on(7, &nv_ram), 0);
+    CHECK_EQ(count_id(0x700u + NID), 1);
+    CHECK_EQ(count_id(0x707u), 0);
+}
+
+static void selective_and_identify(void)
+{
+    const odg_frame_t *r;
+    /* switch state selective: a wrong part anywhere gets no answer */
+    lss(0x40, VENDOR, 0, 0, 0);
+    lss(0x41, PRODUCT, 0, 0, 0);
+    lss(0x42, REVISION, 0, 0, 0);
+    CHECK(lss(0x43, SERIAL + 1u, 0, 0, 0) == NULL);
+    lss(0x40, VENDOR, 0, 0, 0);
+    lss(0x41, PRODUCT + 1u, 0, 0, 0);
+    lss(0x42, REVISION, 0, 0, 0);
+    CHECK(lss(0x43, SERIAL, 0, 0, 0) == NULL);
+    lss(0x41, PRODUCT, 0, 0, 0); /* out of order */
+    lss(0x42, REVISION, 0, 0, 0);
+    CHECK(lss(0x43, SERIAL, 0, 0, 0) == NULL);
+    CHECK(lss(0x5E, 0, 0, 0, 0) == NULL);
+    lss(0x40, VENDOR, 0, 0, 0);
+    lss(0x41, PRODUCT, 0, 0, 0);
+    lss(0x42, REVISION, 0, 0, 0);
+    CHECK(answered(lss(0x43, SERIAL, 0, 0, 0), 0x44));
+    r = lss(0x5E, 0, 0, 0, 0);
+    CHECK(answered(r, 0x5E));
+    CHECK_EQ(r != NULL ? r->data[1] : 0u, NID);
+    /* a new node-id takes effect at the next reset communication, operational or not */
+    CHECK_EQ(configure(0x11, 20, 0), 0);
+    CHECK(lss(0x04, 0, 0, 0, 0) == NULL);
+    CHECK_EQ(n_sent, 0); /* a configured node does not boot on "waiting" */
+    nmt(ODG_NMT_START, NID);
+    CHECK_EQ(odg_node_state(&node), ODG_NMT_OPERATIONAL);
+    clear();
+    nmt(ODG_NMT_RESET_COMM, NID);
+    CHECK_EQ(count_id(0x700u + 20u), 1);
+    CHECK_EQ(count_id(0x700u + NID), 0);
+    nmt(ODG_NMT_START, NID);
+    CHECK_EQ(odg_node_state(&node), ODG_NMT_PRE_OPERATIONAL); /* 10 is not its node-id now */
+    nmt(ODG_NMT_START, 20);
+    CHECK_EQ(odg_node_state(&node), ODG_NMT_OPERATIONAL);
+    /* identify remote slave: vendor, product, revision and serial ranges */
+    lss(0x46, VENDOR, 0, 0, 0);
+    lss(0x47, PRODUCT, 0, 0, 0);
+    lss(0x48, REVISION - 1u, 0, 0, 0);
+    lss(0x49, REVISION, 0, 0, 0);
+    lss(0x4A, 0, 0, 0, 0);
+    CHECK(answered(lss(0x4B, 0xFFFFFFFFu, 0, 0, 0), 0x4F));
+    lss(0x46, VENDOR, 0, 0, 0);
+    lss(0x47, PRODUCT, 0, 0, 0);
+    lss(0x48, REVISION + 1u, 0, 0, 0); /* revision below the range */
+    lss(0x49, 0xFFFFFFFFu, 0, 0, 0);
+    lss(0x4A, 0, 0, 0, 0);
+    CHECK(lss(0x4B, 0xFFFFFFFFu, 0, 0, 0) == NULL);
+    lss(0x46, VENDOR + 1u, 0, 0, 0); /* another vendor */
+    lss(0x47, PRODUCT, 0, 0, 0);
+    lss(0x48, 0, 0, 0, 0);
+    lss(0x49, 0xFFFFFFFFu, 0, 0, 0);
+    lss(0x4A, 0, 0, 0, 0);
+    CHECK(lss(0x4B, 0xFFFFFFFFu, 0, 0, 0) == NULL);
+    lss(0x46, VENDOR, 0, 0, 0);
+    lss(0x47, PRODUCT, 0, 0, 0);
+    lss(0x48, 0, 0, 0, 0);
+    lss(0x49, 0xFFFFFFFFu, 0, 0, 0);
+    lss(0x4A, SERIAL + 1u, 0, 0, 0); /* serial above the range */
+    CHECK(lss(0x4B, 0xFFFFFFFFu, 0, 0, 0) == NULL);
+    /* not stored: a power cycle brings back node 10 */
+    CHECK(lss(0x04, 1, 0, 0, 0) == NULL); /* switch state global: configuration */
+    CHECK_EQ(inquire_id(), 20);
+    CHECK_EQ(power_on(ODG_LSS_UNCONFIGURED, &nv_ram), 0);
+    CHECK_EQ(count_id(0x700u + NID), 1);
+}
+
+static void back_to_unconfigured(void)
+{
+    CHECK(lss(0x04, 1, 0, 0, 0) == NULL);
+    CHECK_EQ(configure(0x11, ODG_LSS_UNCONFIGURED, 0), 0);
+    CHECK_EQ(configure(0x17, 0, 0), 0);
+    CHECK(lss(0x04, 0, 0, 0, 0) == NULL);
+    clear();
+    nmt(ODG_NMT_RESET_NODE, NID);
+    CHECK_EQ(n_sent, 0);
+    CHECK_EQ(odg_node_state(&node), ODG_NMT_INITIALISING);
+    CHECK(answered(lss(0x4C, 0, 0, 0, 0), 0x50));
+    CHECK_EQ(power_on(ODG_LSS_UNCONFIGURED, &nv_ram), 0);
+    CHECK_EQ(n_sent, 0);
+    /* without NV: store configuration answers "not supported", node-id given works */
+    CHECK_EQ(power_on(NID, NULL), 0);
+    CHECK_EQ(count_id(0x700u + NID), 1);
+    CHECK(lss(0x04, 1, 0, 0, 0) == NULL);
+    CHECK_EQ(configure(0x17, 0, 0), 1);
+    CHECK_EQ(power_on(0, NULL), ODG_ABORT_INCOMPATIBLE);
+    CHECK_EQ(power_on(128, NULL), ODG_ABORT_INCOMPATIBLE);
+}
+
+int main(void)
+{
+    memset(nv_mem, 0xFF, sizeof nv_mem);
+    unconfigured_is_silent();
+    fastscan_finds_the_identity();
+    configure_and_store();
+    survives_power_cycle();
+    selective_and_identify();
+    back_to_unconfigured();
+    return done();
+}
