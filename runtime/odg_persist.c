@@ -1,7 +1,13 @@
 /*
  * odg_persist.c - persistence groups in NV memory, safe against power loss.
  *
- * Each group has two slots (A at nv_addr, B right after it). A slot is a header followed by
+ * A group with a layout descriptor (generated with migration, the default) keeps "ODG2"
+ * images: its values in wire format after the layout they were written with, in two slots at
+ * the start and the middle of its own region; at boot a stored image of another layout is
+ * migrated entry by entry (docs/persistence.md; the policy is odgen/persist/migration.py).
+ * Without a layout the group keeps "ODG1" images, described here; both share the A/B commit.
+ *
+ * "ODG1": two slots (A at nv_addr, B right after it). A slot is a header followed by
  * the image (the group's RAM mirror, byte for byte):
  *
  *   offset  size  field (all little-endian, encoded byte by byte)
