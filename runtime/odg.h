@@ -268,8 +268,8 @@ typedef struct odg_group {
 #endif
 #define ODG_PERSIST_HEADER_SIZE 20u
 #define ODG_PERSIST_HEADER2_SIZE 24u
-/* Boot looks for a group's slot B at the middle of its region and of every region of 64, 128,
- * ... bytes up to this one (the region of another firmware version, see docs/persistence.md). */
+/* The largest region of another firmware version whose slot B (named by slot A's header) boot
+ * looks for; a power of two (docs/persistence.md). */
 #ifndef ODG_PERSIST_MAX_REGION
 #define ODG_PERSIST_MAX_REGION 0x10000u
 #endif /* "ODG2": magic, sequence, id, region, length, CRC */

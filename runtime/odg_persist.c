@@ -1,7 +1,13 @@
 /*
  * odg_persist.c - persistence groups in NV memory, safe against power loss.
  *
- * Each group has two slots (A at nv_addr, B right after it). A slot is a header followed by
+ * A group with a layout descriptor (generated with migration, the default) keeps "ODG2"
+ * images: its values in wire format after the layout they were written with, in two slots at
+ * the start and the middle of its own region; at boot a stored image of another layout is
+ * migrated entry by entry (docs/persistence.md; the policy is odgen/persist/migration.py).
+ * Without a layout the group keeps "ODG1" images, described here; both share the A/B commit.
+ *
+ * "ODG1": two slots (A at nv_addr, B right after it). A slot is a header followed by
  * the image (the group's RAM mirror, byte for byte):
  *
  *   offset  size  field (all little-endian, encoded byte by byte)
@@ -293,37 +299,44 @@ static int slot2_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t
     return sum == len;
 }
 
-/* Where a slot of group `gr` may lie, from its region's start: k = 0 slot A, 1 slot B of the
- * current region, then slot B of a region of 64, 128, ... ODG_PERSIST_MAX_REGION bytes, where
- * the image of a region that grew or shrank stays until a store in the current region lands.
- * SKIP for the current region again, END after the last. */
-#define SKIP 1u
-#define END 0xFFFFFFFFu
-static uint32_t probe(const odg_group_t *gr, uint32_t k)
+/* The slot B named by the header of slot A (`h`, read but not checked): the middle of the
+ * region slot A was written for, when that region is another power of two up to
+ * ODG_PERSIST_MAX_REGION (a flipped bit never makes one power of two another); 0: none. The
+ * header stays until slot A is written again, which a store does only once the newest image
+ * is in slot B of the current region, so an image of another region's slot B is found until
+ * then, whatever slot A's image holds. */
+static uint32_t named_b(const odg_group_t *gr, const uint8_t *h)
 {
-    uint32_t r = k >= 2u && k < 26u ? 64u << (k - 2u) : 0u;
-    if (k < 2u) {
-        return k ? gr->region / 2u : 0u;
+    uint32_t r = get32(h + 12);
+    if (get32(h) != MAGIC2 || get32(h + 8) != gr->id || r == gr->region || r < 64u ||
+        r > ODG_PERSIST_MAX_REGION || (r & (r - 1u)) != 0u) {
+        return 0u;
     }
-    return r == 0u || r > ODG_PERSIST_MAX_REGION ? END : (r == gr->region ? SKIP : r / 2u);
+    return gr->nv_addr + r / 2u;
 }
 
-/* The newest valid slot of group `gr` (address in *at, header in h): 1 found, 0 none, -1 the
- * driver failed (inside the region; past it a failing read means no NV there). */
+/* The newest valid slot of group `gr` (address in *at, header in h): slot A, slot B of the
+ * region, and the slot B slot A's header names. 1 found, 0 none, -1 the driver failed (a
+ * failing read past the region means no NV there). */
 static int newest2(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t *at, uint8_t *h)
 {
     uint8_t t[HDR2];
-    uint32_t k, off;
+    uint32_t cand[3], k, n = 2;
     int v, found = 0;
-    for (k = 0; (off = probe(gr, k)) != END; k++) {
-        v = off == SKIP ? 0 : slot2_read(nv, gr, gr->nv_addr + off, t, 1);
-        if (v < 0 && off < gr->region) {
+    cand[0] = gr->nv_addr;
+    cand[1] = gr->nv_addr + gr->region / 2u;
+    for (k = 0; k < n; k++) {
+        v = slot2_read(nv, gr, cand[k], t, 1);
+        if (v < 0 && cand[k] - gr->nv_addr < gr->region) {
             return -1;
         }
         if (v > 0 && (!found || newer(get32(t + 4), get32(h + 4)))) {
             found = 1;
-            *at = gr->nv_addr + off;
+            *at = cand[k];
             memcpy(h, t, HDR2);
+        }
+        if (k == 0u && v >= 0 && (cand[2] = named_b(gr, t)) != 0u) {
+            n = 3;
         }
     }
     return found;
@@ -462,13 +475,12 @@ static odg_abort_t erase2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_
 {
     const odg_group_t *gr = &d->groups[g];
     uint8_t h[HDR2], t[HDR2];
-    uint32_t at = 0, start = gr->nv_addr, end = gr->nv_addr + gr->region, e = 0, k, off;
+    uint32_t at = 0, start = gr->nv_addr, end = gr->nv_addr + gr->region, e = 0, b;
     int found = newest2(nv, gr, &at, h), fail = found < 0;
-    for (k = 2; !fail && (off = probe(gr, k)) != END; k++) {
-        if (off >= gr->region && off != SKIP && start + off != at &&
-            slot2_read(nv, gr, start + off, t, 1) == 1) {
-            fail = nv->erase(nv->ctx, start + off, extent(t)) != 0;
-        }
+    /* an older image in the slot B slot A names, past the region (a region that shrank) */
+    if (!fail && nv->read(nv->ctx, start, t, HDR2) == 0 && (b = named_b(gr, t)) >= end && b != at &&
+        slot2_read(nv, gr, b, t, 1) == 1) {
+        fail = nv->erase(nv->ctx, b, extent(t)) != 0;
     }
     if (found > 0) {
         e = at + extent(h);

@@ -18,7 +18,7 @@ from ..model.od import RECORD, Obj, Sub
 from ..model.values import parse_value
 from ..persist.layout import group_layouts
 from ..persist.migration import descriptor
-from ..persist.nvmap import FIRST, nv_map
+from ..persist.nvmap import nv_map
 from .options import PersistOptions
 from .placement import Placement
 
@@ -42,15 +42,11 @@ class PersistView:
     size: int = 0  # NV bytes of all regions
 
 
-def group_order(names: set[str]) -> list[str]:
-    return [g for g in FIRST if g in names] + sorted(g for g in names if g not in FIRST)
-
-
 def add_status_object(od: ObjectDictionary, placements: dict[tuple[int, int], Placement],
                       persist: PersistOptions, diags: Diagnostics) -> None:
-    """The boot status object at `[persist] status_object`: a RECORD, sub n (UNSIGNED32, ro) the
-    n-th group in NV-map order (status | converted << 8 | defaulted << 16 | dropped << 24), set by
-    the runtime at boot; in RAM."""
+    """The boot status object at `[persist] status_object`: a RECORD in RAM, sub n (UNSIGNED32, ro)
+    the group NAME_GROUP_* = n - 1 (status | converted << 8 | defaulted << 16 | dropped << 24),
+    set by the runtime at boot."""
     index = persist.status_object
     if index is None:
         return

@@ -87,8 +87,7 @@ class GroupView:
     defaults: str
     type_name: str
     signature: int
-    store_sub: int
-    nv_offset: str
+    store_sub: int  # the group's place in NV: persistview.PersistView
 
 
 @dataclass
@@ -544,15 +543,13 @@ def _limit_value(value: Value | None, fallback: int | float | None) -> int | flo
 def _groups(od: ObjectDictionary, view: DictView) -> list[GroupView]:
     store = od.objects.get(STORE)
     groups = []
-    offset = "0u"
     for s in view.structs:
         if not s.name.startswith(f"{view.name}_persist_"):
             continue
         group = s.name[len(f"{view.name}_persist_"):]
         sub = _GROUP_SUBS.get(group, 0)
         store_sub = sub if store is not None and sub in store.subs else 1
-        groups.append(GroupView(group, s.name, s.defaults, s.type_name, _signature(s), store_sub, offset))
-        offset = f"{offset} + 2u * ODG_PERSIST_SLOT_SIZE(sizeof({s.type_name}))"
+        groups.append(GroupView(group, s.name, s.defaults, s.type_name, _signature(s), store_sub))
     return groups
 
 
