@@ -351,5 +351,6 @@ ODG_ATTR_ROM const odg_dict_t td = {
     6,
     10,
     3,
-    2
+    2,
+    0, 0, 0, 0, 0, NULL, NULL /* no perfect hash: binary search */
 };

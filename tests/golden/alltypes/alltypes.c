@@ -33,6 +33,9 @@
 #if !ODG_CFG_STORE
 #error "alltypes uses 0x1010 / 0x1011 commands: build the runtime with ODG_CFG_STORE 1 (alltypes_config.h)"
 #endif
+#if !ODG_CFG_UNHASHED
+#error "alltypes uses lookup by generated find or binary search: build the runtime with ODG_CFG_UNHASHED 1 (alltypes_config.h)"
+#endif
 
 /* REAL32/REAL64 values are IEEE 754 single and double. */
 typedef char alltypes_assert_real_sizes[(sizeof(float) == 4 && sizeof(double) == 8) ? 1 : -1];

@@ -12,6 +12,9 @@
 #if !ODG_CFG_STORE
 #error "io_node uses 0x1010 / 0x1011 commands: build the runtime with ODG_CFG_STORE 1 (io_node_config.h)"
 #endif
+#if !ODG_CFG_UNHASHED
+#error "io_node uses lookup by generated find or binary search: build the runtime with ODG_CFG_UNHASHED 1 (io_node_config.h)"
+#endif
 
 /* REAL32/REAL64 values are IEEE 754 single and double. */
 typedef char io_node_assert_real_sizes[(sizeof(float) == 4 && sizeof(double) == 8) ? 1 : -1];
