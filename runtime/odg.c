@@ -356,7 +356,7 @@ static uint32_t hash_slot(const odg_dict_t *d, uint16_t index)
 
 /* The sub-entry `sub` of entry `e` into `ref`. */
 static inline odg_abort_t find_sub(const odg_dict_t *dict, const odg_entry_t *e, uint8_t sub,
-                            odg_ref_t *ref)
+                                   odg_ref_t *ref)
 {
     uint32_t k = sub;
     if (!(e->code & ODG_E_DENSE)) {
@@ -380,7 +380,7 @@ static inline odg_abort_t find_sub(const odg_dict_t *dict, const odg_entry_t *e,
 ODG_NOINLINE_
 #endif
 static odg_abort_t find_unhashed(const odg_dict_t *dict, uint16_t index, uint8_t sub,
-                                               odg_ref_t *ref)
+                                 odg_ref_t *ref)
 {
     int32_t i = dict->find ? dict->find(index)
                            : bsearch16(dict->entries, KEYED(odg_entry_t, index), dict->n_entries,
@@ -989,9 +989,6 @@ odg_abort_t odg_verify(const odg_dict_t *dict, uint16_t *bad_index)
             (uint32_t)e->first + e->count > d->n_subs) {
             return ODG_ABORT_INTERNAL;
         }
-        if ((d->find != NULL || d->hash_slots != NULL) && !found_alone(d, e)) {
-            return ODG_ABORT_INTERNAL;
-        }
         for (k = 0; k < e->count; k++) {
             odg_ref_t r;
             r.dict = d;
@@ -1010,6 +1007,14 @@ odg_abort_t odg_verify(const odg_dict_t *dict, uint16_t *bad_index)
     if (next != d->n_subs || hooked != d->n_hooks) {
         return ODG_ABORT_INTERNAL;
     }
+    /* the generated find or hash, once every entry is known sound (a lookup reads its subs) */
+    for (i = 0; i < d->n_entries && (d->find != NULL || d->hash_slots != NULL); i++) {
+        if (!found_alone(d, &d->entries[i])) {
+            *bad_index = d->entries[i].index;
+            return ODG_ABORT_INTERNAL;
+        }
+    }
+    *bad_index = 0xFFFFu;
     for (i = 0; i < d->n_hooks; i++) {
         if (d->hook_map[i].kinds == 0u || (d->hook_map[i].kinds & ~7u)) {
             *bad_index = owner(d, d->hook_map[i].sub_pos);
