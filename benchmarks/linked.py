@@ -22,7 +22,7 @@ from pathlib import Path
 
 from common import BUILD as BENCH
 from common import CORPUS, ODGEN, Target, failure
-from footprint import ensure_toolchain, symbols
+from footprint import ensure_toolchain, sections, symbols
 
 from odgen import toolchain
 
@@ -83,16 +83,6 @@ int main(void) { odg_ref_t r; unsigned char b[8]; uint32_t n;
 """
 
 
-def sizes(elf: Path) -> dict[str, int]:
-    out = subprocess.run(["arm-none-eabi-size", "-A", str(elf)], capture_output=True, text=True, check=True).stdout
-    got = {"text": 0, "rodata": 0, "data": 0, "bss": 0}
-    for line in out.splitlines():
-        parts = line.split()
-        if len(parts) >= 2 and parts[0].lstrip(".") in got and parts[1].isdigit():
-            got[parts[0].lstrip(".")] += int(parts[1])
-    return got
-
-
 def flash_ram(sec: dict[str, int]) -> tuple[int, int]:
     return sec["text"] + sec["rodata"] + sec["data"], sec["data"] + sec["bss"]
 
@@ -106,7 +96,7 @@ def empty_baseline() -> tuple[int, int]:
     (BUILD / "empty.c").write_text(EMPTY_MAIN)
     elf = BUILD / "empty.elf"
     _cc([*CPU, *toolchain.CFLAGS, str(BUILD / "empty.c"), *LINK, "-o", str(elf)]).check_returncode()
-    return flash_ram(sizes(elf))
+    return flash_ram(sections(elf))
 
 
 def config_defines(work: Path) -> list[str]:
@@ -156,7 +146,7 @@ def measure(label: str, source: Path, lookup: str, empty: tuple[int, int]) -> di
         if elf is None:
             row[key] = {"failed": why}
             continue
-        flash, ram = flash_ram(sizes(elf))
+        flash, ram = flash_ram(sections(elf))
         row[key] = {"flash": flash - empty[0], "ram": ram - empty[1]}
     row["core"] = core_bytes(work)
     return row

@@ -46,10 +46,11 @@ int main(int argc, char **argv)
 {
     volatile uint32_t sink = 0;
     odg_ref_t ref;
-    unsigned r, i, rounds = argc > 1 ? (unsigned)atoi(argv[1]) : 0u;
+    const odg_entry_t *e, *end = od.entries + od.n_entries;
+    unsigned r, rounds = argc > 1 ? (unsigned)atoi(argv[1]) : 0u;
     for (r = 0; r < rounds; r++) {
-        for (i = 0; i < od.n_entries; i++) {
-            sink += odg_find(&od, od.entries[i].index, 0, &ref);
+        for (e = od.entries; e < end; e++) {
+            sink += odg_find(&od, e->index, 0, &ref);
         }
     }
     return sink == 12345u;

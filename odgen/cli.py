@@ -136,7 +136,8 @@ def build_parser() -> argparse.ArgumentParser:
     gen.add_argument("--options", type=_existing_file("options file"), metavar="OPTS",
                      help="options file (TOML): placement, hooks")
     gen.add_argument("--node-id", type=_node_id, help="check $NODEID values for this node-id")
-    gen.add_argument("--lookup", choices=LOOKUPS, default="switch", help="index lookup (default: switch)")
+    gen.add_argument("--lookup", choices=LOOKUPS, default="hash",
+                     help="index lookup: hash (perfect hash, the default), bsearch (no tables), switch")
     gen.add_argument("--check", action="store_true",
                      help="write nothing; exit 1 listing missing, changed and extra files if DIR is not up to date")
     _input_format(gen)
@@ -146,6 +147,7 @@ def build_parser() -> argparse.ArgumentParser:
     explain.add_argument("input", type=Path, metavar="FILE")
     explain.add_argument("index", metavar="INDEX", help="e.g. 0x6040 or 0x6200sub1")
     explain.add_argument("--options", type=_existing_file("options file"), metavar="OPTS")
+    explain.add_argument("--lookup", choices=LOOKUPS, default="hash", help="the lookup to explain (as for generate)")
     _input_format(explain)
 
     chk = commands.add_parser("check", help="generate, compile and run a self-test of the dictionary")
@@ -153,7 +155,7 @@ def build_parser() -> argparse.ArgumentParser:
     chk.add_argument("--name", help="C name of the dictionary")
     chk.add_argument("--options", type=_existing_file("options file"), metavar="OPTS")
     chk.add_argument("--node-id", type=_node_id, help="node-id the self-test runs with (default 5)")
-    chk.add_argument("--lookup", choices=LOOKUPS, default="switch")
+    chk.add_argument("--lookup", choices=LOOKUPS, default="hash")
     chk.add_argument("--keep", type=Path, metavar="DIR", help="build in DIR and keep the files")
     chk.add_argument("--verbose", "-v", action="store_true", help="print the whole self-test output")
     _input_format(chk)
@@ -427,7 +429,7 @@ def _remove_stale_temps(out: Path, files: dict[str, str]) -> None:
 
 
 def cmd_explain(args: argparse.Namespace) -> int:
-    from .codegen.explain import explain_lines
+    from .codegen.explain import explain_lines, lookup_lines
     from .codegen.generate import Request, prepare
     from .codegen.options import parse_pattern
 
@@ -441,7 +443,7 @@ def cmd_explain(args: argparse.Namespace) -> int:
     lines = explain_lines(result.od, result.placements, pattern)
     if not lines:
         raise OdgenError(f"{args.input} has no entry {args.index}")
-    print("\n".join(lines))
+    print("\n".join(lines + lookup_lines(result.od, args.lookup)))
     return 0
 
 

@@ -44,6 +44,12 @@ typedef uint32_t num_t;
 #define NUM_BITS (8u * (uint32_t)sizeof(num_t))
 #define SIGN ((num_t)1u << (NUM_BITS - 1u))
 
+#if defined(__GNUC__)
+#define ODG_NOINLINE_ __attribute__((noinline))
+#else
+#define ODG_NOINLINE_
+#endif
+
 /* 0x1010 / 0x1011 command words ("save" / "load" read as a little-endian UNSIGNED32). */
 #define CMD_SAVE 0x65766173u
 #define CMD_LOAD 0x64616F6Cu
@@ -334,34 +340,64 @@ odg_abort_t odg_hook_register(const odg_dict_t *dict, uint16_t index, uint8_t su
 
 /* ---- find ----------------------------------------------------------------------------- */
 
-odg_abort_t odg_find(const odg_dict_t *dict, uint16_t index, uint8_t sub, odg_ref_t *ref)
+#if ODG_CFG_HASH
+/* The hashed slot of `index` (see odg_dict_t): the entry position it holds. */
+static uint32_t hash_slot(const odg_dict_t *d, uint16_t index)
 {
-    const odg_entry_t *e;
-    uint32_t p, end;
+    uint32_t h = (uint32_t)index * d->hash_mul, mask = d->hash_mask;
+    uint32_t top = h >> d->hash_top_shift, base = h >> d->hash_shift;
+    if (d->hash_bits > 8u) {
+        const uint16_t *disp = (const uint16_t *)d->hash_disp;
+        return ((const uint16_t *)d->hash_slots)[(base ^ disp[top]) & mask];
+    }
+    return ((const uint8_t *)d->hash_slots)[(base ^ ((const uint8_t *)d->hash_disp)[top]) & mask];
+}
+#endif
+
+/* The sub-entry `sub` of entry `e` into `ref`. */
+static inline odg_abort_t find_sub(const odg_dict_t *dict, const odg_entry_t *e, uint8_t sub,
+                                   odg_ref_t *ref)
+{
+    uint32_t k = sub;
+    if (!(e->code & ODG_E_DENSE)) {
+        for (k = 0; k < e->count && dict->subs[e->first + k].sub != sub; k++) {
+        }
+    }
+    if (k >= e->count) {
+        return ODG_ABORT_NO_SUB;
+    }
+    k += e->first;
+    ref->dict = dict;
+    ref->entry = e;
+    ref->sub = &dict->subs[k];
+    ref->sub_pos = (uint16_t)k;
+    return ODG_OK;
+}
+
+/* odg_find without a perfect hash: the generated find or a binary search. Kept out of odg_find
+ * so that the hashed path makes no call (and saves no registers). */
+#if ODG_CFG_HASH
+ODG_NOINLINE_
+#endif
+static odg_abort_t find_unhashed(const odg_dict_t *dict, uint16_t index, uint8_t sub,
+                                 odg_ref_t *ref)
+{
     int32_t i = dict->find ? dict->find(index)
                            : bsearch16(dict->entries, KEYED(odg_entry_t, index), dict->n_entries,
                                        index);
-    if (i < 0) {
-        return ODG_ABORT_NO_OBJECT;
+    return i < 0 ? ODG_ABORT_NO_OBJECT : find_sub(dict, &dict->entries[i], sub, ref);
+}
+
+odg_abort_t odg_find(const odg_dict_t *dict, uint16_t index, uint8_t sub, odg_ref_t *ref)
+{
+#if ODG_CFG_HASH
+    const odg_entry_t *e;
+    if (!ODG_CFG_UNHASHED || dict->hash_slots != NULL) {
+        e = &dict->entries[hash_slot(dict, index)];
+        return e->index != index ? ODG_ABORT_NO_OBJECT : find_sub(dict, e, sub, ref);
     }
-    e = &dict->entries[i];
-    p = e->first;
-    end = p + e->count;
-    if (e->code & ODG_E_DENSE) {
-        p += sub;
-    } else {
-        while (p < end && dict->subs[p].sub != sub) {
-            p++;
-        }
-    }
-    if (p >= end) {
-        return ODG_ABORT_NO_SUB;
-    }
-    ref->dict = dict;
-    ref->entry = e;
-    ref->sub = &dict->subs[p];
-    ref->sub_pos = (uint16_t)p;
-    return ODG_OK;
+#endif
+    return find_unhashed(dict, index, sub, ref);
 }
 
 /* ---- read ------------------------------------------------------------------------------ */
@@ -933,6 +969,38 @@ static int layout_ok(const odg_dict_t *d, uint8_t gi)
     return n == g->n_layout && bytes + ODG_PERSIST_HEADER2_SIZE <= g->region / 2u;
 }
 
+/* A generated find or hash finds entry `e` (at its first sub-entry), and rejects the index
+ * after it when that is absent. */
+static int found_alone(const odg_dict_t *d, const odg_entry_t *e)
+{
+    odg_ref_t r;
+    uint16_t next = (uint16_t)(e->index + 1u);
+    if (odg_find(d, e->index, d->subs[e->first].sub, &r) != ODG_OK || r.entry != e) {
+        return 0;
+    }
+    return e->index == 0xFFFFu || (e + 1 < d->entries + d->n_entries && e[1].index == next) ||
+           odg_find(d, next, 0, &r) == ODG_ABORT_NO_OBJECT;
+}
+
+/* The perfect hash's shape, and every slot naming an entry (so a lookup never reads past it). */
+static int hash_ok(const odg_dict_t *d)
+{
+    uint32_t k, n = 1u << d->hash_bits;
+    if (d->hash_disp == NULL || d->hash_bits == 0u || d->hash_bits > 16u ||
+        d->hash_top_shift == 0u || d->hash_top_shift < d->hash_bits ||
+        d->hash_shift != d->hash_top_shift - d->hash_bits || d->hash_mask != n - 1u) {
+        return 0;
+    }
+    for (k = 0; k < n; k++) {
+        uint32_t pos = d->hash_bits > 8u ? ((const uint16_t *)d->hash_slots)[k]
+                                         : ((const uint8_t *)d->hash_slots)[k];
+        if (pos >= d->n_entries) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
 odg_abort_t odg_verify(const odg_dict_t *dict, uint16_t *bad_index)
 {
     uint16_t dummy;
@@ -956,17 +1024,14 @@ odg_abort_t odg_verify(const odg_dict_t *dict, uint16_t *bad_index)
                       bad_index)) {
         return ODG_ABORT_INTERNAL;
     }
+    if (d->hash_slots != NULL ? !ODG_CFG_HASH || !hash_ok(d) : !ODG_CFG_UNHASHED) {
+        return ODG_ABORT_INTERNAL; /* a bad hash, or a lookup this build does not serve */
+    }
     for (i = 0; i < d->n_entries; i++) {
         const odg_entry_t *e = &d->entries[i];
         *bad_index = e->index;
         if ((i > 0u && e->index <= e[-1].index) || e->first != next || e->count == 0u ||
             (uint32_t)e->first + e->count > d->n_subs) {
-            return ODG_ABORT_INTERNAL;
-        }
-        if (d->find != NULL &&
-            (d->find(e->index) != (int32_t)i ||
-             (e->index < 0xFFFFu && (i + 1u == d->n_entries || e[1].index != e->index + 1u) &&
-              d->find((uint16_t)(e->index + 1u)) >= 0))) {
             return ODG_ABORT_INTERNAL;
         }
         for (k = 0; k < e->count; k++) {
@@ -987,6 +1052,14 @@ odg_abort_t odg_verify(const odg_dict_t *dict, uint16_t *bad_index)
     if (next != d->n_subs || hooked != d->n_hooks) {
         return ODG_ABORT_INTERNAL;
     }
+    /* the generated find or hash, once every entry is known sound (a lookup reads its subs) */
+    for (i = 0; i < d->n_entries && (d->find != NULL || d->hash_slots != NULL); i++) {
+        if (!found_alone(d, &d->entries[i])) {
+            *bad_index = d->entries[i].index;
+            return ODG_ABORT_INTERNAL;
+        }
+    }
+    *bad_index = 0xFFFFu;
     for (i = 0; i < d->n_hooks; i++) {
         if (d->hook_map[i].kinds == 0u || (d->hook_map[i].kinds & ~7u)) {
             *bad_index = owner(d, d->hook_map[i].sub_pos);

@@ -62,6 +62,12 @@ extern "C" {
 #ifndef ODG_CFG_STORE /* the 0x1010 / 0x1011 store and restore commands (ODG_S_STORE) */
 #define ODG_CFG_STORE 1
 #endif
+#ifndef ODG_CFG_HASH /* lookup by a generated perfect hash (odgen --lookup hash) */
+#define ODG_CFG_HASH 1
+#endif
+#ifndef ODG_CFG_UNHASHED /* lookup by a generated find (--lookup switch) or binary search */
+#define ODG_CFG_UNHASHED 1
+#endif
 /* Little-endian fast path: on a little-endian target a number's wire bytes are the first bytes
  * of its C type, copied as they are; elsewhere they are built with shifts. Detected from the
  * compiler; -DODG_LITTLE_ENDIAN=0 forces the portable path. */
@@ -357,6 +363,18 @@ typedef struct odg_dict {
     uint8_t n_groups;
     uint16_t persist_status; /* index of the boot status object (RECORD, sub n = group n - 1:
                               * status | converted << 8 | defaulted << 16 | dropped << 24), 0: none */
+    /* Perfect hash from index to entry position (odgen --lookup hash), or NULL: `find`, else
+     * binary search. h = index * hash_mul (32 bits); h >> hash_top_shift picks a displacement
+     * in hash_disp, xored into the hash_bits bits below (h >> hash_shift, masked by hash_mask,
+     * hash_shift = hash_top_shift - hash_bits): that slot of hash_slots holds the position.
+     * Both tables are uint8_t for hash_bits <= 8, else uint16_t. */
+    uint8_t hash_bits;
+    uint8_t hash_top_shift;
+    uint8_t hash_shift;
+    uint16_t hash_mask;
+    uint32_t hash_mul;
+    const void *hash_slots;
+    const void *hash_disp;
 } odg_dict_t;
 
 /* A located sub-entry: what odg_find returns and the other calls take. */

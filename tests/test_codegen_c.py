@@ -44,7 +44,7 @@ def _assert_passed(outcome) -> None:
 
 
 @pytest.mark.parametrize("cc", ["gcc", "clang"])
-@pytest.mark.parametrize("lookup", ["switch", "bsearch"])
+@pytest.mark.parametrize("lookup", ["switch", "bsearch", "hash"])
 def test_all_types_storage_classes_and_hooks(cc: str, lookup: str) -> None:
     request = Request(ALLTYPES.input, options=ALLTYPES.options, lookup=lookup)
     _assert_passed(run_check(request, cc=_compiler(cc)))

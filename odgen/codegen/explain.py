@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from ..diagnostics import where
 from ..model import ObjectDictionary, Sub
+from .lookup import perfect_hash
 from .options import Pattern
 from .placement import Placement
 
@@ -32,4 +33,19 @@ def explain_lines(od: ObjectDictionary, placements: dict[tuple[int, int], Placem
         lines.append(f"  hooks:   {hooks + function:<14} from {p.hooks_from}")
         if p.capacity is not None:
             lines.append(f"  capacity: {p.capacity} bytes   from {p.capacity_from}")
+    return lines
+
+
+def lookup_lines(od: ObjectDictionary, lookup: str) -> list[str]:
+    """How odg_find finds an index in this dictionary, and what the other modes would trade."""
+    indices = [o.index for o in od.sorted_objects() if o.index >= 0x1000]
+    found = perfect_hash(indices)
+    hashed = (f"perfect hash, {len(found.slots)} slots and {len(found.disp)} displacements "
+              f"({found.table_bytes} B of FLASH), one multiply and two table reads per lookup")
+    modes = {"hash": hashed, "bsearch": "binary search over the entry table, no tables of its own",
+             "switch": "a generated switch over the indices (code, larger than the hash tables)"}
+    lines = [f"dictionary: {len(indices)} entries; lookup: {lookup} ({modes[lookup]})"]
+    if lookup == "hash":
+        lines.append("  the default: the fastest mode measured (benchmarks/results/latest.md); "
+                     "--lookup bsearch saves the tables at about twice the instructions per lookup")
     return lines

@@ -35,7 +35,7 @@ class Request:
     name: str | None = None
     options: Path | None = None
     node_id: int | None = None
-    lookup: str = "switch"
+    lookup: str = "hash"
     defaults: str = ""  # options (TOML) applied before the options file, e.g. by `odgen roundtrip`
     can_fd: bool = False  # lint PDOs against a CAN FD frame (512 bits)
     input_format: str | None = None  # eds/dcf/xdd/xdc when the suffix does not say

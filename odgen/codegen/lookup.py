@@ -1,10 +1,10 @@
 """`--lookup hash`: a perfect hash from index to entry position, found at generation time.
 
-One multiply and shift select a slot, `h = index * mul` (32 bits): with `buckets == 0` the slot is
-the top `bits` bits of `h`; otherwise the top `bucket_bits` bits choose a bucket whose displacement
-is xored into the `bits` bits below them (hash and displace). The slot holds an entry position, and
-the generated find compares that entry's index with the one asked for, so absent indices fall
-out. Searches are seeded and bounded, so the same dictionary always gets the same tables.
+Hash and displace, as runtime/odg.c's hash_slot computes it: `h = index * mul` (32 bits); its top
+`bucket_bits` bits choose a bucket whose displacement is xored into the `bits` bits below them,
+giving the slot. The slot holds an entry position, and odg_find compares that entry's index with
+the one asked for, so absent indices fall out. The search is seeded and bounded, so the same
+dictionary always gets the same tables.
 """
 
 from __future__ import annotations
@@ -20,34 +20,18 @@ SEED = 0x9E3779B1  # the golden ratio in 32 bits: the first multiplier tried
 class PerfectHash:
     mul: int
     bits: int  # slots = 1 << bits
-    bucket_bits: int  # 0: single level
+    bucket_bits: int
     slots: list[int]
     disp: list[int]
 
     @property
-    def mask(self) -> int:
-        return (1 << self.bits) - 1
-
-    @property
-    def slot_shift(self) -> int:
-        return 32 - self.bucket_bits - self.bits
-
-    @property
-    def bucket_shift(self) -> int:
-        return 32 - self.bucket_bits
-
-    @property
     def ctype(self) -> str:
-        return "uint8_t" if len(self.slots) <= 256 else "uint16_t"
-
-    @property
-    def disp_ctype(self) -> str:
-        return "uint8_t" if (1 << self.bits) <= 256 else "uint16_t"
+        """Both tables' element type, as odg_dict_t says: uint8_t up to 8 bits."""
+        return "uint8_t" if self.bits <= 8 else "uint16_t"
 
     @property
     def table_bytes(self) -> int:
-        width = 1 if self.ctype == "uint8_t" else 2
-        return width * len(self.slots) + (1 if self.disp_ctype == "uint8_t" else 2) * len(self.disp)
+        return (1 if self.bits <= 8 else 2) * (len(self.slots) + len(self.disp))
 
 
 def _multipliers() -> list[int]:
@@ -60,19 +44,6 @@ def _multipliers() -> list[int]:
 
 
 MULTIPLIERS = _multipliers()
-
-
-def _single(indices: list[int], bits: int) -> PerfectHash | None:
-    shift = 32 - bits
-    n = len(indices)
-    for mul in MULTIPLIERS:
-        seen = {(k * mul & 0xFFFFFFFF) >> shift for k in indices}
-        if len(seen) == n:
-            slots = [0] * (1 << bits)
-            for pos, k in enumerate(indices):
-                slots[(k * mul & 0xFFFFFFFF) >> shift] = pos
-            return PerfectHash(mul, bits, 0, slots, [])
-    return None
 
 
 def _displaced(indices: list[int], bits: int, bucket_bits: int) -> PerfectHash | None:
@@ -102,14 +73,12 @@ def _displaced(indices: list[int], bits: int, bucket_bits: int) -> PerfectHash |
 
 
 def perfect_hash(indices: list[int]) -> PerfectHash:
-    """Tables for the sorted `indices`: the fewest slots (a power of two, at least n) for which a
-    search finds a hash; single-level for a handful of entries, else hash and displace with about
-    n/4 buckets."""
+    """Tables for the sorted `indices`: slots a power of two, loaded to at most 80%, and a quarter
+    as many buckets."""
     n = max(len(indices), 1)
     bits = max((n + n // 4 - 1).bit_length(), 1)  # a load of at most 80%: the search stays quick
     while True:
-        found = _single(indices, bits) if n <= 16 else None
-        found = found or _displaced(indices, bits, max(bits - BUCKET_SHIFT, 1))
+        found = _displaced(indices, bits, max(bits - BUCKET_SHIFT, 1))
         if found:
             return found
         bits += 1

@@ -2,7 +2,8 @@
 
 Each switch turns a feature of runtime/odg.c on when the dictionary has something that needs it;
 the rest is left out of the build (64-bit arithmetic on a 32-bit core, string and domain
-handling, hooks, limit checks, persistence groups, the 0x1010/0x1011 commands).
+handling, hooks, limit checks, persistence groups, the 0x1010/0x1011 commands, the lookup modes
+the dictionary does not use).
 """
 
 from __future__ import annotations
@@ -49,4 +50,8 @@ def runtime_config(view: DictView) -> list[Switch]:
         ("ODG_CFG_GROUPS", "persistence groups", [p for p, s in subs if "ODG_S_PERSIST" in s.storage]),
         ("ODG_CFG_STORE", "0x1010 / 0x1011 commands", [p for p, s in subs if "ODG_S_STORE" in s.storage]),
     ]
-    return [Switch(macro, what, bool(where), _first(view, where)) for macro, what, where in needs]
+    switches = [Switch(macro, what, bool(where), _first(view, where)) for macro, what, where in needs]
+    hashed = view.lookup == "hash"
+    return switches + [Switch("ODG_CFG_HASH", "lookup by perfect hash", hashed, "--lookup hash" if hashed else ""),
+                       Switch("ODG_CFG_UNHASHED", "lookup by generated find or binary search", not hashed,
+                              f"--lookup {view.lookup}" if not hashed else "")]

@@ -194,7 +194,7 @@ class DictView:
 
     @property
     def find_ref(self) -> str:
-        return self._table("find", self.lookup in ("switch", "hash"))
+        return self._table("find", self.lookup == "switch")
 
 
 # ---- values ----------------------------------------------------------------------------

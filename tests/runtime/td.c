@@ -352,5 +352,6 @@ ODG_ATTR_ROM const odg_dict_t td = {
     10,
     3,
     2,
-    0
+    0, /* no boot status object */
+    0, 0, 0, 0, 0, NULL, NULL /* no perfect hash: binary search */
 };

@@ -6,6 +6,9 @@
 #include "plain_bsearch.h"
 
 /* The runtime must serve what this dictionary uses (plain_bsearch_config.h). */
+#if !ODG_CFG_UNHASHED
+#error "plain_bsearch uses lookup by generated find or binary search: build the runtime with ODG_CFG_UNHASHED 1 (plain_bsearch_config.h)"
+#endif
 
 /* REAL32/REAL64 values are IEEE 754 single and double. */
 typedef char plain_bsearch_assert_real_sizes[(sizeof(float) == 4 && sizeof(double) == 8) ? 1 : -1];
