@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import json
 import os
-import subprocess
 import sys
 
 from odgen.codegen.generate import Request
@@ -21,7 +20,6 @@ from odgen.rules import LintOptions
 
 from .conftest import BUILD, ROOT, corpus_files
 
-VCAN = ROOT / "tools" / "vcan"
 CACHE = ROOT / "build" / "node-cache"
 
 
@@ -30,7 +28,7 @@ def _lint_clean(path) -> bool:
     return result.od is not None and result.count(Severity.ERROR) == 0
 
 
-def test_roundtrip_examples_and_corpus_on_vcan() -> None:
+def test_roundtrip_examples_and_corpus_on_vcan(vcan_bus) -> None:
     files = [ROOT / "examples" / "io-node" / "io-node.eds"] + [p for p in corpus_files() if _lint_clean(p)]
     env = dict(os.environ, ODGEN_CACHE=str(CACHE))
     os.environ["ODGEN_CACHE"] = str(CACHE)
@@ -39,13 +37,10 @@ def test_roundtrip_examples_and_corpus_on_vcan() -> None:
             build_node(Request(path, name="od", node_id=5, defaults=ROUNDTRIP_DEFAULTS))
     finally:
         os.environ.pop("ODGEN_CACHE", None)
-    setup = subprocess.run(["bash", str(VCAN / "setup.sh")], capture_output=True, text=True, check=False)
-    assert setup.returncode == 0, setup.stderr
     report = BUILD / "roundtrip.json"
     BUILD.mkdir(parents=True, exist_ok=True)
-    cmd = [sys.executable, str(VCAN / "run.py"), "--timeout", "1200", "--",
-           sys.executable, "-m", "odgen", "roundtrip", "--report", str(report), *map(str, files)]
-    run = subprocess.run(cmd, capture_output=True, text=True, env=env, cwd=ROOT, check=False)
+    cmd = [sys.executable, "-m", "odgen", "roundtrip", "--report", str(report), *map(str, files)]
+    run = vcan_bus.run(cmd, env=env, cwd=ROOT, timeout=1200)
     assert report.is_file(), run.stdout[-3000:] + run.stderr[-3000:]
     doc = json.loads(report.read_text())
     failed = [f for f in doc["files"] if not f["ok"]]

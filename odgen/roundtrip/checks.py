@@ -36,7 +36,7 @@ WRITE_ONLY, NO_OBJECT, NO_SUB = 0x06010001, 0x06020000, 0x06090011
 # commands: checked by their own steps, not by the generic downloads.
 ACTIVE = frozenset({0x1005, 0x1006, 0x1007, 0x1010, 0x1011, 0x1012, 0x1014, 0x1015, 0x1017}) | frozenset(
     range(0x1200, 0x1C00))
-BOOT_TIMEOUT = 5.0
+BOOT_TIMEOUT = 30.0  # waits end at the boot-up: generous for a loaded machine
 
 
 @dataclass
@@ -375,7 +375,7 @@ def _tpdo(s: Session, check: Check, e: Entry) -> None:
                  f"TPDO1 on SYNC carried {_hex(bytes(pdo.data) if got else None)}, SDO reads {_hex(value)}")
 
 
-def _wait(condition: Callable[[], bool], timeout: float = 1.0) -> bool:
+def _wait(condition: Callable[[], bool], timeout: float = 5.0) -> bool:
     deadline = time.monotonic() + timeout
     while time.monotonic() < deadline:
         if condition():
