@@ -15,6 +15,7 @@ from pathlib import Path
 
 from . import __version__
 from .codegen.check import run_check
+from .conformance import cli as conformance_cli
 from .roundtrip import FileOutcome, roundtrip_file, summary_lines, write_report
 from .roundtrip.build import build_node
 from .codegen.explain import explain_lines
@@ -108,6 +109,7 @@ def build_parser() -> argparse.ArgumentParser:
     rt.add_argument("--report", type=Path, help="write the results as JSON")
 
     add_profile_parser(commands)
+    conformance_cli.add_parser(commands, _node_id)
 
     rules = commands.add_parser("rules", help="list the rule catalogue")
     rules.add_argument("--markdown", action="store_true", help="as docs/rules.md")
@@ -294,7 +296,7 @@ def cmd_rules(args: argparse.Namespace) -> int:
 
 COMMANDS = {"lint": cmd_lint, "convert": cmd_convert, "generate": cmd_generate, "explain": cmd_explain,
             "check": cmd_check, "node": cmd_node, "roundtrip": cmd_roundtrip, "rules": cmd_rules,
-            "profile": cmd_profile}
+            "profile": cmd_profile, "conformance": conformance_cli.command}
 
 
 def main(argv: Sequence[str] | None = None) -> int:

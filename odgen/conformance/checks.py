@@ -1,0 +1,228 @@
+"""The conformance checks: what a CiA 301 conformance test looks at, run against a live node.
+
+Each check is a function of the client returning a Check (roundtrip's: passed count,
+failures, or a reason to skip). Expected values come from the description alone; a check
+whose object the description lacks is skipped, saying why. Checks leave the node as they
+found it where they can (values written back, pre-operational, 0x1017 restored).
+"""
+
+from __future__ import annotations
+
+import statistics
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from ..codegen.selftest import expected_bytes, wire_bytes, write_cases
+from ..model import Obj, Sub
+from ..model.datatypes import BASIC_TYPES, DataType
+from ..roundtrip.checks import ABORTS, ACTIVE, NO_OBJECT, NO_SUB, WRITE_ONLY, Check
+from .client import DEADLINE, Client
+
+READ_ONLY = ABORTS["ODG_ABORT_READ_ONLY"]
+RANGE = 0x06090030  # "value range of parameter exceeded": the general code a node may give
+LENGTH = 0x06070010  # "data type does not match, length does not match": likewise
+NOT_MAPPABLE, MAP_TOO_LONG, INCOMPATIBLE = 0x06040041, 0x06040042, 0x06040043
+SIGNATURE = 0x08000020
+STORE, RESTORE = 0x1010, 0x1011
+EMCY_RPDO_LENGTH = 0x8210
+# Accepted in place of the specific code: CiA 301 lets a device answer with the general one.
+ALSO = {0x06090031: RANGE, 0x06090032: RANGE, 0x06070012: LENGTH, 0x06070013: LENGTH}
+
+
+@dataclass
+class Entry:
+    obj: Obj
+    sub: Sub
+    dtype: DataType
+
+    @property
+    def label(self) -> str:
+        return f"0x{self.obj.index:04X}sub{self.sub.subindex}"
+
+    @property
+    def key(self) -> tuple[int, int]:
+        return self.obj.index, self.sub.subindex
+
+
+def entries(c: Client) -> list[Entry]:
+    out = []
+    for obj in c.od.sorted_objects():
+        for sub in obj.sorted_subs():
+            dtype = BASIC_TYPES.get(sub.data_type or 0)
+            if dtype is not None and obj.index >= 0x1000:
+                out.append(Entry(obj, sub, dtype))
+    return out
+
+
+def _command(e: Entry) -> bool:
+    """0x1010/0x1011 subs >= 1: a read gives the capabilities, a write is a command."""
+    return e.obj.index in (STORE, RESTORE) and e.sub.subindex > 0
+
+
+def _code_ok(got: int, want: int) -> bool:
+    return got == want or (want in ALSO and got == ALSO[want])
+
+
+def _hex(data: bytes | None) -> str:
+    return "none" if data is None else (data.hex(" ") if len(data) <= 16 else data[:16].hex(" ") + " ...")
+
+
+def _same_value(e: Entry, got: bytes, want: bytes) -> bool:
+    """An OCTET_STRING may be stored longer than its default: zero padding is the same value."""
+    if e.dtype.kind == "ostring":
+        return got[:len(want)] == want and not got[len(want):].strip(b"\0")
+    return got == want
+
+
+# ---- SDO: values, limits, lengths ---------------------------------------------------------------
+
+
+def check_uploads(c: Client) -> Check:
+    check = Check("every readable entry uploads the described value")
+    for e in entries(c):
+        if not e.sub.readable:
+            continue
+        data, code = c.upload(*e.key)
+        want = None if _command(e) else expected_bytes(e.sub, e.dtype, c.node_id)
+        if code:
+            check.expect(False, f"{e.label}: upload aborted 0x{code:08X}" if code > 0 else f"{e.label}: no answer")
+        elif want is not None:
+            check.expect(_same_value(e, data or b"", want), f"{e.label}: uploaded {_hex(data)}, described {_hex(want)}")
+        else:
+            check.expect(True, "")
+    return check
+
+
+def _writable_numbers(c: Client) -> list[Entry]:
+    return [e for e in entries(c) if e.sub.writable and e.dtype.is_numeric and e.obj.index not in ACTIVE
+            and not _command(e) and write_cases(e.sub, e.dtype)]
+
+
+def _downloads(c: Client, check: Check, keep: Callable[[str], bool]) -> None:
+    for e in _writable_numbers(c):
+        original = c.upload(*e.key)[0] if e.sub.readable else None
+        for data, expect in write_cases(e.sub, e.dtype):
+            if not keep(expect):
+                continue
+            code = c.download(*e.key, data)
+            want = ABORTS[expect]
+            check.expect(_code_ok(code, want), f"{e.label}: download {_hex(data)} gave 0x{code:08X}, "
+                                               f"expected 0x{want:08X}")
+            if code == 0 and want == 0 and e.sub.readable:
+                back = c.upload(*e.key)[0]
+                check.expect(back == data, f"{e.label}: wrote {_hex(data)}, read back {_hex(back)}")
+        if original is not None:
+            c.download(*e.key, original)
+    if not check.passed and not check.failures:
+        check.skipped = "no writable number outside the communication objects"
+
+
+def check_limits(c: Client) -> Check:
+    check = Check("writable entries take values at their limits and refuse values beyond them")
+    _downloads(c, check, lambda expect: expect in ("ODG_OK", "ODG_ABORT_VALUE_HIGH", "ODG_ABORT_VALUE_LOW"))
+    return check
+
+
+def check_lengths(c: Client) -> Check:
+    check = Check("writable entries refuse downloads of the wrong length (0x06070012/13)")
+    _downloads(c, check, lambda expect: expect in ("ODG_ABORT_TOO_LONG", "ODG_ABORT_TOO_SHORT"))
+    return check
+
+
+# ---- access rules -------------------------------------------------------------------------------
+
+
+def check_read_only(c: Client) -> Check:
+    check = Check("a write to a read-only entry aborts 0x06010002")
+    for e in entries(c):
+        if e.sub.writable or not e.dtype.is_numeric or _command(e):
+            continue
+        data = expected_bytes(e.sub, e.dtype, c.node_id) or wire_bytes(0, e.dtype)
+        code = c.download(*e.key, data)
+        check.expect(code == READ_ONLY, f"{e.label}: write to {e.sub.access} gave 0x{code:08X}")
+    if not check.passed and not check.failures:
+        check.skipped = "no read-only number"
+    return check
+
+
+def check_write_only(c: Client) -> Check:
+    check = Check("a read of a write-only entry aborts 0x06010001")
+    for e in entries(c):
+        if not e.sub.readable and not _command(e):
+            code = c.upload(*e.key)[1]
+            check.expect(code == WRITE_ONLY, f"{e.label}: read of {e.sub.access} gave 0x{code:08X}")
+    if not check.passed and not check.failures:
+        check.skipped = "no write-only entry"
+    return check
+
+
+def check_missing(c: Client) -> Check:
+    check = Check("a missing object aborts 0x06020000, a missing sub-index 0x06090011")
+    missing = next(i for i in range(0x5FFF, 0x1FFF, -1) if i not in c.od.objects)
+    for index in (missing, 0x1FFF if 0x1FFF not in c.od.objects else missing):
+        code = c.upload(index, 0)[1]
+        check.expect(code == NO_OBJECT, f"0x{index:04X}: read gave 0x{code:08X}")
+    for obj in c.od.sorted_objects():
+        if obj.index >= 0x1000 and obj.subs:
+            absent = next((i for i in range(0xFE, 0, -1) if i not in obj.subs), None)
+            if absent is not None:
+                code = c.upload(obj.index, absent)[1]
+                check.expect(code == NO_SUB, f"0x{obj.index:04X}sub{absent}: read gave 0x{code:08X}")
+                break
+    return check
+
+
+# ---- NMT and heartbeat --------------------------------------------------------------------------
+
+
+def check_nmt_states(c: Client) -> Check:
+    check = Check("NMT: SDO answers in pre-operational and operational, not in stopped; heartbeat shows the state")
+    for command, state, sdo in (("OPERATIONAL", 0x05, True), ("STOPPED", 0x04, False),
+                                ("PRE-OPERATIONAL", 0x7F, True)):
+        sent = c.nmt(command)
+        if _heartbeat_period(c):
+            check.expect(c.heartbeat_state(sent, state), f"{command}: no heartbeat with state 0x{state:02X}")
+        answered = c.answers()
+        check.expect(answered == sdo, f"{command}: the SDO server {'did not answer' if sdo else 'answered'}")
+    return check
+
+
+def check_bootup(c: Client) -> Check:
+    check = Check("boot-up after reset communication and after reset node")
+    for command in ("RESET COMMUNICATION", "RESET"):
+        sent = c.nmt(command)
+        booted = c.wait_frame(sent, lambda cob, d: cob == 0x700 + c.node_id and d[:1] == b"\x00")
+        check.expect(booted is not None, f"{command.lower()}: no boot-up within {DEADLINE:g} s")
+        check.expect(c.answers(), f"{command.lower()}: the SDO server does not answer after the boot-up")
+    return check
+
+
+def _heartbeat_period(c: Client) -> int:
+    data = c.upload(0x1017, 0)[0] if c.od.find(0x1017) is not None else None
+    return int.from_bytes(data, "little") if data else 0
+
+
+def check_heartbeat(c: Client) -> Check:
+    check = Check("heartbeat period as configured in 0x1017")
+    hb = c.od.find(0x1017)
+    if hb is None:
+        check.skipped = "no 0x1017"
+        return check
+    original = c.upload(0x1017, 0)[0]
+    period = 100 if hb.writable else _heartbeat_period(c)
+    if hb.writable:
+        check.expect(c.download(0x1017, 0, period.to_bytes(2, "little")) == 0, "0x1017 = 100 ms refused")
+    if not period or period > 2000:
+        check.skipped = f"0x1017 is read-only with {period} ms"
+        return check
+    start = time.monotonic()
+    time.sleep(period * 8 / 1000)  # a measuring window of about 8 periods, not a wait for an event
+    times = [t for t, _ in c.frames_since(start, 0x700 + c.node_id)]
+    gaps = [1000 * (b - a) for a, b in zip(times, times[1:], strict=False)]
+    median = statistics.median(gaps) if gaps else None
+    check.expect(median is not None and 0.8 * period <= median <= 1.3 * period,
+                 f"heartbeat every {median and round(median)} ms, configured {period}")
+    if original is not None and hb.writable:
+        c.download(0x1017, 0, original)
+    return check
