@@ -48,14 +48,14 @@ odg_abort_t odg_node_check_(odg_node_t *n, uint16_t index, uint8_t sub, const ui
                             uint32_t len)
 {
     uint32_t v = 0;
-    if (index < 0x1400u || index >= 0x1C00u || len > 4u) {
-        return ODG_OK; /* only PDO parameters have rules beyond the dictionary's own checks */
+    if ((index != 0x1003u && (index < 0x1400u || index >= 0x1C00u)) || len > 4u) {
+        return ODG_OK; /* only 0x1003 and PDO parameters have rules beyond the dictionary's */
     }
     while (len > 0u) {
         len--;
         v = v << 8 | data[len];
     }
-    return odg_pdo_check_(n, index, sub, v);
+    return index == 0x1003u ? odg_err_check_(n, sub, v) : odg_pdo_check_(n, index, sub, v);
 }
 
 /* COB-IDs of SYNC, EMCY and the SDO server. The default SDO server (0x1200) always answers on
@@ -76,6 +76,8 @@ void odg_node_written_(odg_node_t *n, uint16_t index)
         odg_pdo_load_(n, index >= 0x1800u, (uint16_t)(index & 0x1FFu));
     } else if (index == 0x1005u || index == 0x1014u) {
         load_cobs(n);
+    } else if (index == 0x1003u) {
+        odg_err_written_(n);
     }
 }
 
@@ -262,6 +264,7 @@ odg_abort_t odg_node_emcy(odg_node_t *node, uint16_t code, uint8_t error_registe
 {
     uint8_t d[8];
     set_error_register(node, error_register);
+    odg_err_record_(node, code, vendor, n_vendor);
     if ((node->state != ODG_NMT_PRE_OPERATIONAL && node->state != ODG_NMT_OPERATIONAL) ||
         (node->emcy_cob & ODG_COB_INVALID)) {
         return ODG_ABORT_DATA_STATE;

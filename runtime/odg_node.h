@@ -18,7 +18,7 @@
  * Every value travels through odg_read / odg_write / odg_write_part, so access, length and
  * limit checks and hooks apply to SDO and PDO alike. Only 11-bit identifiers are used;
  * frames with ODG_FRAME_EFF or ODG_FRAME_RTR are ignored (no RTR-triggered PDOs, no node
- * guarding). odg_node.c, odg_sdo.c and odg_pdo.c implement it; see runtime/README.md.
+ * guarding). odg_node.c, odg_sdo.c, odg_pdo.c and odg_err.c implement it; see runtime/README.md.
  */
 #ifndef ODG_NODE_H
 #define ODG_NODE_H

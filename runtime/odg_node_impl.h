@@ -46,6 +46,11 @@ odg_abort_t odg_node_check_(odg_node_t *n, uint16_t index, uint8_t sub, const ui
 /* After the SDO server wrote to `index`: re-read what the node caches from it. */
 void odg_node_written_(odg_node_t *n, uint16_t index);
 
+/* odg_err.c: the pre-defined error field 0x1003 */
+void odg_err_record_(odg_node_t *n, uint16_t code, const uint8_t *vendor, uint8_t n_vendor);
+odg_abort_t odg_err_check_(const odg_node_t *n, uint8_t sub, uint32_t value);
+void odg_err_written_(odg_node_t *n); /* after an SDO write to 0x1003: sub 0 = 0 clears */
+
 /* odg_sdo.c */
 void odg_sdo_receive_(odg_node_t *n, const odg_frame_t *f);
 void odg_sdo_tick_(odg_node_t *n, uint32_t ms);

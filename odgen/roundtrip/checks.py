@@ -34,7 +34,7 @@ ABORTS = {"ODG_OK": 0, "ODG_ABORT_TOO_LONG": 0x06070012, "ODG_ABORT_TOO_SHORT": 
 WRITE_ONLY, NO_OBJECT, NO_SUB = 0x06010001, 0x06020000, 0x06090011
 # Objects whose writes change how the node talks (SDO/PDO/SYNC/EMCY/heartbeat) or act as
 # commands: checked by their own steps, not by the generic downloads.
-ACTIVE = frozenset({0x1005, 0x1006, 0x1007, 0x1010, 0x1011, 0x1012, 0x1014, 0x1015, 0x1017}) | frozenset(
+ACTIVE = frozenset({0x1003, 0x1005, 0x1006, 0x1007, 0x1010, 0x1011, 0x1012, 0x1014, 0x1015, 0x1017}) | frozenset(
     range(0x1200, 0x1C00))
 BOOT_TIMEOUT = 30.0  # waits end at the boot-up: generous for a loaded machine
 

@@ -6,7 +6,7 @@
  *   TPDO2 0x280+id  type 3 (every 3rd SYNC) 0x2002 u32
  *   TPDO3 invalid   type 0                 (nothing mapped)
  *   RPDO1 0x200+id  type 255               0x2005 i16 (-100..100), 0x2004 sub1/sub2 1 bit each
- *   RPDO2 0x300+id  type 1                 0x2002 u32
+ *   RPDO2 0x300+id  type 1                 0x2002 u32 (static mapping: 0x1601 read-only)
  *   0x1005 = 0x80, 0x1014 = 0x80+id, 0x1017 = 0, eight mapping entries per PDO
  */
 #include <stdio.h>
@@ -379,6 +379,42 @@ static void test_emcy_and_resets(void)
     CHECK_EQ(count_id(TPDO1), 0);
 }
 
+/* 0x1003: every EMCY error code enters sub 1, the older ones move down, the oldest falls off
+ * past sub 3; sub 0 counts; only 0 may be written to sub 0, and it clears the history. */
+static void test_error_history(void)
+{
+    unsigned k;
+    nmt(ODG_NMT_RESET_NODE, NID);
+    CHECK_EQ(upload_u32(0x1003, 0), 0);
+    CHECK_EQ(odg_node_emcy(&node, 0x8210, 0x11, (const uint8_t *)"\x34\x12", 2), 0);
+    CHECK_EQ(upload_u32(0x1003, 0), 1);
+    CHECK_EQ(upload_u32(0x1003, 1), 0x12348210u);
+    CHECK_EQ(odg_node_emcy(&node, 0, 0, NULL, 0), 0); /* error reset: not an error */
+    CHECK_EQ(upload_u32(0x1003, 0), 1);
+    for (k = 1; k <= 3; k++) {
+        CHECK_EQ(odg_node_emcy(&node, (uint16_t)(0x5000 + k), 0x01, NULL, 0), 0);
+    }
+    CHECK_EQ(upload_u32(0x1003, 0), 3);
+    CHECK_EQ(upload_u32(0x1003, 1), 0x5003);
+    CHECK_EQ(upload_u32(0x1003, 2), 0x5002);
+    CHECK_EQ(upload_u32(0x1003, 3), 0x5001);
+    nmt(ODG_NMT_STOP, NID); /* not sent when stopped, but recorded */
+    CHECK_EQ(odg_node_emcy(&node, 0x6000, 0x01, NULL, 0), ODG_ABORT_DATA_STATE);
+    nmt(ODG_NMT_ENTER_PREOP, NID);
+    CHECK_EQ(upload_u32(0x1003, 1), 0x6000);
+    CHECK_EQ(download_u32(0x1003, 1, 0, 4), ODG_ABORT_READ_ONLY);
+    CHECK_EQ(download_u32(0x1003, 0, 2, 1), ODG_ABORT_VALUE_RANGE);
+    CHECK_EQ(upload_u32(0x1003, 0), 3);
+    nmt(ODG_NMT_RESET_COMM, NID); /* kept */
+    CHECK_EQ(upload_u32(0x1003, 0), 3);
+    CHECK_EQ(download_u32(0x1003, 0, 0, 1), 0);
+    CHECK_EQ(upload_u32(0x1003, 0), 0);
+    CHECK_EQ(upload_u32(0x1003, 1), 0);
+    /* a read-only (static) mapping of a valid PDO answers 0x06010002, not the PDO rules' code */
+    CHECK_EQ(download_u32(0x1601, 0, 0, 1), ODG_ABORT_READ_ONLY);
+    CHECK_EQ(download_u32(0x1601, 1, 0x20020020, 4), ODG_ABORT_READ_ONLY);
+}
+
 int main(void)
 {
     test_only_when_operational();
@@ -387,5 +423,6 @@ int main(void)
     test_rpdo();
     test_remap();
     test_emcy_and_resets();
+    test_error_history();
     return done();
 }
