@@ -28,8 +28,13 @@ def _lint_clean(path) -> bool:
     return result.od is not None and result.count(Severity.ERROR) == 0
 
 
+def vcan_files() -> list:
+    """The descriptions checked on a bus (here and by tests/test_conformance.py)."""
+    return [ROOT / "examples" / "io-node" / "io-node.eds"] + [p for p in corpus_files() if _lint_clean(p)]
+
+
 def test_roundtrip_examples_and_corpus_on_vcan(vcan_bus) -> None:
-    files = [ROOT / "examples" / "io-node" / "io-node.eds"] + [p for p in corpus_files() if _lint_clean(p)]
+    files = vcan_files()
     env = dict(os.environ, ODGEN_CACHE=str(CACHE))
     os.environ["ODGEN_CACHE"] = str(CACHE)
     try:

@@ -95,8 +95,16 @@ def check_uploads(c: Client) -> Check:
 
 
 def _writable_numbers(c: Client) -> list[Entry]:
-    return [e for e in entries(c) if e.sub.writable and e.dtype.is_numeric and e.obj.index not in ACTIVE
-            and not _command(e) and write_cases(e.sub, e.dtype)]
+    """Sub-indices of one object described alike (type, access, limits) behave alike: the first stands
+    for the others, which keeps a run over a large array short."""
+    seen, out = set(), []
+    for e in entries(c):
+        cases = write_cases(e.sub, e.dtype) if e.sub.writable and e.dtype.is_numeric else []
+        key = (e.obj.index, e.sub.access, tuple(cases))
+        if cases and e.obj.index not in ACTIVE and not _command(e) and key not in seen:
+            seen.add(key)
+            out.append(e)
+    return out
 
 
 def _downloads(c: Client, check: Check, keep: Callable[[str], bool]) -> None:
@@ -178,13 +186,20 @@ def check_missing(c: Client) -> Check:
 
 def check_nmt_states(c: Client) -> Check:
     check = Check("NMT: SDO answers in pre-operational and operational, not in stopped; heartbeat shows the state")
+    hb = c.od.find(0x1017)
+    original = c.upload(0x1017, 0)[0] if hb is not None else None
+    if hb is not None and hb.writable:
+        c.download(0x1017, 0, (100).to_bytes(2, "little"))  # a heartbeat soon after each command
+    beating = _heartbeat_period(c)
     for command, state, sdo in (("OPERATIONAL", 0x05, True), ("STOPPED", 0x04, False),
                                 ("PRE-OPERATIONAL", 0x7F, True)):
         sent = c.nmt(command)
-        if _heartbeat_period(c):
+        if beating:
             check.expect(c.heartbeat_state(sent, state), f"{command}: no heartbeat with state 0x{state:02X}")
         answered = c.answers()
         check.expect(answered == sdo, f"{command}: the SDO server {'did not answer' if sdo else 'answered'}")
+    if original is not None and hb is not None and hb.writable:
+        c.download(0x1017, 0, original)
     return check
 
 
@@ -203,6 +218,14 @@ def _heartbeat_period(c: Client) -> int:
     return int.from_bytes(data, "little") if data else 0
 
 
+def _median_gap(c: Client, period: int) -> float | None:
+    start = time.monotonic()
+    time.sleep(period * 8 / 1000)  # a measuring window of about 8 periods, not a wait for an event
+    times = c.received_since(start, 0x700 + c.node_id)
+    gaps = [1000 * (b - a) for a, b in zip(times, times[1:], strict=False)]
+    return statistics.median(gaps) if gaps else None
+
+
 def check_heartbeat(c: Client) -> Check:
     check = Check("heartbeat period as configured in 0x1017")
     hb = c.od.find(0x1017)
@@ -216,13 +239,13 @@ def check_heartbeat(c: Client) -> Check:
     if not period or period > 2000:
         check.skipped = f"0x1017 is read-only with {period} ms"
         return check
-    start = time.monotonic()
-    time.sleep(period * 8 / 1000)  # a measuring window of about 8 periods, not a wait for an event
-    times = [t for t, _ in c.frames_since(start, 0x700 + c.node_id)]
-    gaps = [1000 * (b - a) for a, b in zip(times, times[1:], strict=False)]
-    median = statistics.median(gaps) if gaps else None
-    check.expect(median is not None and 0.8 * period <= median <= 1.3 * period,
-                 f"heartbeat every {median and round(median)} ms, configured {period}")
+    medians = []
+    for _ in range(3):  # a machine stalled for a while stretches one window: measure again
+        medians.append(_median_gap(c, period))
+        if medians[-1] is not None and 0.8 * period <= medians[-1] <= 1.3 * period:
+            break
+    check.expect(medians[-1] is not None and 0.8 * period <= medians[-1] <= 1.3 * period,
+                 f"heartbeat every {', '.join(str(m and round(m)) for m in medians)} ms, configured {period}")
     if original is not None and hb.writable:
         c.download(0x1017, 0, original)
     return check

@@ -48,6 +48,7 @@ class Client:
         self.network.add_node(self.node)
         self.node.sdo.RESPONSE_TIMEOUT = SDO_TIMEOUT
         self.frames: list[tuple[float, int, bytes]] = []  # (time, COB-ID, data) of watched frames
+        self.stamps: list[tuple[float, int, float]] = []  # (time, COB-ID, the kernel's receive time)
         self.lock = threading.Condition()
         self.watched: set[int] = set()
         self.watch(0x700 + node_id)
@@ -62,9 +63,11 @@ class Client:
             self.network.subscribe(cob, self._seen)
             self.watched.add(cob)
 
-    def _seen(self, cob: int, data: bytearray, _timestamp: float) -> None:
+    def _seen(self, cob: int, data: bytearray, timestamp: float) -> None:
         with self.lock:
-            self.frames.append((time.monotonic(), cob, bytes(data)))
+            now = time.monotonic()
+            self.frames.append((now, cob, bytes(data)))
+            self.stamps.append((now, cob, timestamp))
             self.lock.notify_all()
 
     def wait_frame(self, since: float, match: Callable[[int, bytes], bool], deadline: float = DEADLINE
@@ -84,6 +87,11 @@ class Client:
     def frames_since(self, since: float, cob: int) -> list[tuple[float, bytes]]:
         with self.lock:
             return [(t, d) for t, c, d in self.frames if t >= since and c == cob]
+
+    def received_since(self, since: float, cob: int) -> list[float]:
+        """When the kernel received each frame of `cob` since `since` (for periods: no Python delays)."""
+        with self.lock:
+            return [stamp for t, c, stamp in self.stamps if t >= since and c == cob]
 
     def send(self, cob: int, data: bytes, remote: bool = False) -> None:
         self.network.send_message(cob, data, remote=remote)

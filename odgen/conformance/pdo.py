@@ -200,15 +200,22 @@ def check_emcy(c: Client) -> Check:
         frame = c.wait_frame(sent, lambda cob, d: cob == emcy & 0x7FF and d[:2] != b"\x00\x00")
         check.expect(frame is not None and int.from_bytes(frame[:2], "little") == EMCY_RPDO_LENGTH,
                      f"short RPDO: EMCY {frame!r}, want code 0x{EMCY_RPDO_LENGTH:04X}")
-        if frame is not None:
-            register = c.upload(0x1001, 0)[0]
-            check.expect(frame[2] != 0 and register == frame[2:3],
-                         f"error register: EMCY says {frame[2]:#04x}, 0x1001 reads {register!r}")
-            if c.od.find(0x1003, 0) is not None:
-                count, first = c.upload(0x1003, 0)[0], c.upload(0x1003, 1)[0]
-                check.expect(bool(count) and count != b"\x00" and first is not None
-                             and int.from_bytes(first[:2], "little") == EMCY_RPDO_LENGTH,
-                             f"0x1003: {count!r} errors, newest {first!r}")
+        if frame is None:
+            return check
+        register = c.upload(0x1001, 0)[0]
+        check.expect(frame[2] != 0 and register == frame[2:3],
+                     f"error register: EMCY says {frame[2]:#04x}, 0x1001 reads {register!r}")
+        if c.od.find(0x1003, 1) is not None:
+            count, first = c.upload(0x1003, 0)[0], c.upload(0x1003, 1)[0]
+            check.expect(count is not None and count != b"\x00" and first is not None
+                         and int.from_bytes(first[:2], "little") == EMCY_RPDO_LENGTH,
+                         f"0x1003: {count!r} errors, newest {first!r}")
+            history = c.od.find(0x1003, 0)
+            if history is not None and history.writable:
+                code = c.download(0x1003, 0, b"\x01")
+                check.expect(code == RANGE, f"0x1003sub0 = 1 gave 0x{code:08X}, want 0x{RANGE:08X}")
+                check.expect(c.download(0x1003, 0, b"\x00") == 0 and c.upload(0x1003, 0)[0] == b"\x00",
+                             "0x1003sub0 = 0 did not clear the history")
         sent = time.monotonic()
         c.send(pdo.cob, bytes(size))
         frame = c.wait_frame(sent, lambda cob, d: cob == emcy & 0x7FF)

@@ -2,11 +2,11 @@
 
     python tests/vcan/conformance_nodes.py PLAN.json OUT.json     (in the vcan session)
 
-PLAN is a list of {"name", "exe", "file", "junit"}: each node program is started with
+PLAN is a list of {"name", "exe", "file", "junit", "cli"}: each node program is started with
 node-id 5 and a fresh --nv file, its boot-up awaited, the battery run against it (results
 also written as JUnit XML to "junit"), and the node stopped. OUT gets, per node, the ids of
 the failed checks and the text report. One CLI run (`python -m odgen conformance`) is made
-against the first node, to check what the command prints and its exit status.
+against the nodes marked "cli", to check what the command prints and its exit status.
 """
 
 from __future__ import annotations
@@ -66,7 +66,7 @@ def main() -> int:
                                             "failed": [r.id for r in results if r.failed],
                                             "checks": len(results),
                                             "text": text_lines(Path(node["file"]), NODE_ID, results)}
-                if i == 0:
+                if node.get("cli"):
                     cli = subprocess.run([sys.executable, "-m", "odgen", "conformance", node["file"], "--iface", IFACE,
                                           "--node-id", str(NODE_ID)], capture_output=True, text=True, check=False)
                     entry["cli"] = {"status": cli.returncode, "stdout": cli.stdout, "stderr": cli.stderr}
