@@ -48,8 +48,11 @@ odg_abort_t odg_node_check_(odg_node_t *n, uint16_t index, uint8_t sub, const ui
                             uint32_t len)
 {
     uint32_t v = 0;
+    if (index == 0x1019u) {
+        return odg_sync_check_(n, index);
+    }
     if ((index != 0x1003u && (index < 0x1400u || index >= 0x1C00u)) || len > 4u) {
-        return ODG_OK; /* only 0x1003 and PDO parameters have rules beyond the dictionary's */
+        return ODG_OK; /* only 0x1003, 0x1019 and PDO parameters have rules beyond the dictionary's */
     }
     while (len > 0u) {
         len--;
@@ -121,6 +124,8 @@ static odg_abort_t boot(odg_node_t *n, int reset_node)
     n->error_register = (uint8_t)odg_node_get_or_(n, 0x1001, 0, 0);
     odg_node_reload(n);
     n->hb_timer = 0;
+    n->sync_us = 0;
+    n->sync_counter = 0;
     (void)odg_node_send_(n, 0x700u + n->cfg.node_id, &bootup, 1);
     n->state = ODG_NMT_PRE_OPERATIONAL;
     if (reset_node) {
@@ -235,6 +240,7 @@ void odg_node_tick(odg_node_t *node, uint32_t elapsed_ms)
         return;
     }
     heartbeat(node, elapsed_ms);
+    odg_sync_tick_(node, elapsed_ms);
     odg_sdo_tick_(node, elapsed_ms);
     if (node->state == ODG_NMT_OPERATIONAL) {
         odg_pdo_tick_(node, elapsed_ms);

@@ -18,7 +18,8 @@
  * Every value travels through odg_read / odg_write / odg_write_part, so access, length and
  * limit checks and hooks apply to SDO and PDO alike. Only 11-bit identifiers are used;
  * frames with ODG_FRAME_EFF or ODG_FRAME_RTR are ignored (no RTR-triggered PDOs, no node
- * guarding). odg_node.c, odg_sdo.c, odg_pdo.c and odg_err.c implement it; see runtime/README.md.
+ * guarding). odg_node.c, odg_sdo.c, odg_pdo.c, odg_err.c and odg_sync.c
+ * implement it; see runtime/README.md.
  */
 #ifndef ODG_NODE_H
 #define ODG_NODE_H
@@ -149,6 +150,8 @@ typedef struct odg_node {
     uint32_t sync_cob;        /* 0x1005 */
     uint32_t emcy_cob;        /* 0x1014 */
     uint32_t hb_timer;        /* ms since the last heartbeat */
+    uint32_t sync_us;         /* SYNC producer: µs since the last SYNC (odg_sync.c) */
+    uint8_t sync_counter;     /* SYNC producer: the last counter sent (0: none yet) */
     uint8_t state;            /* odg_nmt_state_t */
     uint8_t error_register;   /* as last sent in an EMCY (and stored in 0x1001) */
 } odg_node_t;

@@ -51,6 +51,10 @@ void odg_err_record_(odg_node_t *n, uint16_t code, const uint8_t *vendor, uint8_
 odg_abort_t odg_err_check_(const odg_node_t *n, uint8_t sub, uint32_t value);
 void odg_err_written_(odg_node_t *n); /* after an SDO write to 0x1003: sub 0 = 0 clears */
 
+/* odg_sync.c: the SYNC producer */
+void odg_sync_tick_(odg_node_t *n, uint32_t ms);
+odg_abort_t odg_sync_check_(const odg_node_t *n, uint16_t index); /* before a write to 0x1019 */
+
 /* odg_sdo.c */
 void odg_sdo_receive_(odg_node_t *n, const odg_frame_t *f);
 void odg_sdo_tick_(odg_node_t *n, uint32_t ms);

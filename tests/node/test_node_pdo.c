@@ -415,6 +415,51 @@ static void test_error_history(void)
     CHECK_EQ(download_u32(0x1601, 1, 0x20020020, 4), ODG_ABORT_READ_ONLY);
 }
 
+/* SYNC producer: 0x1005 bit 30 and 0x1006 (µs); counter 1..0x1019; TPDO2 (every 3rd SYNC)
+ * follows the node's own SYNC; 0x1019 only while 0x1006 is 0. */
+static void test_sync_producer(void)
+{
+    unsigned k;
+    nmt(ODG_NMT_RESET_NODE, NID);
+    clear();
+    CHECK_EQ(download_u32(0x1006, 0, 10000, 4), 0); /* 10 ms, but bit 30 not set yet */
+    run_ms(50);
+    CHECK_EQ(count_id(0x80), 0);
+    CHECK_EQ(download_u32(0x1019, 0, 3, 1), ODG_ABORT_DATA_STATE);
+    CHECK_EQ(download_u32(0x1006, 0, 0, 4), 0);
+    CHECK_EQ(download_u32(0x1019, 0, 3, 1), 0);
+    CHECK_EQ(download_u32(0x1006, 0, 10000, 4), 0);
+    CHECK_EQ(download_u32(0x1005, 0, 0x40000080u, 4), 0);
+    clear();
+    run_ms(100);
+    CHECK_EQ(count_id(0x80), 10); /* in pre-operational too */
+    for (k = 0; k < n_sent; k++) {
+        CHECK_EQ(sent[k].len, 1);
+        CHECK_EQ(sent[k].data[0], k % 3u + 1u); /* 1, 2, 3, 1, ... */
+    }
+    nmt(ODG_NMT_START, NID);
+    clear();
+    run_ms(60);
+    CHECK_EQ(count_id(0x80), 6);
+    CHECK_EQ(count_id(TPDO2), 2); /* type 3: every third of the node's own SYNCs */
+    nmt(ODG_NMT_STOP, NID);
+    clear();
+    run_ms(50);
+    CHECK_EQ(count_id(0x80), 0); /* not in stopped */
+    nmt(ODG_NMT_ENTER_PREOP, NID);
+    CHECK_EQ(download_u32(0x1006, 0, 0, 4), 0);
+    CHECK_EQ(download_u32(0x1019, 0, 0, 1), 0);
+    CHECK_EQ(download_u32(0x1006, 0, 10000, 4), 0);
+    clear();
+    after(1000); /* a long pause: one SYNC, no burst; without a counter, empty */
+    CHECK_EQ(count_id(0x80), 1);
+    CHECK_EQ(last_id(0x80)->len, 0);
+    nmt(ODG_NMT_RESET_NODE, NID);
+    clear();
+    run_ms(50);
+    CHECK_EQ(count_id(0x80), 0);
+}
+
 int main(void)
 {
     test_only_when_operational();
@@ -424,5 +469,6 @@ int main(void)
     test_remap();
     test_emcy_and_resets();
     test_error_history();
+    test_sync_producer();
     return done();
 }
