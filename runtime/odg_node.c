@@ -51,12 +51,15 @@ odg_abort_t odg_node_check_(odg_node_t *n, uint16_t index, uint8_t sub, const ui
     if (index == 0x1019u) {
         return odg_sync_check_(n, index);
     }
-    if ((index != 0x1003u && (index < 0x1400u || index >= 0x1C00u)) || len > 4u) {
-        return ODG_OK; /* only 0x1003, 0x1019 and PDO parameters have rules beyond the dictionary's */
+    if ((index != 0x1003u && index != 0x1016u && (index < 0x1400u || index >= 0x1C00u)) || len > 4u) {
+        return ODG_OK; /* only 0x1003, 0x1016, 0x1019 and PDO parameters have rules of their own */
     }
     while (len > 0u) {
         len--;
         v = v << 8 | data[len];
+    }
+    if (index == 0x1016u) {
+        return odg_hb_check_(n, sub, v);
     }
     return index == 0x1003u ? odg_err_check_(n, sub, v) : odg_pdo_check_(n, index, sub, v);
 }
@@ -81,6 +84,8 @@ void odg_node_written_(odg_node_t *n, uint16_t index)
         load_cobs(n);
     } else if (index == 0x1003u) {
         odg_err_written_(n);
+    } else if (index == 0x1016u) {
+        odg_hb_load_(n);
     }
 }
 
@@ -88,6 +93,7 @@ void odg_node_reload(odg_node_t *node)
 {
     uint16_t k;
     load_cobs(node);
+    odg_hb_load_(node);
     for (k = 0; k < ODG_NODE_MAX_RPDO; k++) {
         odg_pdo_load_(node, 0, k);
     }
@@ -198,6 +204,8 @@ void odg_node_receive(odg_node_t *node, const odg_frame_t *frame)
     }
     if (id == 0u) {
         nmt(node, frame);
+    } else if (id > 0x700u && id <= 0x77Fu) {
+        odg_hb_receive_(node, frame); /* heartbeats: only the consumer takes them */
     } else if (id == ODG_COB_ID(node->sdo_rx) && !(node->sdo_rx & ODG_COB_INVALID)) {
         if (node->state != ODG_NMT_STOPPED) {
             odg_sdo_receive_(node, frame);
@@ -241,6 +249,7 @@ void odg_node_tick(odg_node_t *node, uint32_t elapsed_ms)
     }
     heartbeat(node, elapsed_ms);
     odg_sync_tick_(node, elapsed_ms);
+    odg_hb_tick_(node, elapsed_ms);
     odg_sdo_tick_(node, elapsed_ms);
     if (node->state == ODG_NMT_OPERATIONAL) {
         odg_pdo_tick_(node, elapsed_ms);

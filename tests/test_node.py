@@ -29,7 +29,7 @@ NODE_TESTS = ROOT / "tests" / "node"
 CHECK_H = ROOT / "tests" / "runtime"  # check.h
 
 CORE = tuple(RUNTIME / s for s in ("odg.c", "odg_persist.c"))
-NODE = tuple(RUNTIME / s for s in ("odg_node.c", "odg_sdo.c", "odg_pdo.c", "odg_err.c", "odg_sync.c"))
+NODE = tuple(RUNTIME / s for s in ("odg_node.c", "odg_sdo.c", "odg_pdo.c", "odg_err.c", "odg_sync.c", "odg_hb.c"))
 PROGRAM_SOURCES = (*CORE, *NODE, RUNTIME / "odg_nv_file.c", LINUX / "odg_socketcan.c", LINUX / "odg_node_main.c")
 
 # name -> (EDS, options file or None)

@@ -460,6 +460,69 @@ static void test_sync_producer(void)
     CHECK_EQ(count_id(0x80), 0);
 }
 
+static uint8_t hb_events[16][2];
+static unsigned n_hb_events;
+
+static void on_hb(void *ctx, uint8_t id, uint8_t event)
+{
+    (void)ctx;
+    if (n_hb_events < 16u) {
+        hb_events[n_hb_events][0] = id;
+        hb_events[n_hb_events++][1] = event;
+    }
+}
+
+/* Heartbeat consumer: node 9 watched with 100 ms from its first heartbeat; state changes and a
+ * timeout reported; EMCY 0x8130; 0x1029 sub 1 decides what the node does then. */
+static void test_heartbeat_consumer(void)
+{
+    nmt(ODG_NMT_RESET_NODE, NID);
+    odg_node_on_heartbeat(&node, on_hb, NULL);
+    n_hb_events = 0;
+    CHECK_EQ(download_u32(0x1016, 1, 0x00090064u, 4), 0);
+    CHECK_EQ(download_u32(0x1016, 2, 0x000900C8u, 4), ODG_ABORT_INCOMPATIBLE); /* node 9 again */
+    CHECK_EQ(download_u32(0x1016, 2, 0x000A00C8u, 4), 0);
+    nmt(ODG_NMT_START, NID);
+    clear();
+    run_ms(300); /* nothing heard from node 9 yet: not watched */
+    CHECK_EQ(count_id(EMCY), 0);
+    rx(0x709, 0x7F);
+    rx(0x709, 0x7F);
+    run_ms(80);
+    rx(0x709, 0x05);
+    CHECK_EQ(n_hb_events, 2);
+    CHECK(hb_events[0][0] == 9 && hb_events[0][1] == 0x7F && hb_events[1][1] == 0x05);
+    run_ms(100);
+    CHECK_EQ(count_id(EMCY), 0);
+    run_ms(1);
+    CHECK(FRAME_IS(last_id(EMCY), 0x30, 0x81, 0x11, 9, 0, 0, 0, 0));
+    CHECK_EQ(n_hb_events, 3);
+    CHECK_EQ(hb_events[2][1], ODG_HB_TIMEOUT);
+    CHECK_EQ(odg_node_state(&node), ODG_NMT_PRE_OPERATIONAL); /* 0x1029 sub 1 = 0 */
+    CHECK_EQ(upload_u32(0x1003, 1), 0x00098130u);
+    clear();
+    run_ms(500); /* no second EMCY until node 9 is heard again */
+    CHECK_EQ(count_id(EMCY), 0);
+    /* 0x1029 sub 1 = 1: no change; 2: stopped */
+    CHECK_EQ(download_u32(0x1029, 1, 1, 1), 0);
+    nmt(ODG_NMT_START, NID);
+    rx(0x709, 0x05);
+    run_ms(101);
+    CHECK_EQ(odg_node_state(&node), ODG_NMT_OPERATIONAL);
+    CHECK_EQ(download_u32(0x1029, 1, 2, 1), 0);
+    rx(0x709, 0x05);
+    run_ms(101);
+    CHECK_EQ(odg_node_state(&node), ODG_NMT_STOPPED);
+    /* an entry of time 0 is unused */
+    nmt(ODG_NMT_ENTER_PREOP, NID);
+    CHECK_EQ(download_u32(0x1016, 1, 0x00090000u, 4), 0);
+    rx(0x709, 0x05);
+    clear();
+    run_ms(300);
+    CHECK_EQ(count_id(EMCY), 0);
+    odg_node_on_heartbeat(&node, NULL, NULL);
+}
+
 int main(void)
 {
     test_only_when_operational();
@@ -470,5 +533,6 @@ int main(void)
     test_emcy_and_resets();
     test_error_history();
     test_sync_producer();
+    test_heartbeat_consumer();
     return done();
 }
