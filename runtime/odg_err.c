@@ -1,13 +1,20 @@
 /*
  * odg_err.c - the node's pre-defined error field (0x1003): the history of the errors its EMCY
- * frames reported, newest first.
+ * frames reported, newest first; and the EMCY inhibit time (0x1015).
  *
  * Each EMCY with a non-zero code (odg_node_emcy) pushes code | vendor bytes 0-1 << 16 into
  * sub 1, moving the older ones down; sub 0 counts them, up to the highest sub-index the
  * dictionary has. 0x1003 is read-only for SDO except sub 0, where only 0 may be written
  * (CiA 301: it clears the history; anything else aborts 0x06090030). The values are RAM:
  * a reset of the node empties the history, a reset of communication keeps it.
+ *
+ * EMCY inhibit time: no EMCY within 0x1015 (100 µs units; 0 or absent: none) of the previous
+ * one. An EMCY due earlier waits, in order, in a queue of ODG_NODE_EMCY_QUEUE frames, sent
+ * from the ticks (millisecond resolution); when the queue is full it is refused
+ * (ODG_ABORT_HARDWARE, as when the transport cannot take it). A reset empties the queue.
  */
+#include <string.h>
+
 #include "odg_impl.h"
 #include "odg_node_impl.h"
 
@@ -66,5 +73,41 @@ void odg_err_written_(odg_node_t *n)
     }
     for (k = 1; k < 255u && (p = slot(n, (uint8_t)k, &size)) != NULL; k++) {
         odg_store_(p, size, 0);
+    }
+}
+
+static void emcy_sent(odg_node_t *n)
+{
+    n->emcy_inhibit_us = odg_node_get_or_(n, 0x1015, 0, 0) * 100u;
+}
+
+odg_abort_t odg_emcy_send_(odg_node_t *n, const uint8_t *data)
+{
+    if (n->emcy_inhibit_us == 0u && n->emcy_queued == 0u) {
+        if (odg_node_send_(n, n->emcy_cob, data, 8) != 0) {
+            return ODG_ABORT_HARDWARE;
+        }
+        emcy_sent(n);
+        return ODG_OK;
+    }
+    if (n->emcy_queued >= ODG_NODE_EMCY_QUEUE) {
+        return ODG_ABORT_HARDWARE;
+    }
+    memcpy(n->emcy_queue[n->emcy_queued++], data, 8);
+    return ODG_OK;
+}
+
+void odg_emcy_tick_(odg_node_t *n, uint32_t ms)
+{
+    uint32_t us = ms > 4000000u ? 0xFFFFFFFFu : ms * 1000u;
+    n->emcy_inhibit_us = n->emcy_inhibit_us > us ? n->emcy_inhibit_us - us : 0u;
+    if (n->emcy_inhibit_us != 0u || n->emcy_queued == 0u || (n->emcy_cob & ODG_COB_INVALID) ||
+        (n->state != ODG_NMT_PRE_OPERATIONAL && n->state != ODG_NMT_OPERATIONAL)) {
+        return;
+    }
+    if (odg_node_send_(n, n->emcy_cob, n->emcy_queue[0], 8) == 0) {
+        n->emcy_queued--;
+        memmove(n->emcy_queue[0], n->emcy_queue[1], (size_t)n->emcy_queued * 8u);
+        emcy_sent(n);
     }
 }

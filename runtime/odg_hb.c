@@ -6,11 +6,11 @@
  * unused) watches one node's heartbeat. Watching starts with the first heartbeat from that
  * node. A new state is reported to the application (odg_node_on_heartbeat); when no heartbeat
  * came within the time, the node sends EMCY 0x8130 (heartbeat error; error register: generic
- * and communication bits), reports ODG_HB_TIMEOUT, reacts as 0x1029 sub 1 says (0 or absent:
- * operational -> pre-operational; 1: no change; 2: stopped), and watches again from the next
- * heartbeat. Entries are read at boot and after every SDO write to 0x1016; a write naming a
- * node-id that another used entry already watches aborts 0x06040043. Heartbeats are consumed
- * in every state but initialising.
+ * and communication bits), reports ODG_HB_TIMEOUT, reacts as 0x1029 sub 1 says (2: stopped;
+ * 1: no change; 0, other values or none: operational -> pre-operational), and watches again
+ * from the next heartbeat. Entries are read at boot and after every SDO write to 0x1016; a
+ * write naming a node-id that another used entry already watches aborts 0x06040043.
+ * Heartbeats are consumed in every state but initialising.
  */
 #include <string.h>
 
@@ -78,8 +78,8 @@ static void communication_error(odg_node_t *n)
 {
     uint32_t behaviour = odg_node_get_or_(n, 0x1029, 1, 0);
     odg_frame_t f;
-    if (behaviour == 1u || (behaviour == 0u && n->state != ODG_NMT_OPERATIONAL)) {
-        return;
+    if (behaviour == 1u || (behaviour != 2u && n->state != ODG_NMT_OPERATIONAL)) {
+        return; /* 0 and the values CiA 301 leaves to manufacturers: as 0 */
     }
     memset(&f, 0, sizeof f);
     f.len = 2;

@@ -132,6 +132,7 @@ static odg_abort_t boot(odg_node_t *n, int reset_node)
     n->hb_timer = 0;
     n->sync_us = 0;
     n->sync_counter = 0;
+    n->emcy_queued = 0;
     (void)odg_node_send_(n, 0x700u + n->cfg.node_id, &bootup, 1);
     n->state = ODG_NMT_PRE_OPERATIONAL;
     if (reset_node) {
@@ -250,6 +251,7 @@ void odg_node_tick(odg_node_t *node, uint32_t elapsed_ms)
     heartbeat(node, elapsed_ms);
     odg_sync_tick_(node, elapsed_ms);
     odg_hb_tick_(node, elapsed_ms);
+    odg_emcy_tick_(node, elapsed_ms);
     odg_sdo_tick_(node, elapsed_ms);
     if (node->state == ODG_NMT_OPERATIONAL) {
         odg_pdo_tick_(node, elapsed_ms);
@@ -291,7 +293,7 @@ odg_abort_t odg_node_emcy(odg_node_t *node, uint16_t code, uint8_t error_registe
     if (vendor != NULL) {
         memcpy(d + 3, vendor, n_vendor < 5u ? n_vendor : 5u);
     }
-    return odg_node_send_(node, node->emcy_cob, d, 8) == 0 ? ODG_OK : ODG_ABORT_HARDWARE;
+    return odg_emcy_send_(node, d);
 }
 
 void odg_node_tpdo_request(odg_node_t *node, uint16_t n)

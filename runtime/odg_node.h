@@ -43,6 +43,10 @@ extern "C" {
 #ifndef ODG_NODE_MAX_MAP
 #define ODG_NODE_MAX_MAP 8u
 #endif
+/* EMCY frames held back by the inhibit time (0x1015) at most; more are refused. */
+#ifndef ODG_NODE_EMCY_QUEUE
+#define ODG_NODE_EMCY_QUEUE 4u
+#endif
 /* Heartbeat consumer: how many 0x1016 entries (sub 1..) the node watches. */
 #ifndef ODG_NODE_MAX_HB
 #define ODG_NODE_MAX_HB 8u
@@ -170,6 +174,9 @@ typedef struct odg_node {
     uint32_t sync_us;         /* SYNC producer: µs since the last SYNC (odg_sync.c) */
     uint8_t sync_counter;     /* SYNC producer: the last counter sent (0: none yet) */
     odg_hb_watch_t hb_watch[ODG_NODE_MAX_HB]; /* heartbeat consumer (odg_hb.c) */
+    uint32_t emcy_inhibit_us;  /* EMCY: µs until the next may be sent (odg_err.c) */
+    uint8_t emcy_queue[ODG_NODE_EMCY_QUEUE][8]; /* EMCY frames waiting for the inhibit time */
+    uint8_t emcy_queued;
     void (*on_heartbeat)(void *ctx, uint8_t node_id, uint8_t event);
     void *on_heartbeat_ctx;
     uint8_t state;            /* odg_nmt_state_t */

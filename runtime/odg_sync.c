@@ -17,13 +17,14 @@ void odg_sync_tick_(odg_node_t *n, uint32_t ms)
 {
     odg_frame_t f;
     uint32_t period = odg_node_get_or_(n, 0x1006, 0, 0), overflow;
+    uint32_t us = ms > 4000000u ? 0xFFFFFFFFu : ms * 1000u;
     if (!(n->sync_cob & SYNC_GENERATE) || period == 0u ||
         (n->state != ODG_NMT_PRE_OPERATIONAL && n->state != ODG_NMT_OPERATIONAL)) {
         n->sync_us = 0;
         n->sync_counter = 0; /* production stopped: the counter starts again at 1 */
         return;
     }
-    n->sync_us = n->sync_us + ms * 1000u < n->sync_us ? 0xFFFFFFFFu : n->sync_us + ms * 1000u;
+    n->sync_us = n->sync_us + us < n->sync_us ? 0xFFFFFFFFu : n->sync_us + us;
     if (n->sync_us < period) {
         return;
     }

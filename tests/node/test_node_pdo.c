@@ -523,6 +523,41 @@ static void test_heartbeat_consumer(void)
     odg_node_on_heartbeat(&node, NULL, NULL);
 }
 
+/* EMCY inhibit time 0x1015 = 10 ms: a second EMCY waits, queued ones follow 10 ms apart, a full
+ * queue refuses; 0 sends at once again. */
+static void test_emcy_inhibit(void)
+{
+    unsigned k;
+    nmt(ODG_NMT_RESET_NODE, NID);
+    CHECK_EQ(download_u32(0x1015, 0, 100, 2), 0);
+    clear();
+    CHECK_EQ(odg_node_emcy(&node, 0x1000, 0x01, NULL, 0), 0);
+    CHECK_EQ(odg_node_emcy(&node, 0x2000, 0x01, NULL, 0), 0);
+    CHECK_EQ(count_id(EMCY), 1);
+    run_ms(9);
+    CHECK_EQ(count_id(EMCY), 1);
+    run_ms(1);
+    CHECK_EQ(count_id(EMCY), 2);
+    CHECK(FRAME_IS(last_id(EMCY), 0x00, 0x20, 0x01, 0, 0, 0, 0, 0));
+    for (k = 0; k < ODG_NODE_EMCY_QUEUE; k++) {
+        CHECK_EQ(odg_node_emcy(&node, (uint16_t)(0x3000 + k), 0x01, NULL, 0), 0);
+    }
+    CHECK_EQ(odg_node_emcy(&node, 0x4000, 0x01, NULL, 0), ODG_ABORT_HARDWARE); /* queue full */
+    clear();
+    run_ms(10 * ODG_NODE_EMCY_QUEUE - 1);
+    CHECK_EQ(count_id(EMCY), ODG_NODE_EMCY_QUEUE - 1);
+    run_ms(1);
+    CHECK_EQ(count_id(EMCY), ODG_NODE_EMCY_QUEUE);
+    CHECK_EQ(last_id(EMCY)->data[1], 0x30);
+    CHECK_EQ(last_id(EMCY)->data[0], ODG_NODE_EMCY_QUEUE - 1);
+    CHECK_EQ(download_u32(0x1015, 0, 0, 2), 0);
+    run_ms(10);
+    clear();
+    CHECK_EQ(odg_node_emcy(&node, 0x1000, 0x01, NULL, 0), 0);
+    CHECK_EQ(odg_node_emcy(&node, 0x1000, 0x01, NULL, 0), 0);
+    CHECK_EQ(count_id(EMCY), 2);
+}
+
 int main(void)
 {
     test_only_when_operational();
@@ -534,5 +569,6 @@ int main(void)
     test_error_history();
     test_sync_producer();
     test_heartbeat_consumer();
+    test_emcy_inhibit();
     return done();
 }
