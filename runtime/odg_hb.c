@@ -1,6 +1,6 @@
 /*
- * odg_hb.c - the heartbeat consumer (CiA 301: 0x1016) and what a communication error does
- * (0x1029 sub 1).
+ * odg_hb.c - NMT error control: the heartbeat consumer (CiA 301: 0x1016), node guarding and
+ * life guarding (0x100C, 0x100D), and what a communication error does (0x1029 sub 1).
  *
  * Each 0x1016 entry (node-id in bits 16..23, time in ms in bits 0..15; node-id 0 or time 0:
  * unused) watches one node's heartbeat. Watching starts with the first heartbeat from that
@@ -11,6 +11,14 @@
  * from the next heartbeat. Entries are read at boot and after every SDO write to 0x1016; a
  * write naming a node-id that another used entry already watches aborts 0x06040043.
  * Heartbeats are consumed in every state but initialising.
+ *
+ * Node guarding: a remote frame on 0x700 + node-id is answered with the NMT state and a
+ * toggle bit (bit 7, 0 in the first answer after a boot, then alternating), while the node
+ * produces no heartbeat (0x1017 = 0 or absent: CiA 301 uses one or the other). Life
+ * guarding: with guard time 0x100C (ms) and life time factor 0x100D both non-zero, from the
+ * first remote frame on, no remote frame for their product is a life guarding event: EMCY
+ * 0x8130 (byte 3: the node's own id), then 0x1029 sub 1 as above; watched again from the next
+ * remote frame.
  */
 #include <string.h>
 
@@ -88,6 +96,35 @@ static void communication_error(odg_node_t *n)
     odg_node_receive(n, &f);
 }
 
+void odg_guard_rtr_(odg_node_t *n, const odg_frame_t *f)
+{
+    uint8_t answer;
+    if (f->id != 0x700u + n->cfg.node_id || odg_node_get_or_(n, 0x1017, 0, 0) != 0u) {
+        return;
+    }
+    answer = (uint8_t)(n->state | (n->guard_toggle ? 0x80u : 0u));
+    if (odg_node_send_(n, f->id, &answer, 1) == 0) {
+        n->guard_toggle = (uint8_t)!n->guard_toggle;
+    }
+    n->guard_elapsed = 0;
+    n->guard_started = 1;
+}
+
+static void life_guarding(odg_node_t *n, uint32_t ms)
+{
+    uint32_t life = odg_node_get_or_(n, 0x100C, 0, 0) * odg_node_get_or_(n, 0x100D, 0, 0);
+    if (!n->guard_started || life == 0u) {
+        return;
+    }
+    n->guard_elapsed = n->guard_elapsed + ms < ms ? 0xFFFFFFFFu : n->guard_elapsed + ms;
+    if (n->guard_elapsed > life) {
+        n->guard_started = 0; /* watched again from the next remote frame */
+        (void)odg_node_emcy(n, EMCY_HEARTBEAT, (uint8_t)(n->error_register | REG_COMMUNICATION),
+                            &n->cfg.node_id, 1);
+        communication_error(n);
+    }
+}
+
 void odg_hb_tick_(odg_node_t *n, uint32_t ms)
 {
     uint32_t k;
@@ -99,11 +136,13 @@ void odg_hb_tick_(odg_node_t *n, uint32_t ms)
         w->elapsed = w->elapsed + ms < w->elapsed ? 0xFFFFFFFFu : w->elapsed + ms;
         if (w->elapsed > w->time) {
             w->started = 0; /* watched again from its next heartbeat */
-            (void)odg_node_emcy(n, EMCY_HEARTBEAT, (uint8_t)(n->error_register | REG_COMMUNICATION), &w->id, 1);
+            (void)odg_node_emcy(n, EMCY_HEARTBEAT, (uint8_t)(n->error_register | REG_COMMUNICATION),
+                                &w->id, 1);
             report(n, w->id, ODG_HB_TIMEOUT);
             communication_error(n);
         }
     }
+    life_guarding(n, ms);
 }
 
 void odg_node_on_heartbeat(odg_node_t *node, void (*fn)(void *ctx, uint8_t node_id, uint8_t event),

@@ -133,6 +133,8 @@ static odg_abort_t boot(odg_node_t *n, int reset_node)
     n->sync_us = 0;
     n->sync_counter = 0;
     n->emcy_queued = 0;
+    n->guard_started = 0;
+    n->guard_toggle = 0;
     (void)odg_node_send_(n, 0x700u + n->cfg.node_id, &bootup, 1);
     n->state = ODG_NMT_PRE_OPERATIONAL;
     if (reset_node) {
@@ -199,6 +201,10 @@ odg_abort_t odg_node_init(odg_node_t *node, const odg_node_config_t *cfg)
 void odg_node_receive(odg_node_t *node, const odg_frame_t *frame)
 {
     uint32_t id = frame->id;
+    if (frame->flags == ODG_FRAME_RTR && node->state != ODG_NMT_INITIALISING) {
+        odg_guard_rtr_(node, frame); /* remote frames: node guarding only */
+        return;
+    }
     if ((frame->flags & (ODG_FRAME_RTR | ODG_FRAME_EFF)) || frame->len > 8u ||
         node->state == ODG_NMT_INITIALISING) {
         return;

@@ -17,9 +17,9 @@
  *
  * Every value travels through odg_read / odg_write / odg_write_part, so access, length and
  * limit checks and hooks apply to SDO and PDO alike. Only 11-bit identifiers are used;
- * frames with ODG_FRAME_EFF or ODG_FRAME_RTR are ignored (no RTR-triggered PDOs, no node
- * guarding). odg_node.c, odg_sdo.c, odg_pdo.c, odg_err.c, odg_sync.c and
- * odg_hb.c implement it; see runtime/README.md.
+ * frames with ODG_FRAME_EFF are ignored, and ODG_FRAME_RTR ones but node guarding's (no
+ * RTR-triggered PDOs). odg_node.c, odg_sdo.c, odg_pdo.c, odg_err.c, odg_sync.c and odg_hb.c
+ * implement it; see runtime/NODE.md.
  */
 #ifndef ODG_NODE_H
 #define ODG_NODE_H
@@ -174,6 +174,9 @@ typedef struct odg_node {
     uint32_t sync_us;         /* SYNC producer: µs since the last SYNC (odg_sync.c) */
     uint8_t sync_counter;     /* SYNC producer: the last counter sent (0: none yet) */
     odg_hb_watch_t hb_watch[ODG_NODE_MAX_HB]; /* heartbeat consumer (odg_hb.c) */
+    uint32_t guard_elapsed;    /* life guarding: ms since the last remote frame (odg_hb.c) */
+    uint8_t guard_started;     /* life guarding: a remote frame came since boot or the last event */
+    uint8_t guard_toggle;      /* node guarding: the toggle bit of the next answer */
     uint32_t emcy_inhibit_us;  /* EMCY: µs until the next may be sent (odg_err.c) */
     uint8_t emcy_queue[ODG_NODE_EMCY_QUEUE][8]; /* EMCY frames waiting for the inhibit time */
     uint8_t emcy_queued;

@@ -58,11 +58,12 @@ void odg_emcy_tick_(odg_node_t *n, uint32_t ms);
 void odg_sync_tick_(odg_node_t *n, uint32_t ms);
 odg_abort_t odg_sync_check_(const odg_node_t *n, uint16_t index); /* before a write to 0x1019 */
 
-/* odg_hb.c: the heartbeat consumer and 0x1029 */
+/* odg_hb.c: the heartbeat consumer, node and life guarding, 0x1029 */
 void odg_hb_load_(odg_node_t *n);
 odg_abort_t odg_hb_check_(const odg_node_t *n, uint8_t sub, uint32_t value); /* before a 0x1016 write */
 void odg_hb_receive_(odg_node_t *n, const odg_frame_t *f);
-void odg_hb_tick_(odg_node_t *n, uint32_t ms);
+void odg_hb_tick_(odg_node_t *n, uint32_t ms); /* also life guarding */
+void odg_guard_rtr_(odg_node_t *n, const odg_frame_t *f); /* a remote frame: node guarding */
 
 /* odg_sdo.c */
 void odg_sdo_receive_(odg_node_t *n, const odg_frame_t *f);

@@ -31,7 +31,12 @@ DEFECTS = ROOT / "tests" / "conformance" / "defects.c"
 EXAMPLE = ROOT / "examples" / "io-node" / "io-node.eds"
 # ODG_DEFECT number -> the check that must fail (the order of the enum in defects.c)
 DEFECT_CHECKS = {1: "sdo.upload", 2: "sdo.limits", 3: "access.read-only", 4: "nmt.states", 5: "nmt.heartbeat",
-                 6: "pdo.tpdo-types", 7: "emcy.rpdo-length", 8: "store.signature"}
+                 6: "pdo.tpdo-types", 7: "emcy.rpdo-length", 8: "store.signature", 9: "sync.producer",
+                 10: "nmt.hb-consumer", 11: "emcy.inhibit", 12: "nmt.guarding"}
+# The description each defect's node is built from: the example, or one with a SYNC producer,
+# a heartbeat consumer, an EMCY inhibit time and guarding.
+PDO_NODE = ROOT / "tests" / "node" / "pdo-node.eds"
+DEFECT_FILES = {n: PDO_NODE if n >= 9 else EXAMPLE for n in DEFECT_CHECKS}
 
 
 def _build(path: Path, defect: int = 0) -> Path:
@@ -46,9 +51,9 @@ def results(vcan_bus, tmp_path_factory: pytest.TempPathFactory, monkeypatch_modu
     junit = BUILD / "conformance"
     junit.mkdir(parents=True, exist_ok=True)
     plan = [{"name": path.name, "exe": str(_build(path)), "file": str(path), "cli": path == EXAMPLE}
-            for path in vcan_files()]
-    plan += [{"name": f"defect-{n}", "exe": str(_build(EXAMPLE, n)), "file": str(EXAMPLE), "cli": n == 1}
-             for n in DEFECT_CHECKS]
+            for path in [*vcan_files(), PDO_NODE]]
+    plan += [{"name": f"defect-{n}", "exe": str(_build(DEFECT_FILES[n], n)), "file": str(DEFECT_FILES[n]),
+              "cli": n == 1} for n in DEFECT_CHECKS]
     for node in plan:
         node["junit"] = str(junit / f"{node['name']}.xml")
     tmp = tmp_path_factory.mktemp("conformance")
@@ -69,10 +74,10 @@ def monkeypatch_module():
 
 def test_every_built_node_passes(results: dict[str, dict]) -> None:
     clean = {name: node for name, node in results.items() if not name.startswith("defect-")}
-    assert len(clean) == len(vcan_files())
+    assert len(clean) == len(vcan_files()) + 1
     failing = {name: "\n".join(node["text"]) for name, node in clean.items() if node["failed"]}
     assert not failing, "\n\n".join(failing.values())[-6000:]
-    assert all(node["checks"] == 15 for node in clean.values())
+    assert all(node["checks"] == 19 for node in clean.values())
 
 
 @pytest.mark.parametrize("defect", list(DEFECT_CHECKS))
@@ -83,10 +88,10 @@ def test_each_defect_is_caught(results: dict[str, dict], defect: int) -> None:
 
 def test_cli_status_text_and_junit(results: dict[str, dict]) -> None:
     good, bad = results[EXAMPLE.name]["cli"], results["defect-1"]["cli"]
-    assert good["status"] == 0 and good["stdout"].splitlines()[-1] == "odgen conformance: 15 of 15 checks passed", good
+    assert good["status"] == 0 and good["stdout"].splitlines()[-1] == "odgen conformance: 19 of 19 checks passed", good
     assert bad["status"] == 1 and " FAIL sdo.upload: " in bad["stdout"], bad
     suite = ET.parse(BUILD / "conformance" / "defect-1.xml").getroot().find("testsuite")
-    assert suite is not None and suite.get("tests") == "15" and int(suite.get("failures") or 0) >= 1
+    assert suite is not None and suite.get("tests") == "19" and int(suite.get("failures") or 0) >= 1
     failed = [case.get("name") for case in suite.iter("testcase") if case.find("failure") is not None]
     assert "sdo.upload" in failed
 

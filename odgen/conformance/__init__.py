@@ -22,7 +22,7 @@ from ..roundtrip.checks import Check
 from . import checks, pdo
 from .client import Client
 
-# (id, function): the family is the id's first part (sdo, access, nmt, pdo, emcy, store).
+# (id, function): the family is the id's first part (sdo, access, nmt, sync, pdo, emcy, store).
 CHECKS: tuple[tuple[str, Callable[[Client], Check]], ...] = (
     ("sdo.upload", checks.check_uploads),
     ("sdo.limits", checks.check_limits),
@@ -32,9 +32,13 @@ CHECKS: tuple[tuple[str, Callable[[Client], Check]], ...] = (
     ("access.missing", checks.check_missing),
     ("nmt.states", checks.check_nmt_states),
     ("nmt.heartbeat", checks.check_heartbeat),
+    ("sync.producer", checks.check_sync_producer),
     ("pdo.sequence", pdo.check_pdo_sequence),
     ("pdo.tpdo-types", pdo.check_tpdo_types),
     ("emcy.rpdo-length", pdo.check_emcy),
+    ("emcy.inhibit", pdo.check_emcy_inhibit),
+    ("nmt.hb-consumer", checks.check_hb_consumer),
+    ("nmt.guarding", checks.check_guarding),
     ("nmt.boot-up", checks.check_bootup),
     ("store.signature", pdo.check_signatures),
     ("store.save-load", pdo.check_store_restore),

@@ -249,3 +249,132 @@ def check_heartbeat(c: Client) -> Check:
     if original is not None and hb.writable:
         c.download(0x1017, 0, original)
     return check
+
+
+# ---- SYNC producer ------------------------------------------------------------------------------
+
+SYNC_GENERATE, DEVICE_STATE = 0x40000000, 0x08000022
+
+
+def _u32(c: Client, index: int) -> int | None:
+    data = c.upload(index, 0)[0] if c.od.find(index) is not None else None
+    return int.from_bytes(data, "little") if data else None
+
+
+def check_sync_producer(c: Client) -> Check:
+    check = Check("SYNC producer: 0x1005 bit 30, period 0x1006, counter 0x1019 (written only while 0x1006 is 0)")
+    cob, period, counter = c.od.find(0x1005), c.od.find(0x1006), c.od.find(0x1019)
+    if cob is None or period is None or not (cob.writable and period.writable):
+        check.skipped = "0x1005 and 0x1006 are not both writable"
+        return check
+    saved = {index: c.upload(index, 0)[0] for index in (0x1005, 0x1006, 0x1019) if c.od.find(index) is not None}
+    sync_id = (_u32(c, 0x1005) or 0x80) & 0x7FF
+    c.watch(sync_id)
+    c.download(0x1006, 0, bytes(4))
+    overflow = counter is not None and counter.writable
+    if overflow:
+        check.expect(c.download(0x1019, 0, b"\x03") == 0, "0x1019 = 3 refused while 0x1006 is 0")
+    check.expect(c.download(0x1006, 0, (20000).to_bytes(4, "little")) == 0, "0x1006 = 20000 us refused")
+    if overflow:
+        code = c.download(0x1019, 0, b"\x04")
+        check.expect(code == DEVICE_STATE, f"0x1019 written while 0x1006 is not 0 gave 0x{code:08X}")
+    check.expect(c.download(0x1005, 0, (sync_id | SYNC_GENERATE).to_bytes(4, "little")) == 0,
+                 "0x1005 bit 30 refused")
+    for _ in range(3):  # a machine stalled for a while stretches one window: measure again
+        start = time.monotonic()
+        time.sleep(0.3)  # a measuring window of 15 periods, not a wait for an event
+        times = c.received_since(start, sync_id)
+        gaps = sorted(1000 * (b - a) for a, b in zip(times, times[1:], strict=False))
+        median = statistics.median(gaps) if gaps else None
+        if median is not None and 14 <= median <= 30:
+            break
+    check.expect(median is not None and 14 <= median <= 30, f"SYNC every {median and round(median)} ms, want 20")
+    frames = [d for _, d in c.frames_since(start, sync_id)]
+    if overflow:
+        bad = [(a, b) for a, b in zip(frames, frames[1:], strict=False)
+               if len(a) != 1 or len(b) != 1 or b[0] != a[0] % 3 + 1]
+        check.expect(bool(frames) and not bad, f"SYNC counters 1, 2, 3, 1, ... expected, got {frames[:8]}")
+    c.download(0x1005, 0, saved.get(0x1005) or (0x80).to_bytes(4, "little"))
+    c.download(0x1006, 0, bytes(4))
+    for index in (0x1019, 0x1006):
+        if saved.get(index) is not None:
+            c.download(index, 0, saved[index] or b"")
+    return check
+
+
+# ---- heartbeat consumer and 0x1029 ----------------------------------------------------------------
+
+EMCY_HEARTBEAT = 0x8130
+# 0x1029 sub 1 -> the heartbeat state an operational node must show after a communication error
+AFTER_ERROR = {0: 0x7F, 1: 0x05, 2: 0x04}
+
+
+def check_hb_consumer(c: Client) -> Check:
+    check = Check("heartbeat consumer (0x1016): EMCY 0x8130 when a watched heartbeat stops; 0x1029 sub 1 obeyed")
+    entry, hb = c.od.find(0x1016, 1), c.od.find(0x1017)
+    emcy = _u32(c, 0x1014) if c.od.find(0x1014) is not None else 0x80 + c.node_id
+    if entry is None or not entry.writable or emcy is None or emcy & 0x80000000:
+        check.skipped = "no writable 0x1016 sub 1, or EMCY disabled"
+        return check
+    other = c.node_id % 127 + 1
+    saved, saved_hb = c.upload(0x1016, 1)[0], c.upload(0x1017, 0)[0] if hb is not None else None
+    beating = hb is not None and hb.writable and c.download(0x1017, 0, (100).to_bytes(2, "little")) == 0
+    c.watch(emcy & 0x7FF)
+    c.nmt("OPERATIONAL")
+    check.expect(c.download(0x1016, 1, (other << 16 | 200).to_bytes(4, "little")) == 0, "0x1016sub1 refused")
+    for _ in range(3):
+        c.send(0x700 + other, b"\x05")
+        time.sleep(0.05)  # pacing the heartbeats of the node played here
+    last = time.monotonic()
+    frame = c.wait_frame(last, lambda cob, d: cob == emcy & 0x7FF and d[:2] == EMCY_HEARTBEAT.to_bytes(2, "little"))
+    check.expect(frame is not None, f"no EMCY 0x{EMCY_HEARTBEAT:04X} after node {other}'s heartbeat stopped")
+    behaviour = c.upload(0x1029, 1)[0] if c.od.find(0x1029, 1) is not None else b"\x00"
+    want = AFTER_ERROR.get(behaviour[0] if behaviour else 0)
+    if beating and want is not None:
+        check.expect(c.heartbeat_state(time.monotonic(), want),
+                     f"0x1029sub1 = {behaviour!r}: no heartbeat with state 0x{want:02X} after the error")
+    c.nmt("PRE-OPERATIONAL")
+    c.download(0x1016, 1, saved or bytes(4))
+    if saved_hb is not None and beating:
+        c.download(0x1017, 0, saved_hb)
+    return check
+
+
+# ---- node guarding and life guarding --------------------------------------------------------------
+
+
+def _guard(c: Client) -> bytes | None:
+    sent = time.monotonic()
+    c.send(0x700 + c.node_id, b"", remote=True)
+    return c.wait_frame(sent, lambda cob, d: cob == 0x700 + c.node_id and len(d) == 1, deadline=2.0)
+
+
+def check_guarding(c: Client) -> Check:
+    check = Check("node guarding answers state and toggle; life guarding (0x100C x 0x100D) raises EMCY 0x8130")
+    guard, factor, hb = c.od.find(0x100C), c.od.find(0x100D), c.od.find(0x1017)
+    if guard is None or factor is None or (hb is not None and not hb.writable and _heartbeat_period(c)):
+        check.skipped = "no 0x100C/0x100D, or a heartbeat that cannot be switched off"
+        return check
+    saved = {index: c.upload(index, 0)[0] for index in (0x100C, 0x100D, 0x1017) if c.od.find(index) is not None}
+    if hb is not None:
+        c.download(0x1017, 0, b"\x00\x00")  # guarding and heartbeat are not used together
+    answers = [_guard(c), _guard(c)]
+    check.expect(None not in answers, f"no answer to a remote frame on 0x{0x700 + c.node_id:03X}")
+    if None not in answers:
+        first, second = answers[0] or b"\x00", answers[1] or b"\x00"
+        check.expect(first[0] & 0x7F == 0x7F and second[0] & 0x7F == 0x7F, f"states {answers}, want 0x7F")
+        check.expect((first[0] ^ second[0]) & 0x80 != 0, f"the toggle bit did not alternate: {answers}")
+    emcy = _u32(c, 0x1014) if c.od.find(0x1014) is not None else 0x80 + c.node_id
+    if guard.writable and factor.writable and emcy is not None and not emcy & 0x80000000:
+        c.watch(emcy & 0x7FF)
+        c.download(0x100C, 0, (100).to_bytes(2, "little"))
+        c.download(0x100D, 0, b"\x02")
+        _guard(c)
+        sent = time.monotonic()
+        frame = c.wait_frame(sent, lambda cob, d: cob == emcy & 0x7FF and d[:2] == EMCY_HEARTBEAT.to_bytes(2, "little"))
+        check.expect(frame is not None, "no EMCY 0x8130 after the remote frames stopped (life time 200 ms)")
+    c.nmt("PRE-OPERATIONAL")
+    for index in (0x100C, 0x100D, 0x1017):
+        if saved.get(index) is not None:
+            c.download(index, 0, saved[index] or b"")
+    return check

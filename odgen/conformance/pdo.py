@@ -223,6 +223,34 @@ def check_emcy(c: Client) -> Check:
     return check
 
 
+def check_emcy_inhibit(c: Client) -> Check:
+    check = Check("EMCY inhibit time (0x1015): two errors in a row, the second EMCY not within 100 ms")
+    inhibit = c.od.find(0x1015)
+    found = _setup(c, check, tx=False)
+    emcy = _u32(c, 0x1014, 0) if c.od.find(0x1014) is not None else 0x80 + c.node_id
+    if found is None or inhibit is None or not inhibit.writable or emcy is None or emcy & INVALID:
+        check.skipped = check.skipped or "no writable 0x1015, or EMCY disabled"
+        return check
+    pdo, e = found
+    cob = emcy & 0x7FF
+    c.watch(cob)
+    saved = c.upload(0x1015, 0)[0]
+    check.expect(c.download(0x1015, 0, (1000).to_bytes(2, "little")) == 0, "0x1015 = 1000 (100 ms) refused")
+    size = e.dtype.bits // 8 or 1
+    with Configured(c, check, pdo, e, 0xFF) as conf:
+        if conf.ok:
+            c.nmt("OPERATIONAL")
+            start = time.monotonic()
+            c.send(pdo.cob, bytes(size - 1))  # an error (EMCY 0x8210) ...
+            c.send(pdo.cob, bytes(size))  # ... and at once its reset (EMCY 0x0000)
+            c.wait_frame(start, lambda got, d: got == cob and d[:2] == b"\x00\x00")
+            stamps = c.received_since(start, cob)
+            gap = 1000 * (stamps[1] - stamps[0]) if len(stamps) >= 2 else None
+            check.expect(gap is not None and gap >= 90, f"two EMCYs {gap and round(gap)} ms apart, inhibit 100 ms")
+    c.download(0x1015, 0, saved or b"\x00\x00")
+    return check
+
+
 # ---- 0x1010 / 0x1011 ------------------------------------------------------------------------
 
 

@@ -10,7 +10,7 @@
 #include "odg_app.h"
 
 #ifndef ODG_DEFECT
-#error "define ODG_DEFECT (1..8)"
+#error "define ODG_DEFECT (1..12)"
 #endif
 
 enum {
@@ -21,7 +21,11 @@ enum {
     HEARTBEAT_PERIOD, /* every second heartbeat is lost */
     PDO_DATA,         /* TPDOs carry other data than the mapped values */
     EMCY_LOST,        /* no EMCY frame reaches the bus */
-    STORE_SIGNATURE   /* a wrong 0x1010/0x1011 signature is accepted */
+    STORE_SIGNATURE,  /* a wrong 0x1010/0x1011 signature is accepted */
+    SYNC_COUNTER,     /* the SYNC counter does not count */
+    HB_CONSUMER_EMCY, /* a heartbeat timeout is reported with the wrong EMCY code */
+    EMCY_TWICE,       /* every EMCY goes out twice, the inhibit time ignored */
+    GUARD_TOGGLE      /* the node guarding answer's toggle bit never changes */
 };
 
 static odg_send_fn real_send;
@@ -92,6 +96,26 @@ static int mangle(odg_frame_t *f)
     case STORE_SIGNATURE:
         if (sdo) {
             accept_instead(f, 0x08000020u, 0x08000020u);
+        }
+        break;
+    case SYNC_COUNTER:
+        if (id == 0x80u && f->len == 1u) {
+            f->data[0] = 1u;
+        }
+        break;
+    case HB_CONSUMER_EMCY:
+        if (id == 0x80u + node_id && f->data[0] == 0x30u && f->data[1] == 0x81u) {
+            f->data[0] = 0x00u;
+        }
+        break;
+    case EMCY_TWICE:
+        if (id == 0x80u + node_id) {
+            (void)real_send(real_ctx, f);
+        }
+        break;
+    case GUARD_TOGGLE:
+        if (hb) {
+            f->data[0] &= 0x7Fu;
         }
         break;
     default:

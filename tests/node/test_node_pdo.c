@@ -558,6 +558,54 @@ static void test_emcy_inhibit(void)
     CHECK_EQ(count_id(EMCY), 2);
 }
 
+static void rtr(uint32_t id)
+{
+    odg_frame_t f;
+    memset(&f, 0, sizeof f);
+    f.id = id;
+    f.flags = ODG_FRAME_RTR;
+    odg_node_receive(&node, &f);
+}
+
+/* Node guarding: state and toggle on a remote frame while no heartbeat is produced; life
+ * guarding with 0x100C x 0x100D: EMCY 0x8130 and 0x1029 when the remote frames stop. */
+static void test_guarding(void)
+{
+    nmt(ODG_NMT_RESET_NODE, NID);
+    clear();
+    rtr(0x700 + NID);
+    rtr(0x700 + NID);
+    rtr(0x700 + NID + 1u); /* another node's */
+    CHECK_EQ(n_sent, 2);
+    CHECK(FRAME_IS(&sent[0], 0x7F) && FRAME_IS(&sent[1], 0xFF));
+    nmt(ODG_NMT_START, NID);
+    clear();
+    rtr(0x700 + NID);
+    CHECK(FRAME_IS(last_id(0x700 + NID), 0x05));
+    CHECK_EQ(download_u32(0x1017, 0, 1000, 2), 0); /* heartbeat on: no guarding answers */
+    clear();
+    rtr(0x700 + NID);
+    CHECK_EQ(n_sent, 0);
+    CHECK_EQ(download_u32(0x1017, 0, 0, 2), 0);
+    CHECK_EQ(download_u32(0x100C, 0, 50, 2), 0);
+    CHECK_EQ(download_u32(0x100D, 0, 2, 1), 0);
+    CHECK_EQ(download_u32(0x1029, 1, 0, 1), 0);
+    rtr(0x700 + NID);
+    clear();
+    run_ms(100);
+    CHECK_EQ(count_id(EMCY), 0);
+    run_ms(1);
+    CHECK(FRAME_IS(last_id(EMCY), 0x30, 0x81, 0x11, NID, 0, 0, 0, 0));
+    CHECK_EQ(odg_node_state(&node), ODG_NMT_PRE_OPERATIONAL);
+    clear();
+    run_ms(500); /* one event, until the next remote frame */
+    CHECK_EQ(count_id(EMCY), 0);
+    nmt(ODG_NMT_RESET_COMM, NID); /* toggle from 0 again */
+    clear();
+    rtr(0x700 + NID);
+    CHECK(FRAME_IS(last_id(0x700 + NID), 0x7F));
+}
+
 int main(void)
 {
     test_only_when_operational();
@@ -570,5 +618,6 @@ int main(void)
     test_sync_producer();
     test_heartbeat_consumer();
     test_emcy_inhibit();
+    test_guarding();
     return done();
 }
