@@ -202,7 +202,10 @@ void odg_node_receive(odg_node_t *node, const odg_frame_t *frame)
 {
     uint32_t id = frame->id;
     if (frame->flags == ODG_FRAME_RTR && node->state != ODG_NMT_INITIALISING) {
-        odg_guard_rtr_(node, frame); /* remote frames: node guarding only */
+        odg_guard_rtr_(node, frame); /* remote frames: node guarding, and TPDOs 252/253 */
+        if (node->state == ODG_NMT_OPERATIONAL) {
+            odg_pdo_rtr_(node, frame);
+        }
         return;
     }
     if ((frame->flags & (ODG_FRAME_RTR | ODG_FRAME_EFF)) || frame->len > 8u ||

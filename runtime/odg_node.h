@@ -17,8 +17,8 @@
  *
  * Every value travels through odg_read / odg_write / odg_write_part, so access, length and
  * limit checks and hooks apply to SDO and PDO alike. Only 11-bit identifiers are used;
- * frames with ODG_FRAME_EFF are ignored, and ODG_FRAME_RTR ones but node guarding's (no
- * RTR-triggered PDOs). odg_node.c, odg_sdo.c, odg_pdo.c, odg_err.c, odg_sync.c and odg_hb.c
+ * frames with ODG_FRAME_EFF are ignored; ODG_FRAME_RTR ones serve node guarding and TPDOs of
+ * types 252/253. odg_node.c, odg_sdo.c, odg_pdo.c, odg_err.c, odg_sync.c and odg_hb.c
  * implement it; see runtime/NODE.md.
  */
 #ifndef ODG_NODE_H

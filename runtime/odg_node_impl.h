@@ -34,6 +34,7 @@ enum {
 #define ODG_PDO_F_STARTED  0x04u /* TPDO: the SYNC start value was seen (or none is used) */
 #define ODG_PDO_F_RECEIVED 0x08u /* RPDO: data waits for the next SYNC */
 #define ODG_PDO_F_LEN_ERR  0x10u /* RPDO: the last frame was too short (EMCY 0x8210 sent) */
+#define ODG_PDO_F_SAMPLED  0x20u /* TPDO type 252: data/len hold what the last SYNC sampled */
 
 /* odg_node.c */
 int odg_node_send_(odg_node_t *n, uint32_t cob, const uint8_t *data, uint8_t len);
@@ -78,5 +79,6 @@ void odg_pdo_sync_(odg_node_t *n, const odg_frame_t *f);
 void odg_pdo_receive_(odg_node_t *n, const odg_frame_t *f);
 void odg_pdo_tick_(odg_node_t *n, uint32_t ms);
 void odg_pdo_request_(odg_node_t *n, uint16_t k);
+void odg_pdo_rtr_(odg_node_t *n, const odg_frame_t *f); /* a remote request: TPDOs 252/253 */
 
 #endif /* ODG_NODE_IMPL_H */

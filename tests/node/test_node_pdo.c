@@ -315,10 +315,11 @@ static void test_remap(void)
     after(1);
     CHECK_EQ(count_id(0x186), 1);
     CHECK_EQ(download_u32(0x1800, 1, 0x186, 4), 0); /* only bit 30 changed */
-    /* transmission types 241..253 */
+    /* transmission types 241..251, and 252/253 for an RPDO */
     CHECK_EQ(download_u32(0x1800, 2, 241, 1), ODG_ABORT_VALUE_RANGE);
-    CHECK_EQ(download_u32(0x1800, 2, 252, 1), ODG_ABORT_VALUE_RANGE);
+    CHECK_EQ(download_u32(0x1800, 2, 251, 1), ODG_ABORT_VALUE_RANGE);
     CHECK_EQ(download_u32(0x1400, 2, 253, 1), ODG_ABORT_VALUE_RANGE);
+    CHECK_EQ(download_u32(0x1400, 2, 252, 1), ODG_ABORT_VALUE_RANGE);
     CHECK_EQ(download_u32(0x1800, 2, 254, 1), 0);
     CHECK_EQ(download_u32(0x1400, 2, 240, 1), 0);
     CHECK_EQ(download_u32(0x1400, 2, 255, 1), 0);
@@ -606,6 +607,50 @@ static void test_guarding(void)
     CHECK(FRAME_IS(last_id(0x700 + NID), 0x7F));
 }
 
+/* RTR-triggered TPDOs: type 253 samples and sends on a remote request; type 252 sends what
+ * the last SYNC sampled; COB-ID bit 30 forbids remote requests; only in operational. */
+static void test_rtr_tpdo(void)
+{
+    nmt(ODG_NMT_RESET_NODE, NID);
+    CHECK_EQ(download_u32(0x1800, 1, INVALID | TPDO1, 4), 0);
+    CHECK_EQ(download_u32(0x1800, 2, 253, 1), 0);
+    CHECK_EQ(download_u32(0x1800, 1, TPDO1, 4), 0);
+    clear();
+    rtr(TPDO1); /* pre-operational: no PDOs */
+    CHECK_EQ(count_id(TPDO1), 0);
+    nmt(ODG_NMT_START, NID);
+    pdo_node_x2000_u8_value = 0x21;
+    clear();
+    run_ms(20);
+    CHECK_EQ(count_id(TPDO1), 0); /* not event-driven */
+    rtr(TPDO1);
+    CHECK_EQ(count_id(TPDO1), 1);
+    CHECK_EQ(last_id(TPDO1)->data[0], 0x21);
+    nmt(ODG_NMT_ENTER_PREOP, NID);
+    CHECK_EQ(download_u32(0x1800, 1, INVALID | TPDO1, 4), 0);
+    CHECK_EQ(download_u32(0x1800, 2, 252, 1), 0);
+    CHECK_EQ(download_u32(0x1800, 1, TPDO1, 4), 0);
+    nmt(ODG_NMT_START, NID);
+    clear();
+    rtr(TPDO1); /* no SYNC yet: nothing sampled */
+    CHECK_EQ(count_id(TPDO1), 0);
+    pdo_node_x2000_u8_value = 0x31;
+    sync0();
+    CHECK_EQ(count_id(TPDO1), 0); /* sampled, not sent */
+    pdo_node_x2000_u8_value = 0x32;
+    rtr(TPDO1);
+    CHECK_EQ(count_id(TPDO1), 1);
+    CHECK_EQ(last_id(TPDO1)->data[0], 0x31); /* the value at the SYNC */
+    nmt(ODG_NMT_ENTER_PREOP, NID);
+    CHECK_EQ(download_u32(0x1800, 1, INVALID | TPDO1, 4), 0);
+    CHECK_EQ(download_u32(0x1800, 2, 253, 1), 0);
+    CHECK_EQ(download_u32(0x1800, 1, 0x40000000u | TPDO1, 4), 0);
+    nmt(ODG_NMT_START, NID);
+    clear();
+    rtr(TPDO1);
+    CHECK_EQ(count_id(TPDO1), 0); /* bit 30: no remote requests */
+}
+
 int main(void)
 {
     test_only_when_operational();
@@ -619,5 +664,6 @@ int main(void)
     test_heartbeat_consumer();
     test_emcy_inhibit();
     test_guarding();
+    test_rtr_tpdo();
     return done();
 }
