@@ -10,8 +10,10 @@
  *
  * EMCY inhibit time: no EMCY within 0x1015 (100 µs units; 0 or absent: none) of the previous
  * one. An EMCY due earlier waits, in order, in a queue of ODG_NODE_EMCY_QUEUE frames, sent
- * from the ticks (millisecond resolution); when the queue is full it is refused
- * (ODG_ABORT_HARDWARE, as when the transport cannot take it). A reset empties the queue.
+ * from the ticks (millisecond resolution). The time of the first tick after an EMCY sent
+ * between ticks does not count, as it may have passed before the EMCY: the gap is never
+ * shorter. When the queue is full, an EMCY is refused (ODG_ABORT_HARDWARE, as when the
+ * transport cannot take it). A reset empties the queue.
  */
 #include <string.h>
 
@@ -76,9 +78,10 @@ void odg_err_written_(odg_node_t *n)
     }
 }
 
-static void emcy_sent(odg_node_t *n)
+static void emcy_sent(odg_node_t *n, uint8_t between_ticks)
 {
     n->emcy_inhibit_us = odg_node_get_or_(n, 0x1015, 0, 0) * 100u;
+    n->emcy_fresh = between_ticks;
 }
 
 odg_abort_t odg_emcy_send_(odg_node_t *n, const uint8_t *data)
@@ -87,7 +90,7 @@ odg_abort_t odg_emcy_send_(odg_node_t *n, const uint8_t *data)
         if (odg_node_send_(n, n->emcy_cob, data, 8) != 0) {
             return ODG_ABORT_HARDWARE;
         }
-        emcy_sent(n);
+        emcy_sent(n, 1);
         return ODG_OK;
     }
     if (n->emcy_queued >= ODG_NODE_EMCY_QUEUE) {
@@ -99,7 +102,8 @@ odg_abort_t odg_emcy_send_(odg_node_t *n, const uint8_t *data)
 
 void odg_emcy_tick_(odg_node_t *n, uint32_t ms)
 {
-    uint32_t us = ms > 4000000u ? 0xFFFFFFFFu : ms * 1000u;
+    uint32_t us = n->emcy_fresh ? 0u : ms > 4000000u ? 0xFFFFFFFFu : ms * 1000u;
+    n->emcy_fresh = 0;
     n->emcy_inhibit_us = n->emcy_inhibit_us > us ? n->emcy_inhibit_us - us : 0u;
     if (n->emcy_inhibit_us != 0u || n->emcy_queued == 0u || (n->emcy_cob & ODG_COB_INVALID) ||
         (n->state != ODG_NMT_PRE_OPERATIONAL && n->state != ODG_NMT_OPERATIONAL)) {
@@ -108,6 +112,6 @@ void odg_emcy_tick_(odg_node_t *n, uint32_t ms)
     if (odg_node_send_(n, n->emcy_cob, n->emcy_queue[0], 8) == 0) {
         n->emcy_queued--;
         memmove(n->emcy_queue[0], n->emcy_queue[1], (size_t)n->emcy_queued * 8u);
-        emcy_sent(n);
+        emcy_sent(n, 0);
     }
 }

@@ -180,6 +180,7 @@ typedef struct odg_node {
     uint32_t emcy_inhibit_us;  /* EMCY: µs until the next may be sent (odg_err.c) */
     uint8_t emcy_queue[ODG_NODE_EMCY_QUEUE][8]; /* EMCY frames waiting for the inhibit time */
     uint8_t emcy_queued;
+    uint8_t emcy_fresh;        /* EMCY: one was sent since the last tick */
     void (*on_heartbeat)(void *ctx, uint8_t node_id, uint8_t event);
     void *on_heartbeat_ctx;
     uint8_t state;            /* odg_nmt_state_t */

@@ -53,7 +53,8 @@ def rendered(result: FileResult) -> list[str]:
 # ---- the one vcan session of a test run -------------------------------------------------------
 # Every CAN test asks for `vcan_bus` and runs its bus-side command through it: on the host's
 # vcan when it has one, else in one User-Mode Linux guest booted at the first use and shared
-# by all (tools/vcan/bus.py). Each CAN test's duration lands in build/test-reports/can-tests.*.
+# by all (tools/vcan/bus.py). Each CAN test's duration (with its fixtures' setup: building,
+# booting the guest) lands in build/test-reports/can-tests.*.
 
 def _load_bus_module():
     import importlib.util
@@ -66,6 +67,7 @@ def _load_bus_module():
 
 
 _CAN_TESTS: list[dict[str, object]] = []
+_SETUP_SECONDS: dict[str, float] = {}  # a CAN test's fixtures (building, the guest's boot) count too
 
 
 @pytest.fixture(scope="session")
@@ -88,8 +90,13 @@ def vcan_bus(tmp_path_factory: pytest.TempPathFactory):
 def pytest_runtest_makereport(item: pytest.Item, call: pytest.CallInfo):
     outcome = yield
     report = outcome.get_result()
-    if report.when == "call" and "vcan_bus" in getattr(item, "fixturenames", ()):
-        _CAN_TESTS.append({"test": item.nodeid, "outcome": report.outcome, "seconds": round(report.duration, 3)})
+    if "vcan_bus" not in getattr(item, "fixturenames", ()):
+        return
+    if report.when == "setup":
+        _SETUP_SECONDS[item.nodeid] = report.duration
+    elif report.when == "call":
+        seconds = _SETUP_SECONDS.pop(item.nodeid, 0.0) + report.duration
+        _CAN_TESTS.append({"test": item.nodeid, "outcome": report.outcome, "seconds": round(seconds, 3)})
 
 
 def _write_can_report(bus) -> None:

@@ -8,7 +8,6 @@ found it where they can (values written back, pre-operational, 0x1017 restored).
 
 from __future__ import annotations
 
-import statistics
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -168,7 +167,7 @@ def check_write_only(c: Client) -> Check:
 def check_missing(c: Client) -> Check:
     check = Check("a missing object aborts 0x06020000, a missing sub-index 0x06090011")
     missing = next(i for i in range(0x5FFF, 0x1FFF, -1) if i not in c.od.objects)
-    for index in (missing, 0x1FFF if 0x1FFF not in c.od.objects else missing):
+    for index in sorted({missing, 0x1FFF} - set(c.od.objects)):  # application and communication area
         code = c.upload(index, 0)[1]
         check.expect(code == NO_OBJECT, f"0x{index:04X}: read gave 0x{code:08X}")
     for obj in c.od.sorted_objects():
@@ -218,12 +217,8 @@ def _heartbeat_period(c: Client) -> int:
     return int.from_bytes(data, "little") if data else 0
 
 
-def _median_gap(c: Client, period: int) -> float | None:
-    start = time.monotonic()
-    time.sleep(period * 8 / 1000)  # a measuring window of about 8 periods, not a wait for an event
-    times = c.received_since(start, 0x700 + c.node_id)
-    gaps = [1000 * (b - a) for a, b in zip(times, times[1:], strict=False)]
-    return statistics.median(gaps) if gaps else None
+def _ms(medians: list[float | None]) -> str:
+    return ", ".join("none" if m is None else str(round(m)) for m in medians)
 
 
 def check_heartbeat(c: Client) -> Check:
@@ -239,13 +234,9 @@ def check_heartbeat(c: Client) -> Check:
     if not period or period > 2000:
         check.skipped = f"0x1017 is read-only with {period} ms"
         return check
-    medians = []
-    for _ in range(3):  # a machine stalled for a while stretches one window: measure again
-        medians.append(_median_gap(c, period))
-        if medians[-1] is not None and 0.8 * period <= medians[-1] <= 1.3 * period:
-            break
+    medians = c.period(0x700 + c.node_id, period * 8 / 1000, lambda m: 0.8 * period <= m <= 1.3 * period)
     check.expect(medians[-1] is not None and 0.8 * period <= medians[-1] <= 1.3 * period,
-                 f"heartbeat every {', '.join(str(m and round(m)) for m in medians)} ms, configured {period}")
+                 f"heartbeat every {_ms(medians)} ms, configured {period}")
     if original is not None and hb.writable:
         c.download(0x1017, 0, original)
     return check
@@ -256,11 +247,6 @@ def check_heartbeat(c: Client) -> Check:
 SYNC_GENERATE, DEVICE_STATE = 0x40000000, 0x08000022
 
 
-def _u32(c: Client, index: int) -> int | None:
-    data = c.upload(index, 0)[0] if c.od.find(index) is not None else None
-    return int.from_bytes(data, "little") if data else None
-
-
 def check_sync_producer(c: Client) -> Check:
     check = Check("SYNC producer: 0x1005 bit 30, period 0x1006, counter 0x1019 (written only while 0x1006 is 0)")
     cob, period, counter = c.od.find(0x1005), c.od.find(0x1006), c.od.find(0x1019)
@@ -268,7 +254,7 @@ def check_sync_producer(c: Client) -> Check:
         check.skipped = "0x1005 and 0x1006 are not both writable"
         return check
     saved = {index: c.upload(index, 0)[0] for index in (0x1005, 0x1006, 0x1019) if c.od.find(index) is not None}
-    sync_id = (_u32(c, 0x1005) or 0x80) & 0x7FF
+    sync_id = (c.number(0x1005) or 0x80) & 0x7FF
     c.watch(sync_id)
     c.download(0x1006, 0, bytes(4))
     overflow = counter is not None and counter.writable
@@ -280,15 +266,9 @@ def check_sync_producer(c: Client) -> Check:
         check.expect(code == DEVICE_STATE, f"0x1019 written while 0x1006 is not 0 gave 0x{code:08X}")
     check.expect(c.download(0x1005, 0, (sync_id | SYNC_GENERATE).to_bytes(4, "little")) == 0,
                  "0x1005 bit 30 refused")
-    for _ in range(3):  # a machine stalled for a while stretches one window: measure again
-        start = time.monotonic()
-        time.sleep(0.3)  # a measuring window of 15 periods, not a wait for an event
-        times = c.received_since(start, sync_id)
-        gaps = sorted(1000 * (b - a) for a, b in zip(times, times[1:], strict=False))
-        median = statistics.median(gaps) if gaps else None
-        if median is not None and 14 <= median <= 30:
-            break
-    check.expect(median is not None and 14 <= median <= 30, f"SYNC every {median and round(median)} ms, want 20")
+    start = time.monotonic()
+    medians = c.period(sync_id, 0.3, lambda m: 14 <= m <= 30)
+    check.expect(medians[-1] is not None and 14 <= medians[-1] <= 30, f"SYNC every {_ms(medians)} ms, want 20")
     frames = [d for _, d in c.frames_since(start, sync_id)]
     if overflow:
         bad = [(a, b) for a, b in zip(frames, frames[1:], strict=False)
@@ -312,7 +292,7 @@ AFTER_ERROR = {0: 0x7F, 1: 0x05, 2: 0x04}
 def check_hb_consumer(c: Client) -> Check:
     check = Check("heartbeat consumer (0x1016): EMCY 0x8130 when a watched heartbeat stops; 0x1029 sub 1 obeyed")
     entry, hb = c.od.find(0x1016, 1), c.od.find(0x1017)
-    emcy = _u32(c, 0x1014) if c.od.find(0x1014) is not None else 0x80 + c.node_id
+    emcy = c.emcy_cob()
     if entry is None or not entry.writable or emcy is None or emcy & 0x80000000:
         check.skipped = "no writable 0x1016 sub 1, or EMCY disabled"
         return check
@@ -364,7 +344,7 @@ def check_guarding(c: Client) -> Check:
         first, second = answers[0] or b"\x00", answers[1] or b"\x00"
         check.expect(first[0] & 0x7F == 0x7F and second[0] & 0x7F == 0x7F, f"states {answers}, want 0x7F")
         check.expect((first[0] ^ second[0]) & 0x80 != 0, f"the toggle bit did not alternate: {answers}")
-    emcy = _u32(c, 0x1014) if c.od.find(0x1014) is not None else 0x80 + c.node_id
+    emcy = c.emcy_cob()
     if guard.writable and factor.writable and emcy is not None and not emcy & 0x80000000:
         c.watch(emcy & 0x7FF)
         c.download(0x100C, 0, (100).to_bytes(2, "little"))

@@ -8,6 +8,7 @@ TPDOs as they come, so a check waits on frames instead of sleeping.
 from __future__ import annotations
 
 import logging
+import statistics
 import threading
 import time
 from collections.abc import Callable
@@ -93,6 +94,19 @@ class Client:
         with self.lock:
             return [stamp for t, c, stamp in self.stamps if t >= since and c == cob]
 
+    def period(self, cob: int, window: float, good: Callable[[float], bool]) -> list[float | None]:
+        """Median gap (ms) between frames of `cob`, by the kernel's receive times, over `window`
+        seconds; a machine stalled for a while stretches one window, so up to three are measured
+        until one is `good`. Returns the medians measured (None: fewer than two frames)."""
+        medians: list[float | None] = []
+        while len(medians) < 3 and not (medians and medians[-1] is not None and good(medians[-1])):
+            start = time.monotonic()
+            time.sleep(window)  # a measuring window, not a wait for an event
+            stamps = self.received_since(start, cob)
+            gaps = [1000 * (b - a) for a, b in zip(stamps, stamps[1:], strict=False)]
+            medians.append(statistics.median(gaps) if gaps else None)
+        return medians
+
     def send(self, cob: int, data: bytes, remote: bool = False) -> None:
         self.network.send_message(cob, data, remote=remote)
 
@@ -124,6 +138,15 @@ class Client:
             return err.code
         except self.canopen.SdoCommunicationError:
             return -1
+
+    def number(self, index: int, sub: int = 0) -> int | None:
+        """An entry uploaded as an unsigned number, or None when it cannot be read."""
+        data = self.upload(index, sub)[0]
+        return int.from_bytes(data, "little") if data else None
+
+    def emcy_cob(self) -> int | None:
+        """The EMCY COB-ID entry (0x1014, bit 31: disabled), the default one without 0x1014."""
+        return self.number(0x1014) if self.od.find(0x1014) is not None else 0x80 + self.node_id
 
     def answers(self) -> bool:
         """Whether the SDO server answers at all, within SILENCE (for states where it must not)."""
