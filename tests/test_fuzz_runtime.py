@@ -19,7 +19,8 @@ from .test_node import generate
 
 FUZZ = ROOT / "fuzz" / "runtime"
 RUNTIME = ROOT / "runtime"
-NODE_SOURCES = tuple(RUNTIME / s for s in ("odg.c", "odg_persist.c", "odg_node.c", "odg_sdo.c", "odg_pdo.c"))
+NODE_SOURCES = tuple(RUNTIME / s for s in ("odg.c", "odg_persist.c", "odg_node.c", "odg_sdo.c", "odg_pdo.c",
+                                           "odg_err.c", "odg_sync.c", "odg_hb.c"))
 HARNESSES = {"sdo": "alltypes", "pdo": "pdo_node", "od": "alltypes"}
 
 
