@@ -55,7 +55,7 @@ def entries(c: Client) -> list[Entry]:
     return out
 
 
-def _command(e: Entry) -> bool:
+def is_command(e: Entry) -> bool:
     """0x1010/0x1011 subs >= 1: a read gives the capabilities, a write is a command."""
     return e.obj.index in (STORE, RESTORE) and e.sub.subindex > 0
 
@@ -84,7 +84,7 @@ def check_uploads(c: Client) -> Check:
         if not e.sub.readable:
             continue
         data, code = c.upload(*e.key)
-        want = None if _command(e) else expected_bytes(c.od, e.sub, e.dtype, c.node_id)
+        want = None if is_command(e) else expected_bytes(c.od, e.sub, e.dtype, c.node_id)
         if code:
             check.expect(False, f"{e.label}: upload aborted 0x{code:08X}" if code > 0 else f"{e.label}: no answer")
         elif want is not None:
@@ -101,7 +101,7 @@ def _writable_numbers(c: Client) -> list[Entry]:
     for e in entries(c):
         cases = write_cases(e.sub, e.dtype) if e.sub.writable and e.dtype.is_numeric else []
         key = (e.obj.index, e.sub.access, tuple(cases))
-        if cases and e.obj.index not in ACTIVE and not _command(e) and key not in seen:
+        if cases and e.obj.index not in ACTIVE and not is_command(e) and key not in seen:
             seen.add(key)
             out.append(e)
     return out
@@ -144,7 +144,7 @@ def check_lengths(c: Client) -> Check:
 def check_read_only(c: Client) -> Check:
     check = Check("a write to a read-only entry aborts 0x06010002")
     for e in entries(c):
-        if e.sub.writable or not e.dtype.is_numeric or _command(e):
+        if e.sub.writable or not e.dtype.is_numeric or is_command(e):
             continue
         data = expected_bytes(c.od, e.sub, e.dtype, c.node_id) or wire_bytes(0, e.dtype)
         code = c.download(*e.key, data)
@@ -157,7 +157,7 @@ def check_read_only(c: Client) -> Check:
 def check_write_only(c: Client) -> Check:
     check = Check("a read of a write-only entry aborts 0x06010001")
     for e in entries(c):
-        if not e.sub.readable and not _command(e):
+        if not e.sub.readable and not is_command(e):
             code = c.upload(*e.key)[1]
             check.expect(code == WRITE_ONLY, f"{e.label}: read of {e.sub.access} gave 0x{code:08X}")
     if not check.passed and not check.failures:

@@ -13,11 +13,11 @@ from dataclasses import dataclass
 from ..codegen.selftest import expected_bytes, write_cases
 from ..roundtrip.checks import ACTIVE, Check
 from .checks import EMCY_RPDO_LENGTH, INCOMPATIBLE, MAP_TOO_LONG, NOT_MAPPABLE, RANGE, RESTORE, SIGNATURE, STORE, \
-    Entry, _command, entries
+    Entry, entries, is_command
 from .client import Client
 
 INVALID = 0x80000000
-RTR_SYNC, RTR_EVENT = 0xFC, 0xFD
+RTR_ONLY = 0xFD  # TPDO transmission type: sampled and sent on a remote request
 
 
 @dataclass
@@ -57,8 +57,8 @@ class Configured:
     """A PDO mapped to one entry with a transmission type, in the CiA 301 sequence; the
     original parameters are written back on exit."""
 
-    def __init__(self, c: Client, check: Check, pdo: Pdo, e: Entry, trans_type: int) -> None:
-        self.c, self.check, self.pdo, self.e, self.trans_type = c, check, pdo, e, trans_type
+    def __init__(self, c: Client, pdo: Pdo, e: Entry, trans_type: int) -> None:
+        self.c, self.pdo, self.e, self.trans_type = c, pdo, e, trans_type
         self.ok = False
         self.failed: tuple[str, int] = ("", 0)  # the step that aborted, and its code
 
@@ -85,11 +85,10 @@ class Configured:
         c.nmt("PRE-OPERATIONAL")
         c.download(p.comm, 1, (p.cob | INVALID).to_bytes(4, "little"))
         c.download(p.mapping, 0, b"\x00")
-        for (index, sub), data in sorted(self.saved.items(), key=lambda kv: (kv[0][0] != p.mapping, -kv[0][1])):
-            if data is not None and (index, sub) != (p.comm, 1):
-                c.download(index, sub, data)
-        if self.saved[(p.comm, 1)] is not None:
-            c.download(p.comm, 1, self.saved[(p.comm, 1)] or b"")
+        for key in ((p.mapping, 1), (p.mapping, 0), (p.comm, 2), (p.comm, 1)):  # the CiA 301 order again
+            data = self.saved[key]
+            if data is not None:
+                c.download(*key, data)
 
 
 def _setup(c: Client, check: Check, tx: bool) -> tuple[Pdo, Entry] | None:
@@ -106,14 +105,14 @@ def check_pdo_sequence(c: Client) -> Check:
     if found is None:
         return check
     pdo, e = found
-    with Configured(c, check, pdo, e, 1) as conf:
+    with Configured(c, pdo, e, 1) as conf:
         check.expect(conf.ok, f"0x{pdo.mapping:04X}: {conf.failed[0]} aborted 0x{conf.failed[1]:08X}")
         code = c.download(pdo.mapping, 0, b"\x00")
         check.expect(code != 0, f"0x{pdo.mapping:04X}sub0 = 0 while the PDO is valid was accepted")
         c.download(pdo.comm, 1, (pdo.cob | INVALID).to_bytes(4, "little"))
         c.download(pdo.mapping, 0, b"\x00")
         unmappable = next((x for x in entries(c) if not x.sub.pdo_mapping and x.dtype.is_numeric
-                           and x.obj.index >= 0x2000 and not _command(x)), None)
+                           and x.obj.index >= 0x2000 and not is_command(x)), None)
         if unmappable is not None:
             code = c.download(pdo.mapping, 1, _map_word(unmappable))
             check.expect(code == NOT_MAPPABLE, f"mapping {unmappable.label} (not mappable) gave 0x{code:08X}")
@@ -134,7 +133,7 @@ def check_tpdo_types(c: Client) -> Check:
     pdo, e = found
     c.watch(pdo.cob)
     sync_cob = (c.number(0x1005) or 0x80) & 0x7FF if c.od.find(0x1005) is not None else 0x80
-    with Configured(c, check, pdo, e, 1) as conf:
+    with Configured(c, pdo, e, 1) as conf:
         if conf.ok:
             c.nmt("OPERATIONAL")
             value = c.upload(*e.key)[0]
@@ -144,14 +143,14 @@ def check_tpdo_types(c: Client) -> Check:
             check.expect(got is not None and got == value, f"type 1: after a SYNC got {got!r}, the entry is {value!r}")
     timer = c.od.find(pdo.comm, 5)
     if timer is not None and timer.writable:
-        with Configured(c, check, pdo, e, 0xFE) as conf:
+        with Configured(c, pdo, e, 0xFE) as conf:
             if conf.ok and c.download(pdo.comm, 5, (100).to_bytes(2, "little")) == 0:
                 c.nmt("OPERATIONAL")
                 medians = c.period(pdo.cob, 0.5, lambda m: 70 <= m <= 150)
                 check.expect(medians[-1] is not None and 70 <= medians[-1] <= 150,
                              f"type 254, event timer 100 ms: a TPDO every {medians} ms")
             c.download(pdo.comm, 5, b"\x00\x00")
-    with Configured(c, check, pdo, e, RTR_EVENT) as conf:
+    with Configured(c, pdo, e, RTR_ONLY) as conf:
         if not conf.ok:
             what, code = conf.failed
             # A node may refuse RTR transmission (CiA recommends against RTR): then with 0x06090030.
@@ -181,7 +180,7 @@ def check_emcy(c: Client) -> Check:
     pdo, e = found
     c.watch(emcy & 0x7FF)
     size = e.dtype.bits // 8 or 1
-    with Configured(c, check, pdo, e, 0xFF) as conf:
+    with Configured(c, pdo, e, 0xFF) as conf:
         if not conf.ok:
             check.expect(False, f"RPDO 0x{pdo.comm:04X}: {conf.failed[0]} aborted 0x{conf.failed[1]:08X}")
             return check
@@ -228,7 +227,7 @@ def check_emcy_inhibit(c: Client) -> Check:
     saved = c.upload(0x1015, 0)[0]
     check.expect(c.download(0x1015, 0, (1000).to_bytes(2, "little")) == 0, "0x1015 = 1000 (100 ms) refused")
     size = e.dtype.bits // 8 or 1
-    with Configured(c, check, pdo, e, 0xFF) as conf:
+    with Configured(c, pdo, e, 0xFF) as conf:
         if conf.ok:
             c.nmt("OPERATIONAL")
             start = time.monotonic()
