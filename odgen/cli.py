@@ -180,6 +180,7 @@ def build_parser() -> argparse.ArgumentParser:
     add_profile_parser(commands)
     add_diff_parser(commands)
     add_report_parser(commands)
+    add_conformance_parser(commands)
 
     rules = commands.add_parser("rules", help="list the rule catalogue")
     rules.add_argument("--markdown", action="store_true", help="as docs/rules.md")
@@ -196,6 +197,14 @@ def _count(maximum: int) -> Callable[[str], int]:
             raise argparse.ArgumentTypeError(f"{value} is outside 0..{maximum}")
         return value
     return parse
+
+
+def add_conformance_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    conf = commands.add_parser("conformance", help="check a live node on a CAN bus against its description")
+    conf.add_argument("input", type=Path, metavar="FILE")
+    conf.add_argument("--iface", required=True, metavar="CAN", help="SocketCAN interface the node is on")
+    conf.add_argument("--node-id", type=_node_id, required=True, help="the node's node-id (1..127)")
+    conf.add_argument("--junit", type=Path, metavar="XML", help="also write the results as JUnit XML")
 
 
 def add_profile_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
@@ -482,6 +491,15 @@ def cmd_node(args: argparse.Namespace) -> int:
     return subprocess.call(cmd)
 
 
+def cmd_conformance(args: argparse.Namespace) -> int:
+    from .hostneeds import require_can_extra
+
+    require_can_extra("conformance")
+    from .conformance.cli import command
+
+    return command(args)
+
+
 def cmd_roundtrip(args: argparse.Namespace) -> int:
     from .hostneeds import require_can_extra, require_socketcan
 
@@ -513,7 +531,8 @@ def cmd_rules(args: argparse.Namespace) -> int:
 
 COMMANDS = {"lint": cmd_lint, "convert": cmd_convert, "generate": cmd_generate, "explain": cmd_explain,
             "check": cmd_check, "node": cmd_node, "roundtrip": cmd_roundtrip, "rules": cmd_rules,
-            "profile": cmd_profile, "diff": cmd_diff, "report": cmd_report}
+            "profile": cmd_profile, "diff": cmd_diff, "report": cmd_report,
+            "conformance": cmd_conformance}
 
 
 def _terminate(signum: int, frame: object) -> None:

@@ -47,14 +47,20 @@ odg_abort_t odg_node_check_(odg_node_t *n, uint16_t index, uint8_t sub, const ui
                             uint32_t len)
 {
     uint32_t v = 0;
-    if (index < 0x1400u || index >= 0x1C00u || len > 4u) {
-        return ODG_OK; /* only PDO parameters have rules beyond the dictionary's own checks */
+    if (index == 0x1019u) {
+        return odg_sync_check_(n, index);
+    }
+    if ((index != 0x1003u && index != 0x1016u && (index < 0x1400u || index >= 0x1C00u)) || len > 4u) {
+        return ODG_OK; /* only 0x1003, 0x1016, 0x1019 and PDO parameters have rules of their own */
     }
     while (len > 0u) {
         len--;
         v = v << 8 | data[len];
     }
-    return odg_pdo_check_(n, index, sub, v);
+    if (index == 0x1016u) {
+        return odg_hb_check_(n, sub, v);
+    }
+    return index == 0x1003u ? odg_err_check_(n, sub, v) : odg_pdo_check_(n, index, sub, v);
 }
 
 /* COB-IDs of SYNC, EMCY and the SDO server. The default SDO server (0x1200) always answers on
@@ -85,6 +91,10 @@ static void comm_changed(odg_client_t *self, const odg_ref_t *ref)
         odg_pdo_load_(n, index >= 0x1800u, (uint16_t)(index & 0x1FFu));
     } else if (index == 0x1005u || index == 0x1014u || index == 0x1012u) {
         load_cobs(n);
+    } else if (index == 0x1003u) {
+        odg_err_written_(n);
+    } else if (index == 0x1016u) {
+        odg_hb_load_(n);
     }
 }
 
@@ -92,6 +102,7 @@ void odg_node_reload(odg_node_t *node)
 {
     uint16_t k;
     load_cobs(node);
+    odg_hb_load_(node);
     for (k = 0; k < ODG_NODE_MAX_RPDO; k++) {
         odg_pdo_load_(node, 0, k);
     }
@@ -168,6 +179,11 @@ static odg_abort_t boot(odg_node_t *n, int what)
     n->error_register = (uint8_t)odg_node_get_or_(n, 0x1001, 0, 0);
     odg_node_reload(n);
     n->hb_timer = 0;
+    n->sync_prod_us = 0;
+    n->sync_counter = 0;
+    n->emcy_queued = 0;
+    n->guard_started = 0;
+    n->guard_toggle = 0;
     (void)odg_node_send_(n, 0x700u + n->cfg.node_id, &bootup, 1);
     n->state = ODG_NMT_PRE_OPERATIONAL;
     if (what != BOOT_COMM) {
@@ -239,6 +255,13 @@ odg_abort_t odg_node_init(odg_node_t *node, const odg_node_config_t *cfg)
 void odg_node_receive(odg_node_t *node, const odg_frame_t *frame)
 {
     uint32_t id = frame->id;
+    if (frame->flags == ODG_FRAME_RTR && node->state != ODG_NMT_INITIALISING) {
+        odg_guard_rtr_(node, frame); /* remote frames: node guarding, and TPDOs 252/253 */
+        if (node->state == ODG_NMT_OPERATIONAL) {
+            odg_pdo_rtr_(node, frame);
+        }
+        return;
+    }
     if ((frame->flags & (ODG_FRAME_RTR | ODG_FRAME_EFF)) || frame->len > 8u) {
         return;
     }
@@ -250,6 +273,8 @@ void odg_node_receive(odg_node_t *node, const odg_frame_t *frame)
         nmt(node, frame); /* also while waiting for LSS (initialising): resets only */
     } else if (node->state == ODG_NMT_INITIALISING) {
         return;
+    } else if (id > 0x700u && id <= 0x77Fu) {
+        odg_hb_receive_(node, frame); /* heartbeats: only the consumer takes them */
     } else if (id == ODG_COB_ID(node->sdo_rx) && !(node->sdo_rx & ODG_COB_INVALID)) {
         if (node->state != ODG_NMT_STOPPED) {
             odg_sdo_receive_(node, frame);
@@ -296,6 +321,9 @@ void odg_node_tick(odg_node_t *node, uint32_t elapsed_ms)
         return;
     }
     heartbeat(node, elapsed_ms);
+    odg_sync_tick_(node, elapsed_ms);
+    odg_hb_tick_(node, elapsed_ms);
+    odg_emcy_tick_(node, elapsed_ms);
     odg_sdo_tick_(node, elapsed_ms);
     if (node->state == ODG_NMT_OPERATIONAL) {
         odg_pdo_tick_(node, elapsed_ms);
@@ -319,6 +347,7 @@ odg_abort_t odg_node_emcy(odg_node_t *node, uint16_t code, uint8_t error_registe
 {
     uint8_t d[8];
     set_error_register(node, error_register);
+    odg_err_record_(node, code, vendor, n_vendor);
     if ((node->state != ODG_NMT_PRE_OPERATIONAL && node->state != ODG_NMT_OPERATIONAL) ||
         (node->emcy_cob & ODG_COB_INVALID)) {
         return ODG_ABORT_DATA_STATE;
@@ -330,7 +359,7 @@ odg_abort_t odg_node_emcy(odg_node_t *node, uint16_t code, uint8_t error_registe
     if (vendor != NULL) {
         memcpy(d + 3, vendor, n_vendor < 5u ? n_vendor : 5u);
     }
-    return odg_node_send_(node, node->emcy_cob, d, 8) == 0 ? ODG_OK : ODG_ABORT_HARDWARE;
+    return odg_emcy_send_(node, d);
 }
 
 void odg_node_tpdo_request(odg_node_t *node, uint16_t n)

@@ -17,8 +17,9 @@
  *
  * Every value travels through odg_read / odg_write / odg_write_part, so access, length and
  * limit checks and hooks apply to SDO and PDO alike. Only 11-bit identifiers are used;
- * frames with ODG_FRAME_EFF or ODG_FRAME_RTR are ignored (no RTR-triggered PDOs, no node
- * guarding). odg_node.c, odg_sdo.c and odg_pdo.c implement it; see runtime/README.md.
+ * frames with ODG_FRAME_EFF are ignored; ODG_FRAME_RTR ones serve node guarding and TPDOs of
+ * types 252/253. odg_node.c, odg_sdo.c, odg_pdo.c, odg_err.c, odg_sync.c and odg_hb.c
+ * implement it; see runtime/NODE.md.
  */
 #ifndef ODG_NODE_H
 #define ODG_NODE_H
@@ -42,6 +43,14 @@ extern "C" {
 #endif
 #ifndef ODG_NODE_MAX_MAP
 #define ODG_NODE_MAX_MAP 8u
+#endif
+/* EMCY frames held back by the inhibit time (0x1015) at most; more are refused. */
+#ifndef ODG_NODE_EMCY_QUEUE
+#define ODG_NODE_EMCY_QUEUE 4u
+#endif
+/* Heartbeat consumer: how many 0x1016 entries (sub 1..) the node watches. */
+#ifndef ODG_NODE_MAX_HB
+#define ODG_NODE_MAX_HB 8u
 #endif
 /* SDO: ms of silence within a transfer before it is aborted (0x05040000). */
 #ifndef ODG_NODE_SDO_TIMEOUT_MS
@@ -147,6 +156,19 @@ typedef struct odg_sdo {
     uint8_t seg[7];       /* block download: the newest segment, held until the end frame */
 } odg_sdo_t;
 
+/* One watched heartbeat (0x1016 entry, internal). */
+typedef struct odg_hb_watch {
+    uint32_t elapsed; /* ms since its last heartbeat */
+    uint16_t time;    /* ms allowed between heartbeats */
+    uint8_t id;       /* node-id watched; 0: entry unused */
+    uint8_t state;    /* the state its last heartbeat said */
+    uint8_t started;  /* a heartbeat came since the entry was set or timed out */
+} odg_hb_watch_t;
+
+/* The event odg_node_on_heartbeat reports when a watched node's heartbeat is overdue; other
+ * events are the NMT state a heartbeat newly says (odg_nmt_state_t values). */
+#define ODG_HB_TIMEOUT 0xFFu
+
 typedef struct odg_node {
     odg_client_t client;      /* attached to the dictionary: hears every change (internal) */
     odg_persist_t persist;    /* the persistence layer, attached when cfg.nv is given */
@@ -164,6 +186,18 @@ typedef struct odg_node {
     odg_lss_t lss;            /* odg_lss.c */
 #endif
     uint32_t hb_timer;        /* ms since the last heartbeat */
+    uint32_t sync_prod_us;    /* SYNC producer: µs since the last SYNC sent (odg_sync.c) */
+    uint8_t sync_counter;     /* SYNC producer: the last counter sent (0: none yet) */
+    odg_hb_watch_t hb_watch[ODG_NODE_MAX_HB]; /* heartbeat consumer (odg_hb.c) */
+    uint32_t guard_elapsed;    /* life guarding: ms since the last remote frame (odg_hb.c) */
+    uint8_t guard_started;     /* life guarding: a remote frame came since boot or the last event */
+    uint8_t guard_toggle;      /* node guarding: the toggle bit of the next answer */
+    uint32_t emcy_inhibit_us;  /* EMCY: µs until the next may be sent (odg_err.c) */
+    uint8_t emcy_queue[ODG_NODE_EMCY_QUEUE][8]; /* EMCY frames waiting for the inhibit time */
+    uint8_t emcy_queued;
+    uint8_t emcy_fresh;        /* EMCY: one was sent since the last tick */
+    void (*on_heartbeat)(void *ctx, uint8_t node_id, uint8_t event);
+    void *on_heartbeat_ctx;
     uint8_t state;            /* odg_nmt_state_t */
     uint8_t error_register;   /* as last sent in an EMCY (and stored in 0x1001) */
 } odg_node_t;
@@ -195,6 +229,11 @@ odg_nmt_state_t odg_node_state(const odg_node_t *node);
  * COB-ID is marked invalid (bit 31); ODG_ABORT_HARDWARE when `send` failed. */
 odg_abort_t odg_node_emcy(odg_node_t *node, uint16_t code, uint8_t error_register,
                           const uint8_t *vendor, uint8_t n_vendor);
+
+/* Heartbeat consumer (0x1016): `fn` learns each new state a watched node's heartbeat says,
+ * and ODG_HB_TIMEOUT when one is overdue (after the EMCY 0x8130). NULL stops the reports. */
+void odg_node_on_heartbeat(odg_node_t *node, void (*fn)(void *ctx, uint8_t node_id, uint8_t event),
+                           void *ctx);
 
 /* Ask TPDO `n` (0-based: 0x1800 + n) to be sent: at once (inhibit time permitting) for
  * event-driven types 254/255, at the next SYNC for type 0. Ignored when not operational.

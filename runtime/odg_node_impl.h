@@ -38,6 +38,7 @@ enum {
 #define ODG_PDO_F_RECEIVED 0x08u /* RPDO: data waits for the next SYNC */
 #define ODG_PDO_F_LEN_ERR  0x10u /* RPDO: the last frame was too short (EMCY 0x8210 sent) */
 #define ODG_PDO_F_DUE      0x20u /* TPDO: synchronous, not sent yet at the last SYNC (window) */
+#define ODG_PDO_F_SAMPLED  0x40u /* TPDO type 252: data/len hold what the last SYNC sampled */
 
 /* odg_node.c */
 int odg_node_send_(odg_node_t *n, uint32_t cob, const uint8_t *data, uint8_t len);
@@ -50,6 +51,25 @@ odg_abort_t odg_node_check_(odg_node_t *n, uint16_t index, uint8_t sub, const ui
 
 /* odg_time.c */
 void odg_time_receive_(odg_node_t *n, const odg_frame_t *f);
+
+/* odg_err.c: the pre-defined error field 0x1003 */
+void odg_err_record_(odg_node_t *n, uint16_t code, const uint8_t *vendor, uint8_t n_vendor);
+odg_abort_t odg_err_check_(const odg_node_t *n, uint8_t sub, uint32_t value);
+void odg_err_written_(odg_node_t *n); /* after an SDO write to 0x1003: sub 0 = 0 clears */
+/* Send an EMCY frame now, or when the inhibit time (0x1015) since the last one has passed. */
+odg_abort_t odg_emcy_send_(odg_node_t *n, const uint8_t *data);
+void odg_emcy_tick_(odg_node_t *n, uint32_t ms);
+
+/* odg_sync.c: the SYNC producer */
+void odg_sync_tick_(odg_node_t *n, uint32_t ms);
+odg_abort_t odg_sync_check_(const odg_node_t *n, uint16_t index); /* before a write to 0x1019 */
+
+/* odg_hb.c: the heartbeat consumer, node and life guarding, 0x1029 */
+void odg_hb_load_(odg_node_t *n);
+odg_abort_t odg_hb_check_(const odg_node_t *n, uint8_t sub, uint32_t value); /* before a 0x1016 write */
+void odg_hb_receive_(odg_node_t *n, const odg_frame_t *f);
+void odg_hb_tick_(odg_node_t *n, uint32_t ms); /* also life guarding */
+void odg_guard_rtr_(odg_node_t *n, const odg_frame_t *f); /* a remote frame: node guarding */
 
 /* odg_sdo.c */
 void odg_sdo_receive_(odg_node_t *n, const odg_frame_t *f);
@@ -64,5 +84,6 @@ void odg_pdo_sync_(odg_node_t *n, const odg_frame_t *f);
 void odg_pdo_receive_(odg_node_t *n, const odg_frame_t *f);
 void odg_pdo_tick_(odg_node_t *n, uint32_t ms);
 void odg_pdo_request_(odg_node_t *n, uint16_t k);
+void odg_pdo_rtr_(odg_node_t *n, const odg_frame_t *f); /* a remote request: TPDOs 252/253 */
 
 #endif /* ODG_NODE_IMPL_H */

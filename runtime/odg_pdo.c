@@ -17,7 +17,10 @@
 #include "odg_node_impl.h"
 
 #define TYPE_SYNC_MAX 240u /* 0: acyclic synchronous, 1..240: every n-th SYNC */
+#define TYPE_RTR_SYNC 252u /* TPDO: sampled at each SYNC, sent on a remote request */
+#define TYPE_RTR 253u      /* TPDO: sampled and sent on a remote request */
 #define TYPE_EVENT 254u    /* 254, 255: event-driven */
+#define COB_NO_RTR 0x40000000u /* TPDO COB-ID bit 30: no remote requests */
 
 #ifndef ODG_NODE_TPDO_COS
 #define ODG_NODE_TPDO_COS 1
@@ -114,7 +117,7 @@ void odg_pdo_load_(odg_node_t *n, int tx, uint16_t k)
     count = odg_node_get_or_(n, (uint16_t)(comm + 0x200u), 0, 0);
     /* a mapping or type the node cannot serve (only possible in the dictionary's defaults,
      * as SDO writes are checked) leaves the PDO unused */
-    if ((p->type > TYPE_SYNC_MAX && p->type < TYPE_EVENT) ||
+    if ((p->type > TYPE_SYNC_MAX && p->type < (tx ? TYPE_RTR_SYNC : TYPE_EVENT)) ||
         read_mapping(n, tx, (uint16_t)(comm + 0x200u), count, p->map) != ODG_OK) {
         count = 0;
     }
@@ -184,8 +187,8 @@ static odg_abort_t check_mapping_write(odg_node_t *n, int tx, uint16_t index, ui
     return v == 0u ? ODG_OK : check_entry(n, tx, v);
 }
 
-/* Communication parameters: besides the COB-ID, the transmission types 241..253 (reserved,
- * or RTR-only which this node does not serve), and the inhibit time and SYNC start value of
+/* Communication parameters: besides the COB-ID, the transmission types 241..251 (reserved)
+ * and, for an RPDO, 252/253 (RTR: TPDOs only), and the inhibit time and SYNC start value of
  * a valid TPDO (CiA 301 forbids changing them while it exists) abort with 0x06090030. */
 odg_abort_t odg_pdo_check_(odg_node_t *n, uint16_t index, uint8_t sub, uint32_t v)
 {
@@ -199,7 +202,7 @@ odg_abort_t odg_pdo_check_(odg_node_t *n, uint16_t index, uint8_t sub, uint32_t 
         return check_cob(cob, v);
     }
     if (sub == 2u) {
-        return v > TYPE_SYNC_MAX && v < TYPE_EVENT ? ODG_ABORT_VALUE_RANGE : ODG_OK;
+        return v > TYPE_SYNC_MAX && v < (tx ? TYPE_RTR_SYNC : TYPE_EVENT) ? ODG_ABORT_VALUE_RANGE : ODG_OK;
     }
     return tx && valid && (sub == 3u || sub == 6u) ? ODG_ABORT_VALUE_RANGE : ODG_OK;
 }
@@ -414,6 +417,9 @@ void odg_pdo_sync_(odg_node_t *n, const odg_frame_t *f)
     }
     for (k = 0; k < ODG_NODE_MAX_TPDO; k++) {
         odg_pdo_t *p = &n->tpdo[k];
+        if (active(p) && p->type == TYPE_RTR_SYNC && sample(n, p, p->data, &p->len) == ODG_OK) {
+            p->flags |= ODG_PDO_F_SAMPLED; /* sent when a remote request comes */
+        }
         if (!active(p) || p->type > TYPE_SYNC_MAX) {
             continue;
         }
@@ -428,6 +434,24 @@ void odg_pdo_sync_(odg_node_t *n, const odg_frame_t *f)
             if (transmit(n, p, 1)) {
                 p->flags |= ODG_PDO_F_DUE;
             }
+        }
+    }
+}
+
+/* A remote request for a TPDO of type 252 (the data sampled at the last SYNC, once there was
+ * one) or 253 (sampled now), unless its COB-ID forbids remote requests (bit 30). */
+void odg_pdo_rtr_(odg_node_t *n, const odg_frame_t *f)
+{
+    uint16_t k;
+    for (k = 0; k < ODG_NODE_MAX_TPDO; k++) {
+        odg_pdo_t *p = &n->tpdo[k];
+        if (!active(p) || ODG_COB_ID(p->cob) != f->id || (p->cob & COB_NO_RTR)) {
+            continue;
+        }
+        if (p->type == TYPE_RTR) {
+            transmit(n, p, 1);
+        } else if (p->type == TYPE_RTR_SYNC && (p->flags & ODG_PDO_F_SAMPLED)) {
+            (void)odg_node_send_(n, p->cob, p->data, p->len);
         }
     }
 }

@@ -84,11 +84,12 @@ void odg_sdo_drop_(odg_node_t *n)
 /* ---- download ------------------------------------------------------------------------- */
 
 /* Store a complete value of at most 8 bytes: PDO rules first, then the dictionary (which
- * tells the node's client what changed). */
+ * tells the node's client what changed); but a read-only entry answers 0x06010002 from the
+ * dictionary, whatever the PDO rules say. */
 static odg_abort_t write_whole(odg_node_t *n, const uint8_t *data, uint32_t len)
 {
     odg_sdo_t *s = &n->sdo;
-    odg_abort_t ac = odg_node_check_(n, s->index, s->sub, data, len);
+    odg_abort_t ac = (s->ref.sub->attr & ODG_A_WRITE) ? odg_node_check_(n, s->index, s->sub, data, len) : ODG_OK;
     return ac != ODG_OK ? ac : odg_write(&s->ref, data, len);
 }
 

@@ -12,7 +12,6 @@ looped-back values.
 from __future__ import annotations
 
 import json
-import subprocess
 import sys
 from pathlib import Path
 
@@ -28,7 +27,6 @@ from odgen.roundtrip.build import build_node
 from .conftest import ROOT
 from .test_profile_ds401 import GRID
 
-VCAN = ROOT / "tools" / "vcan"
 SIM = ROOT / "examples" / "ds401-io" / "sim.c"
 GLUE = ROOT / "runtime" / "profiles" / "ds401.c"
 NODE_ID = 5
@@ -85,7 +83,7 @@ def _plan(name: str, exe: Path, spec: Ds401) -> dict[str, object]:
             "steps": [s for s in steps if s is not None]}
 
 
-def test_ds401_loop_back_nodes_on_vcan(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+def test_ds401_loop_back_nodes_on_vcan(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, vcan_bus) -> None:
     monkeypatch.setenv("ODGEN_CACHE", str(ROOT / "build" / "node-cache"))
     plans: list[dict[str, object]] = []
     loops = 0
@@ -103,10 +101,8 @@ def test_ds401_loop_back_nodes_on_vcan(tmp_path: Path, monkeypatch: pytest.Monke
     assert loops == 15  # 2 digital + 1 analog loops for the five points that have every function
     plan_file = tmp_path / "plan.json"
     plan_file.write_text(json.dumps(plans), encoding="utf-8")
-    cmd = [sys.executable, str(VCAN / "run.py"), "--rw", str(tmp_path), "--timeout", "80", "--",
-           sys.executable, str(ROOT / "tests" / "vcan" / "ds401_io.py"), str(plan_file)]
-    done = subprocess.run(cmd, capture_output=True, text=True, check=False, timeout=120, stdin=subprocess.DEVNULL,
-                          cwd=ROOT)
+    done = vcan_bus.run([sys.executable, str(ROOT / "tests" / "vcan" / "ds401_io.py"), str(plan_file)], cwd=ROOT,
+                        timeout=300)
     output = done.stdout + done.stderr
     assert done.returncode == 0, output[-6000:]
     lines = done.stdout.strip().splitlines()

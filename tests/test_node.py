@@ -8,7 +8,7 @@ persistence in a file across a power cycle). Each is built with gcc and clang un
 C99 warnings and once under AddressSanitizer and UndefinedBehaviorSanitizer, and must end
 with "N passed, 0 failed". The node program is compiled against several generated
 dictionaries, and run on vcan0 against python-canopen (tools/vcan: the host's vcan, else a
-User-Mode Linux guest). Everything is built in pytest's temporary directories.
+User-Mode Linux guest shared by all CAN tests). Everything is built in pytest's temporary directories.
 """
 
 from __future__ import annotations
@@ -27,10 +27,10 @@ RUNTIME = ROOT / "runtime"
 LINUX = RUNTIME / "linux"
 NODE_TESTS = ROOT / "tests" / "node"
 CHECK_H = ROOT / "tests" / "runtime"  # check.h
-VCAN_RUN = ROOT / "tools" / "vcan" / "run.py"
 
 CORE = tuple(RUNTIME / s for s in ("odg.c", "odg_persist.c"))
-NODE = tuple(RUNTIME / s for s in ("odg_node.c", "odg_sdo.c", "odg_pdo.c", "odg_lss.c", "odg_time.c"))
+NODE = tuple(RUNTIME / s for s in ("odg_node.c", "odg_sdo.c", "odg_pdo.c", "odg_err.c", "odg_sync.c", "odg_hb.c",
+                                    "odg_lss.c", "odg_time.c"))
 PROGRAM_SOURCES = (*CORE, *NODE, RUNTIME / "odg_nv_file.c", LINUX / "odg_socketcan.c", LINUX / "odg_node_main.c")
 
 # name -> (EDS, options file or None)
@@ -145,18 +145,13 @@ def test_node_program_builds_against_any_dictionary(cc: str, generated: Path, tm
             assert done.returncode == status and done.stdout == "" and text in done.stderr, done
 
 
-def test_node_program_on_vcan(generated: Path, tmp_path: Path) -> None:
+def test_node_program_on_vcan(generated: Path, tmp_path: Path, vcan_bus) -> None:
     """The node program against python-canopen on vcan0: boot-up, heartbeat, NMT, SDO
     expedited/segmented/block, aborts, PDOs, a stored value surviving SIGTERM and a restart."""
-    setup = subprocess.run(["bash", str(ROOT / "tools" / "vcan" / "setup.sh")], capture_output=True, text=True,
-                           timeout=600, check=False)
-    assert setup.returncode == 0, f"tools/vcan/setup.sh failed:\n{setup.stderr}"
     alltypes = node_program("gcc", "alltypes", generated / "alltypes", tmp_path, NODE_TESTS / "alltypes_hooks.c")
     io_node = node_program("gcc", "io_node", generate("io_node", tmp_path / "io_plain", with_options=False), tmp_path)
-    cmd = [sys.executable, str(VCAN_RUN), "--rw", str(tmp_path), "--timeout", "120", "--",
-           sys.executable, str(NODE_TESTS / "vcan_node.py"), str(alltypes), str(io_node), str(tmp_path)]
-    done = subprocess.run(cmd, capture_output=True, text=True, check=False, timeout=180, stdin=subprocess.DEVNULL,
-                          cwd=ROOT)
+    cmd = [sys.executable, str(NODE_TESTS / "vcan_node.py"), str(alltypes), str(io_node), str(tmp_path)]
+    done = vcan_bus.run(cmd, cwd=ROOT, timeout=300)
     output = done.stdout + done.stderr
     assert done.returncode == 0, output[-6000:]
     assert done.stdout.rstrip().splitlines()[-1] == "vcan node: ok", output[-6000:]

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import json
 import os
-import subprocess
 import sys
 
 from odgen.codegen.generate import Request
@@ -18,12 +17,17 @@ from odgen.roundtrip.build import build_node
 
 from .conftest import BUILD, ROOT, corpus_files, generates
 
-VCAN = ROOT / "tools" / "vcan"
 CACHE = ROOT / "build" / "node-cache"
 
 
-def test_roundtrip_examples_and_corpus_on_vcan() -> None:
-    files = [ROOT / "examples" / "io-node" / "io-node.eds"] + [p for p in corpus_files() if generates(p)]
+def vcan_files() -> list:
+    """The descriptions checked on a bus (here and by tests/test_conformance.py): the example and
+    every corpus file `odgen generate` accepts."""
+    return [ROOT / "examples" / "io-node" / "io-node.eds"] + [p for p in corpus_files() if generates(p)]
+
+
+def test_roundtrip_examples_and_corpus_on_vcan(vcan_bus) -> None:
+    files = vcan_files()
     env = dict(os.environ, ODGEN_CACHE=str(CACHE))
     os.environ["ODGEN_CACHE"] = str(CACHE)
     try:
@@ -31,13 +35,10 @@ def test_roundtrip_examples_and_corpus_on_vcan() -> None:
             build_node(Request(path, name="od", node_id=5, defaults=ROUNDTRIP_DEFAULTS))
     finally:
         os.environ.pop("ODGEN_CACHE", None)
-    setup = subprocess.run(["bash", str(VCAN / "setup.sh")], capture_output=True, text=True, check=False)
-    assert setup.returncode == 0, setup.stderr
     report = BUILD / "roundtrip.json"
     BUILD.mkdir(parents=True, exist_ok=True)
-    cmd = [sys.executable, str(VCAN / "run.py"), "--timeout", "1200", "--",
-           sys.executable, "-m", "odgen", "roundtrip", "--report", str(report), *map(str, files)]
-    run = subprocess.run(cmd, capture_output=True, text=True, env=env, cwd=ROOT, check=False)
+    cmd = [sys.executable, "-m", "odgen", "roundtrip", "--report", str(report), *map(str, files)]
+    run = vcan_bus.run(cmd, env=env, cwd=ROOT, timeout=1200)
     assert report.is_file(), run.stdout[-3000:] + run.stderr[-3000:]
     doc = json.loads(report.read_text())
     failed = [f for f in doc["files"] if not f["ok"]]

@@ -170,9 +170,9 @@ def main() -> int:
     booted = BootWatch(net, ids)
     procs = start_nodes(build)
     try:
-        booted.wait(5.0)
+        booted.wait(30.0)  # ends at the last boot-up: generous for a loaded machine
         for node in nodes.values():
-            node.sdo.RESPONSE_TIMEOUT = 2.0
+            node.sdo.RESPONSE_TIMEOUT = 5.0
         sniff = Sniffer(net, [0x200 + i for i in ids[1:]] + [0x180 + i for i in ids[1:]])
         net.nmt.state = "OPERATIONAL"  # NMT start, all nodes
         time.sleep(0.1)

@@ -19,7 +19,7 @@ PY=$ROOT/.venv/bin/python
 CC=${FUZZ_CC:-clang}
 FLAGS=(-std=c99 -Wall -Wextra -Werror -pedantic -O1 -g -fno-omit-frame-pointer
        -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all)
-RUNTIME=(odg.c odg_persist.c odg_node.c odg_sdo.c odg_pdo.c odg_lss.c odg_time.c)
+RUNTIME=(odg.c odg_persist.c odg_node.c odg_sdo.c odg_pdo.c odg_err.c odg_sync.c odg_hb.c odg_lss.c odg_time.c)
 
 declare -A DICT=([sdo]=alltypes [pdo]=pdo_node [od]=alltypes)
 

@@ -27,9 +27,9 @@ from ..codegen.selftest import expected_bytes, write_cases
 from ..formats.eds_writer import write_eds
 from ..model import ARRAY, RECORD, Obj, ObjectDictionary, Sub
 from ..model.cia301 import (
-    ABORT_CODES, COMMUNICATION_AREA, EMCY_COB_ID, EMCY_INHIBIT, LOAD, PDO_COUNT, PRODUCER_HEARTBEAT, RESTORE, RPDO_COMM,
-    RPDO_MAPPING, SAVE, SDO_SERVER, STORE, SYNC_COB_ID, SYNC_PERIOD, SYNC_WINDOW, TIME_COB_ID, TPDO_COMM,
-    TPDO_MAPPING, is_pdo_mapping, unused_manufacturer_index)
+    ABORT_CODES, COMMUNICATION_AREA, EMCY_COB_ID, EMCY_INHIBIT, ERROR_HISTORY, LOAD, PDO_COUNT, PRODUCER_HEARTBEAT,
+    RESTORE, RPDO_COMM, RPDO_MAPPING, SAVE, SDO_SERVER, STORE, SYNC_COB_ID, SYNC_PERIOD, SYNC_WINDOW, TIME_COB_ID,
+    TPDO_COMM, TPDO_MAPPING, is_pdo_mapping, unused_manufacturer_index)
 from ..model.datatypes import BASIC_TYPES, UNSIGNED16, DataType
 from ..model.wire import wire_bytes
 
@@ -38,9 +38,9 @@ WRITE_ONLY, NO_OBJECT, NO_SUB = (ABORT_CODES["ODG_ABORT_WRITE_ONLY"], ABORT_CODE
                                  ABORT_CODES["ODG_ABORT_NO_SUB"])
 # Objects whose writes change how the node talks (SDO/PDO/SYNC/EMCY/heartbeat) or act as
 # commands: checked by their own steps, not by the generic downloads.
-ACTIVE = frozenset({SYNC_COB_ID, SYNC_PERIOD, SYNC_WINDOW, STORE, RESTORE, TIME_COB_ID, EMCY_COB_ID, EMCY_INHIBIT,
-                    PRODUCER_HEARTBEAT}) | frozenset(range(SDO_SERVER, TPDO_MAPPING + PDO_COUNT))
-BOOT_TIMEOUT = 5.0
+ACTIVE = frozenset({ERROR_HISTORY, SYNC_COB_ID, SYNC_PERIOD, SYNC_WINDOW, STORE, RESTORE, TIME_COB_ID, EMCY_COB_ID,
+                    EMCY_INHIBIT, PRODUCER_HEARTBEAT}) | frozenset(range(SDO_SERVER, TPDO_MAPPING + PDO_COUNT))
+BOOT_TIMEOUT = 30.0  # waits end at the boot-up: generous for a loaded machine
 
 
 @dataclass
@@ -385,7 +385,7 @@ def _tpdo(s: Session, check: Check, e: Entry) -> None:
                  f"TPDO1 on SYNC carried {_hex(bytes(pdo.data) if got else None)}, SDO reads {_hex(value)}")
 
 
-def _wait(condition: Callable[[], bool], timeout: float = 1.0) -> bool:
+def _wait(condition: Callable[[], bool], timeout: float = 5.0) -> bool:
     deadline = time.monotonic() + timeout
     while time.monotonic() < deadline:
         if condition():

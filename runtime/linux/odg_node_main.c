@@ -5,8 +5,8 @@
  *     cc -std=c99 -O2 -DODG_DICT=dev -Igen -Iruntime -Iruntime/linux \
  *        runtime/linux/odg_node_main.c runtime/linux/odg_socketcan.c gen/dev.c \
  *        runtime/odg.c runtime/odg_persist.c runtime/odg_nv_file.c \
- *        runtime/odg_node.c runtime/odg_sdo.c runtime/odg_pdo.c runtime/odg_lss.c \
- *        runtime/odg_time.c -o dev-node
+ *        runtime/odg_node.c runtime/odg_sdo.c runtime/odg_pdo.c runtime/odg_err.c runtime/odg_sync.c \
+ *        runtime/odg_hb.c runtime/odg_lss.c runtime/odg_time.c -o dev-node
  *     ./dev-node --iface vcan0 --node-id 5 [--nv dev.nv]
  *
  * ODG_DICT names the dictionary symbol; its header is ODG_DICT.h unless ODG_DICT_HEADER

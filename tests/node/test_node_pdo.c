@@ -7,7 +7,7 @@
  *   TPDO2 0x280+id  type 3 (every 3rd SYNC) 0x2002 u32
  *   TPDO3 invalid   type 0                 (nothing mapped)
  *   RPDO1 0x200+id  type 255               0x2005 i16 (-100..100), 0x2004 sub1/sub2 1 bit each
- *   RPDO2 0x300+id  type 1                 0x2002 u32
+ *   RPDO2 0x300+id  type 1                 0x2002 u32 (static mapping: 0x1601 read-only)
  *   0x1005 = 0x80, 0x1014 = 0x80+id, 0x1017 = 0, eight mapping entries per PDO
  */
 #include <stdio.h>
@@ -316,10 +316,11 @@ static void test_remap(void)
     after(1);
     CHECK_EQ(count_id(0x186), 1);
     CHECK_EQ(download_u32(0x1800, 1, 0x186, 4), 0); /* only bit 30 changed */
-    /* transmission types 241..253 */
+    /* transmission types 241..251, and 252/253 for an RPDO */
     CHECK_EQ(download_u32(0x1800, 2, 241, 1), ODG_ABORT_VALUE_RANGE);
-    CHECK_EQ(download_u32(0x1800, 2, 252, 1), ODG_ABORT_VALUE_RANGE);
+    CHECK_EQ(download_u32(0x1800, 2, 251, 1), ODG_ABORT_VALUE_RANGE);
     CHECK_EQ(download_u32(0x1400, 2, 253, 1), ODG_ABORT_VALUE_RANGE);
+    CHECK_EQ(download_u32(0x1400, 2, 252, 1), ODG_ABORT_VALUE_RANGE);
     CHECK_EQ(download_u32(0x1800, 2, 254, 1), 0);
     CHECK_EQ(download_u32(0x1400, 2, 240, 1), 0);
     CHECK_EQ(download_u32(0x1400, 2, 255, 1), 0);
@@ -460,6 +461,277 @@ static void test_application_client(void)
     CHECK_EQ(count_id(TPDO1), 0);
 }
 
+/* 0x1003: every EMCY error code enters sub 1, the older ones move down, the oldest falls off
+ * past sub 3; sub 0 counts; only 0 may be written to sub 0, and it clears the history. */
+static void test_error_history(void)
+{
+    unsigned k;
+    nmt(ODG_NMT_RESET_NODE, NID);
+    CHECK_EQ(upload_u32(0x1003, 0), 0);
+    CHECK_EQ(odg_node_emcy(&node, 0x8210, 0x11, (const uint8_t *)"\x34\x12", 2), 0);
+    CHECK_EQ(upload_u32(0x1003, 0), 1);
+    CHECK_EQ(upload_u32(0x1003, 1), 0x12348210u);
+    CHECK_EQ(odg_node_emcy(&node, 0, 0, NULL, 0), 0); /* error reset: not an error */
+    CHECK_EQ(upload_u32(0x1003, 0), 1);
+    for (k = 1; k <= 3; k++) {
+        CHECK_EQ(odg_node_emcy(&node, (uint16_t)(0x5000 + k), 0x01, NULL, 0), 0);
+    }
+    CHECK_EQ(upload_u32(0x1003, 0), 3);
+    CHECK_EQ(upload_u32(0x1003, 1), 0x5003);
+    CHECK_EQ(upload_u32(0x1003, 2), 0x5002);
+    CHECK_EQ(upload_u32(0x1003, 3), 0x5001);
+    nmt(ODG_NMT_STOP, NID); /* not sent when stopped, but recorded */
+    CHECK_EQ(odg_node_emcy(&node, 0x6000, 0x01, NULL, 0), ODG_ABORT_DATA_STATE);
+    nmt(ODG_NMT_ENTER_PREOP, NID);
+    CHECK_EQ(upload_u32(0x1003, 1), 0x6000);
+    CHECK_EQ(download_u32(0x1003, 1, 0, 4), ODG_ABORT_READ_ONLY);
+    CHECK_EQ(download_u32(0x1003, 0, 2, 1), ODG_ABORT_VALUE_RANGE);
+    CHECK_EQ(upload_u32(0x1003, 0), 3);
+    nmt(ODG_NMT_RESET_COMM, NID); /* kept */
+    CHECK_EQ(upload_u32(0x1003, 0), 3);
+    CHECK_EQ(download_u32(0x1003, 0, 0, 1), 0);
+    CHECK_EQ(upload_u32(0x1003, 0), 0);
+    CHECK_EQ(upload_u32(0x1003, 1), 0);
+    /* a read-only (static) mapping of a valid PDO answers 0x06010002, not the PDO rules' code */
+    CHECK_EQ(download_u32(0x1601, 0, 0, 1), ODG_ABORT_READ_ONLY);
+    CHECK_EQ(download_u32(0x1601, 1, 0x20020020, 4), ODG_ABORT_READ_ONLY);
+}
+
+/* SYNC producer: 0x1005 bit 30 and 0x1006 (µs); counter 1..0x1019; TPDO2 (every 3rd SYNC)
+ * follows the node's own SYNC; 0x1019 only while 0x1006 is 0. */
+static void test_sync_producer(void)
+{
+    unsigned k;
+    nmt(ODG_NMT_RESET_NODE, NID);
+    clear();
+    CHECK_EQ(download_u32(0x1006, 0, 10000, 4), 0); /* 10 ms, but bit 30 not set yet */
+    run_ms(50);
+    CHECK_EQ(count_id(0x80), 0);
+    CHECK_EQ(download_u32(0x1019, 0, 3, 1), ODG_ABORT_DATA_STATE);
+    CHECK_EQ(download_u32(0x1006, 0, 0, 4), 0);
+    CHECK_EQ(download_u32(0x1019, 0, 3, 1), 0);
+    CHECK_EQ(download_u32(0x1006, 0, 10000, 4), 0);
+    CHECK_EQ(download_u32(0x1005, 0, 0x40000080u, 4), 0);
+    clear();
+    run_ms(100);
+    CHECK_EQ(count_id(0x80), 10); /* in pre-operational too */
+    for (k = 0; k < n_sent; k++) {
+        CHECK_EQ(sent[k].len, 1);
+        CHECK_EQ(sent[k].data[0], k % 3u + 1u); /* 1, 2, 3, 1, ... */
+    }
+    nmt(ODG_NMT_START, NID);
+    clear();
+    run_ms(60);
+    CHECK_EQ(count_id(0x80), 6);
+    CHECK_EQ(count_id(TPDO2), 2); /* type 3: every third of the node's own SYNCs */
+    nmt(ODG_NMT_STOP, NID);
+    clear();
+    run_ms(50);
+    CHECK_EQ(count_id(0x80), 0); /* not in stopped */
+    nmt(ODG_NMT_ENTER_PREOP, NID);
+    CHECK_EQ(download_u32(0x1006, 0, 0, 4), 0);
+    CHECK_EQ(download_u32(0x1019, 0, 0, 1), 0);
+    CHECK_EQ(download_u32(0x1006, 0, 10000, 4), 0);
+    clear();
+    after(1000); /* a long pause: one SYNC, no burst; without a counter, empty */
+    CHECK_EQ(count_id(0x80), 1);
+    CHECK_EQ(last_id(0x80)->len, 0);
+    nmt(ODG_NMT_RESET_NODE, NID);
+    clear();
+    run_ms(50);
+    CHECK_EQ(count_id(0x80), 0);
+}
+
+static uint8_t hb_events[16][2];
+static unsigned n_hb_events;
+
+static void on_hb(void *ctx, uint8_t id, uint8_t event)
+{
+    (void)ctx;
+    if (n_hb_events < 16u) {
+        hb_events[n_hb_events][0] = id;
+        hb_events[n_hb_events++][1] = event;
+    }
+}
+
+/* Heartbeat consumer: node 9 watched with 100 ms from its first heartbeat; state changes and a
+ * timeout reported; EMCY 0x8130; 0x1029 sub 1 decides what the node does then. */
+static void test_heartbeat_consumer(void)
+{
+    nmt(ODG_NMT_RESET_NODE, NID);
+    odg_node_on_heartbeat(&node, on_hb, NULL);
+    n_hb_events = 0;
+    CHECK_EQ(download_u32(0x1016, 1, 0x00090064u, 4), 0);
+    CHECK_EQ(download_u32(0x1016, 2, 0x000900C8u, 4), ODG_ABORT_INCOMPATIBLE); /* node 9 again */
+    CHECK_EQ(download_u32(0x1016, 2, 0x000A00C8u, 4), 0);
+    nmt(ODG_NMT_START, NID);
+    clear();
+    run_ms(300); /* nothing heard from node 9 yet: not watched */
+    CHECK_EQ(count_id(EMCY), 0);
+    rx(0x709, 0x7F);
+    rx(0x709, 0x7F);
+    run_ms(80);
+    rx(0x709, 0x05);
+    CHECK_EQ(n_hb_events, 2);
+    CHECK(hb_events[0][0] == 9 && hb_events[0][1] == 0x7F && hb_events[1][1] == 0x05);
+    run_ms(100);
+    CHECK_EQ(count_id(EMCY), 0);
+    run_ms(1);
+    CHECK(FRAME_IS(last_id(EMCY), 0x30, 0x81, 0x11, 9, 0, 0, 0, 0));
+    CHECK_EQ(n_hb_events, 3);
+    CHECK_EQ(hb_events[2][1], ODG_HB_TIMEOUT);
+    CHECK_EQ(odg_node_state(&node), ODG_NMT_PRE_OPERATIONAL); /* 0x1029 sub 1 = 0 */
+    CHECK_EQ(upload_u32(0x1003, 1), 0x00098130u);
+    clear();
+    run_ms(500); /* no second EMCY until node 9 is heard again */
+    CHECK_EQ(count_id(EMCY), 0);
+    /* 0x1029 sub 1 = 1: no change; 2: stopped */
+    CHECK_EQ(download_u32(0x1029, 1, 1, 1), 0);
+    nmt(ODG_NMT_START, NID);
+    rx(0x709, 0x05);
+    run_ms(101);
+    CHECK_EQ(odg_node_state(&node), ODG_NMT_OPERATIONAL);
+    CHECK_EQ(download_u32(0x1029, 1, 2, 1), 0);
+    rx(0x709, 0x05);
+    run_ms(101);
+    CHECK_EQ(odg_node_state(&node), ODG_NMT_STOPPED);
+    /* an entry of time 0 is unused */
+    nmt(ODG_NMT_ENTER_PREOP, NID);
+    CHECK_EQ(download_u32(0x1016, 1, 0x00090000u, 4), 0);
+    rx(0x709, 0x05);
+    clear();
+    run_ms(300);
+    CHECK_EQ(count_id(EMCY), 0);
+    odg_node_on_heartbeat(&node, NULL, NULL);
+}
+
+/* EMCY inhibit time 0x1015 = 10 ms: a second EMCY waits, queued ones follow 10 ms apart, a full
+ * queue refuses; 0 sends at once again. */
+static void test_emcy_inhibit(void)
+{
+    unsigned k;
+    nmt(ODG_NMT_RESET_NODE, NID);
+    CHECK_EQ(download_u32(0x1015, 0, 100, 2), 0);
+    clear();
+    CHECK_EQ(odg_node_emcy(&node, 0x1000, 0x01, NULL, 0), 0);
+    CHECK_EQ(odg_node_emcy(&node, 0x2000, 0x01, NULL, 0), 0);
+    CHECK_EQ(count_id(EMCY), 1);
+    run_ms(10); /* the first tick's millisecond may have passed before the EMCY: not counted */
+    CHECK_EQ(count_id(EMCY), 1);
+    run_ms(1);
+    CHECK_EQ(count_id(EMCY), 2);
+    CHECK(FRAME_IS(last_id(EMCY), 0x00, 0x20, 0x01, 0, 0, 0, 0, 0));
+    for (k = 0; k < ODG_NODE_EMCY_QUEUE; k++) {
+        CHECK_EQ(odg_node_emcy(&node, (uint16_t)(0x3000 + k), 0x01, NULL, 0), 0);
+    }
+    CHECK_EQ(odg_node_emcy(&node, 0x4000, 0x01, NULL, 0), ODG_ABORT_HARDWARE); /* queue full */
+    clear();
+    run_ms(10 * ODG_NODE_EMCY_QUEUE - 1);
+    CHECK_EQ(count_id(EMCY), ODG_NODE_EMCY_QUEUE - 1);
+    run_ms(1);
+    CHECK_EQ(count_id(EMCY), ODG_NODE_EMCY_QUEUE);
+    CHECK_EQ(last_id(EMCY)->data[1], 0x30);
+    CHECK_EQ(last_id(EMCY)->data[0], ODG_NODE_EMCY_QUEUE - 1);
+    CHECK_EQ(download_u32(0x1015, 0, 0, 2), 0);
+    run_ms(10);
+    clear();
+    CHECK_EQ(odg_node_emcy(&node, 0x1000, 0x01, NULL, 0), 0);
+    CHECK_EQ(odg_node_emcy(&node, 0x1000, 0x01, NULL, 0), 0);
+    CHECK_EQ(count_id(EMCY), 2);
+}
+
+static void rtr(uint32_t id)
+{
+    odg_frame_t f;
+    memset(&f, 0, sizeof f);
+    f.id = id;
+    f.flags = ODG_FRAME_RTR;
+    odg_node_receive(&node, &f);
+}
+
+/* Node guarding: state and toggle on a remote frame while no heartbeat is produced; life
+ * guarding with 0x100C x 0x100D: EMCY 0x8130 and 0x1029 when the remote frames stop. */
+static void test_guarding(void)
+{
+    nmt(ODG_NMT_RESET_NODE, NID);
+    clear();
+    rtr(0x700 + NID);
+    rtr(0x700 + NID);
+    rtr(0x700 + NID + 1u); /* another node's */
+    CHECK_EQ(n_sent, 2);
+    CHECK(FRAME_IS(&sent[0], 0x7F) && FRAME_IS(&sent[1], 0xFF));
+    nmt(ODG_NMT_START, NID);
+    clear();
+    rtr(0x700 + NID);
+    CHECK(FRAME_IS(last_id(0x700 + NID), 0x05));
+    CHECK_EQ(download_u32(0x1017, 0, 1000, 2), 0); /* heartbeat on: no guarding answers */
+    clear();
+    rtr(0x700 + NID);
+    CHECK_EQ(n_sent, 0);
+    CHECK_EQ(download_u32(0x1017, 0, 0, 2), 0);
+    CHECK_EQ(download_u32(0x100C, 0, 50, 2), 0);
+    CHECK_EQ(download_u32(0x100D, 0, 2, 1), 0);
+    CHECK_EQ(download_u32(0x1029, 1, 0, 1), 0);
+    rtr(0x700 + NID);
+    clear();
+    run_ms(100);
+    CHECK_EQ(count_id(EMCY), 0);
+    run_ms(1);
+    CHECK(FRAME_IS(last_id(EMCY), 0x30, 0x81, 0x11, NID, 0, 0, 0, 0));
+    CHECK_EQ(odg_node_state(&node), ODG_NMT_PRE_OPERATIONAL);
+    clear();
+    run_ms(500); /* one event, until the next remote frame */
+    CHECK_EQ(count_id(EMCY), 0);
+    nmt(ODG_NMT_RESET_COMM, NID); /* toggle from 0 again */
+    clear();
+    rtr(0x700 + NID);
+    CHECK(FRAME_IS(last_id(0x700 + NID), 0x7F));
+}
+
+/* RTR-triggered TPDOs: type 253 samples and sends on a remote request; type 252 sends what
+ * the last SYNC sampled; COB-ID bit 30 forbids remote requests; only in operational. */
+static void test_rtr_tpdo(void)
+{
+    nmt(ODG_NMT_RESET_NODE, NID);
+    CHECK_EQ(download_u32(0x1800, 1, INVALID | TPDO1, 4), 0);
+    CHECK_EQ(download_u32(0x1800, 2, 253, 1), 0);
+    CHECK_EQ(download_u32(0x1800, 1, TPDO1, 4), 0);
+    clear();
+    rtr(TPDO1); /* pre-operational: no PDOs */
+    CHECK_EQ(count_id(TPDO1), 0);
+    nmt(ODG_NMT_START, NID);
+    pdo_node_x2000_u8_value = 0x21;
+    clear();
+    run_ms(20);
+    CHECK_EQ(count_id(TPDO1), 0); /* not event-driven */
+    rtr(TPDO1);
+    CHECK_EQ(count_id(TPDO1), 1);
+    CHECK_EQ(last_id(TPDO1)->data[0], 0x21);
+    nmt(ODG_NMT_ENTER_PREOP, NID);
+    CHECK_EQ(download_u32(0x1800, 1, INVALID | TPDO1, 4), 0);
+    CHECK_EQ(download_u32(0x1800, 2, 252, 1), 0);
+    CHECK_EQ(download_u32(0x1800, 1, TPDO1, 4), 0);
+    nmt(ODG_NMT_START, NID);
+    clear();
+    rtr(TPDO1); /* no SYNC yet: nothing sampled */
+    CHECK_EQ(count_id(TPDO1), 0);
+    pdo_node_x2000_u8_value = 0x31;
+    sync0();
+    CHECK_EQ(count_id(TPDO1), 0); /* sampled, not sent */
+    pdo_node_x2000_u8_value = 0x32;
+    rtr(TPDO1);
+    CHECK_EQ(count_id(TPDO1), 1);
+    CHECK_EQ(last_id(TPDO1)->data[0], 0x31); /* the value at the SYNC */
+    nmt(ODG_NMT_ENTER_PREOP, NID);
+    CHECK_EQ(download_u32(0x1800, 1, INVALID | TPDO1, 4), 0);
+    CHECK_EQ(download_u32(0x1800, 2, 253, 1), 0);
+    CHECK_EQ(download_u32(0x1800, 1, 0x40000000u | TPDO1, 4), 0);
+    nmt(ODG_NMT_START, NID);
+    clear();
+    rtr(TPDO1);
+    CHECK_EQ(count_id(TPDO1), 0); /* bit 30: no remote requests */
+}
+
 int main(void)
 {
     test_only_when_operational();
@@ -470,5 +742,11 @@ int main(void)
     test_emcy_and_resets();
     test_application_writes();
     test_application_client();
+    test_error_history();
+    test_sync_producer();
+    test_heartbeat_consumer();
+    test_emcy_inhibit();
+    test_guarding();
+    test_rtr_tpdo();
     return done();
 }

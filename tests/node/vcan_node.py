@@ -15,6 +15,7 @@ import signal
 import struct
 import subprocess
 import sys
+import threading
 import time
 
 import can
@@ -22,6 +23,24 @@ import canopen
 from canopen.sdo.exceptions import SdoAbortedError
 
 CHANNEL = os.environ.get("ODGEN_VCAN_IFACES", "vcan0").split(",")[0]
+# Deadlines for things that happen within milliseconds on an idle machine: generous, since
+# waiting ends at the event, and a loaded machine (or the guest) may be slow.
+DEADLINE = 30.0
+
+
+class Bootups:
+    """Boot-up frames seen since arm(): listening starts before the node does, so a boot-up
+    sent before a wait could begin is not lost (canopen's wait_for_bootup only sees later ones)."""
+
+    def __init__(self, net: canopen.Network, node_id: int) -> None:
+        self.seen = threading.Event()
+        net.subscribe(0x700 + node_id, lambda _cob, data, _ts: data[:1] == b"\x00" and self.seen.set())
+
+    def arm(self) -> None:
+        self.seen.clear()
+
+    def wait(self) -> None:
+        assert self.seen.wait(DEADLINE), f"no boot-up within {DEADLINE:g} s"
 
 
 def start(exe: str, node_id: int, *extra: str) -> subprocess.Popen[bytes]:
@@ -31,7 +50,7 @@ def start(exe: str, node_id: int, *extra: str) -> subprocess.Popen[bytes]:
 
 def stop(proc: subprocess.Popen[bytes]) -> None:
     proc.send_signal(signal.SIGTERM)
-    out, err = proc.communicate(timeout=5)
+    out, err = proc.communicate(timeout=DEADLINE)
     assert proc.returncode == 0, f"exit {proc.returncode}: {err!r}"
     assert out == b"" and err == b"", f"the node printed {out!r} {err!r}"
 
@@ -62,6 +81,13 @@ def sdo_checks(node: canopen.RemoteNode) -> None:
             raise AssertionError(f"{index:#x}: no abort")
 
 
+def wait_for_state(node: canopen.RemoteNode, state: str) -> None:
+    """The first heartbeat after a command may predate it: wait for one that shows `state`."""
+    deadline = time.monotonic() + DEADLINE
+    while (seen := node.nmt.wait_for_heartbeat(DEADLINE)) != state:
+        assert time.monotonic() < deadline, f"heartbeat says {seen}, want {state}"
+
+
 def main() -> int:
     alltypes_exe, io_exe, workdir = sys.argv[1:4]
     nv = os.path.join(workdir, "alltypes.nv")
@@ -75,16 +101,16 @@ def main() -> int:
         net.add_node(node)
         net.add_node(io)
         for n in (node, io):
-            n.sdo.RESPONSE_TIMEOUT = 2.0
+            n.sdo.RESPONSE_TIMEOUT = 5.0
+        node_up, io_up = Bootups(net, 5), Bootups(net, 6)
 
         procs.append(start(alltypes_exe, 5, "--nv", nv))
-        node.nmt.wait_for_bootup(5)
-        assert node.nmt.wait_for_heartbeat(3) == "PRE-OPERATIONAL"  # 0x1017 = 1000 ms
+        node_up.wait()
+        wait_for_state(node, "PRE-OPERATIONAL")  # 0x1017 = 1000 ms
         sdo_checks(node)
-        node.nmt.state = "OPERATIONAL"
-        assert node.nmt.wait_for_heartbeat(3) == "OPERATIONAL"
-        node.nmt.state = "STOPPED"
-        assert node.nmt.wait_for_heartbeat(3) == "STOPPED"
+        for state in ("OPERATIONAL", "STOPPED"):
+            node.nmt.state = state
+            wait_for_state(node, state)
         node.nmt.state = "PRE-OPERATIONAL"
 
         # store, change, restart: the stored value comes back
@@ -92,24 +118,25 @@ def main() -> int:
         node.sdo.download(0x1010, 1, b"save")
         node.sdo.download(0x2005, 0, b"\x07")
         stop(procs.pop())
+        node_up.arm()
         procs.append(start(alltypes_exe, 5, "--nv", nv))
-        node.nmt.wait_for_bootup(5)
+        node_up.wait()
         assert node.sdo.upload(0x2005, 0) == b"\x63", "the stored value did not survive a restart"
 
         # PDOs of the io-node: TPDO 0x186 (inputs, event timer 100 ms), RPDO 0x206 (outputs)
         procs.append(start(io_exe, 6))
-        io.nmt.wait_for_bootup(5)
+        io_up.wait()
         with can.Bus(interface="socketcan", channel=CHANNEL) as bus:
             io.nmt.state = "OPERATIONAL"
-            deadline, tpdos = time.monotonic() + 2, 0
+            deadline, tpdos = time.monotonic() + DEADLINE, 0
             while time.monotonic() < deadline and tpdos < 3:
                 msg = bus.recv(0.5)
                 if msg is not None and msg.arbitration_id == 0x186:
                     assert bytes(msg.data) == b"\x00"
                     tpdos += 1
-            assert tpdos == 3, f"{tpdos} TPDOs in 2 s"
+            assert tpdos == 3, f"{tpdos} TPDOs in {DEADLINE:g} s"
             bus.send(can.Message(arbitration_id=0x206, data=b"\x3c", is_extended_id=False))
-            time.sleep(0.1)
+        # The node handles frames in bus order: the RPDO before this SDO request.
         assert io.sdo.upload(0x6200, 1) == b"\x3c"
         while procs:
             stop(procs.pop())

@@ -22,7 +22,7 @@ import canopen
 
 IFACE = os.environ.get("ODGEN_VCAN_IFACES", "vcan0").split(",")[0]
 NODE_ID = 5
-TIMEOUT = 3.0
+TIMEOUT = 15.0  # waits end at the frame: generous for a loaded machine
 
 
 class Bus:
@@ -35,7 +35,7 @@ class Bus:
             self.network.subscribe(cob, lambda cob, data, _ts: self.frames.put((cob, bytes(data))))
         self.node = canopen.RemoteNode(NODE_ID, canopen.ObjectDictionary())
         self.network.add_node(self.node)
-        self.node.sdo.RESPONSE_TIMEOUT = 2.0
+        self.node.sdo.RESPONSE_TIMEOUT = 5.0
 
     def drain(self) -> None:
         while not self.frames.empty():

@@ -1,0 +1,157 @@
+"""The conformance client: python canopen on a CAN interface, talking to a live node.
+
+Unlike `odgen roundtrip` it starts nothing: the node is already on the bus, built by anyone.
+It listens to the node's boot-up/heartbeat (0x700 + id), EMCY (its 0x1014 COB-ID) and
+TPDOs as they come, so a check waits on frames instead of sleeping.
+"""
+
+from __future__ import annotations
+
+import logging
+import statistics
+import threading
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+from ..errors import OdgenError
+from ..model import ObjectDictionary
+from ..roundtrip.checks import client_eds
+
+# Waits end at the awaited frame; the deadlines only bound a failure, so they are generous.
+DEADLINE = 10.0
+SDO_TIMEOUT = 2.0
+# How long silence must last to count as "no answer" (a stopped node's SDO server).
+SILENCE = 0.5
+
+
+class Client:
+    def __init__(self, od: ObjectDictionary, iface: str, node_id: int, workdir: Path) -> None:
+        import can
+        import canopen
+
+        logging.getLogger("canopen").setLevel(logging.CRITICAL)
+        self.canopen, self.od, self.node_id = canopen, od, node_id
+        eds = workdir / "client.eds"
+        eds.write_text(client_eds(od), encoding="utf-8")
+        self.network = canopen.Network()
+        self.network.NOTIFIER_CYCLE = 0.1
+        try:
+            self.network.connect(interface="socketcan", channel=iface)
+        except (OSError, can.CanError) as err:
+            raise OdgenError(f"cannot open CAN interface '{iface}' ({err}): name an existing SocketCAN "
+                             "interface with --iface") from None
+        try:
+            self.node = canopen.RemoteNode(node_id, str(eds))
+        except Exception as err:  # canopen's own reader: not odgen's fault, one sentence
+            self.network.disconnect()
+            raise OdgenError(f"python canopen cannot load the description: {type(err).__name__}: {err}") from None
+        self.network.add_node(self.node)
+        self.node.sdo.RESPONSE_TIMEOUT = SDO_TIMEOUT
+        self.frames: list[tuple[float, int, bytes]] = []  # (time, COB-ID, data) of watched frames
+        self.stamps: list[tuple[float, int, float]] = []  # (time, COB-ID, the kernel's receive time)
+        self.lock = threading.Condition()
+        self.watched: set[int] = set()
+        self.watch(0x700 + node_id)
+
+    def close(self) -> None:
+        self.network.disconnect()
+
+    # -- frames ----------------------------------------------------------------------------
+
+    def watch(self, cob: int) -> None:
+        if cob not in self.watched:
+            self.network.subscribe(cob, self._seen)
+            self.watched.add(cob)
+
+    def _seen(self, cob: int, data: bytearray, timestamp: float) -> None:
+        with self.lock:
+            now = time.monotonic()
+            self.frames.append((now, cob, bytes(data)))
+            self.stamps.append((now, cob, timestamp))
+            self.lock.notify_all()
+
+    def wait_frame(self, since: float, match: Callable[[int, bytes], bool], deadline: float = DEADLINE
+                   ) -> bytes | None:
+        """The first watched frame after `since` that `match` accepts, or None by the deadline."""
+        end = time.monotonic() + deadline
+        with self.lock:
+            while True:
+                for t, cob, data in self.frames:
+                    if t >= since and match(cob, data):
+                        return data
+                left = end - time.monotonic()
+                if left <= 0:
+                    return None
+                self.lock.wait(left)
+
+    def frames_since(self, since: float, cob: int) -> list[tuple[float, bytes]]:
+        with self.lock:
+            return [(t, d) for t, c, d in self.frames if t >= since and c == cob]
+
+    def received_since(self, since: float, cob: int) -> list[float]:
+        """When the kernel received each frame of `cob` since `since` (for periods: no Python delays)."""
+        with self.lock:
+            return [stamp for t, c, stamp in self.stamps if t >= since and c == cob]
+
+    def period(self, cob: int, window: float, good: Callable[[float], bool]) -> list[float | None]:
+        """Median gap (ms) between frames of `cob`, by the kernel's receive times, over `window`
+        seconds; a machine stalled for a while stretches one window, so up to three are measured
+        until one is `good`. Returns the medians measured (None: fewer than two frames)."""
+        medians: list[float | None] = []
+        while len(medians) < 3 and not (medians and medians[-1] is not None and good(medians[-1])):
+            start = time.monotonic()
+            time.sleep(window)  # a measuring window, not a wait for an event
+            stamps = self.received_since(start, cob)
+            gaps = [1000 * (b - a) for a, b in zip(stamps, stamps[1:], strict=False)]
+            medians.append(statistics.median(gaps) if gaps else None)
+        return medians
+
+    def send(self, cob: int, data: bytes, remote: bool = False) -> None:
+        self.network.send_message(cob, data, remote=remote)
+
+    def nmt(self, command: str) -> float:
+        """Send an NMT command to the node; returns the time it was sent."""
+        now = time.monotonic()
+        self.node.nmt.state = command
+        return now
+
+    def heartbeat_state(self, since: float, state: int) -> bool:
+        return self.wait_frame(since, lambda c, d: c == 0x700 + self.node_id and d[:1] == bytes([state])) is not None
+
+    # -- SDO -------------------------------------------------------------------------------
+
+    def upload(self, index: int, sub: int) -> tuple[bytes | None, int]:
+        """(data, 0) or (None, abort code); -1 when the node did not answer."""
+        try:
+            return bytes(self.node.sdo.upload(index, sub)), 0
+        except self.canopen.SdoAbortedError as err:
+            return None, err.code
+        except self.canopen.SdoCommunicationError:
+            return None, -1
+
+    def download(self, index: int, sub: int, data: bytes) -> int:
+        try:
+            self.node.sdo.download(index, sub, data)
+            return 0
+        except self.canopen.SdoAbortedError as err:
+            return err.code
+        except self.canopen.SdoCommunicationError:
+            return -1
+
+    def number(self, index: int, sub: int = 0) -> int | None:
+        """An entry uploaded as an unsigned number, or None when it cannot be read."""
+        data = self.upload(index, sub)[0]
+        return int.from_bytes(data, "little") if data else None
+
+    def emcy_cob(self) -> int | None:
+        """The EMCY COB-ID entry (0x1014, bit 31: disabled), the default one without 0x1014."""
+        return self.number(0x1014) if self.od.find(0x1014) is not None else 0x80 + self.node_id
+
+    def answers(self) -> bool:
+        """Whether the SDO server answers at all, within SILENCE (for states where it must not)."""
+        self.node.sdo.RESPONSE_TIMEOUT = SILENCE
+        try:
+            return self.upload(0x1000, 0)[1] != -1
+        finally:
+            self.node.sdo.RESPONSE_TIMEOUT = SDO_TIMEOUT

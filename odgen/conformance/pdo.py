@@ -1,0 +1,282 @@
+"""Conformance checks of PDO configuration and transmission, EMCY, and store/restore (0x1010/0x1011).
+
+PDOs are configured by plain SDO writes in the CiA 301 order, so the sequence itself is what
+is checked: invalidate (COB-ID bit 31), mapping sub 0 = 0, entries, sub 0 = n, transmission
+type, validate. The PDO's parameters are written back afterwards.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+from ..codegen.selftest import expected_bytes, write_cases
+from ..roundtrip.checks import ACTIVE, Check
+from .checks import EMCY_RPDO_LENGTH, INCOMPATIBLE, MAP_TOO_LONG, NOT_MAPPABLE, RANGE, RESTORE, SIGNATURE, STORE, \
+    Entry, entries, is_command
+from .client import Client
+
+INVALID = 0x80000000
+RTR_ONLY = 0xFD  # TPDO transmission type: sampled and sent on a remote request
+
+
+@dataclass
+class Pdo:
+    comm: int      # 0x14xx / 0x18xx
+    mapping: int   # 0x16xx / 0x1Axx
+    cob: int       # the COB-ID it is enabled with (11 bits)
+
+
+def _find_pdo(c: Client, tx: bool) -> Pdo | None:
+    """The first PDO whose COB-ID, type and mapping the description lets a client write."""
+    base = 0x1800 if tx else 0x1400
+    for k in range(512):
+        comm, mapping = base + k, base + 0x200 + k
+        needed = [c.od.find(comm, 1), c.od.find(comm, 2), c.od.find(mapping, 0), c.od.find(mapping, 1)]
+        if all(s is not None and s.writable for s in needed):
+            cob = (c.number(comm, 1) or 0) & 0x7FF
+            default = (0x180 if tx else 0x200) + 0x100 * (k % 4) + c.node_id
+            return Pdo(comm, mapping, cob if cob and k < 4 else default)
+    return None
+
+
+def _mappable(c: Client, tx: bool) -> Entry | None:
+    access = ("ro", "const", "rwr", "rw") if tx else ("wo", "rww", "rw")
+    for e in entries(c):
+        if (e.sub.pdo_mapping and e.sub.access in access and e.dtype.is_numeric and e.obj.index >= 0x2000
+                and e.dtype.bits <= 64 and (tx or (e.sub.readable and write_cases(e.sub, e.dtype)))):
+            return e
+    return None
+
+
+def _map_word(e: Entry) -> bytes:
+    return (e.obj.index << 16 | e.sub.subindex << 8 | e.dtype.bits).to_bytes(4, "little")
+
+
+class Configured:
+    """A PDO mapped to one entry with a transmission type, in the CiA 301 sequence; the
+    original parameters are written back on exit."""
+
+    def __init__(self, c: Client, pdo: Pdo, e: Entry, trans_type: int) -> None:
+        self.c, self.pdo, self.e, self.trans_type = c, pdo, e, trans_type
+        self.ok = False
+        self.failed: tuple[str, int] = ("", 0)  # the step that aborted, and its code
+
+    def __enter__(self) -> Configured:
+        c, p = self.c, self.pdo
+        self.saved = {(p.comm, 1): c.upload(p.comm, 1)[0], (p.comm, 2): c.upload(p.comm, 2)[0],
+                      (p.mapping, 0): c.upload(p.mapping, 0)[0], (p.mapping, 1): c.upload(p.mapping, 1)[0]}
+        steps = [("invalidate", p.comm, 1, (p.cob | INVALID).to_bytes(4, "little")),
+                 ("mapping sub 0 = 0", p.mapping, 0, b"\x00"),
+                 (f"map {self.e.label}", p.mapping, 1, _map_word(self.e)),
+                 ("mapping sub 0 = 1", p.mapping, 0, b"\x01")]
+        steps += [(f"transmission type {self.trans_type}", p.comm, 2, bytes([self.trans_type])),
+                  ("validate", p.comm, 1, p.cob.to_bytes(4, "little"))]
+        for what, index, sub, data in steps:
+            code = c.download(index, sub, data)
+            if code:
+                self.failed = (what, code)
+                return self
+        self.ok = True
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        c, p = self.c, self.pdo
+        c.nmt("PRE-OPERATIONAL")
+        c.download(p.comm, 1, (p.cob | INVALID).to_bytes(4, "little"))
+        c.download(p.mapping, 0, b"\x00")
+        for key in ((p.mapping, 1), (p.mapping, 0), (p.comm, 2), (p.comm, 1)):  # the CiA 301 order again
+            data = self.saved[key]
+            if data is not None:
+                c.download(*key, data)
+
+
+def _setup(c: Client, check: Check, tx: bool) -> tuple[Pdo, Entry] | None:
+    pdo, e = _find_pdo(c, tx), _mappable(c, tx)
+    if pdo is None or e is None:
+        check.skipped = f"no {'T' if tx else 'R'}PDO the description lets a client map, or nothing to map"
+        return None
+    return pdo, e
+
+
+def check_pdo_sequence(c: Client) -> Check:
+    check = Check("PDO mapping: the CiA 301 sequence works, wrong steps abort")
+    found = _setup(c, check, tx=True)
+    if found is None:
+        return check
+    pdo, e = found
+    with Configured(c, pdo, e, 1) as conf:
+        check.expect(conf.ok, f"0x{pdo.mapping:04X}: {conf.failed[0]} aborted 0x{conf.failed[1]:08X}")
+        code = c.download(pdo.mapping, 0, b"\x00")
+        check.expect(code != 0, f"0x{pdo.mapping:04X}sub0 = 0 while the PDO is valid was accepted")
+        c.download(pdo.comm, 1, (pdo.cob | INVALID).to_bytes(4, "little"))
+        c.download(pdo.mapping, 0, b"\x00")
+        unmappable = next((x for x in entries(c) if not x.sub.pdo_mapping and x.dtype.is_numeric
+                           and x.obj.index >= 0x2000 and not is_command(x)), None)
+        if unmappable is not None:
+            code = c.download(pdo.mapping, 1, _map_word(unmappable))
+            check.expect(code == NOT_MAPPABLE, f"mapping {unmappable.label} (not mappable) gave 0x{code:08X}")
+        sub2 = c.od.find(pdo.mapping, 2)
+        if e.dtype.bits == 64 and sub2 is not None and sub2.writable:
+            c.download(pdo.mapping, 1, _map_word(e))
+            c.download(pdo.mapping, 2, _map_word(e))
+            code = c.download(pdo.mapping, 0, b"\x02")
+            check.expect(code in (MAP_TOO_LONG, INCOMPATIBLE), f"128 bits mapped gave 0x{code:08X}")
+    return check
+
+
+def check_tpdo_types(c: Client) -> Check:
+    check = Check("TPDOs by transmission type: SYNC, event timer, RTR")
+    found = _setup(c, check, tx=True)
+    if found is None:
+        return check
+    pdo, e = found
+    c.watch(pdo.cob)
+    sync_cob = (c.number(0x1005) or 0x80) & 0x7FF if c.od.find(0x1005) is not None else 0x80
+    with Configured(c, pdo, e, 1) as conf:
+        if conf.ok:
+            c.nmt("OPERATIONAL")
+            value = c.upload(*e.key)[0]
+            sent = time.monotonic()
+            c.send(sync_cob, b"")
+            got = c.wait_frame(sent, lambda cob, d: cob == pdo.cob)
+            check.expect(got is not None and got == value, f"type 1: after a SYNC got {got!r}, the entry is {value!r}")
+    timer = c.od.find(pdo.comm, 5)
+    if timer is not None and timer.writable:
+        with Configured(c, pdo, e, 0xFE) as conf:
+            if conf.ok and c.download(pdo.comm, 5, (100).to_bytes(2, "little")) == 0:
+                c.nmt("OPERATIONAL")
+                medians = c.period(pdo.cob, 0.5, lambda m: 70 <= m <= 150)
+                check.expect(medians[-1] is not None and 70 <= medians[-1] <= 150,
+                             f"type 254, event timer 100 ms: a TPDO every {medians} ms")
+            c.download(pdo.comm, 5, b"\x00\x00")
+    with Configured(c, pdo, e, RTR_ONLY) as conf:
+        if not conf.ok:
+            what, code = conf.failed
+            # A node may refuse RTR transmission (CiA recommends against RTR): then with 0x06090030.
+            check.expect(what.startswith("transmission type") and code == RANGE,
+                         f"type 0xFD: {what} aborted 0x{code:08X}")
+        else:
+            c.nmt("OPERATIONAL")
+            sent = time.monotonic()
+            c.send(pdo.cob, b"", remote=True)
+            got = c.wait_frame(sent, lambda cob, d: cob == pdo.cob)
+            check.expect(got is not None, "type 0xFD: no TPDO after a remote request")
+    return check
+
+
+# ---- EMCY -----------------------------------------------------------------------------------
+
+
+def check_emcy(c: Client) -> Check:
+    check = Check("EMCY on an RPDO length error; error register and 0x1003 follow; reset EMCY")
+    found = _setup(c, check, tx=False)
+    emcy = c.emcy_cob()
+    if found is None:
+        return check
+    if emcy is None or emcy & INVALID:
+        check.skipped = "EMCY disabled (0x1014 bit 31)"
+        return check
+    pdo, e = found
+    c.watch(emcy & 0x7FF)
+    size = e.dtype.bits // 8 or 1
+    with Configured(c, pdo, e, 0xFF) as conf:
+        if not conf.ok:
+            check.expect(False, f"RPDO 0x{pdo.comm:04X}: {conf.failed[0]} aborted 0x{conf.failed[1]:08X}")
+            return check
+        c.nmt("OPERATIONAL")
+        sent = time.monotonic()
+        c.send(pdo.cob, bytes(size - 1))
+        frame = c.wait_frame(sent, lambda cob, d: cob == emcy & 0x7FF and d[:2] != b"\x00\x00")
+        check.expect(frame is not None and int.from_bytes(frame[:2], "little") == EMCY_RPDO_LENGTH,
+                     f"short RPDO: EMCY {frame!r}, want code 0x{EMCY_RPDO_LENGTH:04X}")
+        if frame is None:
+            return check
+        register = c.upload(0x1001, 0)[0]
+        check.expect(frame[2] != 0 and register == frame[2:3],
+                     f"error register: EMCY says {frame[2]:#04x}, 0x1001 reads {register!r}")
+        if c.od.find(0x1003, 1) is not None:
+            count, first = c.upload(0x1003, 0)[0], c.upload(0x1003, 1)[0]
+            check.expect(count is not None and count != b"\x00" and first is not None
+                         and int.from_bytes(first[:2], "little") == EMCY_RPDO_LENGTH,
+                         f"0x1003: {count!r} errors, newest {first!r}")
+            history = c.od.find(0x1003, 0)
+            if history is not None and history.writable:
+                code = c.download(0x1003, 0, b"\x01")
+                check.expect(code == RANGE, f"0x1003sub0 = 1 gave 0x{code:08X}, want 0x{RANGE:08X}")
+                check.expect(c.download(0x1003, 0, b"\x00") == 0 and c.upload(0x1003, 0)[0] == b"\x00",
+                             "0x1003sub0 = 0 did not clear the history")
+        sent = time.monotonic()
+        c.send(pdo.cob, bytes(size))
+        frame = c.wait_frame(sent, lambda cob, d: cob == emcy & 0x7FF)
+        check.expect(frame is not None and frame[:2] == b"\x00\x00", f"right length again: EMCY {frame!r}, want 0x0000")
+    return check
+
+
+def check_emcy_inhibit(c: Client) -> Check:
+    check = Check("EMCY inhibit time (0x1015): two errors in a row, the second EMCY not within 100 ms")
+    inhibit = c.od.find(0x1015)
+    found = _setup(c, check, tx=False)
+    emcy = c.emcy_cob()
+    if found is None or inhibit is None or not inhibit.writable or emcy is None or emcy & INVALID:
+        check.skipped = check.skipped or "no writable 0x1015, or EMCY disabled"
+        return check
+    pdo, e = found
+    cob = emcy & 0x7FF
+    c.watch(cob)
+    saved = c.upload(0x1015, 0)[0]
+    check.expect(c.download(0x1015, 0, (1000).to_bytes(2, "little")) == 0, "0x1015 = 1000 (100 ms) refused")
+    size = e.dtype.bits // 8 or 1
+    with Configured(c, pdo, e, 0xFF) as conf:
+        if conf.ok:
+            c.nmt("OPERATIONAL")
+            start = time.monotonic()
+            c.send(pdo.cob, bytes(size - 1))  # an error (EMCY 0x8210) ...
+            c.send(pdo.cob, bytes(size))  # ... and at once its reset (EMCY 0x0000)
+            c.wait_frame(start, lambda got, d: got == cob and d[:2] == b"\x00\x00")
+            stamps = c.received_since(start, cob)
+            gap = 1000 * (stamps[1] - stamps[0]) if len(stamps) >= 2 else None
+            check.expect(gap is not None and gap >= 90, f"two EMCYs {gap and round(gap)} ms apart, inhibit 100 ms")
+    c.download(0x1015, 0, saved or b"\x00\x00")
+    return check
+
+
+# ---- 0x1010 / 0x1011 ------------------------------------------------------------------------
+
+
+def check_signatures(c: Client) -> Check:
+    check = Check("0x1010/0x1011 refuse a wrong signature (0x08000020)")
+    for index, word in ((STORE, b"save"), (RESTORE, b"load")):
+        if c.od.find(index, 1) is not None:
+            code = c.download(index, 1, b"nope")
+            check.expect(code == SIGNATURE, f"0x{index:04X}sub1 without '{word.decode()}' gave 0x{code:08X}")
+    if not check.passed and not check.failures:
+        check.skipped = "no 0x1010/0x1011 sub 1"
+    return check
+
+
+def _reset(c: Client, check: Check) -> None:
+    sent = c.nmt("RESET")
+    check.expect(c.wait_frame(sent, lambda cob, d: cob == 0x700 + c.node_id and d[:1] == b"\x00") is not None,
+                 "reset node: no boot-up")
+
+
+def check_store_restore(c: Client) -> Check:
+    check = Check("'save' keeps a value across a reset node, 'load' brings the default back")
+    target = next((e for e in entries(c) if e.sub.writable and e.sub.readable and e.obj.index >= 0x2000
+                   and e.obj.index not in ACTIVE and write_cases(e.sub, e.dtype)), None)
+    if target is None or c.od.find(STORE, 1) is None or c.od.find(RESTORE, 1) is None:
+        check.skipped = "no writable number or no 0x1010/0x1011 sub 1"
+        return check
+    default = expected_bytes(c.od, target.sub, target.dtype, c.node_id)
+    value = next(d for d, expect in write_cases(target.sub, target.dtype) if expect == "ODG_OK" and d != default)
+    check.expect(c.download(*target.key, value) == 0, f"{target.label}: write refused")
+    check.expect(c.download(STORE, 1, b"save") == 0, "0x1010sub1 'save' refused")
+    _reset(c, check)
+    back = c.upload(*target.key)[0]
+    check.expect(back == value, f"{target.label}: saved {value.hex()}, after reset node {back!r}")
+    check.expect(c.download(RESTORE, 1, b"load") == 0, "0x1011sub1 'load' refused")
+    _reset(c, check)
+    back = c.upload(*target.key)[0]
+    check.expect(back == default, f"{target.label}: after 'load' and reset node {back!r}, default {default!r}")
+    return check

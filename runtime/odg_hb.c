@@ -1,0 +1,153 @@
+/*
+ * odg_hb.c - NMT error control: the heartbeat consumer (CiA 301: 0x1016), node guarding and
+ * life guarding (0x100C, 0x100D), and what a communication error does (0x1029 sub 1).
+ *
+ * Each 0x1016 entry (node-id in bits 16..23, time in ms in bits 0..15; node-id 0 or time 0:
+ * unused) watches one node's heartbeat. Watching starts with the first heartbeat from that
+ * node. A new state is reported to the application (odg_node_on_heartbeat); when no heartbeat
+ * came within the time, the node sends EMCY 0x8130 (heartbeat error; error register: generic
+ * and communication bits), reports ODG_HB_TIMEOUT, reacts as 0x1029 sub 1 says (2: stopped;
+ * 1: no change; 0, other values or none: operational -> pre-operational), and watches again
+ * from the next heartbeat. Entries are read at boot and after every SDO write to 0x1016; a
+ * write naming a node-id that another used entry already watches aborts 0x06040043.
+ * Heartbeats are consumed in every state but initialising.
+ *
+ * Node guarding: a remote frame on 0x700 + node-id is answered with the NMT state and a
+ * toggle bit (bit 7, 0 in the first answer after a boot, then alternating), while the node
+ * produces no heartbeat (0x1017 = 0 or absent: CiA 301 uses one or the other). Life
+ * guarding: with guard time 0x100C (ms) and life time factor 0x100D both non-zero, from the
+ * first remote frame on, no remote frame for their product is a life guarding event: EMCY
+ * 0x8130 (byte 3: the node's own id), then 0x1029 sub 1 as above; watched again from the next
+ * remote frame.
+ */
+#include <string.h>
+
+#include "odg_node_impl.h"
+
+#define EMCY_HEARTBEAT 0x8130u
+#define REG_COMMUNICATION 0x11u /* error register: generic (bit 0) and communication (bit 4) */
+
+static uint8_t watched_id(uint32_t entry)
+{
+    uint8_t id = (uint8_t)(entry >> 16);
+    return (entry & 0xFFFFu) != 0u && id >= 1u && id <= 127u ? id : 0u;
+}
+
+void odg_hb_load_(odg_node_t *n)
+{
+    uint32_t k, entry;
+    memset(n->hb_watch, 0, sizeof n->hb_watch);
+    for (k = 0; k < ODG_NODE_MAX_HB; k++) {
+        if (odg_node_get_(n, 0x1016, (uint8_t)(k + 1u), &entry) == ODG_OK && watched_id(entry) != 0u) {
+            n->hb_watch[k].id = watched_id(entry);
+            n->hb_watch[k].time = (uint16_t)entry;
+        }
+    }
+}
+
+odg_abort_t odg_hb_check_(const odg_node_t *n, uint8_t sub, uint32_t value)
+{
+    uint32_t k, other;
+    uint8_t id = watched_id(value);
+    for (k = 1; id != 0u && k <= 127u; k++) {
+        if (k != sub && odg_node_get_(n, 0x1016, (uint8_t)k, &other) == ODG_OK && watched_id(other) == id) {
+            return ODG_ABORT_INCOMPATIBLE;
+        }
+    }
+    return ODG_OK;
+}
+
+static void report(odg_node_t *n, uint8_t id, uint8_t event)
+{
+    if (n->on_heartbeat != NULL) {
+        n->on_heartbeat(n->on_heartbeat_ctx, id, event);
+    }
+}
+
+void odg_hb_receive_(odg_node_t *n, const odg_frame_t *f)
+{
+    uint32_t k;
+    uint8_t id = (uint8_t)(f->id - 0x700u);
+    for (k = 0; k < ODG_NODE_MAX_HB && f->len >= 1u; k++) {
+        odg_hb_watch_t *w = &n->hb_watch[k];
+        if (w->id == id) {
+            w->elapsed = 0;
+            if (!w->started || w->state != f->data[0]) {
+                w->state = f->data[0];
+                report(n, id, w->state);
+            }
+            w->started = 1;
+        }
+    }
+}
+
+/* A communication error: what 0x1029 sub 1 asks for, as if the NMT master had said it. */
+static void communication_error(odg_node_t *n)
+{
+    uint32_t behaviour = odg_node_get_or_(n, 0x1029, 1, 0);
+    odg_frame_t f;
+    if (behaviour == 1u || (behaviour != 2u && n->state != ODG_NMT_OPERATIONAL)) {
+        return; /* 0 and the values CiA 301 leaves to manufacturers: as 0 */
+    }
+    memset(&f, 0, sizeof f);
+    f.len = 2;
+    f.data[0] = (uint8_t)(behaviour == 2u ? ODG_NMT_STOP : ODG_NMT_ENTER_PREOP);
+    f.data[1] = n->cfg.node_id;
+    odg_node_receive(n, &f);
+}
+
+void odg_guard_rtr_(odg_node_t *n, const odg_frame_t *f)
+{
+    uint8_t answer;
+    if (f->id != 0x700u + n->cfg.node_id || odg_node_get_or_(n, 0x1017, 0, 0) != 0u) {
+        return;
+    }
+    answer = (uint8_t)(n->state | (n->guard_toggle ? 0x80u : 0u));
+    if (odg_node_send_(n, f->id, &answer, 1) == 0) {
+        n->guard_toggle = (uint8_t)!n->guard_toggle;
+    }
+    n->guard_elapsed = 0;
+    n->guard_started = 1;
+}
+
+static void life_guarding(odg_node_t *n, uint32_t ms)
+{
+    uint32_t life = odg_node_get_or_(n, 0x100C, 0, 0) * odg_node_get_or_(n, 0x100D, 0, 0);
+    if (!n->guard_started || life == 0u) {
+        return;
+    }
+    n->guard_elapsed = n->guard_elapsed + ms < ms ? 0xFFFFFFFFu : n->guard_elapsed + ms;
+    if (n->guard_elapsed > life) {
+        n->guard_started = 0; /* watched again from the next remote frame */
+        (void)odg_node_emcy(n, EMCY_HEARTBEAT, (uint8_t)(n->error_register | REG_COMMUNICATION),
+                            &n->cfg.node_id, 1);
+        communication_error(n);
+    }
+}
+
+void odg_hb_tick_(odg_node_t *n, uint32_t ms)
+{
+    uint32_t k;
+    for (k = 0; k < ODG_NODE_MAX_HB; k++) {
+        odg_hb_watch_t *w = &n->hb_watch[k];
+        if (w->id == 0u || !w->started) {
+            continue;
+        }
+        w->elapsed = w->elapsed + ms < w->elapsed ? 0xFFFFFFFFu : w->elapsed + ms;
+        if (w->elapsed > w->time) {
+            w->started = 0; /* watched again from its next heartbeat */
+            (void)odg_node_emcy(n, EMCY_HEARTBEAT, (uint8_t)(n->error_register | REG_COMMUNICATION),
+                                &w->id, 1);
+            report(n, w->id, ODG_HB_TIMEOUT);
+            communication_error(n);
+        }
+    }
+    life_guarding(n, ms);
+}
+
+void odg_node_on_heartbeat(odg_node_t *node, void (*fn)(void *ctx, uint8_t node_id, uint8_t event),
+                           void *ctx)
+{
+    node->on_heartbeat = fn;
+    node->on_heartbeat_ctx = ctx;
+}

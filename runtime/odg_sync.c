@@ -1,0 +1,50 @@
+/*
+ * odg_sync.c - the node as SYNC producer (CiA 301: 0x1005 bit 30, 0x1006, 0x1019).
+ *
+ * When 0x1005 has bit 30 ("generate") set and the communication cycle period 0x1006 (µs) is
+ * not 0, the node sends SYNC on the COB-ID of 0x1005 every period, in pre-operational and
+ * operational. With a synchronous counter overflow value (0x1019) of 2..240 the frame carries
+ * one byte, counting 1..value and again from 1; with 0 (or no 0x1019) the frame is empty.
+ * The counter starts at 1 whenever the production starts. The node's own synchronous PDOs
+ * act on its SYNC as on any other. 0x1019 may only be written while 0x1006 is 0
+ * (0x08000022 otherwise), as CiA 301 requires. Time runs in the ticks' milliseconds.
+ */
+#include "odg_node_impl.h"
+
+#define SYNC_GENERATE 0x40000000u
+
+void odg_sync_tick_(odg_node_t *n, uint32_t ms)
+{
+    odg_frame_t f;
+    uint32_t period = odg_node_get_or_(n, 0x1006, 0, 0), overflow;
+    uint32_t us = ms > 4000000u ? 0xFFFFFFFFu : ms * 1000u;
+    if (!(n->sync_cob & SYNC_GENERATE) || period == 0u ||
+        (n->state != ODG_NMT_PRE_OPERATIONAL && n->state != ODG_NMT_OPERATIONAL)) {
+        n->sync_prod_us = 0;
+        n->sync_counter = 0; /* production stopped: the counter starts again at 1 */
+        return;
+    }
+    n->sync_prod_us = n->sync_prod_us + us < n->sync_prod_us ? 0xFFFFFFFFu : n->sync_prod_us + us;
+    if (n->sync_prod_us < period) {
+        return;
+    }
+    n->sync_prod_us = n->sync_prod_us - period >= period ? 0u : n->sync_prod_us - period; /* no burst after a pause */
+    overflow = odg_node_get_or_(n, 0x1019, 0, 0);
+    f.id = ODG_COB_ID(n->sync_cob);
+    f.flags = 0;
+    f.len = 0;
+    if (overflow >= 2u && overflow <= 240u) {
+        n->sync_counter = (uint8_t)(n->sync_counter >= overflow ? 1u : n->sync_counter + 1u);
+        f.data[0] = n->sync_counter;
+        f.len = 1;
+    }
+    (void)odg_node_send_(n, f.id, f.data, f.len);
+    if (n->state == ODG_NMT_OPERATIONAL) {
+        odg_pdo_sync_(n, &f);
+    }
+}
+
+odg_abort_t odg_sync_check_(const odg_node_t *n, uint16_t index)
+{
+    return index == 0x1019u && odg_node_get_or_(n, 0x1006, 0, 0) != 0u ? ODG_ABORT_DATA_STATE : ODG_OK;
+}

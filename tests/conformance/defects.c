@@ -1,0 +1,148 @@
+/*
+ * defects.c - a node program that misbehaves on purpose, to prove `odgen conformance` notices.
+ *
+ * Built into the node program as its application (-DODG_APP) with -DODG_DEFECT=N: at start it
+ * puts itself between the node and the bus, and changes or drops the frames the node sends in
+ * one way per check family, as a faulty node would (tests/test_conformance.py).
+ */
+#include <string.h>
+
+#include "odg_app.h"
+
+#ifndef ODG_DEFECT
+#error "define ODG_DEFECT (1..12)"
+#endif
+
+enum {
+    SDO_VALUE = 1,    /* uploads of 0x1001.. return a changed value */
+    SDO_LIMIT,        /* a value beyond a limit is accepted */
+    ACCESS_READ_ONLY, /* a write to a read-only entry aborts with the wrong code */
+    NMT_STATE,        /* the heartbeat says operational when stopped */
+    HEARTBEAT_PERIOD, /* every second heartbeat is lost */
+    PDO_DATA,         /* TPDOs carry other data than the mapped values */
+    EMCY_LOST,        /* no EMCY frame reaches the bus */
+    STORE_SIGNATURE,  /* a wrong 0x1010/0x1011 signature is accepted */
+    SYNC_COUNTER,     /* the SYNC counter does not count */
+    HB_CONSUMER_EMCY, /* a heartbeat timeout is reported with the wrong EMCY code */
+    EMCY_TWICE,       /* every EMCY goes out twice, the inhibit time ignored */
+    GUARD_TOGGLE      /* the node guarding answer's toggle bit never changes */
+};
+
+static odg_send_fn real_send;
+static void *real_ctx;
+static uint8_t node_id;
+static unsigned heartbeats;
+
+static uint32_t abort_code(const odg_frame_t *f)
+{
+    return (uint32_t)f->data[4] | (uint32_t)f->data[5] << 8 | (uint32_t)f->data[6] << 16 |
+           (uint32_t)f->data[7] << 24;
+}
+
+static void set_code(odg_frame_t *f, uint32_t code)
+{
+    f->data[4] = (uint8_t)code;
+    f->data[5] = (uint8_t)(code >> 8);
+    f->data[6] = (uint8_t)(code >> 16);
+    f->data[7] = (uint8_t)(code >> 24);
+}
+
+/* An SDO abort with one of `codes` becomes a download response (success). */
+static void accept_instead(odg_frame_t *f, uint32_t a, uint32_t b)
+{
+    uint32_t code = abort_code(f);
+    if (f->data[0] == 0x80u && (code == a || code == b)) {
+        f->data[0] = 0x60u;
+        set_code(f, 0);
+    }
+}
+
+/* Returns 0 to drop the frame. */
+static int mangle(odg_frame_t *f)
+{
+    uint32_t id = f->id;
+    int sdo = id == 0x580u + node_id, hb = id == 0x700u + node_id;
+    uint16_t index = (uint16_t)(f->data[1] | f->data[2] << 8);
+    switch (ODG_DEFECT) {
+    case SDO_VALUE:
+        if (sdo && (f->data[0] & 0xE3u) == 0x43u && index > 0x1000u) {
+            f->data[4] ^= 0x01u;
+        }
+        break;
+    case SDO_LIMIT:
+        if (sdo) {
+            accept_instead(f, 0x06090031u, 0x06090032u);
+        }
+        break;
+    case ACCESS_READ_ONLY:
+        if (sdo && f->data[0] == 0x80u && abort_code(f) == 0x06010002u) {
+            set_code(f, 0x08000000u);
+        }
+        break;
+    case NMT_STATE:
+        if (hb && f->data[0] == 0x04u) {
+            f->data[0] = 0x05u;
+        }
+        break;
+    case HEARTBEAT_PERIOD:
+        return !(hb && f->data[0] != 0u && (heartbeats++ & 1u));
+    case PDO_DATA:
+        if (id >= 0x181u && id <= 0x4FFu && (id & 0x7Fu) == node_id && f->len > 0u) {
+            f->data[0] ^= 0xFFu;
+        }
+        break;
+    case EMCY_LOST:
+        return !(id == 0x80u + node_id);
+    case STORE_SIGNATURE:
+        if (sdo) {
+            accept_instead(f, 0x08000020u, 0x08000020u);
+        }
+        break;
+    case SYNC_COUNTER:
+        if (id == 0x80u && f->len == 1u) {
+            f->data[0] = 1u;
+        }
+        break;
+    case HB_CONSUMER_EMCY:
+        if (id == 0x80u + node_id && f->data[0] == 0x30u && f->data[1] == 0x81u) {
+            f->data[0] = 0x00u;
+        }
+        break;
+    case EMCY_TWICE:
+        if (id == 0x80u + node_id) {
+            (void)real_send(real_ctx, f);
+        }
+        break;
+    case GUARD_TOGGLE:
+        if (hb) {
+            f->data[0] &= 0x7Fu;
+        }
+        break;
+    default:
+        break;
+    }
+    return 1;
+}
+
+static int defect_send(void *ctx, const odg_frame_t *frame)
+{
+    odg_frame_t f;
+    (void)ctx;
+    memcpy(&f, frame, sizeof f);
+    return mangle(&f) ? real_send(real_ctx, &f) : 0;
+}
+
+void odg_app_init(odg_node_t *node)
+{
+    real_send = node->cfg.send;
+    real_ctx = node->cfg.send_ctx;
+    node_id = node->cfg.node_id;
+    node->cfg.send = defect_send;
+    node->cfg.send_ctx = NULL;
+}
+
+void odg_app_tick(odg_node_t *node, uint32_t elapsed_ms)
+{
+    (void)node;
+    (void)elapsed_ms;
+}

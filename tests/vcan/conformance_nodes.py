@@ -1,0 +1,82 @@
+"""Run `odgen conformance` against node programs one after the other on vcan (the checks in-process).
+
+    python tests/vcan/conformance_nodes.py PLAN.json OUT.json     (in the vcan session)
+
+PLAN is a list of {"name", "exe", "file", "junit", "cli"}: each node program is started with
+node-id 5 and a fresh --nv file, its boot-up awaited, the battery run against it (results
+also written as JUnit XML to "junit"), and the node stopped. OUT gets, per node, the ids of
+the failed checks and the text report. One CLI run (`python -m odgen conformance`) is made
+against the nodes marked "cli", to check what the command prints and its exit status.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import can
+
+from odgen.conformance import run, text_lines, write_junit
+
+IFACE = os.environ.get("ODGEN_VCAN_IFACES", "vcan0").split(",")[0]
+NODE_ID = 5
+DEADLINE = 30.0  # ends at the boot-up: generous for a loaded machine
+
+
+def start(exe: str, nv: Path) -> subprocess.Popen[bytes]:
+    with can.Bus(interface="socketcan", channel=IFACE,
+                 can_filters=[{"can_id": 0x700 + NODE_ID, "can_mask": 0x7FF}]) as bus:
+        proc = subprocess.Popen([exe, "--iface", IFACE, "--node-id", str(NODE_ID), "--nv", str(nv)],
+                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        end = time.monotonic() + DEADLINE
+        while time.monotonic() < end:
+            msg = bus.recv(0.5)
+            if msg is not None and bytes(msg.data) == b"\x00":
+                return proc
+    proc.kill()
+    raise SystemExit(f"{exe}: no boot-up within {DEADLINE:g} s: {proc.communicate()[1]!r}")
+
+
+def stop(proc: subprocess.Popen[bytes]) -> None:
+    proc.terminate()
+    try:
+        proc.wait(DEADLINE)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.wait()
+
+
+def main() -> int:
+    plan = json.loads(Path(sys.argv[1]).read_text())
+    out: list[dict[str, object]] = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for i, node in enumerate(plan):
+            proc = start(node["exe"], Path(tmp) / f"{i}.nv")
+            try:
+                started = time.monotonic()
+                results = run(Path(node["file"]), IFACE, NODE_ID)
+                seconds = time.monotonic() - started
+                write_junit(Path(node["junit"]), Path(node["file"]), NODE_ID, results)
+                entry: dict[str, object] = {"name": node["name"], "seconds": round(seconds, 2),
+                                            "failed": [r.id for r in results if r.failed],
+                                            "checks": len(results),
+                                            "text": text_lines(Path(node["file"]), NODE_ID, results)}
+                if node.get("cli"):
+                    cli = subprocess.run([sys.executable, "-m", "odgen", "conformance", node["file"], "--iface", IFACE,
+                                          "--node-id", str(NODE_ID)], capture_output=True, text=True, check=False)
+                    entry["cli"] = {"status": cli.returncode, "stdout": cli.stdout, "stderr": cli.stderr}
+                out.append(entry)
+                print(f"{node['name']}: {len(results)} checks, failed: {entry['failed']} ({seconds:.1f} s)", flush=True)
+            finally:
+                stop(proc)
+    Path(sys.argv[2]).write_text(json.dumps(out, indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
