@@ -10,7 +10,7 @@ from pathlib import Path
 
 from .conftest import ROOT
 from .test_migration_runtime import BASE, Param, eds, options
-from .test_node import NODE_TESTS, VCAN_RUN, node_program
+from .test_node import NODE_TESTS, node_program
 
 V2 = (Param(0x2000, 0x07, "7"), BASE[1], Param(0x2002, 0x03, "-5", "-100", "100"), Param(0x2003, 0x07, "42"))
 
@@ -27,16 +27,11 @@ def generate(tmp: Path, tag: str, params: tuple[Param, ...]) -> Path:
     return out
 
 
-def test_stored_values_migrate_on_vcan(tmp_path: Path) -> None:
-    setup = subprocess.run(["bash", str(ROOT / "tools" / "vcan" / "setup.sh")], capture_output=True, text=True,
-                           timeout=600, check=False)
-    assert setup.returncode == 0, f"tools/vcan/setup.sh failed:\n{setup.stderr}"
+def test_stored_values_migrate_on_vcan(tmp_path: Path, vcan_bus) -> None:
     v1 = node_program("gcc", "od", generate(tmp_path, "v1", BASE), tmp_path / "v1")
     v2 = node_program("gcc", "od", generate(tmp_path, "v2", V2), tmp_path / "v2")
-    cmd = [sys.executable, str(VCAN_RUN), "--rw", str(tmp_path), "--timeout", "120", "--",
-           sys.executable, str(NODE_TESTS / "vcan_migration.py"), str(v1), str(v2), str(tmp_path)]
-    done = subprocess.run(cmd, capture_output=True, text=True, check=False, timeout=180, stdin=subprocess.DEVNULL,
-                          cwd=ROOT)
+    cmd = [sys.executable, str(NODE_TESTS / "vcan_migration.py"), str(v1), str(v2), str(tmp_path)]
+    done = vcan_bus.run(cmd, cwd=ROOT, timeout=180)
     output = done.stdout + done.stderr
     assert done.returncode == 0, output[-6000:]
     assert done.stdout.rstrip().splitlines()[-1] == "vcan migration: ok", output[-6000:]

@@ -18,21 +18,16 @@ from odgen import cli
 from odgen.codegen.generate import Request, generate as generate_dict
 
 from .cprog import build
-from .test_node import LINUX, LSS, NODE_TESTS, PROGRAM_SOURCES, ROOT, RUNTIME, VCAN_RUN, generate
+from .test_node import LINUX, LSS, NODE_TESTS, PROGRAM_SOURCES, ROOT, RUNTIME, generate
 
 
-def test_lss_master_configures_unconfigured_node(tmp_path: Path) -> None:
-    setup = subprocess.run(["bash", str(ROOT / "tools" / "vcan" / "setup.sh")], capture_output=True, text=True,
-                           timeout=600, check=False)
-    assert setup.returncode == 0, f"tools/vcan/setup.sh failed:\n{setup.stderr}"
+def test_lss_master_configures_unconfigured_node(tmp_path: Path, vcan_bus) -> None:
     gen = generate("lss_node", tmp_path / "lss_node")
     exe = tmp_path / "lss-node"
     build("gcc", ("-O2", "-DODG_DICT=lss_node", *LSS), (*PROGRAM_SOURCES, gen / "lss_node.c"), (gen, RUNTIME, LINUX),
           exe)
-    cmd = [sys.executable, str(VCAN_RUN), "--rw", str(tmp_path), "--timeout", "150", "--",
-           sys.executable, str(NODE_TESTS / "vcan_lss.py"), str(exe), str(tmp_path)]
-    done = subprocess.run(cmd, capture_output=True, text=True, check=False, timeout=200, stdin=subprocess.DEVNULL,
-                          cwd=ROOT)
+    cmd = [sys.executable, str(NODE_TESTS / "vcan_lss.py"), str(exe), str(tmp_path)]
+    done = vcan_bus.run(cmd, cwd=ROOT, timeout=200)
     output = done.stdout + done.stderr
     assert done.returncode == 0, output[-6000:]
     assert done.stdout.rstrip().splitlines()[-1] == "vcan lss: ok", output[-6000:]
