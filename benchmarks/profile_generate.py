@@ -48,7 +48,7 @@ def stages(path: Path) -> dict[str, float]:
     env = gen.environment()
     header, source = env.get_template("dict.h.j2"), env.get_template("dict.c.j2")
     marks.append(time.perf_counter())
-    header.render(v=view)
+    header.render(v=view, findings=[])
     source.render(v=view)
     marks.append(time.perf_counter())
     names = ("import odgen", "parse", "lint", "place", "view-model", "template compile", "render")
