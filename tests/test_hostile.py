@@ -165,7 +165,7 @@ def test_profile_name_is_a_value_not_a_path(tmp_path: Path) -> None:
     assert main(["profile", "ds401", "--di", "8", "--name", "../../x */ \"q\"", "-o", str(out),
                  "--generate", str(gen)]) == 0
     assert sorted(p.relative_to(tmp_path).as_posix() for p in tmp_path.rglob("*")) == [
-        "work", "work/gen", "work/gen/ds401_app.h", "work/gen/io.c", "work/gen/io.h",
+        "work", "work/gen", "work/gen/ds401_app.h", "work/gen/io.c", "work/gen/io.h", "work/gen/io_config.h",
         "work/io.eds"]
     assert "ProductName=../../x */ \"q\"" in out.read_text(encoding="utf-8")
 
@@ -185,7 +185,7 @@ def test_names_inside_the_description_never_name_files(tmp_path: Path) -> None:
     assert main(["convert", str(src), str(tmp_path / "out.eds")]) == 0
     assert main(["generate", str(src), "-o", str(tmp_path / "gen")]) == 0
     assert sorted(p.relative_to(tmp_path).as_posix() for p in tmp_path.rglob("*")) == [
-        "gen", "gen/dev.c", "gen/dev.h", "in", "in/dev.eds", "out.eds"]
+        "gen", "gen/dev.c", "gen/dev.h", "gen/dev_config.h", "in", "in/dev.eds", "out.eds"]
 
 
 def test_convert_into_a_missing_folder_writes_nothing(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
