@@ -50,11 +50,6 @@ class IniSection:
         return entry.value if entry is not None else None
 
 
-@dataclass
-class IniFile:
-    sections: dict[str, IniSection] = field(default_factory=dict)  # lower-case name, in order
-
-
 _BOMS = ((b"\xff\xfe\x00\x00", "utf-32-le"), (b"\x00\x00\xfe\xff", "utf-32-be"),
          (b"\xff\xfe", "utf-16-le"), (b"\xfe\xff", "utf-16-be"))
 
@@ -98,11 +93,6 @@ def _cp1252_char(byte: int) -> str:
         return bytes([byte]).decode("cp1252")
     except UnicodeDecodeError:
         return chr(byte)
-
-
-def parse(text: str, source: str, diags: Diagnostics, comment_keys: frozenset[str] = frozenset()) -> IniFile:
-    """Read INI text; `;Key=Value` lines are kept as entries for the lower-case `comment_keys`."""
-    return IniFile(dict(sections(text, source, diags, comment_keys)))
 
 
 def sections(text: str, source: str, diags: Diagnostics, comment_keys: frozenset[str] = frozenset(),
