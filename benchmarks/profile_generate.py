@@ -29,12 +29,8 @@ def stages(path: Path) -> dict[str, float]:
     """One generation, timed stage by stage (the steps odgen.codegen.generate takes)."""
     marks = [time.perf_counter()]
     from odgen.codegen import generate as gen
-    from odgen.codegen.lookup import perfect_hash
     from odgen.codegen.options import Options
-    from odgen.codegen.persistview import persist_view
     from odgen.codegen.placement import place
-    from odgen.codegen.runtimecfg import runtime_config
-    from odgen.codegen.viewmodel import build
     from odgen.formats import load_path
     from odgen.lint import lint_model
     from odgen.rules import LintOptions
@@ -46,10 +42,7 @@ def stages(path: Path) -> dict[str, float]:
     marks.append(time.perf_counter())
     placements = place(od, Options(), diags)
     marks.append(time.perf_counter())
-    view = build(od, placements, "od", version="bench", digest="bench", lookup="hash", diags=diags)
-    view.persist = persist_view(od, placements, Options().persist, diags)
-    view.config = runtime_config(view)
-    view.hash = perfect_hash([e.index for e in view.entries])  # the default lookup
+    view = gen.view_model(gen.Result(diags, {}, od, placements), "od", "hash", "bench")  # hash: the default
     marks.append(time.perf_counter())
     env = gen.environment()
     header, source = env.get_template("dict.h.j2"), env.get_template("dict.c.j2")

@@ -138,21 +138,31 @@ def _generate(request: Request) -> Result:
     result = prepare(request)
     if result.od is None or result.placements is None or _refuse(result, request):
         return result
-    view = build(result.od, result.placements, name, version=__version__, digest=digest(request, name),
-                 lookup=request.lookup, diags=result.diags)
-    view.persist = persist_view(result.od, result.placements, result.persist, result.diags)
+    view = view_model(result, name, request.lookup, digest(request, name))
     if _refuse(result, request):
         return result
-    env = environment()
     result.view = view
-    view.config = runtime_config(view)
-    if request.lookup == "hash":
-        view.hash = perfect_hash([e.index for e in view.entries])
-    findings = findings_comment(result.diags, request)
-    result.files = {f"{name}.h": env.get_template("dict.h.j2").render(v=view, findings=findings),
-                    f"{name}.c": env.get_template("dict.c.j2").render(v=view),
-                    f"{name}_config.h": env.get_template("dict_config.h.j2").render(v=view)}
+    result.files = render(view, name, findings_comment(result.diags, request))
     return result
+
+
+def view_model(result: Result, name: str, lookup: str, digest: str) -> DictView:
+    """Everything the templates print for a prepared (loaded, linted, placed) description."""
+    assert result.od is not None and result.placements is not None
+    view = build(result.od, result.placements, name, version=__version__, digest=digest, lookup=lookup,
+                 diags=result.diags)
+    view.persist = persist_view(result.od, result.placements, result.persist, result.diags)
+    view.config = runtime_config(view)
+    if lookup == "hash":
+        view.hash = perfect_hash([e.index for e in view.entries])
+    return view
+
+
+def render(view: DictView, name: str, findings: list[str]) -> dict[str, str]:
+    env = environment()
+    return {f"{name}.h": env.get_template("dict.h.j2").render(v=view, findings=findings),
+            f"{name}.c": env.get_template("dict.c.j2").render(v=view),
+            f"{name}_config.h": env.get_template("dict_config.h.j2").render(v=view)}
 
 
 def _check_name(request: Request, diags: Diagnostics) -> None:
