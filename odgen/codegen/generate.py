@@ -90,10 +90,29 @@ def default_name(path: Path) -> str:
     return name if name_clash(name) is None else f"od_{name}"
 
 
+class _TemplateCache(jinja2.FileSystemBytecodeCache):
+    """Compiled templates kept between runs in jinja2's per-user cache folder (compiling them is a
+    twentieth of a large generation). jinja2 checks each against its template's source, so a cached
+    one is never stale; a cache that cannot be written only makes the next run compile again."""
+
+    def dump_bytecode(self, bucket: jinja2.bccache.Bucket) -> None:
+        try:
+            super().dump_bytecode(bucket)
+        except OSError:
+            pass
+
+
+def _template_cache() -> jinja2.BytecodeCache | None:
+    try:
+        return _TemplateCache(pattern="odgen-%s.cache")
+    except (OSError, RuntimeError):  # no private temporary folder to be had
+        return None
+
+
 def environment() -> jinja2.Environment:
     return jinja2.Environment(loader=jinja2.FileSystemLoader(str(templates_dir())), undefined=jinja2.StrictUndefined,
                               trim_blocks=True, lstrip_blocks=True, keep_trailing_newline=True,
-                              autoescape=False)
+                              autoescape=False, bytecode_cache=_template_cache())
 
 
 def digest(request: Request, name: str) -> str:
