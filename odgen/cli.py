@@ -551,7 +551,7 @@ def run() -> None:
     """The `odgen` command."""
     args = _arguments(None)
     code = _dispatch(args)
-    if args.command in QUICK_EXIT:
+    if args.command in QUICK_EXIT and sys.getprofile() is None and sys.gettrace() is None:  # profilers write at exit
         for stream in (sys.stdout, sys.stderr):
             try:
                 stream.flush()

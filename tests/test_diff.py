@@ -92,6 +92,38 @@ def test_group_that_moves_in_nv_loses_its_stored_values(tmp_path: Path) -> None:
     assert {(c.kind, c.index) for c in result.changes if c.kind == "DIF204"} == {("DIF204", 0x1800)}
 
 
+def test_pinned_regions_keep_a_grown_group_in_place(tmp_path: Path) -> None:
+    """The same growth as above with both regions pinned in each options file: `app` stays, and its
+    values are kept; odgen diff reads the options as odgen generate does."""
+    pins = "\n[[group]]\nname = \"comm\"\nregion = 1024\n\n[[group]]\nname = \"app\"\nregion = 1024\n"
+    old, new = tmp_path / "old.toml", tmp_path / "new.toml"
+    old.write_text(OPTIONS.read_text(encoding="utf-8") + pins, encoding="utf-8")
+    new.write_text(old.read_text(encoding="utf-8").replace('match = "0x1017"', 'match = ["0x1017", "0x1800"]'),
+                   encoding="utf-8")
+    result = diff_paths(BASE, BASE, old, new)
+    assert not [c for c in result.changes if c.kind == "DIF207"]
+    assert {s.action for s in result.groups["app"].steps} == {"keep"}
+
+
+@pytest.mark.parametrize("on_old,on_new", [(False, False), (True, False), (False, True)])
+def test_without_migration_a_changed_layout_or_format_gives_the_defaults(tmp_path: Path, on_old: bool,
+                                                                           on_new: bool) -> None:
+    """An "ODG1" image is checked by its layout signature: any change of a group's layout, or a switch
+    of the image format, gives the defaults at boot; an unchanged group without migration keeps them."""
+    def options(name: str, migration: bool, extra: str = "") -> Path:
+        path = tmp_path / name
+        text = OPTIONS.read_text(encoding="utf-8").replace('match = "0x1017"', f'match = ["0x1017"{extra}]')
+        path.write_text(f"[persist]\nmigration = {str(migration).lower()}\n\n{text}", encoding="utf-8")
+        return path
+
+    grown = diff_paths(BASE, BASE, options("old.toml", on_old), options("new.toml", on_new, ', "0x1800"'))
+    assert {s.action for s in grown.groups["comm"].steps} == {"default"}
+    assert all("migration" in s.reason for s in grown.groups["comm"].steps)
+    same = diff_paths(BASE, BASE, options("a.toml", on_old), options("b.toml", on_new))
+    expected = {"keep"} if on_old == on_new else {"default"}
+    assert {s.action for s in same.groups["app"].steps} == expected
+
+
 def _variant(tmp_path: Path, source: Path, **edits: str) -> Path:
     text = source.read_text(encoding="utf-8")
     for old, new in edits.items():

@@ -17,8 +17,8 @@ from ..model.datatypes import BASIC_TYPES
 from ..model.od import RECORD, Obj, Sub
 from ..model.values import parse_value
 from ..persist.layout import group_layouts
-from ..persist.migration import descriptor
-from ..persist.nvmap import nv_map
+from ..persist.migration import GroupLayout, descriptor
+from ..persist.nvmap import Region, nv_map
 from .options import PersistOptions
 from .placement import Placement
 
@@ -66,10 +66,15 @@ def add_status_object(od: ObjectDictionary, placements: dict[tuple[int, int], Pl
         placements[(index, subindex)] = Placement("ram", "[persist] status_object")
 
 
+def nv_regions(layouts: dict[str, GroupLayout], persist: PersistOptions) -> dict[str, Region]:
+    """The NV region of each group as the options ([persist] headroom, migration, [[group]] region) place it."""
+    return nv_map(layouts, headroom=persist.headroom, pinned=persist.regions, migration=persist.migration)
+
+
 def persist_view(od: ObjectDictionary, placements: dict[tuple[int, int], Placement],
                  persist: PersistOptions, diags: Diagnostics) -> PersistView:
     layouts = group_layouts(od, placements)
-    regions = nv_map(layouts, headroom=persist.headroom, pinned=persist.regions, migration=persist.migration)
+    regions = nv_regions(layouts, persist)
     view = PersistView(persist.migration, persist.status_object)
     for name, region in regions.items():
         if not region.fits:

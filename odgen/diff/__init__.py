@@ -16,7 +16,7 @@ from ..formats import load_path
 from ..model import ObjectDictionary
 from .changes import CLASSES, Change, worst
 from .compare import object_changes
-from .stored import GroupPlan, layouts, plans, stored_changes
+from .stored import GroupPlan, placed_groups, plans, stored_changes
 from .version import version_changes, versions
 
 __all__ = ["CLASSES", "Change", "DiffResult", "diff_models", "diff_paths", "fails"]
@@ -45,7 +45,7 @@ def diff_paths(old: Path, new: Path, old_options: Path | None = None, new_option
 
 def diff_models(old: ObjectDictionary, new: ObjectDictionary, old_options: Path | None = None,
                 new_options: Path | None = None) -> DiffResult:
-    group_plans = plans(layouts(old, old_options), layouts(new, new_options))
+    group_plans = plans(placed_groups(old, old_options), placed_groups(new, new_options))
     # entries stored before and after: a new default does not reach devices that stored a value
     stored_keys = {(s.index, s.sub) for p in group_plans.values() for s in p.steps if s.old and s.new}
     changes = object_changes(old, new, stored_keys) + stored_changes(group_plans, old, new)

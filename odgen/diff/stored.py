@@ -6,6 +6,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 from ..codegen.options import load_options
+from ..codegen.persistview import nv_regions
 from ..codegen.placement import place
 from ..catalogue.gen import GEN001
 from ..diagnostics import Diagnostics, Severity
@@ -13,20 +14,31 @@ from ..errors import OdgenError
 from ..model import ObjectDictionary
 from ..persist.layout import group_layouts
 from ..persist.migration import CONVERT, DEFAULT, DROP, KEEP, RESIZE, GroupLayout, Step, plan
-from ..persist.nvmap import nv_map
+from ..persist.nvmap import Region
 from .changes import Change
 
 KINDS = {CONVERT: "DIF201", RESIZE: "DIF202", DROP: "DIF203", DEFAULT: "DIF204", KEEP: "DIF205"}
 
 
-def layouts(od: ObjectDictionary, options: Path | None) -> dict[str, GroupLayout]:
+@dataclass
+class Stored:
+    """A description's persistence groups as its options place them, and their NV regions."""
+
+    groups: dict[str, GroupLayout]
+    regions: dict[str, Region]
+    migration: bool  # "ODG2" images migrated at boot, else "ODG1" images of the C struct
+
+
+def placed_groups(od: ObjectDictionary, options: Path | None) -> Stored:
     """The persistence groups of a description placed with an options file (or none)."""
     diags = Diagnostics()
-    placements = place(od, load_options(options, diags), diags)
+    opts = load_options(options, diags)
+    placements = place(od, opts, diags)
     errors = [d for d in diags.sorted() if d.rule == GEN001.id and d.severity == Severity.ERROR]
     if errors:
         raise OdgenError(f"{errors[0].text()}; fix the options file")
-    return group_layouts(od, placements)
+    groups = group_layouts(od, placements)
+    return Stored(groups, nv_regions(groups, opts.persist), opts.persist.migration)
 
 
 @dataclass
@@ -35,20 +47,39 @@ class GroupPlan:
     moved: str = ""  # how the group's NV region moved, if it did: then nothing stored is found
 
 
-def plans(old: dict[str, GroupLayout], new: dict[str, GroupLayout]) -> dict[str, GroupPlan]:
-    before, after = nv_map(old), nv_map(new)
+def plans(old: Stored, new: Stored) -> dict[str, GroupPlan]:
     out = {}
-    for name in sorted(set(old) | set(new)):
-        steps = plan(old.get(name), new.get(name))
-        a, b = before.get(name), after.get(name)
-        if a is None or b is None or a.offset == b.offset:  # a region grown in place is found again
-            out[name] = GroupPlan(steps)
+    for name in sorted(set(old.groups) | set(new.groups)):
+        steps = plan(old.groups.get(name), new.groups.get(name))
+        a, b = old.regions.get(name), new.regions.get(name)
+        if a is not None and b is not None and a.offset != b.offset:  # a region grown in place is found again
+            moved = f"offset 0x{a.offset:X} ({a.size} bytes) -> offset 0x{b.offset:X} ({b.size} bytes)"
+            out[name] = GroupPlan(_defaults(steps, "the group's NV region moved"), moved)
             continue
-        moved = f"offset 0x{a.offset:X} ({a.size} bytes) -> offset 0x{b.offset:X} ({b.size} bytes)"
-        lost = [replace(s, action=DEFAULT, reason="the group's NV region moved", checked=False)
-                for s in steps if s.new is not None]
-        out[name] = GroupPlan(lost, moved)
+        why = _unmigrated(old, new, name)
+        out[name] = GroupPlan(_defaults(steps, why) if why else steps)
     return out
+
+
+def _unmigrated(old: Stored, new: Stored, name: str) -> str:
+    """Why a group's stored values give way to the defaults without migration, or "" when they do not."""
+    if old.migration and new.migration:
+        return ""
+    if old.migration != new.migration:
+        return "the image format changes ([persist] migration is on in one version only)"
+    a, b = old.groups.get(name), new.groups.get(name)
+    if a is None or b is None or _shape(a) != _shape(b):
+        return "the layout changed and [persist] migration is off"
+    return ""
+
+
+def _shape(group: GroupLayout) -> list[tuple[int, int, int, int]]:
+    """What an "ODG1" image's layout signature covers: keys, types and lengths, not limits."""
+    return [(e.index, e.sub, e.data_type, e.length) for e in group.entries]
+
+
+def _defaults(steps: list[Step], reason: str) -> list[Step]:
+    return [replace(s, action=DEFAULT, reason=reason, checked=False) for s in steps if s.new is not None]
 
 
 def stored_changes(group_plans: dict[str, GroupPlan], old_od: ObjectDictionary,
