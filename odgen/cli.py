@@ -8,6 +8,7 @@ and then as one line unless --debug asks for the traceback.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
 import signal
 import sys
@@ -553,10 +554,8 @@ def run() -> None:
     code = _dispatch(args)
     if args.command in QUICK_EXIT and sys.getprofile() is None and sys.gettrace() is None:  # profilers write at exit
         for stream in (sys.stdout, sys.stderr):
-            try:
+            with contextlib.suppress(OSError, ValueError):  # a closed pipe: nothing more reaches the reader
                 stream.flush()
-            except (OSError, ValueError):  # a closed pipe: nothing more can reach the reader
-                pass
         os._exit(code)
     raise SystemExit(code)
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -96,10 +97,8 @@ class _TemplateCache(jinja2.FileSystemBytecodeCache):
     one is never stale; a cache that cannot be written only makes the next run compile again."""
 
     def dump_bytecode(self, bucket: jinja2.bccache.Bucket) -> None:
-        try:
+        with contextlib.suppress(OSError):
             super().dump_bytecode(bucket)
-        except OSError:
-            pass
 
 
 def _template_cache() -> jinja2.BytecodeCache | None:
