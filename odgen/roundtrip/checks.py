@@ -41,6 +41,7 @@ WRITE_ONLY, NO_OBJECT, NO_SUB = (ABORT_CODES["ODG_ABORT_WRITE_ONLY"], ABORT_CODE
 ACTIVE = frozenset({ERROR_HISTORY, SYNC_COB_ID, SYNC_PERIOD, SYNC_WINDOW, STORE, RESTORE, TIME_COB_ID, EMCY_COB_ID,
                     EMCY_INHIBIT, PRODUCER_HEARTBEAT}) | frozenset(range(SDO_SERVER, TPDO_MAPPING + PDO_COUNT))
 BOOT_TIMEOUT = 30.0  # waits end at the boot-up: generous for a loaded machine
+SDO_TIMEOUT = 3.0  # an answer normally takes milliseconds; the deadline only bounds a failure
 
 
 @dataclass
@@ -96,15 +97,17 @@ class Session:
             self.network.disconnect()
             raise OdgenError(f"python canopen cannot load the description: {type(err).__name__}: {err}") from None
         self.network.add_node(self.node)
-        self.node.sdo.RESPONSE_TIMEOUT = 1.0
+        self.node.sdo.RESPONSE_TIMEOUT = SDO_TIMEOUT
         self.booted = threading.Event()
-        self.heartbeats: list[tuple[float, int]] = []
+        # (monotonic time seen, NMT state, the frame's receive time stamp): a loaded machine delays
+        # the callback, not the socket's time stamp, so periods are measured on the stamps
+        self.heartbeats: list[tuple[float, int, float]] = []
         self.network.subscribe(0x700 + node_id, self._on_heartbeat)
         self.process: subprocess.Popen[bytes] | None = None
 
     def _on_heartbeat(self, can_id: int, data: bytearray, timestamp: float) -> None:
         if data:
-            self.heartbeats.append((time.monotonic(), data[0]))
+            self.heartbeats.append((time.monotonic(), data[0], timestamp))
             if data[0] == 0:
                 self.booted.set()
 
@@ -318,13 +321,13 @@ def check_nmt(s: Session) -> Check:
 
 def _state_seen(s: Session, state: int) -> bool:
     start = time.monotonic()
-    return _wait(lambda: any(t > start and b == state for t, b in list(s.heartbeats)))
+    return _wait(lambda: any(t > start and b == state for t, b, _ in list(s.heartbeats)))
 
 
 def _period(s: Session) -> float | None:
     start = time.monotonic()
     time.sleep(0.65)
-    times = [t for t, b in list(s.heartbeats) if t > start]
+    times = [stamp for t, _, stamp in list(s.heartbeats) if t > start]
     gaps = [1000 * (b - a) for a, b in zip(times, times[1:], strict=False)]
     return statistics.median(gaps) if gaps else None
 
