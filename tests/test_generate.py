@@ -118,6 +118,28 @@ def test_output_is_deterministic_and_hash_tracks_options(tmp_path: Path) -> None
     assert "hash" in header and not re.search(r"\d{4}-\d\d-\d\d|\d\d:\d\d:\d\d", header), "no timestamps"
 
 
+def test_template_cache_gives_the_same_files_and_a_missing_one_only_costs_time(tmp_path: Path,
+                                                                              monkeypatch: pytest.MonkeyPatch) -> None:
+    """Compiled templates come from jinja2's cache when it can be had; the files are the same
+    with a fresh cache, a warm one, and none (its folder cannot be made: a file stands there)."""
+    import tempfile
+
+    from odgen.codegen.generate import environment
+
+    outputs = []
+    blocked = tmp_path / "not-a-folder"
+    blocked.write_text("", encoding="utf-8")
+    (tmp_path / "tmp").mkdir()
+    for n, tmp in enumerate((tmp_path / "tmp", tmp_path / "tmp", blocked)):
+        monkeypatch.setattr(tempfile, "tempdir", str(tmp))
+        assert (environment().bytecode_cache is None) == (tmp == blocked)
+        out = tmp_path / f"out{n}"
+        assert main(["generate", str(EXAMPLE), "-o", str(out)]) == 0
+        outputs.append({p.name: p.read_bytes() for p in out.iterdir()})
+    assert list((tmp_path / "tmp").glob("_jinja2-cache-*/odgen-*.cache")), "the first run fills the cache"
+    assert outputs[0] == outputs[1] == outputs[2]
+
+
 def test_check_flag_reports_stale_files(tmp_path: Path) -> None:
     out = tmp_path / "gen"
     assert main(["generate", str(EXAMPLE), "-o", str(out), "--check"]) == 1
