@@ -72,6 +72,8 @@ def test_wheel_carries_templates_schemas_runtime_and_cmake(dist: Path) -> None:
     expected |= {f"odgen/runtime/{p.relative_to(ROOT / 'runtime').as_posix()}"
                  for p in (ROOT / "runtime").rglob("*") if p.suffix in (".c", ".h")}
     expected |= {"odgen/cmake/odgen.cmake"}
+    version = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["version"]
+    expected |= {f"odgen-{version}.data/data/share/odgen/cmake/{p.name}" for p in (ROOT / "cmake").glob("odgenConfig*")}
     expected |= {p.relative_to(ROOT).as_posix() for p in (ROOT / "odgen").rglob("*.py")}
     assert expected - names == set(), "missing from the wheel"
 
@@ -136,3 +138,29 @@ def test_cmake_firmware_outside_the_repository(installed: Path, tmp_path: Path) 
     options.write_text(options.read_text() + "\n", encoding="utf-8")
     assert "odgen: object dictionary" in _build(build)
     assert "looped back" in run([str(build / "firmware")], tmp_path).stdout
+
+
+def test_find_package_finds_the_installed_odgen(installed: Path, tmp_path: Path) -> None:
+    """The wheel puts odgenConfig.cmake into <venv>/share/odgen/cmake: with the venv's bin/ on PATH,
+    find_package(odgen 0.1) needs nothing else; a version the installed odgen is not is refused."""
+    if shutil.which("cmake") is None:
+        pytest.fail("cmake is missing: `make sysdeps` installs it")
+    project = tmp_path / "fw"
+    shutil.copytree(EXAMPLES / "cmake-firmware", project)
+    for name in ("io-node.eds", "io-node.toml"):
+        shutil.copy(EXAMPLES / "io-node" / name, project)
+    lists = project / "CMakeLists.txt"
+    text = lists.read_text(encoding="utf-8")
+    start, end = text.index("find_program(ODGEN_EXECUTABLE"), text.index('include("${ODGEN_CMAKE_DIR}/odgen.cmake")')
+    lists.write_text(text[:start] + "find_package(odgen 0.1 REQUIRED)" + text[end + 41:], encoding="utf-8")
+    env = dict(os.environ, PATH=f"{installed}{os.pathsep}{os.environ['PATH']}")
+    build = tmp_path / "build"
+    run(["cmake", "-S", str(project), "-B", str(build), f"-DIO_NODE_DIR={project}"], tmp_path, env=env)
+    assert f"odgen_DIR:PATH={installed.parent}/share/odgen/cmake" in (build / "CMakeCache.txt").read_text()
+    assert "odgen: object dictionary io_node" in _build(build)
+    assert "looped back" in run([str(build / "firmware")], tmp_path).stdout
+    lists.write_text(lists.read_text(encoding="utf-8").replace("odgen 0.1 REQUIRED", "odgen 99 REQUIRED"),
+                     encoding="utf-8")
+    refused = run(["cmake", "-S", str(project), "-B", str(tmp_path / "b99")], tmp_path, env=env, ok=False)
+    version = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["version"]
+    assert refused.returncode != 0 and f"odgenConfig.cmake, version: {version}" in refused.stderr, refused.stderr
