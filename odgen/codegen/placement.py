@@ -22,9 +22,14 @@ from .names import identifier
 from .options import OptionEntry, Options
 
 
+# The storage class of a 0x1010/0x1011 sub-entry: no value, a store/restore command the runtime
+# answers (ODG_S_STORE in C).
+STORE_CLASS = "store"
+
+
 @dataclass
 class Placement:
-    storage: str  # rom | ram | persist:<group> | command
+    storage: str  # rom | ram | persist:<group> | store
     storage_from: str
     hooks: tuple[str, ...] = ()
     hooks_from: str = "none"
@@ -50,7 +55,7 @@ def storage_from_description(text: str | None) -> str | None:
 
 def auto_storage(index: int, sub: Sub) -> tuple[str, str]:
     if index in (STORE, RESTORE) and sub.subindex > 0:
-        return "command", "auto: 0x1010/0x1011 commands"
+        return STORE_CLASS, "auto: 0x1010/0x1011 store/restore commands"
     if sub.data_type == 0x000F:
         return "ram", "auto: DOMAIN buffers live in RAM"
     if index in RUNTIME_UPDATED:
@@ -82,7 +87,7 @@ def place(od: ObjectDictionary, options: Options, diags: Diagnostics) -> dict[tu
 def _place_one(od: ObjectDictionary, obj: Obj, sub: Sub, options: Options) -> Placement:
     storage, why = auto_storage(obj.index, sub)
     described = storage_from_description(sub.storage or obj.storage)
-    if described is not None and storage != "command":
+    if described is not None and storage != STORE_CLASS:
         line = sub.line_of("storagelocation") if sub.storage else obj.line_of("storagelocation")
         storage, why = described, f"{od.source}:{line}: storage location {sub.storage or obj.storage}"
         if storage == "rom" and _unfit_for_rom(sub):  # CANopenNode v1: CO_OD_ROM is RAM that 0x1010 saves
@@ -97,7 +102,7 @@ def _place_one(od: ObjectDictionary, obj: Obj, sub: Sub, options: Options) -> Pl
 
 def _apply(placement: Placement, entry: OptionEntry, loc: Loc) -> None:
     origin = str(loc)
-    if entry.storage is not None and placement.storage != "command":
+    if entry.storage is not None and placement.storage != STORE_CLASS:
         storage = "persist:app" if entry.storage == "persist" else entry.storage  # the default group
         placement.storage, placement.storage_from = storage, origin
     if entry.hooks is not None:

@@ -18,7 +18,7 @@ from ..diagnostics import Diagnostics, Loc
 from ..model import Obj, ObjectDictionary, Sub, Value
 from ..model.datatypes import BASIC_TYPES, DataType
 from .names import comment, identifier, string_literal
-from .placement import RESTORE, STORE, Placement
+from .placement import RESTORE, STORE, STORE_CLASS, Placement
 
 MAX_C_STRING = 4095
 DEFAULT_DOMAIN_CAPACITY = 0  # a DOMAIN holds its default unless the options give a capacity
@@ -387,7 +387,7 @@ def _sub(b: _Builder, view: DictView, obj: Obj, sub: Sub) -> None:
     member = b.member_name(obj, sub)
     pos = len(view.subs)
     attr = _attr_flags(b.od, sub, placement, dtype)
-    if placement.storage == "command":
+    if placement.storage == STORE_CLASS:
         storage = "ODG_S_STORE" + (" | ODG_S_RESTORE_FLAG" if obj.index == RESTORE else "")
         view.subs.append(SubView("0", 4, sub.subindex, dtype.code, attr, storage, comment(sub.name)))
         return

@@ -21,7 +21,7 @@ from copy import deepcopy
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..codegen.placement import Placement
+from ..codegen.placement import STORE_CLASS, Placement
 from ..errors import OdgenError
 from ..codegen.selftest import expected_bytes, write_cases
 from ..formats.eds_writer import write_eds
@@ -206,8 +206,8 @@ def _entries(od: ObjectDictionary, placements: dict[tuple[int, int], Placement])
     return out
 
 
-def _is_command(e: Entry) -> bool:
-    return e.placement.storage == "command"
+def _is_store(e: Entry) -> bool:
+    return e.placement.storage == STORE_CLASS
 
 
 # ---- the checks ------------------------------------------------------------------------------
@@ -216,7 +216,7 @@ def _is_command(e: Entry) -> bool:
 def check_uploads(s: Session) -> Check:
     check = Check("upload every readable entry and compare with the description")
     for e in s.entries:
-        if _is_command(e):
+        if _is_store(e):
             continue
         data, code = s.upload(e.obj.index, e.sub.subindex)
         if not e.sub.readable:
@@ -233,7 +233,7 @@ def check_uploads(s: Session) -> Check:
 def check_downloads(s: Session) -> Check:
     check = Check("download limits and a middle value, read back; aborts out of range and for ro")
     for e in s.entries:
-        if _is_command(e) or e.obj.index in ACTIVE or not e.dtype.is_numeric:
+        if _is_store(e) or e.obj.index in ACTIVE or not e.dtype.is_numeric:
             continue
         if not e.sub.writable:
             data = expected_bytes(s.od, e.sub, e.dtype, s.node_id) or wire_bytes(0, e.dtype)
