@@ -35,12 +35,7 @@
 #define IS_DOMAIN(s) (ODG_CFG_DOMAINS && (s)->type == ODG_T_DOMAIN)
 #define IS_COMMAND(s) (ODG_CFG_STORE && ODG_S_CLASS((s)->storage) == ODG_S_STORE)
 
-/* Numbers on the way between wire and storage: 64 bits, or 32 when no type is wider. */
-#if ODG_CFG_INT64
-typedef uint64_t num_t;
-#else
-typedef uint32_t num_t;
-#endif
+typedef odg_num_t num_t; /* odg_impl.h: 64 bits, or 32 when no type is wider */
 #define NUM_BITS (8u * (uint32_t)sizeof(num_t))
 #define SIGN ((num_t)1u << (NUM_BITS - 1u))
 
@@ -93,12 +88,11 @@ static void *odg_mut_(const void *p)
     return u.m;
 }
 
-uint64_t odg_load_(const void *p, uint32_t size)
+num_t odg_load_(const void *p, uint32_t size)
 {
     uint8_t b;
     uint16_t h;
     uint32_t w;
-    uint64_t d;
     if (size == 1u) {
         memcpy(&b, p, 1);
         return b;
@@ -107,15 +101,18 @@ uint64_t odg_load_(const void *p, uint32_t size)
         memcpy(&h, p, 2);
         return h;
     }
-    if (size <= 4u) {
-        memcpy(&w, p, 4);
-        return w;
+#if ODG_CFG_INT64
+    if (size > 4u) {
+        uint64_t d;
+        memcpy(&d, p, 8);
+        return d;
     }
-    memcpy(&d, p, 8);
-    return d;
+#endif
+    memcpy(&w, p, 4);
+    return w;
 }
 
-void odg_store_(void *p, uint32_t size, uint64_t v)
+void odg_store_(void *p, uint32_t size, num_t v)
 {
     uint8_t b = (uint8_t)v;
     uint16_t h = (uint16_t)v;
@@ -124,10 +121,10 @@ void odg_store_(void *p, uint32_t size, uint64_t v)
         memcpy(p, &b, 1);
     } else if (size == 2u) {
         memcpy(p, &h, 2);
-    } else if (size <= 4u) {
+    } else if (!ODG_CFG_INT64 || size <= 4u) {
         memcpy(p, &w, 4);
     } else {
-        memcpy(p, &v, 8);
+        memcpy(p, &v, sizeof v);
     }
 }
 
@@ -158,7 +155,7 @@ static void pack(const odg_ref_t *r, uint8_t *b)
         memcpy(b, odg_value_(r->dict, s), s->size);
         return;
 #else
-        v = (num_t)odg_load_(odg_value_(r->dict, s), s->size);
+        v = odg_load_(odg_value_(r->dict, s), s->size);
 #endif
     }
     for (i = 0; i < sizeof v; i++, v >>= 8) {
@@ -505,14 +502,14 @@ static odg_abort_t check(const odg_ref_t *r, num_t v)
 }
 
 /* The range check of a write, for the persistence layer's restored values. */
-odg_abort_t odg_check_(const odg_dict_t *d, uint16_t pos, uint64_t v)
+odg_abort_t odg_check_(const odg_dict_t *d, uint16_t pos, num_t v)
 {
     odg_ref_t r;
     r.dict = d;
     r.entry = NULL;
     r.sub = &d->subs[pos];
     r.sub_pos = pos;
-    return check(&r, (num_t)v); /* without 64-bit types (ODG_CFG_INT64=0) every value fits 32 bits */
+    return check(&r, v);
 }
 
 /* ---- clients ------------------------------------------------------------------------------ */
@@ -935,31 +932,26 @@ static int pos_table_ok(const odg_dict_t *d, const void *base, uint32_t layout, 
     return 1;
 }
 
-/* NV bytes group `g` uses: its region, or two "ODG1" slots without a layout. */
+/* NV bytes group `g` uses: its region, or two "ODG1" slots without a layout descriptor. */
 static uint32_t nv_len(const odg_group_t *g)
 {
-    return g->layout != NULL ? g->region : 2u * ODG_PERSIST_SLOT_SIZE(g->size);
+    return g->n_layout != 0u ? g->region : 2u * ODG_PERSIST_SLOT_SIZE(g->size);
 }
 
-/* The layout descriptor of group `gi` names its persisted sub-entries in order, with their types
- * and sizes, and the image fits a slot (half the region). */
+/* A group with a layout descriptor has n_layout persisted sub-entries (the records the runtime
+ * reads from the tables), of the types this build migrates, and its image fits a slot (half the
+ * region); one without is served by this build. */
 static int layout_ok(const odg_dict_t *d, uint8_t gi)
 {
     const odg_group_t *g = &d->groups[gi];
-    uint32_t e, p, n = 0, bytes = 2u;
-    if (g->layout == NULL) {
-        return 1;
+    uint32_t p, n = 0, bytes = 2u;
+    if (g->n_layout == 0u) {
+        return ODG_CFG_PERSIST_ODG1;
     }
-    for (e = 0; e < d->n_entries; e++) {
-        const odg_entry_t *en = &d->entries[e];
-        for (p = en->first; p < (uint32_t)en->first + en->count; p++) {
-            const odg_sub_t *s = &d->subs[p];
-            const uint8_t *r = g->layout + 6u * n;
-            if (s->storage != (uint8_t)(ODG_S_PERSIST | (unsigned)gi << 2)) {
-                continue;
-            }
-            if (n >= g->n_layout || (r[0] | r[1] << 8) != en->index || r[2] != s->sub ||
-                r[3] != s->type || (r[4] | r[5] << 8) != s->size) {
+    for (p = 0; p < d->n_subs; p++) {
+        const odg_sub_t *s = &d->subs[p];
+        if (s->storage == (uint8_t)(ODG_S_PERSIST | (unsigned)gi << 2)) {
+            if (!ODG_CFG_PERSIST_STREAMS && IS_STREAM(s)) {
                 return 0;
             }
             bytes += 6u + s->size + (s->type == ODG_T_DOMAIN ? 4u : 0u);

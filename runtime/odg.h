@@ -62,6 +62,12 @@ extern "C" {
 #ifndef ODG_CFG_STORE /* the 0x1010 / 0x1011 store and restore commands (ODG_S_STORE) */
 #define ODG_CFG_STORE 1
 #endif
+#ifndef ODG_CFG_PERSIST_STREAMS /* strings or domains in a migrated persistence group */
+#define ODG_CFG_PERSIST_STREAMS 1
+#endif
+#ifndef ODG_CFG_PERSIST_ODG1 /* a persistence group without migration ("ODG1" images) */
+#define ODG_CFG_PERSIST_ODG1 1
+#endif
 #ifndef ODG_CFG_HASH /* lookup by a generated perfect hash (odgen --lookup hash) */
 #define ODG_CFG_HASH 1
 #endif
@@ -254,13 +260,13 @@ typedef struct odg_group {
     uint32_t signature;      /* layout signature (index, sub, type, size, order) */
     uint32_t nv_addr;        /* first of two slots, each odg_persist_slot_size(size) bytes */
     uint8_t store_sub;       /* its sub-index in 0x1010/0x1011 (1 = all groups) */
-    /* Boot migration (docs/persistence.md): the layout descriptor, 6 bytes per persisted
-     * sub-entry in dict->subs order (index u16, sub u8, type u8, length u16; little endian).
-     * NULL: "ODG1" images, the mirror byte for byte, and any layout change gives the defaults.
+    /* Boot migration (docs/persistence.md): the number of records of the layout descriptor,
+     * one per persisted sub-entry of the group in dict->subs order (index u16, sub u8,
+     * type u8, length u16; little endian), which the runtime reads from the tables.
+     * 0: "ODG1" images, the mirror byte for byte, and any layout change gives the defaults.
      * Else "ODG2" self-describing images in the group's own region of NV from nv_addr: slot A
      * at its start, slot B at its middle; the group is known by `id` (CRC-32 of its name). */
-    const uint8_t *layout;
-    uint16_t n_layout;       /* entries in `layout` */
+    uint16_t n_layout;
     uint32_t region;         /* bytes of NV the group owns */
     uint32_t id;
 } odg_group_t;

@@ -219,8 +219,9 @@ def options(params: tuple[Param, ...], extra: str = "") -> str:
 
 
 def firmware(tmp: Path, tag: str, params: tuple[Param, ...], heartbeat: int, reverse: bool,
-             extra_options: str = "") -> tuple[Path, dict[str, GroupLayout]]:
-    """Generate `od` from the parameters and build migrate_main on it; the program and its layouts."""
+             extra_options: str = "", configured: bool = False) -> tuple[Path, dict[str, GroupLayout]]:
+    """Generate `od` from the parameters and build migrate_main on it; the program and its layouts.
+    `configured`: the runtime built with the generated od_config.h (only what `od` uses)."""
     src = tmp / tag
     src.mkdir()
     (src / "od.eds").write_text(eds(params, heartbeat, reverse), encoding="utf-8")
@@ -234,7 +235,8 @@ def firmware(tmp: Path, tag: str, params: tuple[Param, ...], heartbeat: int, rev
                           cwd=ROOT, env=_env())
     assert done.returncode == 0, done.stdout + done.stderr
     exe = src / "migrate_main"
-    build("gcc", ("-O1",), (CTESTS / "migrate_main.c", src / "od.c", RUNTIME / "odg.c", RUNTIME / "odg_persist.c",
+    flags = ("-O1", '-DODG_CONFIG="od_config.h"') if configured else ("-O1",)
+    build("gcc", flags, (CTESTS / "migrate_main.c", src / "od.c", RUNTIME / "odg.c", RUNTIME / "odg_persist.c",
                             RUNTIME / "odg_nv_file.c", CTESTS / "nv_fault.c"), (src, RUNTIME, CTESTS), exe)
     return exe, layouts
 
@@ -292,11 +294,15 @@ def from_image(e: EntryLayout, raw: bytes) -> str:
 
 
 @pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
+@pytest.mark.parametrize("runtime", ["full", "configured"])
 @pytest.mark.parametrize("name", list(CASES))
-def test_migration_matches_policy(name: str, tmp_path: Path) -> None:
+def test_migration_matches_policy(name: str, runtime: str, tmp_path: Path) -> None:
+    """`configured`: both versions run the runtime built for their own dictionary (od_config.h:
+    no string or 64-bit paths where the dictionary has none), as the firmware would."""
     case = CASES[name]
-    v1, old = firmware(tmp_path, "v1", case.v1, case.heartbeat[0], case.order[0])
-    v2, new = firmware(tmp_path, "v2", case.v2, case.heartbeat[1], case.order[1])
+    configured = runtime == "configured"
+    v1, old = firmware(tmp_path, "v1", case.v1, case.heartbeat[0], case.order[0], configured=configured)
+    v2, new = firmware(tmp_path, "v2", case.v2, case.heartbeat[1], case.order[1], configured=configured)
     nv = tmp_path / "od.nv"
     sets = [f"set:{i:04X}:00:{hex_}" for i, hex_ in case.stored.items()] + ["set:1017:00:FA00"]
     stored = run(v1, nv, *sets, "store", "dump")

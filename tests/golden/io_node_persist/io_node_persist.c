@@ -142,39 +142,16 @@ ODG_ATTR_RAM static odg_hook_slot_t io_node_persist_hook_slots[2] = {
     {.fn = io_node_apply_outputs, .ctx = NULL}, /* 0x6200sub1 */
 };
 
-/* Layout descriptor of group app: index, sub, data type, length (docs/persistence.md). */
-ODG_ATTR_ROM static const uint8_t io_node_persist_persist_app_layout[6] = {
-    0x00, 0x20, 0x00, 0x06, 0x02, 0x00, /* 0x2000sub0 */
-};
-
-/* Layout descriptor of group comm: index, sub, data type, length (docs/persistence.md). */
-ODG_ATTR_ROM static const uint8_t io_node_persist_persist_comm_layout[84] = {
-    0x17, 0x10, 0x00, 0x06, 0x02, 0x00, /* 0x1017sub0 */
-    0x00, 0x14, 0x00, 0x05, 0x01, 0x00, /* 0x1400sub0 */
-    0x00, 0x14, 0x01, 0x07, 0x04, 0x00, /* 0x1400sub1 */
-    0x00, 0x14, 0x02, 0x05, 0x01, 0x00, /* 0x1400sub2 */
-    0x00, 0x16, 0x00, 0x05, 0x01, 0x00, /* 0x1600sub0 */
-    0x00, 0x16, 0x01, 0x07, 0x04, 0x00, /* 0x1600sub1 */
-    0x00, 0x18, 0x00, 0x05, 0x01, 0x00, /* 0x1800sub0 */
-    0x00, 0x18, 0x01, 0x07, 0x04, 0x00, /* 0x1800sub1 */
-    0x00, 0x18, 0x02, 0x05, 0x01, 0x00, /* 0x1800sub2 */
-    0x00, 0x18, 0x03, 0x06, 0x02, 0x00, /* 0x1800sub3 */
-    0x00, 0x18, 0x05, 0x06, 0x02, 0x00, /* 0x1800sub5 */
-    0x00, 0x18, 0x06, 0x05, 0x01, 0x00, /* 0x1800sub6 */
-    0x00, 0x1A, 0x00, 0x05, 0x01, 0x00, /* 0x1A00sub0 */
-    0x00, 0x1A, 0x01, 0x07, 0x04, 0x00, /* 0x1A00sub1 */
-};
-
 /* Each slot is aligned: half a region is a multiple of ODG_PERSIST_ALIGN. */
 typedef char io_node_persist_assert_nv_align[(IO_NODE_PERSIST_NV_APP_REGION / 2u % ODG_PERSIST_ALIGN == 0u && IO_NODE_PERSIST_NV_COMM_REGION / 2u % ODG_PERSIST_ALIGN == 0u && 1) ? 1 : -1];
 
 ODG_ATTR_ROM static const odg_group_t io_node_persist_groups[2] = {
     {.mirror = &io_node_persist_persist_app, .defaults = &io_node_persist_persist_app_defaults, .size = sizeof(io_node_persist_persist_app_t),
      .signature = 0x3B56BF5Fu, .nv_addr = IO_NODE_PERSIST_NV_BASE + IO_NODE_PERSIST_NV_APP_OFFSET, .store_sub = 1,
-     .layout = io_node_persist_persist_app_layout, .n_layout = 1u, .region = IO_NODE_PERSIST_NV_APP_REGION, .id = 0xC96E70CFu},
+     .n_layout = 1u, .region = IO_NODE_PERSIST_NV_APP_REGION, .id = 0xC96E70CFu},
     {.mirror = &io_node_persist_persist_comm, .defaults = &io_node_persist_persist_comm_defaults, .size = sizeof(io_node_persist_persist_comm_t),
      .signature = 0x6338B07Au, .nv_addr = IO_NODE_PERSIST_NV_BASE + IO_NODE_PERSIST_NV_COMM_OFFSET, .store_sub = 1,
-     .layout = io_node_persist_persist_comm_layout, .n_layout = 14u, .region = IO_NODE_PERSIST_NV_COMM_REGION, .id = 0xA80C03E3u},
+     .n_layout = 14u, .region = IO_NODE_PERSIST_NV_COMM_REGION, .id = 0xA80C03E3u},
 };
 
 ODG_ATTR_RAM static odg_state_t io_node_persist_state;
