@@ -30,4 +30,7 @@ uint8_t *odg_value_(const odg_dict_t *d, const odg_sub_t *s);
  * `pos` of dict->subs, on its value sign-extended to 64 bits (REAL as its bits). */
 odg_abort_t odg_check_(const odg_dict_t *d, uint16_t pos, odg_num_t v);
 
+/* Copy `n` bytes (a byte loop: the runtime links no libc memcpy of its own). */
+void odg_copy_(void *dst, const void *src, uint32_t n);
+
 #endif /* ODG_IMPL_H */
