@@ -351,11 +351,36 @@ static uint32_t hash_slot(const odg_dict_t *d, uint16_t index)
 }
 #endif
 
+#if ODG_CFG_PACKED
+/* Element `sub` (> 0) of a packed ARRAY or RECORD: a descriptor of its own, in the reference.
+ * Out of line: the lookup of every other sub-entry pays one bit test for it. */
+ODG_NOINLINE_
+static odg_abort_t find_element(const odg_dict_t *dict, const odg_entry_t *e, uint8_t sub,
+                                odg_ref_t *ref)
+{
+    uint32_t k = e->first + 1u;
+    if (sub > dict->subs[k].sub) {
+        return ODG_ABORT_NO_SUB;
+    }
+    odg_element_(&dict->subs[k], sub, &ref->elem);
+    ref->dict = dict;
+    ref->entry = e;
+    ref->sub = &ref->elem;
+    ref->sub_pos = (uint16_t)k;
+    return ODG_OK;
+}
+#endif
+
 /* The sub-entry `sub` of entry `e` into `ref`. */
 static inline odg_abort_t find_sub(const odg_dict_t *dict, const odg_entry_t *e, uint8_t sub,
                                    odg_ref_t *ref)
 {
     uint32_t k = sub;
+#if ODG_CFG_PACKED
+    if (sub > 0u && (e->code & ODG_E_PACKED)) {
+        return find_element(dict, e, sub, ref);
+    }
+#endif
     if (!(e->code & ODG_E_DENSE)) {
         for (k = 0; k < e->count && dict->subs[e->first + k].sub != sub; k++) {
         }
@@ -942,6 +967,30 @@ static int pos_table_ok(const odg_dict_t *d, const void *base, uint32_t layout, 
     return 1;
 }
 
+/* A packed ARRAY or RECORD (ODG_E_PACKED): sub 0, then one descriptor of N >= 1 numbers without hooks,
+ * limits or $NODEID, whose last element lies where a value may. */
+static int packed_ok(const odg_dict_t *d, const odg_entry_t *e)
+{
+    const odg_sub_t *s = &d->subs[e->first + 1u];
+    odg_ref_t r;
+    if (!(e->code & ODG_E_PACKED)) {
+        return 1;
+    }
+    if (!ODG_CFG_PACKED || e->count != 2u ||
+        ((e->code & 0x0Fu) != ODG_OBJ_ARRAY && (e->code & 0x0Fu) != ODG_OBJ_RECORD) ||
+        d->subs[e->first].sub != 0u || s->sub == 0u || ODG_S_CLASS(s->storage) == ODG_S_STORE ||
+        (s->attr & (ODG_A_HOOK | ODG_A_LIMIT | ODG_A_NODEID)) || s->type == ODG_T_VISIBLE_STRING ||
+        s->type == ODG_T_OCTET_STRING || s->type == ODG_T_UNICODE_STRING || s->type == ODG_T_DOMAIN) {
+        return 0;
+    }
+    r.dict = d;
+    r.entry = e;
+    r.sub_pos = (uint16_t)(e->first + 1u);
+    r.sub = &r.elem;
+    odg_element_(s, s->sub, &r.elem);
+    return (uint32_t)s->offset + (s->sub - 1u) * ODG_STRIDE(s->size) <= 0xFFFFu && sub_ok(&r);
+}
+
 /* NV bytes group `g` uses: its region, or two "ODG1" slots without a layout descriptor. */
 static uint32_t nv_len(const odg_group_t *g)
 {
@@ -954,18 +1003,24 @@ static uint32_t nv_len(const odg_group_t *g)
 static int layout_ok(const odg_dict_t *d, uint8_t gi)
 {
     const odg_group_t *g = &d->groups[gi];
-    uint32_t p, n = 0, bytes = 2u;
+    uint32_t e, p, k, n = 0, bytes = 2u;
     if (g->n_layout == 0u) {
         return ODG_CFG_PERSIST_ODG1;
     }
-    for (p = 0; p < d->n_subs; p++) {
-        const odg_sub_t *s = &d->subs[p];
-        if (s->storage == (uint8_t)(ODG_S_PERSIST | (unsigned)gi << 2)) {
+    for (e = 0; e < d->n_entries; e++) {
+        const odg_entry_t *en = &d->entries[e];
+        for (p = en->first; p < (uint32_t)en->first + en->count; p++) {
+            const odg_sub_t *s = &d->subs[p];
+            if (s->storage != (uint8_t)(ODG_S_PERSIST | (unsigned)gi << 2)) {
+                continue;
+            }
             if (!ODG_CFG_PERSIST_STREAMS && IS_STREAM(s)) {
                 return 0;
             }
-            bytes += 6u + s->size + (s->type == ODG_T_DOMAIN ? 4u : 0u);
-            n++;
+            /* each element of a packed ARRAY is a record */
+            k = (en->code & ODG_E_PACKED) && p > en->first ? s->sub : 1u;
+            bytes += k * (6u + s->size + (s->type == ODG_T_DOMAIN ? 4u : 0u));
+            n += k;
         }
     }
     return n == g->n_layout && bytes + ODG_PERSIST_HEADER2_SIZE <= g->region / 2u;
@@ -1036,6 +1091,9 @@ odg_abort_t odg_verify(const odg_dict_t *dict, uint16_t *bad_index)
             (uint32_t)e->first + e->count > d->n_subs) {
             return ODG_ABORT_INTERNAL;
         }
+        if (!packed_ok(d, e)) {
+            return ODG_ABORT_INTERNAL;
+        }
         for (k = 0; k < e->count; k++) {
             odg_ref_t r;
             r.dict = d;
@@ -1043,7 +1101,8 @@ odg_abort_t odg_verify(const odg_dict_t *dict, uint16_t *bad_index)
             r.sub_pos = (uint16_t)(e->first + k);
             r.sub = &d->subs[r.sub_pos];
             if ((k > 0u && r.sub->sub <= r.sub[-1].sub) ||
-                ((e->code & ODG_E_DENSE) && r.sub->sub != k) || !sub_ok(&r)) {
+                ((e->code & ODG_E_DENSE) && r.sub->sub != k && !(e->code & ODG_E_PACKED)) ||
+                !sub_ok(&r)) {
                 return ODG_ABORT_INTERNAL;
             }
             hooked += (r.sub->attr & ODG_A_HOOK) ? 1u : 0u;

@@ -30,6 +30,14 @@ uint8_t *odg_value_(const odg_dict_t *d, const odg_sub_t *s);
  * `pos` of dict->subs, on its value sign-extended to 64 bits (REAL as its bits). */
 odg_abort_t odg_check_(const odg_dict_t *d, uint16_t pos, odg_num_t v);
 
+/* Element `k` (1..N) of a packed ARRAY whose shared descriptor is `s`: its own descriptor. */
+static inline void odg_element_(const odg_sub_t *s, uint8_t k, odg_sub_t *out)
+{
+    *out = *s;
+    out->sub = k;
+    out->offset = (uint16_t)(s->offset + (uint32_t)(k - 1u) * ODG_STRIDE(s->size));
+}
+
 /* Copy `n` bytes (a byte loop: the runtime links no libc memcpy of its own). */
 void odg_copy_(void *dst, const void *src, uint32_t n);
 

@@ -262,15 +262,17 @@ static uint32_t value_size(const uint8_t *rec)
     return get16(rec + 4) + (rec[3] == ODG_T_DOMAIN ? 4u : 0u);
 }
 
-/* The firmware's layout descriptor of a group: its persisted sub-entries in dict->subs order,
- * each a record (index, sub, type, length) read from the tables (odg_verify: at most n_layout). */
+/* The firmware's layout descriptor of a group: its persisted sub-entries in dict->subs order
+ * (each element of a packed ARRAY in turn), each a record (index, sub, type, length) read from
+ * the tables (odg_verify: n_layout of them). */
 typedef struct recs {
     const odg_dict_t *d;
     const odg_entry_t *e; /* the entry of the current sub-entry */
     uint32_t key;         /* its index << 8 | sub */
-    uint16_t pos;         /* position in dict->subs after it */
+    uint16_t pos;         /* position in dict->subs after its descriptor */
     uint16_t left;        /* records still to come */
     uint8_t storage;      /* ODG_S_PERSIST | group << 2 */
+    odg_sub_t elem;       /* the descriptor made for an element of a packed ARRAY */
 } recs_t;
 
 static void recs_start(recs_t *r, const odg_dict_t *d, uint8_t g)
@@ -280,22 +282,37 @@ static void recs_start(recs_t *r, const odg_dict_t *d, uint8_t g)
     r->pos = 0;
     r->left = d->groups[g].n_layout;
     r->storage = (uint8_t)(ODG_S_PERSIST | (unsigned)g << 2);
+    r->elem.sub = 0;
 }
 
-/* The next persisted sub-entry (at position r->pos - 1), or NULL after the last. */
+/* The next persisted sub-entry (its descriptor at position r->pos - 1), or NULL after the last. */
 static const odg_sub_t *recs_next(recs_t *r)
 {
     const odg_dict_t *d = r->d;
-    while (r->left > 0u && r->pos < d->n_subs) {
-        const odg_sub_t *s = &d->subs[r->pos++];
-        while ((uint32_t)r->e->first + r->e->count < r->pos) {
-            r->e++;
+    const odg_sub_t *s = &r->elem;
+    while (r->left > 0u) {
+        if (ODG_CFG_PACKED && r->elem.sub != 0u && r->elem.sub < d->subs[r->pos - 1u].sub) {
+            odg_element_(&d->subs[r->pos - 1u], (uint8_t)(r->elem.sub + 1u), &r->elem);
+            s = &r->elem;
+        } else if (r->pos < d->n_subs) {
+            s = &d->subs[r->pos++];
+            r->elem.sub = 0;
+            while ((uint32_t)r->e->first + r->e->count < r->pos) {
+                r->e++;
+            }
+            if (s->storage != r->storage) {
+                continue;
+            }
+            if (ODG_CFG_PACKED && (r->e->code & ODG_E_PACKED) && s->sub > 0u) {
+                odg_element_(s, 1u, &r->elem);
+                s = &r->elem;
+            }
+        } else {
+            break;
         }
-        if (s->storage == r->storage) {
-            r->left--;
-            r->key = (uint32_t)r->e->index << 8 | s->sub;
-            return s;
-        }
+        r->left--;
+        r->key = (uint32_t)r->e->index << 8 | s->sub;
+        return s;
     }
     return NULL;
 }
