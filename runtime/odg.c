@@ -1084,6 +1084,9 @@ odg_abort_t odg_verify(const odg_dict_t *dict, uint16_t *bad_index)
     if (d->hash_slots != NULL ? !ODG_CFG_HASH || !hash_ok(d) : !ODG_CFG_UNHASHED) {
         return ODG_ABORT_INTERNAL; /* a bad hash, or a lookup this build does not serve */
     }
+    if (!ODG_CFG_PERSIST_STATUS && d->persist_status != 0u) {
+        return ODG_ABORT_INTERNAL; /* a boot status object this build would not set */
+    }
     for (i = 0; i < d->n_entries; i++) {
         const odg_entry_t *e = &d->entries[i];
         *bad_index = e->index;

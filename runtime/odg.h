@@ -68,6 +68,9 @@ extern "C" {
 #ifndef ODG_CFG_PERSIST_STREAMS /* strings or domains in a migrated persistence group */
 #define ODG_CFG_PERSIST_STREAMS 1
 #endif
+#ifndef ODG_CFG_PERSIST_STATUS /* the boot status object ([persist] status_object) */
+#define ODG_CFG_PERSIST_STATUS 1
+#endif
 #ifndef ODG_CFG_PERSIST_ODG1 /* a persistence group without migration ("ODG1" images) */
 #define ODG_CFG_PERSIST_ODG1 1
 #endif

@@ -987,7 +987,7 @@ static void report(const odg_dict_t *d, uint8_t g, const odg_boot_t *b)
 {
     uint32_t v = (uint32_t)b->status | (uint32_t)add_sat(0, b->converted) << 8 |
                  (uint32_t)add_sat(0, b->defaulted) << 16 | (uint32_t)add_sat(0, b->dropped) << 24;
-    if (d->persist_status != 0u) {
+    if (ODG_CFG_PERSIST_STATUS && d->persist_status != 0u) {
         (void)odg_set(d, d->persist_status, (uint8_t)(g + 1u), &v, (uint32_t)sizeof v);
     }
 }

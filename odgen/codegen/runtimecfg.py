@@ -57,6 +57,9 @@ def runtime_config(view: DictView) -> list[Switch]:
          [e.first + 1 for e in view.entries if "ODG_E_PACKED" in e.code]),
         ("ODG_CFG_PERSIST_STREAMS", "strings or domains in a migrated persistence group",
          [p for p in persisted if view.subs[p].type in STREAMS] if migration else []),
+        ("ODG_CFG_PERSIST_STATUS", "boot status object",
+         [p for e in view.entries if view.persist is not None and e.index == view.persist.status_object
+          for p in range(e.first, e.first + e.count)]),
         ("ODG_CFG_PERSIST_ODG1", "persistence groups without migration", persisted[:1] if not migration else []),
     ]
     switches = [Switch(macro, what, bool(where), _first(view, where)) for macro, what, where in needs]
