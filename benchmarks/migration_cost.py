@@ -2,9 +2,10 @@
 
 FLASH on Cortex-M4 (the flags of footprint.py): odg_persist.o built as is and with
 -DODG_NO_MIGRATION, and a generated dictionary with `[persist] migration` true and false (the
-firmware's layout descriptors are read from the dictionary's tables: no FLASH table of their own). NV bytes per persisted entry: two slots of the
-self-describing image ("ODG2": 24-byte header, entry count, descriptor, wire values) against two
-slots of the RAM mirror ("ODG1": 20-byte header, the C struct), and the regions with headroom.
+firmware's layout descriptors are read from the dictionary's tables: no FLASH table of their
+own). NV bytes per persisted entry: two slots of the self-describing image ("ODG2": 24-byte
+header, entry count, descriptor, wire values) against two slots of the RAM mirror ("ODG1":
+20-byte header, the C struct), and the regions with headroom.
 Inputs: the io-node example and synth_250 with every manufacturer object persisted. run.py runs
 this part (--parts migration).
 """

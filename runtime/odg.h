@@ -62,7 +62,7 @@ extern "C" {
 #ifndef ODG_CFG_STORE /* the 0x1010 / 0x1011 store and restore commands (ODG_S_STORE) */
 #define ODG_CFG_STORE 1
 #endif
-#ifndef ODG_CFG_PACKED /* ARRAYs whose elements share one descriptor (ODG_E_PACKED) */
+#ifndef ODG_CFG_PACKED /* ARRAYs and RECORDs whose elements share one descriptor (ODG_E_PACKED) */
 #define ODG_CFG_PACKED 1
 #endif
 #ifndef ODG_CFG_PERSIST_STREAMS /* strings or domains in a migrated persistence group */

@@ -53,7 +53,7 @@ def runtime_config(view: DictView) -> list[Switch]:
         ("ODG_CFG_REAL_LIMITS", "limits on REAL32 / REAL64", [p for p in limited if view.subs[p].type in REALS]),
         ("ODG_CFG_GROUPS", "persistence groups", [p for p, s in subs if "ODG_S_PERSIST" in s.storage]),
         ("ODG_CFG_STORE", "0x1010 / 0x1011 commands", [p for p, s in subs if "ODG_S_STORE" in s.storage]),
-        ("ODG_CFG_PACKED", "ARRAYs whose elements share one descriptor",
+        ("ODG_CFG_PACKED", "ARRAYs and RECORDs whose elements share one descriptor",
          [e.first + 1 for e in view.entries if "ODG_E_PACKED" in e.code]),
         ("ODG_CFG_PERSIST_STREAMS", "strings or domains in a migrated persistence group",
          [p for p in persisted if view.subs[p].type in STREAMS] if migration else []),
@@ -63,6 +63,10 @@ def runtime_config(view: DictView) -> list[Switch]:
         ("ODG_CFG_PERSIST_ODG1", "persistence groups without migration", persisted[:1] if not migration else []),
     ]
     switches = [Switch(macro, what, bool(where), _first(view, where)) for macro, what, where in needs]
+    for switch in switches:  # a packed descriptor's sub is the last element's: name them all
+        if switch.macro == "ODG_CFG_PACKED" and switch.on:
+            entry = next(e for e in view.entries if "ODG_E_PACKED" in e.code)
+            switch.why = f"0x{entry.index:04X}sub1..{view.subs[entry.first + 1].sub}"
     hashed = view.lookup == "hash"
     return switches + [Switch("ODG_CFG_HASH", "lookup by perfect hash", hashed, "--lookup hash" if hashed else ""),
                        Switch("ODG_CFG_UNHASHED", "lookup by generated find or binary search", not hashed,

@@ -13,7 +13,7 @@
 #error "io_node uses 0x1010 / 0x1011 commands: build the runtime with ODG_CFG_STORE 1 (io_node_config.h)"
 #endif
 #if !ODG_CFG_PACKED
-#error "io_node uses ARRAYs whose elements share one descriptor: build the runtime with ODG_CFG_PACKED 1 (io_node_config.h)"
+#error "io_node uses ARRAYs and RECORDs whose elements share one descriptor: build the runtime with ODG_CFG_PACKED 1 (io_node_config.h)"
 #endif
 #if !ODG_CFG_HASH
 #error "io_node uses lookup by perfect hash: build the runtime with ODG_CFG_HASH 1 (io_node_config.h)"

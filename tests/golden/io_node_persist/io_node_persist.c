@@ -19,7 +19,7 @@
 #error "io_node_persist uses 0x1010 / 0x1011 commands: build the runtime with ODG_CFG_STORE 1 (io_node_persist_config.h)"
 #endif
 #if !ODG_CFG_PACKED
-#error "io_node_persist uses ARRAYs whose elements share one descriptor: build the runtime with ODG_CFG_PACKED 1 (io_node_persist_config.h)"
+#error "io_node_persist uses ARRAYs and RECORDs whose elements share one descriptor: build the runtime with ODG_CFG_PACKED 1 (io_node_persist_config.h)"
 #endif
 #if !ODG_CFG_HASH
 #error "io_node_persist uses lookup by perfect hash: build the runtime with ODG_CFG_HASH 1 (io_node_persist_config.h)"
