@@ -1,10 +1,11 @@
 """What boot migration of stored parameters costs (docs/persistence.md), with it and without it.
 
 FLASH on Cortex-M4 (the flags of footprint.py): odg_persist.o built as is and with
--DODG_NO_MIGRATION, and a generated dictionary with `[persist] migration` true and false (its
-layout descriptors, 6 bytes per persisted entry). NV bytes per persisted entry: two slots of the
-self-describing image ("ODG2": 24-byte header, entry count, descriptor, wire values) against two
-slots of the RAM mirror ("ODG1": 20-byte header, the C struct), and the regions with headroom.
+-DODG_NO_MIGRATION, and a generated dictionary with `[persist] migration` true and false (the
+firmware's layout descriptors are read from the dictionary's tables: no FLASH table of their
+own). NV bytes per persisted entry: two slots of the self-describing image ("ODG2": 24-byte
+header, entry count, descriptor, wire values) against two slots of the RAM mirror ("ODG1":
+20-byte header, the C struct), and the regions with headroom.
 Inputs: the io-node example and synth_250 with every manufacturer object persisted. run.py runs
 this part (--parts migration).
 """
@@ -84,7 +85,7 @@ def markdown(runtime: dict[str, int], rows: list[dict[str, object]]) -> str:
     lines = ["## Boot migration of stored parameters (Cortex-M4, arm-none-eabi-gcc -Os)", "",
              f"- odg_persist.o: {runtime['on']} bytes of FLASH with migration, {runtime['off']} with "
              f"`-DODG_NO_MIGRATION`: the migration code costs {runtime['on'] - runtime['off']} bytes.", "",
-             "| input | persisted entries | dictionary FLASH on / off | layout descriptors | "
+             "| input | persisted entries | dictionary FLASH on / off | layout descriptor tables | "
              "NV, two slots on / off | per entry on / off | regions with headroom (per entry) |",
              "|---|---|---|---|---|---|---|"]
     for r in rows:
@@ -97,7 +98,8 @@ def markdown(runtime: dict[str, int], rows: list[dict[str, object]]) -> str:
     lines += ["", "NV with migration: per slot a 24-byte header, the entry count, 6 descriptor bytes per entry and "
               "the values in wire format; without: a 20-byte header and the C struct of the mirror (padding and "
               "string terminators included). Both slots are counted; regions add the headroom (need + 50 %, "
-              "rounded up to a power of two).", ""]
+              "rounded up to a power of two). The firmware's own descriptor is not a table: the runtime reads "
+              "each record (index, sub, type, length) from the dictionary's entries and sub-entries.", ""]
     return "\n".join(lines)
 
 

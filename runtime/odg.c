@@ -35,12 +35,7 @@
 #define IS_DOMAIN(s) (ODG_CFG_DOMAINS && (s)->type == ODG_T_DOMAIN)
 #define IS_COMMAND(s) (ODG_CFG_STORE && ODG_S_CLASS((s)->storage) == ODG_S_STORE)
 
-/* Numbers on the way between wire and storage: 64 bits, or 32 when no type is wider. */
-#if ODG_CFG_INT64
-typedef uint64_t num_t;
-#else
-typedef uint32_t num_t;
-#endif
+typedef odg_num_t num_t; /* odg_impl.h: 64 bits, or 32 when no type is wider */
 #define NUM_BITS (8u * (uint32_t)sizeof(num_t))
 #define SIGN ((num_t)1u << (NUM_BITS - 1u))
 
@@ -93,12 +88,11 @@ static void *odg_mut_(const void *p)
     return u.m;
 }
 
-uint64_t odg_load_(const void *p, uint32_t size)
+num_t odg_load_(const void *p, uint32_t size)
 {
     uint8_t b;
     uint16_t h;
     uint32_t w;
-    uint64_t d;
     if (size == 1u) {
         memcpy(&b, p, 1);
         return b;
@@ -107,15 +101,18 @@ uint64_t odg_load_(const void *p, uint32_t size)
         memcpy(&h, p, 2);
         return h;
     }
-    if (size <= 4u) {
-        memcpy(&w, p, 4);
-        return w;
+#if ODG_CFG_INT64
+    if (size > 4u) {
+        uint64_t d;
+        memcpy(&d, p, 8);
+        return d;
     }
-    memcpy(&d, p, 8);
-    return d;
+#endif
+    memcpy(&w, p, 4);
+    return w;
 }
 
-void odg_store_(void *p, uint32_t size, uint64_t v)
+void odg_store_(void *p, uint32_t size, num_t v)
 {
     uint8_t b = (uint8_t)v;
     uint16_t h = (uint16_t)v;
@@ -124,10 +121,10 @@ void odg_store_(void *p, uint32_t size, uint64_t v)
         memcpy(p, &b, 1);
     } else if (size == 2u) {
         memcpy(p, &h, 2);
-    } else if (size <= 4u) {
+    } else if (!ODG_CFG_INT64 || size <= 4u) {
         memcpy(p, &w, 4);
     } else {
-        memcpy(p, &v, 8);
+        memcpy(p, &v, sizeof v);
     }
 }
 
@@ -155,10 +152,10 @@ static void pack(const odg_ref_t *r, uint8_t *b)
     if (!IS_COMMAND(s)) {
 #if ODG_LITTLE_ENDIAN
         /* the wire bytes are the first bytes of the C type that holds the value */
-        memcpy(b, odg_value_(r->dict, s), s->size);
+        odg_copy_(b, odg_value_(r->dict, s), s->size);
         return;
 #else
-        v = (num_t)odg_load_(odg_value_(r->dict, s), s->size);
+        v = odg_load_(odg_value_(r->dict, s), s->size);
 #endif
     }
     for (i = 0; i < sizeof v; i++, v >>= 8) {
@@ -172,7 +169,7 @@ static num_t unpack(const odg_sub_t *s, const uint8_t *b)
     uint32_t n = s->size;
     num_t v = 0, m;
 #if ODG_LITTLE_ENDIAN
-    memcpy(&v, b, n); /* n <= sizeof v: odg_verify and the dictionary's configuration check */
+    odg_copy_(&v, b, n); /* n <= sizeof v: odg_verify and the dictionary's configuration check */
 #else
     uint32_t i = n;
     while (i-- > 0u) {
@@ -354,11 +351,36 @@ static uint32_t hash_slot(const odg_dict_t *d, uint16_t index)
 }
 #endif
 
+#if ODG_CFG_PACKED
+/* Element `sub` (> 0) of a packed ARRAY or RECORD: a descriptor of its own, in the reference.
+ * Out of line: the lookup of every other sub-entry pays one bit test for it. */
+ODG_NOINLINE_
+static odg_abort_t find_element(const odg_dict_t *dict, const odg_entry_t *e, uint8_t sub,
+                                odg_ref_t *ref)
+{
+    uint32_t k = e->first + 1u;
+    if (sub > dict->subs[k].sub) {
+        return ODG_ABORT_NO_SUB;
+    }
+    odg_element_(&dict->subs[k], sub, &ref->elem);
+    ref->dict = dict;
+    ref->entry = e;
+    ref->sub = &ref->elem;
+    ref->sub_pos = (uint16_t)k;
+    return ODG_OK;
+}
+#endif
+
 /* The sub-entry `sub` of entry `e` into `ref`. */
 static inline odg_abort_t find_sub(const odg_dict_t *dict, const odg_entry_t *e, uint8_t sub,
                                    odg_ref_t *ref)
 {
     uint32_t k = sub;
+#if ODG_CFG_PACKED
+    if (sub > 0u && (e->code & ODG_E_PACKED)) {
+        return find_element(dict, e, sub, ref);
+    }
+#endif
     if (!(e->code & ODG_E_DENSE)) {
         for (k = 0; k < e->count && dict->subs[e->first + k].sub != sub; k++) {
         }
@@ -429,11 +451,12 @@ odg_abort_t odg_read(const odg_ref_t *ref, uint32_t offset, void *buf, uint32_t 
     if (len > cap) {
         len = cap;
     }
-    for (i = 0; i < len; i++) {
+    if (!IS_UNICODE(s)) {
+        odg_copy_(out, src + offset, len); /* a loop here would become a call of libc memcpy */
+    }
+    for (i = 0; IS_UNICODE(s) && i < len; i++) {
         uint32_t k = offset + i;
-        out[i] = IS_UNICODE(s)
-                     ? (uint8_t)(((const uint16_t *)(const void *)src)[k >> 1] >> ((k & 1u) * 8u))
-                     : src[k];
+        out[i] = (uint8_t)(((const uint16_t *)(const void *)src)[k >> 1] >> ((k & 1u) * 8u));
     }
     *n = len;
     return ODG_OK;
@@ -505,14 +528,14 @@ static odg_abort_t check(const odg_ref_t *r, num_t v)
 }
 
 /* The range check of a write, for the persistence layer's restored values. */
-odg_abort_t odg_check_(const odg_dict_t *d, uint16_t pos, uint64_t v)
+odg_abort_t odg_check_(const odg_dict_t *d, uint16_t pos, num_t v)
 {
     odg_ref_t r;
     r.dict = d;
     r.entry = NULL;
     r.sub = &d->subs[pos];
     r.sub_pos = pos;
-    return check(&r, (num_t)v); /* without 64-bit types (ODG_CFG_INT64=0) every value fits 32 bits */
+    return check(&r, v);
 }
 
 /* ---- clients ------------------------------------------------------------------------------ */
@@ -688,6 +711,15 @@ odg_abort_t odg_init(const odg_dict_t *dict, uint8_t node_id)
     return ODG_OK;
 }
 
+void odg_copy_(void *dst, const void *src, uint32_t n)
+{
+    uint8_t *d = (uint8_t *)dst;
+    const uint8_t *s = (const uint8_t *)src;
+    while (n-- > 0u) {
+        *d++ = *s++;
+    }
+}
+
 /* ---- typed access ---------------------------------------------------------------------------- */
 
 /* The number at index/sub whose C type is `size` bytes: `ref` filled, its value's address. */
@@ -713,7 +745,7 @@ odg_abort_t odg_get(const odg_dict_t *dict, uint16_t index, uint8_t sub, void *v
     odg_ref_t r;
     odg_abort_t ac = typed(dict, index, sub, size, &r);
     if (ac == ODG_OK) {
-        memcpy(value, odg_value_(dict, r.sub), size);
+        odg_copy_(value, odg_value_(dict, r.sub), size);
     }
     return ac;
 }
@@ -727,7 +759,7 @@ odg_abort_t odg_set(const odg_dict_t *dict, uint16_t index, uint8_t sub, const v
         ac = ODG_ABORT_READ_ONLY;
     }
     if (ac == ODG_OK) {
-        memcpy(odg_value_(dict, r.sub), value, size);
+        odg_copy_(odg_value_(dict, r.sub), value, size);
         odg_changed(dict, &r);
     }
     return ac;
@@ -935,35 +967,60 @@ static int pos_table_ok(const odg_dict_t *d, const void *base, uint32_t layout, 
     return 1;
 }
 
-/* NV bytes group `g` uses: its region, or two "ODG1" slots without a layout. */
-static uint32_t nv_len(const odg_group_t *g)
+/* A packed ARRAY or RECORD (ODG_E_PACKED): sub 0, then one descriptor of N >= 1 numbers without hooks,
+ * limits or $NODEID, whose last element lies where a value may. */
+static int packed_ok(const odg_dict_t *d, const odg_entry_t *e)
 {
-    return g->layout != NULL ? g->region : 2u * ODG_PERSIST_SLOT_SIZE(g->size);
+    const odg_sub_t *s = &d->subs[e->first + 1u];
+    odg_ref_t r;
+    if (!(e->code & ODG_E_PACKED)) {
+        return 1;
+    }
+    if (!ODG_CFG_PACKED || e->count != 2u ||
+        ((e->code & 0x0Fu) != ODG_OBJ_ARRAY && (e->code & 0x0Fu) != ODG_OBJ_RECORD) ||
+        d->subs[e->first].sub != 0u || s->sub == 0u || ODG_S_CLASS(s->storage) == ODG_S_STORE ||
+        (s->attr & (ODG_A_HOOK | ODG_A_LIMIT | ODG_A_NODEID)) || s->type == ODG_T_VISIBLE_STRING ||
+        s->type == ODG_T_OCTET_STRING || s->type == ODG_T_UNICODE_STRING || s->type == ODG_T_DOMAIN) {
+        return 0;
+    }
+    r.dict = d;
+    r.entry = e;
+    r.sub_pos = (uint16_t)(e->first + 1u);
+    r.sub = &r.elem;
+    odg_element_(s, s->sub, &r.elem);
+    return (uint32_t)s->offset + (s->sub - 1u) * ODG_STRIDE(s->size) <= 0xFFFFu && sub_ok(&r);
 }
 
-/* The layout descriptor of group `gi` names its persisted sub-entries in order, with their types
- * and sizes, and the image fits a slot (half the region). */
+/* NV bytes group `g` uses: its region, or two "ODG1" slots without a layout descriptor. */
+static uint32_t nv_len(const odg_group_t *g)
+{
+    return g->n_layout != 0u ? g->region : 2u * ODG_PERSIST_SLOT_SIZE(g->size);
+}
+
+/* A group with a layout descriptor has n_layout persisted sub-entries (the records the runtime
+ * reads from the tables), of the types this build migrates, and its image fits a slot (half the
+ * region); one without is served by this build. */
 static int layout_ok(const odg_dict_t *d, uint8_t gi)
 {
     const odg_group_t *g = &d->groups[gi];
-    uint32_t e, p, n = 0, bytes = 2u;
-    if (g->layout == NULL) {
-        return 1;
+    uint32_t e, p, k, n = 0, bytes = 2u;
+    if (g->n_layout == 0u) {
+        return ODG_CFG_PERSIST_ODG1;
     }
     for (e = 0; e < d->n_entries; e++) {
         const odg_entry_t *en = &d->entries[e];
         for (p = en->first; p < (uint32_t)en->first + en->count; p++) {
             const odg_sub_t *s = &d->subs[p];
-            const uint8_t *r = g->layout + 6u * n;
             if (s->storage != (uint8_t)(ODG_S_PERSIST | (unsigned)gi << 2)) {
                 continue;
             }
-            if (n >= g->n_layout || (r[0] | r[1] << 8) != en->index || r[2] != s->sub ||
-                r[3] != s->type || (r[4] | r[5] << 8) != s->size) {
+            if (!ODG_CFG_PERSIST_STREAMS && IS_STREAM(s)) {
                 return 0;
             }
-            bytes += 6u + s->size + (s->type == ODG_T_DOMAIN ? 4u : 0u);
-            n++;
+            /* each element of a packed ARRAY is a record */
+            k = (en->code & ODG_E_PACKED) && p > en->first ? s->sub : 1u;
+            bytes += k * (6u + s->size + (s->type == ODG_T_DOMAIN ? 4u : 0u));
+            n += k;
         }
     }
     return n == g->n_layout && bytes + ODG_PERSIST_HEADER2_SIZE <= g->region / 2u;
@@ -1027,11 +1084,17 @@ odg_abort_t odg_verify(const odg_dict_t *dict, uint16_t *bad_index)
     if (d->hash_slots != NULL ? !ODG_CFG_HASH || !hash_ok(d) : !ODG_CFG_UNHASHED) {
         return ODG_ABORT_INTERNAL; /* a bad hash, or a lookup this build does not serve */
     }
+    if (!ODG_CFG_PERSIST_STATUS && d->persist_status != 0u) {
+        return ODG_ABORT_INTERNAL; /* a boot status object this build would not set */
+    }
     for (i = 0; i < d->n_entries; i++) {
         const odg_entry_t *e = &d->entries[i];
         *bad_index = e->index;
         if ((i > 0u && e->index <= e[-1].index) || e->first != next || e->count == 0u ||
             (uint32_t)e->first + e->count > d->n_subs) {
+            return ODG_ABORT_INTERNAL;
+        }
+        if (!packed_ok(d, e)) {
             return ODG_ABORT_INTERNAL;
         }
         for (k = 0; k < e->count; k++) {
@@ -1041,7 +1104,8 @@ odg_abort_t odg_verify(const odg_dict_t *dict, uint16_t *bad_index)
             r.sub_pos = (uint16_t)(e->first + k);
             r.sub = &d->subs[r.sub_pos];
             if ((k > 0u && r.sub->sub <= r.sub[-1].sub) ||
-                ((e->code & ODG_E_DENSE) && r.sub->sub != k) || !sub_ok(&r)) {
+                ((e->code & ODG_E_DENSE) && r.sub->sub != k && !(e->code & ODG_E_PACKED)) ||
+                !sub_ok(&r)) {
                 return ODG_ABORT_INTERNAL;
             }
             hooked += (r.sub->attr & ODG_A_HOOK) ? 1u : 0u;

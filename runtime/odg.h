@@ -62,6 +62,18 @@ extern "C" {
 #ifndef ODG_CFG_STORE /* the 0x1010 / 0x1011 store and restore commands (ODG_S_STORE) */
 #define ODG_CFG_STORE 1
 #endif
+#ifndef ODG_CFG_PACKED /* ARRAYs and RECORDs whose elements share one descriptor (ODG_E_PACKED) */
+#define ODG_CFG_PACKED 1
+#endif
+#ifndef ODG_CFG_PERSIST_STREAMS /* strings or domains in a migrated persistence group */
+#define ODG_CFG_PERSIST_STREAMS 1
+#endif
+#ifndef ODG_CFG_PERSIST_STATUS /* the boot status object ([persist] status_object) */
+#define ODG_CFG_PERSIST_STATUS 1
+#endif
+#ifndef ODG_CFG_PERSIST_ODG1 /* a persistence group without migration ("ODG1" images) */
+#define ODG_CFG_PERSIST_ODG1 1
+#endif
 #ifndef ODG_CFG_HASH /* lookup by a generated perfect hash (odgen --lookup hash) */
 #define ODG_CFG_HASH 1
 #endif
@@ -198,6 +210,15 @@ typedef struct odg_sub {
 #define ODG_OBJ_RECORD 0x09u
 #define ODG_OBJ_DOMAIN 0x02u
 #define ODG_E_DENSE    0x80u /* sub-indices are exactly 0..count-1: sub i is subs[first + i] */
+/* An ARRAY or RECORD whose sub-indices 1..N are numbers alike in everything but their value (type,
+ * access, storage, PDO mapping; no hooks, limits or $NODEID): subs[first] is sub 0, and
+ * subs[first + 1] describes every element, with `sub` = N and the offset of element 1; element
+ * k lies (k - 1) * ODG_STRIDE(size) bytes after it. count is 2 (with ODG_E_DENSE: sub 0 is
+ * subs[first]). odg_find hands out a copy of the descriptor made for element k (odg_ref_t.elem). */
+#define ODG_E_PACKED   0x40u
+/* Bytes from one packed element to the next: the size of the C type of a number of wire size
+ * `size` (uint32_t for 3 bytes, uint64_t / double for 5..8). */
+#define ODG_STRIDE(size) ((size) == 3u ? 4u : ((size) > 4u ? 8u : (uint32_t)(size)))
 
 typedef struct odg_entry {
     uint16_t index;
@@ -254,13 +275,13 @@ typedef struct odg_group {
     uint32_t signature;      /* layout signature (index, sub, type, size, order) */
     uint32_t nv_addr;        /* first of two slots, each odg_persist_slot_size(size) bytes */
     uint8_t store_sub;       /* its sub-index in 0x1010/0x1011 (1 = all groups) */
-    /* Boot migration (docs/persistence.md): the layout descriptor, 6 bytes per persisted
-     * sub-entry in dict->subs order (index u16, sub u8, type u8, length u16; little endian).
-     * NULL: "ODG1" images, the mirror byte for byte, and any layout change gives the defaults.
+    /* Boot migration (docs/persistence.md): the number of records of the layout descriptor,
+     * one per persisted sub-entry of the group in dict->subs order (index u16, sub u8,
+     * type u8, length u16; little endian), which the runtime reads from the tables.
+     * 0: "ODG1" images, the mirror byte for byte, and any layout change gives the defaults.
      * Else "ODG2" self-describing images in the group's own region of NV from nv_addr: slot A
      * at its start, slot B at its middle; the group is known by `id` (CRC-32 of its name). */
-    const uint8_t *layout;
-    uint16_t n_layout;       /* entries in `layout` */
+    uint16_t n_layout;
     uint32_t region;         /* bytes of NV the group owns */
     uint32_t id;
 } odg_group_t;
@@ -377,12 +398,15 @@ typedef struct odg_dict {
     const void *hash_disp;
 } odg_dict_t;
 
-/* A located sub-entry: what odg_find returns and the other calls take. */
+/* A located sub-entry: what odg_find returns and the other calls take. For an element of a
+ * packed ARRAY (ODG_E_PACKED), `sub` points to `elem`, the shared descriptor made for that
+ * element, inside the reference itself: a copy of a reference is valid while the original is. */
 typedef struct odg_ref {
     const odg_dict_t *dict;
     const odg_entry_t *entry;
     const odg_sub_t *sub;
-    uint16_t sub_pos; /* position of `sub` in dict->subs */
+    uint16_t sub_pos; /* position of the descriptor in dict->subs */
+    odg_sub_t elem;
 } odg_ref_t;
 
 /* ---- API ---------------------------------------------------------------------------- */

@@ -6,12 +6,20 @@
 
 #include "odg.h"
 
-/* Native value of a numeric sub-entry of wire size `size` (1..8), zero-extended from its
- * C type (uint8_t, uint16_t, uint32_t for 3..4, uint64_t for 5..8; float/double as bits). */
-uint64_t odg_load_(const void *p, uint32_t size);
+/* Numbers on the way between wire and storage: 64 bits, or 32 when no type is wider. */
+#if ODG_CFG_INT64
+typedef uint64_t odg_num_t;
+#else
+typedef uint32_t odg_num_t;
+#endif
+
+/* Native value of a numeric sub-entry of wire size `size` (1..8, 1..4 without ODG_CFG_INT64),
+ * zero-extended from its C type (uint8_t, uint16_t, uint32_t for 3..4, uint64_t for 5..8;
+ * float/double as bits). */
+odg_num_t odg_load_(const void *p, uint32_t size);
 
 /* Store the low bytes of `v` into the C type that holds a value of wire size `size`. */
-void odg_store_(void *p, uint32_t size, uint64_t v);
+void odg_store_(void *p, uint32_t size, odg_num_t v);
 
 /* Where the value of `s` lies: `s->offset` bytes into dict->rom, dict->ram or the mirror of
  * its group, by its storage class. Not for ODG_S_STORE subs (no value) nor DOMAINs (whose
@@ -20,6 +28,17 @@ uint8_t *odg_value_(const odg_dict_t *d, const odg_sub_t *s);
 
 /* The range check of a write (BOOLEAN 0/1, NaN, limits) for the numeric sub-entry at position
  * `pos` of dict->subs, on its value sign-extended to 64 bits (REAL as its bits). */
-odg_abort_t odg_check_(const odg_dict_t *d, uint16_t pos, uint64_t v);
+odg_abort_t odg_check_(const odg_dict_t *d, uint16_t pos, odg_num_t v);
+
+/* Element `k` (1..N) of a packed ARRAY whose shared descriptor is `s`: its own descriptor. */
+static inline void odg_element_(const odg_sub_t *s, uint8_t k, odg_sub_t *out)
+{
+    *out = *s;
+    out->sub = k;
+    out->offset = (uint16_t)(s->offset + (uint32_t)(k - 1u) * ODG_STRIDE(s->size));
+}
+
+/* Copy `n` bytes (a byte loop: the runtime links no libc memcpy of its own). */
+void odg_copy_(void *dst, const void *src, uint32_t n);
 
 #endif /* ODG_IMPL_H */

@@ -39,20 +39,28 @@
 #define MAGIC 0x3147444Fu /* "ODG1" as a little-endian UNSIGNED32 */
 #define CHUNK 32u         /* bytes read at a time when only checking a slot */
 
-/* ---- CRC-32 (IEEE 802.3), 4 bits at a time ---------------------------------------------- */
+/* Whether group `g` keeps "ODG2" images (it has a layout descriptor); a build for dictionaries
+ * whose every group migrates (ODG_CFG_PERSIST_ODG1 0) leaves the "ODG1" group paths out. */
+#ifdef ODG_NO_MIGRATION
+#define MIGRATES(g) 0
+#elif ODG_CFG_PERSIST_ODG1
+#define MIGRATES(g) ((g)->n_layout != 0u)
+#else
+#define MIGRATES(g) 1
+#endif
+
+/* ---- CRC-32 (IEEE 802.3), bit by bit: no table in FLASH ------------------------------- */
 
 uint32_t odg_crc32(uint32_t crc, const void *data, uint32_t len)
 {
-    static const uint32_t t[16] = {
-        0x00000000u, 0x1DB71064u, 0x3B6E20C8u, 0x26D930ACu, 0x76DC4190u, 0x6B6B51F4u,
-        0x4DB26158u, 0x5005713Cu, 0xEDB88320u, 0xF00F9344u, 0xD6D6A3E8u, 0xCB61B38Cu,
-        0x9B64C2B0u, 0x86D3D2D4u, 0xA00AE278u, 0xBDBDF21Cu};
     const uint8_t *p = (const uint8_t *)data;
+    unsigned k;
     crc = ~crc;
     while (len--) {
         crc ^= *p++;
-        crc = (crc >> 4) ^ t[crc & 15u];
-        crc = (crc >> 4) ^ t[crc & 15u];
+        for (k = 0; k < 8u; k++) {
+            crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+        }
     }
     return ~crc;
 }
@@ -72,6 +80,17 @@ static uint32_t get32(const uint8_t *p)
     return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
 }
 
+/* Whether `n` bytes differ (headers read back; a loop costs less FLASH than libc's memcmp). */
+static int differ(const uint8_t *a, const uint8_t *b, uint32_t n)
+{
+    while (n-- > 0u) {
+        if (a[n] != b[n]) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
 uint32_t odg_persist_slot_size(uint32_t size)
 {
     return ODG_PERSIST_SLOT_SIZE(size);
@@ -83,7 +102,7 @@ uint32_t odg_persist_nv_size(const odg_dict_t *dict)
     uint8_t g;
     for (g = 0; g < dict->n_groups; g++) {
         const odg_group_t *gr = &dict->groups[g];
-        e = gr->nv_addr + (gr->layout != NULL ? gr->region : 2u * ODG_PERSIST_SLOT_SIZE(gr->size));
+        e = gr->nv_addr + (MIGRATES(gr) ? gr->region : 2u * ODG_PERSIST_SLOT_SIZE(gr->size));
         end = e > end ? e : end;
     }
     return end;
@@ -184,7 +203,7 @@ static void defaults(const odg_dict_t *d, uint8_t g)
 {
     const odg_group_t *gr = &d->groups[g];
     uint32_t p;
-    memcpy(gr->mirror, gr->defaults, gr->size);
+    odg_copy_(gr->mirror, gr->defaults, gr->size);
     for (p = 0; p < d->n_subs; p++) {
         const odg_sub_t *s = &d->subs[p];
         if ((s->attr & ODG_A_NODEID) && s->storage == (uint8_t)(ODG_S_PERSIST | (unsigned)g << 2)) {
@@ -212,9 +231,15 @@ static const uint8_t num_size[0x1C] = {0, 1, 1, 2, 4, 1, 2, 4, 4, 0, 0, 0, 6, 6,
 #define UNSIGNED_INTS                                                                            \
     (BIT(ODG_T_UNSIGNED8) | BIT(ODG_T_UNSIGNED16) | BIT(ODG_T_UNSIGNED24) | BIT(ODG_T_UNSIGNED32) | \
      BIT(ODG_T_UNSIGNED40) | BIT(ODG_T_UNSIGNED48) | BIT(ODG_T_UNSIGNED56) | BIT(ODG_T_UNSIGNED64))
-#define STREAMS                                                                                \
-    (BIT(ODG_T_VISIBLE_STRING) | BIT(ODG_T_OCTET_STRING) | BIT(ODG_T_UNICODE_STRING) |         \
-     BIT(ODG_T_DOMAIN))
+/* Strings and domains among the persisted entries this build serves (odg.h: ODG_CFG_*): 0 when
+ * none, so that the compiler leaves out their paths. */
+#define STREAMS                                                                          \
+    (ODG_CFG_PERSIST_STREAMS                                                             \
+         ? (ODG_CFG_STRINGS ? BIT(ODG_T_VISIBLE_STRING) | BIT(ODG_T_OCTET_STRING) : 0u) | \
+               (ODG_CFG_UNICODE ? BIT(ODG_T_UNICODE_STRING) : 0u) |                      \
+               (ODG_CFG_DOMAINS ? BIT(ODG_T_DOMAIN) : 0u)                                \
+         : 0u)
+#define IS(t, type) ((type_bit(t) & STREAMS & BIT(type)) != 0u)
 
 static uint32_t type_bit(uint8_t t)
 {
@@ -237,22 +262,78 @@ static uint32_t value_size(const uint8_t *rec)
     return get16(rec + 4) + (rec[3] == ODG_T_DOMAIN ? 4u : 0u);
 }
 
-static uint32_t image_size(const odg_group_t *gr)
+/* The firmware's layout descriptor of a group: its persisted sub-entries in dict->subs order
+ * (each element of a packed ARRAY in turn), each a record (index, sub, type, length) read from
+ * the tables (odg_verify: n_layout of them). */
+typedef struct recs {
+    const odg_dict_t *d;
+    const odg_entry_t *e; /* the entry of the current sub-entry */
+    uint32_t key;         /* its index << 8 | sub */
+    uint16_t pos;         /* position in dict->subs after its descriptor */
+    uint16_t left;        /* records still to come */
+    uint8_t storage;      /* ODG_S_PERSIST | group << 2 */
+    odg_sub_t elem;       /* the descriptor made for an element of a packed ARRAY */
+} recs_t;
+
+static void recs_start(recs_t *r, const odg_dict_t *d, uint8_t g)
 {
-    uint32_t n = 2u + REC * gr->n_layout, i;
-    for (i = 0; i < gr->n_layout; i++) {
-        n += value_size(gr->layout + REC * i);
-    }
-    return n;
+    r->d = d;
+    r->e = d->entries;
+    r->pos = 0;
+    r->left = d->groups[g].n_layout;
+    r->storage = (uint8_t)(ODG_S_PERSIST | (unsigned)g << 2);
+    r->elem.sub = 0;
 }
 
-/* The position in dict->subs of the next persisted sub-entry of group `g` from `pos`. */
-static uint32_t next_sub(const odg_dict_t *d, uint8_t g, uint32_t pos)
+/* The next persisted sub-entry (its descriptor at position r->pos - 1), or NULL after the last. */
+static const odg_sub_t *recs_next(recs_t *r)
 {
-    while (pos < d->n_subs && d->subs[pos].storage != (uint8_t)(ODG_S_PERSIST | (unsigned)g << 2)) {
-        pos++;
+    const odg_dict_t *d = r->d;
+    const odg_sub_t *s = &r->elem;
+    while (r->left > 0u) {
+        if (ODG_CFG_PACKED && r->elem.sub != 0u && r->elem.sub < d->subs[r->pos - 1u].sub) {
+            odg_element_(&d->subs[r->pos - 1u], (uint8_t)(r->elem.sub + 1u), &r->elem);
+            s = &r->elem;
+        } else if (r->pos < d->n_subs) {
+            s = &d->subs[r->pos++];
+            r->elem.sub = 0;
+            while ((uint32_t)r->e->first + r->e->count < r->pos) {
+                r->e++;
+            }
+            if (s->storage != r->storage) {
+                continue;
+            }
+            if (ODG_CFG_PACKED && (r->e->code & ODG_E_PACKED) && s->sub > 0u) {
+                odg_element_(s, 1u, &r->elem);
+                s = &r->elem;
+            }
+        } else {
+            break;
+        }
+        r->left--;
+        r->key = (uint32_t)r->e->index << 8 | s->sub;
+        return s;
     }
-    return pos;
+    return NULL;
+}
+
+/* Bytes of a sub-entry's value in an image (value_size of its record). */
+static uint32_t sub_value_size(const odg_sub_t *s)
+{
+    return s->size + (IS(s->type, ODG_T_DOMAIN) ? 4u : 0u);
+}
+
+/* Bytes of group `g`'s image: the record count, the records and the values. */
+static uint32_t image_size(const odg_dict_t *d, uint8_t g)
+{
+    uint32_t n = 2u;
+    const odg_sub_t *s;
+    recs_t r;
+    recs_start(&r, d, g);
+    while ((s = recs_next(&r)) != NULL) {
+        n += REC + sub_value_size(s);
+    }
+    return n;
 }
 
 /* Read and check the "ODG2" slot at `addr` (header into `h`). `ours`: of group `gr`, and at
@@ -333,7 +414,7 @@ static int newest2(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t *a
         if (v > 0 && (!found || newer(get32(t + 4), get32(h + 4)))) {
             found = 1;
             *at = cand[k];
-            memcpy(h, t, HDR2);
+            odg_copy_(h, t, HDR2);
         }
         if (k == 0u && v >= 0 && (cand[2] = named_b(gr, t)) != 0u) {
             n = 3;
@@ -369,7 +450,7 @@ static void flush(out_t *o)
 }
 
 /* The `n` low bytes of `v`, little endian. */
-static void emit(out_t *o, uint64_t v, uint32_t n)
+static void emit(out_t *o, odg_num_t v, uint32_t n)
 {
     while (n-- > 0u) {
         o->buf[o->n++] = (uint8_t)v;
@@ -386,7 +467,7 @@ static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
 {
     uint32_t i, n = s->size, zero = 0;
     const uint8_t *p;
-    if (s->type == ODG_T_DOMAIN) {
+    if (IS(s->type, ODG_T_DOMAIN)) {
         const odg_domain_t *dm = &d->domains[s->offset];
         uint32_t used = *dm->length;
         used = used < n ? used : n;
@@ -400,7 +481,7 @@ static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
     p = odg_value_(d, s);
     if (!(type_bit(s->type) & STREAMS)) {
         emit(o, odg_load_(p, n), n);
-    } else if (s->type == ODG_T_UNICODE_STRING) {
+    } else if (IS(s->type, ODG_T_UNICODE_STRING)) {
         for (i = 0; i < n; i += 2u) {
             uint16_t u;
             memcpy(&u, p + i, 2);
@@ -424,7 +505,9 @@ static odg_abort_t store2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_
 {
     const odg_group_t *gr = &d->groups[g];
     uint8_t h[HDR2], t[HDR2];
-    uint32_t at = 0, seq = 1, half = gr->region / 2u, addr = gr->nv_addr, i, pos = 0;
+    uint32_t at = 0, seq = 1, half = gr->region / 2u, addr = gr->nv_addr, size = image_size(d, g);
+    const odg_sub_t *s;
+    recs_t r;
     out_t o;
     int k = newest2(nv, gr, &at, t);
     if (k < 0) {
@@ -437,32 +520,35 @@ static odg_abort_t store2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_
             return ODG_ABORT_DATA_STORE;
         }
     }
-    if (HDR2 + image_size(gr) > half) {
+    if (HDR2 + size > half) {
         return ODG_ABORT_DATA_STORE; /* odg_verify: never for a generated dictionary */
     }
     put32(h, MAGIC2);
     put32(h + 4, seq);
     put32(h + 8, gr->id);
     put32(h + 12, gr->region);
-    put32(h + 16, image_size(gr));
+    put32(h + 16, size);
     o.nv = nv;
     o.addr = addr + HDR2;
     o.crc = odg_crc32(0, h, 20);
     o.n = 0;
     o.fail = nv->erase(nv->ctx, addr, half) != 0;
     emit(&o, gr->n_layout, 2);
-    for (i = 0; i < REC * gr->n_layout; i++) {
-        emit(&o, gr->layout[i], 1);
+    for (recs_start(&r, d, g); (s = recs_next(&r)) != NULL;) { /* the layout descriptor */
+        emit(&o, r.key >> 8, 2);
+        emit(&o, s->sub, 1);
+        emit(&o, s->type, 1);
+        emit(&o, s->size, 2);
     }
-    for (i = 0; i < gr->n_layout && (pos = next_sub(d, g, pos)) < d->n_subs; i++, pos++) {
-        emit_value(&o, d, &d->subs[pos]);
+    for (recs_start(&r, d, g); (s = recs_next(&r)) != NULL;) {
+        emit_value(&o, d, s);
     }
     flush(&o);
     /* the CRC covers the bytes written; the read-back below checks that they landed */
     put32(h + 20, o.crc);
     if (o.fail || nv->write(nv->ctx, addr + 4u, h + 4, HDR2 - 4u) != 0 ||
         nv->write(nv->ctx, addr, h, 4u) != 0 || slot2_read(nv, gr, addr, t, 1) != 1 ||
-        memcmp(t, h, HDR2) != 0) {
+        differ(t, h, HDR2)) {
         return ODG_ABORT_HARDWARE;
     }
     return ODG_OK;
@@ -574,26 +660,26 @@ static int resize(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_sub_
     return n < used ? CONVERTED : KEPT;
 }
 
-/* Restore the firmware's entry `fw` (its sub-entry at `pos`) from the stored entry `st`, whose
- * value lies at `addr`: kept, converted, or defaulted (the mirror keeps the default). */
+/* Restore the firmware's sub-entry `s` (at `pos` in dict->subs) from the stored entry `st`,
+ * whose value lies at `addr`: kept, converted, or defaulted (the mirror keeps the default). */
 static int restore(const odg_dict_t *d, const odg_nv_driver_t *nv, uint32_t pos,
-                   const uint8_t *fw, const uint8_t *st, uint32_t addr)
+                   const odg_sub_t *s, const uint8_t *st, uint32_t addr)
 {
-    const odg_sub_t *s = &d->subs[pos];
     uint32_t sl = get16(st + 4), i;
     uint8_t c[8];
-    uint64_t v;
-    if (fw[3] == st[3] && (type_bit(fw[3]) & STREAMS)) {
+    odg_num_t v;
+    if (s->type == st[3] && (type_bit(s->type) & STREAMS)) {
         return resize(d, nv, s, sl, addr);
     }
-    if ((fw[3] != st[3] && !widens(st[3], fw[3])) || type_bit(st[3]) == 0u ||
-        num_size[st[3]] == 0u || sl != num_size[st[3]] || get16(fw + 4) != s->size) {
+    /* a number of a type this build serves: no wider than odg_num_t (ODG_CFG_INT64) */
+    if ((s->type != st[3] && !widens(st[3], s->type)) || type_bit(st[3]) == 0u ||
+        num_size[st[3]] == 0u || sl != num_size[st[3]]) {
         return DEFAULTED; /* narrowed, retyped, or a length that does not fit its type */
     }
     if (nv->read(nv->ctx, addr, c, sl) != 0) {
         return FAILED;
     }
-    v = (type_bit(st[3]) & SIGNED_INTS) && (c[sl - 1u] & 0x80u) ? ~(uint64_t)0 : 0u;
+    v = (type_bit(st[3]) & SIGNED_INTS) && (c[sl - 1u] & 0x80u) ? ~(odg_num_t)0 : 0u;
     for (i = sl; i-- > 0u;) {
         v = v << 8 | c[i];
     }
@@ -601,7 +687,7 @@ static int restore(const odg_dict_t *d, const odg_nv_driver_t *nv, uint32_t pos,
         return DEFAULTED; /* outside the current limits */
     }
     odg_store_(odg_value_(d, s), s->size, v);
-    return fw[3] == st[3] ? KEPT : CONVERTED;
+    return s->type == st[3] ? KEPT : CONVERTED;
 }
 
 /* Every entry of group `g` from the image at `at`, merged by key with the firmware's layout;
@@ -609,38 +695,37 @@ static int restore(const odg_dict_t *d, const odg_nv_driver_t *nv, uint32_t pos,
 static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, uint32_t at,
                    odg_boot_t *b)
 {
-    const odg_group_t *gr = &d->groups[g];
     uint8_t st[REC];
-    uint32_t base = at + HDR2, cnt, j = 0, vo, i, pos = 0;
+    uint32_t base = at + HDR2, cnt, j = 0, vo;
+    const odg_sub_t *s;
+    recs_t fw;
     int have = 0, r;
     if (nv->read(nv->ctx, base, st, 2) != 0) {
         return -1;
     }
     cnt = get16(st);
     vo = base + 2u + REC * cnt;
-    for (i = 0; i < gr->n_layout && (pos = next_sub(d, g, pos)) < d->n_subs; i++, pos++) {
-        const uint8_t *fw = gr->layout + REC * i;
+    for (recs_start(&fw, d, g); (s = recs_next(&fw)) != NULL;) {
+        r = DEFAULTED;
         for (;;) { /* stored entries before this key are no longer in the group */
             if (!have && j < cnt && nv->read(nv->ctx, base + 2u + REC * j, st, REC) != 0) {
                 return -1;
             }
             have = j < cnt;
-            if (!have || rec_key(st) >= rec_key(fw)) {
+            if (!have || rec_key(st) > fw.key) {
+                break; /* not stored: the default */
+            }
+            if (rec_key(st) < fw.key) {
+                b->dropped++;
+            } else if ((r = restore(d, nv, fw.pos - 1u, s, st, vo)) == FAILED) {
+                return -1;
+            }
+            vo += value_size(st);
+            j++;
+            have = 0;
+            if (rec_key(st) == fw.key) {
                 break;
             }
-            b->dropped++;
-            vo += value_size(st);
-            j++;
-            have = 0;
-        }
-        r = have && rec_key(st) == rec_key(fw) ? restore(d, nv, pos, fw, st, vo) : DEFAULTED;
-        if (r == FAILED) {
-            return -1;
-        }
-        if (have && rec_key(st) == rec_key(fw)) {
-            vo += value_size(st);
-            j++;
-            have = 0;
         }
         b->kept = (uint16_t)(b->kept + (r == KEPT));
         b->converted = (uint16_t)(b->converted + (r == CONVERTED));
@@ -694,7 +779,7 @@ static odg_boot_status_t boot2(const odg_dict_t *d, const odg_nv_driver_t *nv, u
         defaults(d, g);
         st = ODG_BOOT_NV_ERROR; /* unless the image reads the same a second time */
         if (migrate(d, nv, g, at, b) == 0 && slot2_read(nv, gr, at, t, 1) == 1 &&
-            memcmp(t, h, HDR2) == 0) {
+            !differ(t, h, HDR2)) {
             if (!b->converted && !b->defaulted && !b->dropped) {
                 return ODG_BOOT_LOADED;
             }
@@ -740,7 +825,7 @@ static odg_abort_t store_image1(const odg_nv_driver_t *nv, const odg_group_t *gr
         nv->write(nv->ctx, addr + HDR, gr->mirror, gr->size) != 0 ||
         nv->write(nv->ctx, addr + 4u, h + 4, HDR - 4u) != 0 ||
         nv->write(nv->ctx, addr, h, 4u) != 0 ||
-        slot_read(nv, addr, gr->size, hdr[0], NULL) != 1 || memcmp(hdr[0], h, HDR) != 0) {
+        slot_read(nv, addr, gr->size, hdr[0], NULL) != 1 || differ(hdr[0], h, HDR)) {
         return ODG_ABORT_HARDWARE;
     }
     return ODG_OK;
@@ -797,7 +882,7 @@ static odg_abort_t store(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t
         return ODG_ABORT_DATA_STORE;
     }
 #ifndef ODG_NO_MIGRATION
-    if (d->groups[g].layout != NULL) {
+    if (MIGRATES(&d->groups[g])) {
         return store2(d, nv, g);
     }
 #endif
@@ -811,7 +896,7 @@ static odg_abort_t erase(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t
         return ODG_ABORT_DATA_STORE;
     }
 #ifndef ODG_NO_MIGRATION
-    if (d->groups[g].layout != NULL) {
+    if (MIGRATES(&d->groups[g])) {
         return erase2(d, nv, g);
     }
 #endif
@@ -865,7 +950,7 @@ static odg_boot_status_t boot_group(const odg_dict_t *d, const odg_nv_driver_t *
     odg_boot_status_t st = ODG_BOOT_DEFAULTS;
     int k;
 #ifndef ODG_NO_MIGRATION
-    if (gr->layout != NULL) {
+    if (MIGRATES(gr)) {
         return boot2(d, nv, g, b);
     }
 #endif
@@ -879,7 +964,7 @@ static odg_boot_status_t boot_group(const odg_dict_t *d, const odg_nv_driver_t *
         if (get32(hdr[k] + 8) != gr->signature || get32(hdr[k] + 12) != gr->size) {
             st = ODG_BOOT_SIGNATURE;
         } else if (slot_read(nv, slot_addr(gr, k), gr->size, h, (uint8_t *)gr->mirror) == 1 &&
-                   memcmp(h, hdr[k], HDR) == 0) {
+                   !differ(h, hdr[k], HDR)) {
             return ODG_BOOT_LOADED;
         } else {
             st = ODG_BOOT_NV_ERROR; /* it was valid a moment ago: a flaky read */
@@ -902,7 +987,7 @@ static void report(const odg_dict_t *d, uint8_t g, const odg_boot_t *b)
 {
     uint32_t v = (uint32_t)b->status | (uint32_t)add_sat(0, b->converted) << 8 |
                  (uint32_t)add_sat(0, b->defaulted) << 16 | (uint32_t)add_sat(0, b->dropped) << 24;
-    if (d->persist_status != 0u) {
+    if (ODG_CFG_PERSIST_STATUS && d->persist_status != 0u) {
         (void)odg_set(d, d->persist_status, (uint8_t)(g + 1u), &v, (uint32_t)sizeof v);
     }
 }
@@ -922,7 +1007,7 @@ static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_
         odg_attach(dict, &p->client);
     }
     s->boot_seen = 0;
-    memset(s->boot_counts, 0, sizeof s->boot_counts);
+    s->boot_counts[0] = s->boot_counts[1] = s->boot_counts[2] = 0;
     for (g = 0; g < dict->n_groups; g++) {
         odg_boot_t b = {ODG_BOOT_NV_ERROR, 0, 0, 0, 0};
         if (nv != NULL) {

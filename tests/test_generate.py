@@ -175,6 +175,19 @@ def test_explain_names_the_origin(capsys: pytest.CaptureFixture[str]) -> None:
     assert "persist:app" in capsys.readouterr().out
 
 
+def test_uniform_elements_share_one_descriptor(capsys: pytest.CaptureFixture[str]) -> None:
+    """0x1018 sub 1..4 (UNSIGNED32, ro) are one descriptor; 0x1200's $NODEID COB-IDs and the hooked
+    0x6200 stay one each. explain says which."""
+    result = generate(Request(EXAMPLE, options=EXAMPLE_OPTIONS))
+    c = next(text for name, text in result.files.items() if name.endswith(".c") and "_subs[" in text)
+    assert "{.index = 0x1018, .first = 7, .count = 2, .code = ODG_OBJ_RECORD | ODG_E_DENSE | ODG_E_PACKED}" in c
+    assert "_assert_packed_1018[" in c and "0x1200, .first = 9, .count = 3" in c
+    assert main(["explain", str(EXAMPLE), "0x1018sub2", "--options", str(EXAMPLE_OPTIONS)]) == 0
+    assert "packed: sub-indices 1..4 alike share one descriptor" in capsys.readouterr().out
+    assert main(["explain", str(EXAMPLE), "0x1200sub1", "--options", str(EXAMPLE_OPTIONS)]) == 0
+    assert "packed" not in capsys.readouterr().out
+
+
 def test_placement_rules() -> None:
     result = generate(Request(EXAMPLE, options=EXAMPLE_OPTIONS))
     placements = result.placements

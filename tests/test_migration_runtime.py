@@ -148,13 +148,14 @@ class Param:
     low: str | None = None
     high: str | None = None
     capacity: int | None = None
+    elements: int = 0  # an ARRAY of that many elements (sub 1..n) of `dtype` instead of a VAR
 
 
 @dataclass(frozen=True)
 class Case:
     v1: tuple[Param, ...]
     v2: tuple[Param, ...]
-    stored: dict[int, str]  # index -> wire hex written with v1 before the store
+    stored: dict[int | tuple[int, int], str]  # index (sub 0) or (index, sub) -> wire hex written with v1
     heartbeat: tuple[int, int] = (1000, 1000)  # 0x1017 default in v1, v2 (group comm)
     order: tuple[bool, bool] = (False, False)  # list v1's / v2's objects in reverse order
 
@@ -192,6 +193,13 @@ CASES = {
     "comm_changes": Case(BASE, BASE, BASE_VALUES, heartbeat=(1000, 500)),
     "region_grows": Case(BASE, (*BASE, *(Param(0x2100 + k, U32, str(k)) for k in range(12))), BASE_VALUES),
     "region_shrinks": Case((*BASE, *(Param(0x2100 + k, U32, str(k)) for k in range(12))), BASE, BASE_VALUES),
+    # the elements of a uniform ARRAY share one descriptor (packing.py); each is a record of its own
+    "array_unchanged": Case((Param(0x2020, U16, "5", elements=4),), (Param(0x2020, U16, "5", elements=4),),
+                            {(0x2020, 1): "3412", (0x2020, 4): "FFFF"}),
+    "array_grown_widened": Case((Param(0x2020, U16, "5", elements=3),), (Param(0x2020, U32, "6", elements=5),),
+                                {(0x2020, 2): "3412", (0x2020, 3): "0100"}),
+    "array_shrunk": Case((Param(0x2020, U8, "5", elements=6), *BASE), (*BASE, Param(0x2020, U8, "5", elements=2)),
+                         {**BASE_VALUES, (0x2020, 1): "11", (0x2020, 2): "22", (0x2020, 6): "66"}),
     "downgrade": Case((Param(0x2000, U32, "7"), *BASE[1:], Param(0x2003, U32, "42")), BASE,
                       {**BASE_VALUES, 0x2000: "FA000000", 0x2003: "01020304"}),
 }
@@ -202,11 +210,29 @@ def eds(params: tuple[Param, ...], heartbeat: int, reverse: bool) -> str:
     lines = [HEADER.format(heartbeat=heartbeat), "[ManufacturerObjects]", f"SupportedObjects={len(params)}"]
     lines += [f"{n}=0x{p.index:04X}" for n, p in enumerate(listed, start=1)]
     for p in listed:
+        if p.elements:
+            lines += _array(p)
+            continue
         lines += ["", f"[{p.index:04X}]", f"ParameterName=Parameter {p.index:04X}", "ObjectType=0x7",
                   f"DataType=0x{p.dtype:04X}", "AccessType=rw", f"DefaultValue={p.default}", "PDOMapping=0"]
         lines += [f"LowLimit={p.low}"] if p.low is not None else []
         lines += [f"HighLimit={p.high}"] if p.high is not None else []
     return "\n".join(lines) + "\n"
+
+
+def _array(p: Param) -> list[str]:
+    lines = ["", f"[{p.index:04X}]", f"ParameterName=Array {p.index:04X}", "ObjectType=0x8",
+             f"SubNumber={p.elements + 1}", "", f"[{p.index:04X}sub0]", "ParameterName=Highest sub-index supported",
+             "ObjectType=0x7", "DataType=0x0005", "AccessType=ro", f"DefaultValue={p.elements}"]
+    for k in range(1, p.elements + 1):
+        lines += ["", f"[{p.index:04X}sub{k}]", f"ParameterName=Element {k}", "ObjectType=0x7",
+                  f"DataType=0x{p.dtype:04X}", "AccessType=rw", f"DefaultValue={p.default}", "PDOMapping=0"]
+    return lines
+
+
+def _set(key: int | tuple[int, int], hex_: str) -> str:
+    index, sub = key if isinstance(key, tuple) else (key, 0)
+    return f"set:{index:04X}:{sub:02X}:{hex_}"
 
 
 def options(params: tuple[Param, ...], extra: str = "") -> str:
@@ -219,8 +245,9 @@ def options(params: tuple[Param, ...], extra: str = "") -> str:
 
 
 def firmware(tmp: Path, tag: str, params: tuple[Param, ...], heartbeat: int, reverse: bool,
-             extra_options: str = "") -> tuple[Path, dict[str, GroupLayout]]:
-    """Generate `od` from the parameters and build migrate_main on it; the program and its layouts."""
+             extra_options: str = "", configured: bool = False) -> tuple[Path, dict[str, GroupLayout]]:
+    """Generate `od` from the parameters and build migrate_main on it; the program and its layouts.
+    `configured`: the runtime built with the generated od_config.h (only what `od` uses)."""
     src = tmp / tag
     src.mkdir()
     (src / "od.eds").write_text(eds(params, heartbeat, reverse), encoding="utf-8")
@@ -234,7 +261,8 @@ def firmware(tmp: Path, tag: str, params: tuple[Param, ...], heartbeat: int, rev
                           cwd=ROOT, env=_env())
     assert done.returncode == 0, done.stdout + done.stderr
     exe = src / "migrate_main"
-    build("gcc", ("-O1",), (CTESTS / "migrate_main.c", src / "od.c", RUNTIME / "odg.c", RUNTIME / "odg_persist.c",
+    flags = ("-O1", '-DODG_CONFIG="od_config.h"') if configured else ("-O1",)
+    build("gcc", flags, (CTESTS / "migrate_main.c", src / "od.c", RUNTIME / "odg.c", RUNTIME / "odg_persist.c",
                             RUNTIME / "odg_nv_file.c", CTESTS / "nv_fault.c"), (src, RUNTIME, CTESTS), exe)
     return exe, layouts
 
@@ -292,13 +320,17 @@ def from_image(e: EntryLayout, raw: bytes) -> str:
 
 
 @pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
+@pytest.mark.parametrize("runtime", ["full", "configured"])
 @pytest.mark.parametrize("name", list(CASES))
-def test_migration_matches_policy(name: str, tmp_path: Path) -> None:
+def test_migration_matches_policy(name: str, runtime: str, tmp_path: Path) -> None:
+    """`configured`: both versions run the runtime built for their own dictionary (od_config.h:
+    no string or 64-bit paths where the dictionary has none), as the firmware would."""
     case = CASES[name]
-    v1, old = firmware(tmp_path, "v1", case.v1, case.heartbeat[0], case.order[0])
-    v2, new = firmware(tmp_path, "v2", case.v2, case.heartbeat[1], case.order[1])
+    configured = runtime == "configured"
+    v1, old = firmware(tmp_path, "v1", case.v1, case.heartbeat[0], case.order[0], configured=configured)
+    v2, new = firmware(tmp_path, "v2", case.v2, case.heartbeat[1], case.order[1], configured=configured)
     nv = tmp_path / "od.nv"
-    sets = [f"set:{i:04X}:00:{hex_}" for i, hex_ in case.stored.items()] + ["set:1017:00:FA00"]
+    sets = [_set(key, hex_) for key, hex_ in case.stored.items()] + ["set:1017:00:FA00"]
     stored = run(v1, nv, *sets, "store", "dump")
     fresh = run(v2, tmp_path / "fresh.nv", "dump")
     nv_before = nv.read_bytes()
@@ -345,7 +377,7 @@ def test_without_migration(name: str, tmp_path: Path) -> None:
     v1, _ = firmware(tmp_path, "v1", case.v1, 1000, False, off)
     v2, _ = firmware(tmp_path, "v2", case.v2, 1000, False, off)
     nv = tmp_path / "od.nv"
-    stored = run(v1, nv, *(f"set:{i:04X}:00:{h}" for i, h in case.stored.items()), "set:1017:00:FA00", "store",
+    stored = run(v1, nv, *(_set(k, h) for k, h in case.stored.items()), "set:1017:00:FA00", "store",
                  "dump")
     fresh = run(v2, tmp_path / "fresh.nv", "dump")
     got = run(v2, nv, "dump")

@@ -6,6 +6,7 @@ from ..diagnostics import where
 from ..model import ObjectDictionary, Sub
 from .lookup import perfect_hash
 from .options import Pattern
+from .packing import packable
 from .placement import Placement
 
 
@@ -19,6 +20,7 @@ def _value(od: ObjectDictionary, sub: Sub) -> str:
 
 def explain_lines(od: ObjectDictionary, placements: dict[tuple[int, int], Placement], pattern: Pattern) -> list[str]:
     lines = []
+    packed: dict[int, bool] = {}
     for (index, subindex), p in sorted(placements.items()):
         if not pattern.matches(index, subindex):
             continue
@@ -33,6 +35,9 @@ def explain_lines(od: ObjectDictionary, placements: dict[tuple[int, int], Placem
         lines.append(f"  hooks:   {hooks + function:<14} from {p.hooks_from}")
         if p.capacity is not None:
             lines.append(f"  capacity: {p.capacity} bytes   from {p.capacity_from}")
+        if subindex > 0 and packed.setdefault(index, packable(od, obj, placements)):
+            lines.append(f"  table:   packed: sub-indices 1..{max(obj.subs)} alike share one descriptor "
+                         "(8 bytes of FLASH instead of 8 each)")
     return lines
 
 

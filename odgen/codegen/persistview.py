@@ -17,7 +17,7 @@ from ..model.datatypes import BASIC_TYPES
 from ..model.od import RECORD, Obj, Sub
 from ..model.values import parse_value
 from ..persist.layout import group_layouts
-from ..persist.migration import GroupLayout, descriptor
+from ..persist.migration import GroupLayout
 from ..persist.nvmap import Region, nv_map
 from .options import PersistOptions
 from .placement import Placement
@@ -31,7 +31,9 @@ class GroupNv:
     offset: int  # from NAME_NV_BASE
     region: int
     id: int  # CRC-32 of the name: a slot of another group is never taken
-    records: list[tuple[str, str]] = field(default_factory=list)  # (C bytes, note) per entry
+    # records of its layout descriptor (one per persisted sub-entry; the runtime reads them from
+    # the tables), 0 without migration ("ODG1" images)
+    n_layout: int = 0
 
 
 @dataclass
@@ -81,9 +83,7 @@ def persist_view(od: ObjectDictionary, placements: dict[tuple[int, int], Placeme
             diags.add(GEN001, Loc(od.source), f"persistence group {name} needs {region.need} bytes of NV, "
                       f"its pinned region has {region.size}; raise region in [[group]] or move entries")
         group = GroupNv(name, region.offset, region.size, zlib.crc32(name.encode("ascii")))
-        for e in layouts[name].entries if persist.migration else ():
-            data = ", ".join(f"0x{b:02X}" for b in descriptor((e,)))
-            group.records.append((data, f"0x{e.index:04X}sub{e.sub}"))
+        group.n_layout = len(layouts[name].entries) if persist.migration else 0
         view.groups[name] = group
         view.size = max(view.size, region.offset + region.size)
     for name in sorted(set(persist.regions) - set(regions)):

@@ -18,6 +18,7 @@ from ..diagnostics import Diagnostics, Loc
 from ..model import Obj, ObjectDictionary, Sub, Value
 from ..model.datatypes import BASIC_TYPES, DataType
 from .names import comment, identifier, string_literal
+from .packing import packable
 from .placement import RESTORE, STORE, STORE_CLASS, Placement
 
 MAX_C_STRING = 4095
@@ -78,6 +79,16 @@ class EntryView:
     count: int
     code: str
     note: str
+
+
+@dataclass
+class PackedView:
+    """An ARRAY whose elements share one descriptor (packing.py): the C asserts their layout."""
+    index: int
+    first: str  # offset expression of element 1
+    last: str  # of element `count`
+    count: int
+    size: int
 
 
 @dataclass
@@ -151,6 +162,7 @@ class DictView:
     groups: list[GroupView] = field(default_factory=list)
     domains: list[DomainView] = field(default_factory=list)
     nodeid_fixes: list[NodeIdFix] = field(default_factory=list)
+    packed: list[PackedView] = field(default_factory=list)
     macros: list[NameMacro] = field(default_factory=list)
     accessors: list[Accessor] = field(default_factory=list)
     persist: Any = None  # persistview.PersistView: NV regions, layouts, status object
@@ -374,6 +386,24 @@ def _entry(b: _Builder, view: DictView, obj: Obj) -> None:
     view.macros.append(NameMacro(f"{view.upper}_IDX_{obj_ident}", f"0x{obj.index:04X}u", comment(obj.name)))
     for sub in subs:
         _sub(b, view, obj, sub)
+    if packable(b.od, obj, b.placements):
+        _pack(view, view.entries[-1])
+
+
+def _pack(view: DictView, entry: EntryView) -> None:
+    """One descriptor for the elements 1..N of the entry just described (packing.py)."""
+    elements = view.subs[entry.first + 1:]
+    one = elements[0]
+    if len(elements) != entry.count - 1 or any((s.type, s.size, s.attr, s.storage) != (one.type, one.size, one.attr,
+                                                                                        one.storage) for s in elements):
+        return
+    last = elements[-1]
+    view.packed.append(PackedView(entry.index, one.offset, last.offset, len(elements), one.size))
+    one.sub = last.sub
+    one.note = f"sub-indices 1..{last.sub} (1: {one.note})"
+    del view.subs[entry.first + 2:]
+    entry.count = 2
+    entry.code += " | ODG_E_PACKED"  # sub 0 stays where ODG_E_DENSE says
 
 
 def _sub(b: _Builder, view: DictView, obj: Obj, sub: Sub) -> None:

@@ -301,8 +301,8 @@ static void lost_values_emcy(void)
     const odg_group_t *g = &alltypes.groups[ALLTYPES_GROUP_COMM];
     const odg_frame_t *e;
     /* the first image byte of slots A and B ("ODG2" images with a layout, else "ODG1") */
-    uint32_t a = g->nv_addr + (g->layout != NULL ? ODG_PERSIST_HEADER2_SIZE : ODG_PERSIST_HEADER_SIZE);
-    uint32_t b = a + (g->layout != NULL ? g->region / 2u : odg_persist_slot_size(g->size));
+    uint32_t a = g->nv_addr + (g->n_layout != 0u ? ODG_PERSIST_HEADER2_SIZE : ODG_PERSIST_HEADER_SIZE);
+    uint32_t b = a + (g->n_layout != 0u ? g->region / 2u : odg_persist_slot_size(g->size));
     hb_watch = 0; /* the period goes back to its default */
     nv_mem[a] ^= 0x01u;
     nv_mem[b] ^= 0x10u;

@@ -42,23 +42,27 @@ static void dump(char *out, size_t cap)
         const odg_entry_t *en = &od.entries[e];
         for (p = en->first; p < en->first + en->count; p++) {
             const odg_sub_t *s = &od.subs[p];
-            odg_ref_t ref;
-            uint8_t buf[1024];
-            uint32_t len = 0, i;
+            /* the elements 1..N of a packed ARRAY share one descriptor */
+            unsigned k = (en->code & ODG_E_PACKED) && p > en->first ? 1u : s->sub;
             int persisted = ODG_S_CLASS(s->storage) == ODG_S_PERSIST;
             if (!persisted && en->index != od.persist_status) {
                 continue;
             }
-            if (odg_find(&od, en->index, s->sub, &ref) != ODG_OK ||
-                odg_read(&ref, 0, buf, sizeof buf, &len) != ODG_OK) {
-                len = 0;
+            for (; k <= s->sub; k++) {
+                odg_ref_t ref;
+                uint8_t buf[1024];
+                uint32_t len = 0, i;
+                if (odg_find(&od, en->index, (uint8_t)k, &ref) != ODG_OK ||
+                    odg_read(&ref, 0, buf, sizeof buf, &len) != ODG_OK) {
+                    len = 0;
+                }
+                n += (size_t)snprintf(out + n, cap - n, "%s %04X %02X ", persisted ? "value" : "status",
+                                      en->index, k);
+                for (i = 0; i < len; i++) {
+                    n += (size_t)snprintf(out + n, cap - n, "%02X", buf[i]);
+                }
+                n += (size_t)snprintf(out + n, cap - n, "\n");
             }
-            n += (size_t)snprintf(out + n, cap - n, "%s %04X %02X ", persisted ? "value" : "status",
-                                  en->index, s->sub);
-            for (i = 0; i < len; i++) {
-                n += (size_t)snprintf(out + n, cap - n, "%02X", buf[i]);
-            }
-            n += (size_t)snprintf(out + n, cap - n, "\n");
         }
     }
 }

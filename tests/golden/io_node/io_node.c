@@ -12,6 +12,9 @@
 #if !ODG_CFG_STORE
 #error "io_node uses 0x1010 / 0x1011 commands: build the runtime with ODG_CFG_STORE 1 (io_node_config.h)"
 #endif
+#if !ODG_CFG_PACKED
+#error "io_node uses ARRAYs and RECORDs whose elements share one descriptor: build the runtime with ODG_CFG_PACKED 1 (io_node_config.h)"
+#endif
 #if !ODG_CFG_HASH
 #error "io_node uses lookup by perfect hash: build the runtime with ODG_CFG_HASH 1 (io_node_config.h)"
 #endif
@@ -67,18 +70,18 @@ ODG_ATTR_ROM static const odg_entry_t io_node_entries[14] = {
     {.index = 0x1010, .first = 2, .count = 2, .code = ODG_OBJ_ARRAY | ODG_E_DENSE}, /* Store parameters */
     {.index = 0x1011, .first = 4, .count = 2, .code = ODG_OBJ_ARRAY | ODG_E_DENSE}, /* Restore default parameters */
     {.index = 0x1017, .first = 6, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Producer heartbeat time */
-    {.index = 0x1018, .first = 7, .count = 5, .code = ODG_OBJ_RECORD | ODG_E_DENSE}, /* Identity */
-    {.index = 0x1200, .first = 12, .count = 3, .code = ODG_OBJ_RECORD | ODG_E_DENSE}, /* SDO server parameter */
-    {.index = 0x1400, .first = 15, .count = 3, .code = ODG_OBJ_RECORD | ODG_E_DENSE}, /* RPDO communication parameter */
-    {.index = 0x1600, .first = 18, .count = 2, .code = ODG_OBJ_RECORD | ODG_E_DENSE}, /* RPDO mapping parameter */
-    {.index = 0x1800, .first = 20, .count = 6, .code = ODG_OBJ_RECORD}, /* TPDO communication parameter */
-    {.index = 0x1A00, .first = 26, .count = 2, .code = ODG_OBJ_RECORD | ODG_E_DENSE}, /* TPDO mapping parameter */
-    {.index = 0x2000, .first = 28, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Debounce time ms */
-    {.index = 0x6000, .first = 29, .count = 2, .code = ODG_OBJ_ARRAY | ODG_E_DENSE}, /* Read input 8-bit */
-    {.index = 0x6200, .first = 31, .count = 2, .code = ODG_OBJ_ARRAY | ODG_E_DENSE}, /* Write output 8-bit */
+    {.index = 0x1018, .first = 7, .count = 2, .code = ODG_OBJ_RECORD | ODG_E_DENSE | ODG_E_PACKED}, /* Identity */
+    {.index = 0x1200, .first = 9, .count = 3, .code = ODG_OBJ_RECORD | ODG_E_DENSE}, /* SDO server parameter */
+    {.index = 0x1400, .first = 12, .count = 3, .code = ODG_OBJ_RECORD | ODG_E_DENSE}, /* RPDO communication parameter */
+    {.index = 0x1600, .first = 15, .count = 2, .code = ODG_OBJ_RECORD | ODG_E_DENSE}, /* RPDO mapping parameter */
+    {.index = 0x1800, .first = 17, .count = 6, .code = ODG_OBJ_RECORD}, /* TPDO communication parameter */
+    {.index = 0x1A00, .first = 23, .count = 2, .code = ODG_OBJ_RECORD | ODG_E_DENSE}, /* TPDO mapping parameter */
+    {.index = 0x2000, .first = 25, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Debounce time ms */
+    {.index = 0x6000, .first = 26, .count = 2, .code = ODG_OBJ_ARRAY | ODG_E_DENSE}, /* Read input 8-bit */
+    {.index = 0x6200, .first = 28, .count = 2, .code = ODG_OBJ_ARRAY | ODG_E_DENSE}, /* Write output 8-bit */
 };
 
-ODG_ATTR_ROM static const odg_sub_t io_node_subs[33] = {
+ODG_ATTR_ROM static const odg_sub_t io_node_subs[30] = {
     {.offset = offsetof(io_node_rom_t, x1000_device_type), .size = 4, .sub = 0, .type = 0x07, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Device type */
     {.offset = offsetof(io_node_ram_t, x1001_error_register), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ | ODG_A_TPDO, .storage = ODG_S_RAM}, /* Error register */
     {.offset = offsetof(io_node_rom_t, x1010_store_parameters_s0_highest_sub_index_supported), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Highest sub-index supported */
@@ -87,10 +90,7 @@ ODG_ATTR_ROM static const odg_sub_t io_node_subs[33] = {
     {.offset = 0, .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_STORE | ODG_S_RESTORE_FLAG}, /* Restore all default parameters */
     {.offset = offsetof(io_node_ram_t, x1017_producer_heartbeat_time), .size = 2, .sub = 0, .type = 0x06, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_RAM}, /* Producer heartbeat time */
     {.offset = offsetof(io_node_rom_t, x1018_identity_s0_highest_sub_index_supported), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Highest sub-index supported */
-    {.offset = offsetof(io_node_rom_t, x1018_identity_s1_vendor_id), .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Vendor-ID */
-    {.offset = offsetof(io_node_rom_t, x1018_identity_s2_product_code), .size = 4, .sub = 2, .type = 0x07, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Product code */
-    {.offset = offsetof(io_node_rom_t, x1018_identity_s3_revision_number), .size = 4, .sub = 3, .type = 0x07, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Revision number */
-    {.offset = offsetof(io_node_rom_t, x1018_identity_s4_serial_number), .size = 4, .sub = 4, .type = 0x07, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Serial number */
+    {.offset = offsetof(io_node_rom_t, x1018_identity_s1_vendor_id), .size = 4, .sub = 4, .type = 0x07, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* sub-indices 1..4 (1: Vendor-ID) */
     {.offset = offsetof(io_node_rom_t, x1200_sdo_server_parameter_s0_highest_sub_index_supported), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Highest sub-index supported */
     {.offset = offsetof(io_node_ram_t, x1200_sdo_server_parameter_s1_cob_id_client_to_server_rx), .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ | ODG_A_NODEID, .storage = ODG_S_RAM}, /* COB-ID client to server (rx) */
     {.offset = offsetof(io_node_ram_t, x1200_sdo_server_parameter_s2_cob_id_server_to_client_tx), .size = 4, .sub = 2, .type = 0x07, .attr = ODG_A_READ | ODG_A_NODEID, .storage = ODG_S_RAM}, /* COB-ID server to client (tx) */
@@ -114,8 +114,11 @@ ODG_ATTR_ROM static const odg_sub_t io_node_subs[33] = {
     {.offset = offsetof(io_node_ram_t, x6200_write_output_8_bit_s1_write_output_1h_to_8h), .size = 1, .sub = 1, .type = 0x05, .attr = ODG_A_READ | ODG_A_WRITE | ODG_A_RPDO, .storage = ODG_S_RAM}, /* Write output 1h to 8h */
 };
 
+/* Packed ARRAYs (ODG_E_PACKED): element k lies (k - 1) * ODG_STRIDE(size) bytes after element 1. */
+typedef char io_node_assert_packed_1018[(offsetof(io_node_rom_t, x1018_identity_s4_serial_number) == offsetof(io_node_rom_t, x1018_identity_s1_vendor_id) + 3u * ODG_STRIDE(4u)) ? 1 : -1];
+
 ODG_ATTR_ROM static const odg_limit_t io_node_limits[1] = {
-    {.low = UINT64_C(0x0000000000000001), .high = UINT64_C(0x00000000000001F4), .sub_pos = 28}, /* 1 .. 500 */
+    {.low = UINT64_C(0x0000000000000001), .high = UINT64_C(0x00000000000001F4), .sub_pos = 25}, /* 1 .. 500 */
 };
 
 ODG_ATTR_RAM static odg_state_t io_node_state;
@@ -154,7 +157,7 @@ ODG_ATTR_ROM const odg_dict_t io_node = {
     .find = NULL,
     .reset = io_node_reset,
     .n_entries = 14,
-    .n_subs = 33,
+    .n_subs = 30,
     .n_hooks = 0,
     .n_limits = 1,
     .n_domains = 0,

@@ -18,6 +18,9 @@
 #if !ODG_CFG_STORE
 #error "io_node_persist uses 0x1010 / 0x1011 commands: build the runtime with ODG_CFG_STORE 1 (io_node_persist_config.h)"
 #endif
+#if !ODG_CFG_PACKED
+#error "io_node_persist uses ARRAYs and RECORDs whose elements share one descriptor: build the runtime with ODG_CFG_PACKED 1 (io_node_persist_config.h)"
+#endif
 #if !ODG_CFG_HASH
 #error "io_node_persist uses lookup by perfect hash: build the runtime with ODG_CFG_HASH 1 (io_node_persist_config.h)"
 #endif
@@ -81,18 +84,18 @@ ODG_ATTR_ROM static const odg_entry_t io_node_persist_entries[14] = {
     {.index = 0x1010, .first = 2, .count = 2, .code = ODG_OBJ_ARRAY | ODG_E_DENSE}, /* Store parameters */
     {.index = 0x1011, .first = 4, .count = 2, .code = ODG_OBJ_ARRAY | ODG_E_DENSE}, /* Restore default parameters */
     {.index = 0x1017, .first = 6, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Producer heartbeat time */
-    {.index = 0x1018, .first = 7, .count = 5, .code = ODG_OBJ_RECORD | ODG_E_DENSE}, /* Identity */
-    {.index = 0x1200, .first = 12, .count = 3, .code = ODG_OBJ_RECORD | ODG_E_DENSE}, /* SDO server parameter */
-    {.index = 0x1400, .first = 15, .count = 3, .code = ODG_OBJ_RECORD | ODG_E_DENSE}, /* RPDO communication parameter */
-    {.index = 0x1600, .first = 18, .count = 2, .code = ODG_OBJ_RECORD | ODG_E_DENSE}, /* RPDO mapping parameter */
-    {.index = 0x1800, .first = 20, .count = 6, .code = ODG_OBJ_RECORD}, /* TPDO communication parameter */
-    {.index = 0x1A00, .first = 26, .count = 2, .code = ODG_OBJ_RECORD | ODG_E_DENSE}, /* TPDO mapping parameter */
-    {.index = 0x2000, .first = 28, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Debounce time ms */
-    {.index = 0x6000, .first = 29, .count = 2, .code = ODG_OBJ_ARRAY | ODG_E_DENSE}, /* Read input 8-bit */
-    {.index = 0x6200, .first = 31, .count = 2, .code = ODG_OBJ_ARRAY | ODG_E_DENSE}, /* Write output 8-bit */
+    {.index = 0x1018, .first = 7, .count = 2, .code = ODG_OBJ_RECORD | ODG_E_DENSE | ODG_E_PACKED}, /* Identity */
+    {.index = 0x1200, .first = 9, .count = 3, .code = ODG_OBJ_RECORD | ODG_E_DENSE}, /* SDO server parameter */
+    {.index = 0x1400, .first = 12, .count = 3, .code = ODG_OBJ_RECORD | ODG_E_DENSE}, /* RPDO communication parameter */
+    {.index = 0x1600, .first = 15, .count = 2, .code = ODG_OBJ_RECORD | ODG_E_DENSE}, /* RPDO mapping parameter */
+    {.index = 0x1800, .first = 17, .count = 6, .code = ODG_OBJ_RECORD}, /* TPDO communication parameter */
+    {.index = 0x1A00, .first = 23, .count = 2, .code = ODG_OBJ_RECORD | ODG_E_DENSE}, /* TPDO mapping parameter */
+    {.index = 0x2000, .first = 25, .count = 1, .code = ODG_OBJ_VAR | ODG_E_DENSE}, /* Debounce time ms */
+    {.index = 0x6000, .first = 26, .count = 2, .code = ODG_OBJ_ARRAY | ODG_E_DENSE}, /* Read input 8-bit */
+    {.index = 0x6200, .first = 28, .count = 2, .code = ODG_OBJ_ARRAY | ODG_E_DENSE}, /* Write output 8-bit */
 };
 
-ODG_ATTR_ROM static const odg_sub_t io_node_persist_subs[33] = {
+ODG_ATTR_ROM static const odg_sub_t io_node_persist_subs[30] = {
     {.offset = offsetof(io_node_persist_rom_t, x1000_device_type), .size = 4, .sub = 0, .type = 0x07, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Device type */
     {.offset = offsetof(io_node_persist_ram_t, x1001_error_register), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ | ODG_A_TPDO, .storage = ODG_S_RAM}, /* Error register */
     {.offset = offsetof(io_node_persist_rom_t, x1010_store_parameters_s0_highest_sub_index_supported), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Highest sub-index supported */
@@ -101,10 +104,7 @@ ODG_ATTR_ROM static const odg_sub_t io_node_persist_subs[33] = {
     {.offset = 0, .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_STORE | ODG_S_RESTORE_FLAG}, /* Restore all default parameters */
     {.offset = offsetof(io_node_persist_persist_comm_t, x1017_producer_heartbeat_time), .size = 2, .sub = 0, .type = 0x06, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_PERSIST | (IO_NODE_PERSIST_GROUP_COMM << 2)}, /* Producer heartbeat time */
     {.offset = offsetof(io_node_persist_rom_t, x1018_identity_s0_highest_sub_index_supported), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Highest sub-index supported */
-    {.offset = offsetof(io_node_persist_rom_t, x1018_identity_s1_vendor_id), .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Vendor-ID */
-    {.offset = offsetof(io_node_persist_rom_t, x1018_identity_s2_product_code), .size = 4, .sub = 2, .type = 0x07, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Product code */
-    {.offset = offsetof(io_node_persist_rom_t, x1018_identity_s3_revision_number), .size = 4, .sub = 3, .type = 0x07, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Revision number */
-    {.offset = offsetof(io_node_persist_rom_t, x1018_identity_s4_serial_number), .size = 4, .sub = 4, .type = 0x07, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Serial number */
+    {.offset = offsetof(io_node_persist_rom_t, x1018_identity_s1_vendor_id), .size = 4, .sub = 4, .type = 0x07, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* sub-indices 1..4 (1: Vendor-ID) */
     {.offset = offsetof(io_node_persist_rom_t, x1200_sdo_server_parameter_s0_highest_sub_index_supported), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Highest sub-index supported */
     {.offset = offsetof(io_node_persist_ram_t, x1200_sdo_server_parameter_s1_cob_id_client_to_server_rx), .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ | ODG_A_NODEID, .storage = ODG_S_RAM}, /* COB-ID client to server (rx) */
     {.offset = offsetof(io_node_persist_ram_t, x1200_sdo_server_parameter_s2_cob_id_server_to_client_tx), .size = 4, .sub = 2, .type = 0x07, .attr = ODG_A_READ | ODG_A_NODEID, .storage = ODG_S_RAM}, /* COB-ID server to client (tx) */
@@ -128,41 +128,21 @@ ODG_ATTR_ROM static const odg_sub_t io_node_persist_subs[33] = {
     {.offset = offsetof(io_node_persist_ram_t, x6200_write_output_8_bit_s1_write_output_1h_to_8h), .size = 1, .sub = 1, .type = 0x05, .attr = ODG_A_READ | ODG_A_WRITE | ODG_A_RPDO | ODG_A_HOOK, .storage = ODG_S_RAM}, /* Write output 1h to 8h */
 };
 
+/* Packed ARRAYs (ODG_E_PACKED): element k lies (k - 1) * ODG_STRIDE(size) bytes after element 1. */
+typedef char io_node_persist_assert_packed_1018[(offsetof(io_node_persist_rom_t, x1018_identity_s4_serial_number) == offsetof(io_node_persist_rom_t, x1018_identity_s1_vendor_id) + 3u * ODG_STRIDE(4u)) ? 1 : -1];
+
 ODG_ATTR_ROM static const odg_limit_t io_node_persist_limits[1] = {
-    {.low = UINT64_C(0x0000000000000001), .high = UINT64_C(0x00000000000001F4), .sub_pos = 28}, /* 1 .. 500 */
+    {.low = UINT64_C(0x0000000000000001), .high = UINT64_C(0x00000000000001F4), .sub_pos = 25}, /* 1 .. 500 */
 };
 
 ODG_ATTR_ROM static const odg_hook_map_t io_node_persist_hook_map[2] = {
-    {.sub_pos = 30, .kinds = ODG_HOOK_PRE_READ}, /* 0x6000sub1 */
-    {.sub_pos = 32, .kinds = ODG_HOOK_PRE_WRITE | ODG_HOOK_POST_WRITE}, /* 0x6200sub1 */
+    {.sub_pos = 27, .kinds = ODG_HOOK_PRE_READ}, /* 0x6000sub1 */
+    {.sub_pos = 29, .kinds = ODG_HOOK_PRE_WRITE | ODG_HOOK_POST_WRITE}, /* 0x6200sub1 */
 };
 
 ODG_ATTR_RAM static odg_hook_slot_t io_node_persist_hook_slots[2] = {
     {.fn = io_node_read_inputs, .ctx = NULL}, /* 0x6000sub1 */
     {.fn = io_node_apply_outputs, .ctx = NULL}, /* 0x6200sub1 */
-};
-
-/* Layout descriptor of group app: index, sub, data type, length (docs/persistence.md). */
-ODG_ATTR_ROM static const uint8_t io_node_persist_persist_app_layout[6] = {
-    0x00, 0x20, 0x00, 0x06, 0x02, 0x00, /* 0x2000sub0 */
-};
-
-/* Layout descriptor of group comm: index, sub, data type, length (docs/persistence.md). */
-ODG_ATTR_ROM static const uint8_t io_node_persist_persist_comm_layout[84] = {
-    0x17, 0x10, 0x00, 0x06, 0x02, 0x00, /* 0x1017sub0 */
-    0x00, 0x14, 0x00, 0x05, 0x01, 0x00, /* 0x1400sub0 */
-    0x00, 0x14, 0x01, 0x07, 0x04, 0x00, /* 0x1400sub1 */
-    0x00, 0x14, 0x02, 0x05, 0x01, 0x00, /* 0x1400sub2 */
-    0x00, 0x16, 0x00, 0x05, 0x01, 0x00, /* 0x1600sub0 */
-    0x00, 0x16, 0x01, 0x07, 0x04, 0x00, /* 0x1600sub1 */
-    0x00, 0x18, 0x00, 0x05, 0x01, 0x00, /* 0x1800sub0 */
-    0x00, 0x18, 0x01, 0x07, 0x04, 0x00, /* 0x1800sub1 */
-    0x00, 0x18, 0x02, 0x05, 0x01, 0x00, /* 0x1800sub2 */
-    0x00, 0x18, 0x03, 0x06, 0x02, 0x00, /* 0x1800sub3 */
-    0x00, 0x18, 0x05, 0x06, 0x02, 0x00, /* 0x1800sub5 */
-    0x00, 0x18, 0x06, 0x05, 0x01, 0x00, /* 0x1800sub6 */
-    0x00, 0x1A, 0x00, 0x05, 0x01, 0x00, /* 0x1A00sub0 */
-    0x00, 0x1A, 0x01, 0x07, 0x04, 0x00, /* 0x1A00sub1 */
 };
 
 /* Each slot is aligned: half a region is a multiple of ODG_PERSIST_ALIGN. */
@@ -171,10 +151,10 @@ typedef char io_node_persist_assert_nv_align[(IO_NODE_PERSIST_NV_APP_REGION / 2u
 ODG_ATTR_ROM static const odg_group_t io_node_persist_groups[2] = {
     {.mirror = &io_node_persist_persist_app, .defaults = &io_node_persist_persist_app_defaults, .size = sizeof(io_node_persist_persist_app_t),
      .signature = 0x3B56BF5Fu, .nv_addr = IO_NODE_PERSIST_NV_BASE + IO_NODE_PERSIST_NV_APP_OFFSET, .store_sub = 1,
-     .layout = io_node_persist_persist_app_layout, .n_layout = 1u, .region = IO_NODE_PERSIST_NV_APP_REGION, .id = 0xC96E70CFu},
+     .n_layout = 1u, .region = IO_NODE_PERSIST_NV_APP_REGION, .id = 0xC96E70CFu},
     {.mirror = &io_node_persist_persist_comm, .defaults = &io_node_persist_persist_comm_defaults, .size = sizeof(io_node_persist_persist_comm_t),
      .signature = 0x6338B07Au, .nv_addr = IO_NODE_PERSIST_NV_BASE + IO_NODE_PERSIST_NV_COMM_OFFSET, .store_sub = 1,
-     .layout = io_node_persist_persist_comm_layout, .n_layout = 14u, .region = IO_NODE_PERSIST_NV_COMM_REGION, .id = 0xA80C03E3u},
+     .n_layout = 14u, .region = IO_NODE_PERSIST_NV_COMM_REGION, .id = 0xA80C03E3u},
 };
 
 ODG_ATTR_RAM static odg_state_t io_node_persist_state;
@@ -215,7 +195,7 @@ ODG_ATTR_ROM const odg_dict_t io_node_persist = {
     .find = NULL,
     .reset = io_node_persist_reset,
     .n_entries = 14,
-    .n_subs = 33,
+    .n_subs = 30,
     .n_hooks = 2,
     .n_limits = 1,
     .n_domains = 0,
