@@ -62,11 +62,12 @@ def bounded_int(digits: str, base: int = 10) -> int | None:
     return int(significant or "0", base) if len(significant) <= MAX_DIGITS else None
 
 
-@lru_cache(maxsize=4096)
+@lru_cache(maxsize=1 << 16)
 def parse_int_literal(text: str) -> tuple[int | None, tuple[Note, ...]]:
     """Read one integer literal; None when it is not one.
 
-    Cached: a description repeats a few literals (0x7, 0x0007, 0, 1, rw) thousands of times."""
+    Cached: a description repeats a few literals (0x7, 0x0007, 0, 1, rw) thousands of times, and the
+    rules read each object list entry (its number and its index) more than once: room for all of them."""
     m = _INT_RE.match(text.strip())
     if not m:
         return None, ()
