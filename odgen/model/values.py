@@ -16,7 +16,7 @@ from functools import lru_cache
 
 from ..catalogue.rule import Rule
 from ..catalogue.syntax import SYN006, SYN007, SYN008, SYN009, SYN020
-from .datatypes import DataType
+from .datatypes import BASIC_TYPES, DataType
 
 # (rule, message) pairs a reader turns into located diagnostics.
 Note = tuple[Rule, str]
@@ -120,7 +120,28 @@ def _without_c_suffix(value: Value, text: str) -> str:
 
 
 def parse_value(text: str, dtype: DataType | None, line: int = 0) -> Value:
-    """Parse `text` as a value of `dtype`; never raises."""
+    """Parse `text` as a value of `dtype`; never raises.
+
+    What a text means for a basic type is remembered: a description repeats a few values (0, 0x00000000,
+    $NODEID+0x180) thousands of times."""
+    if dtype is None or BASIC_TYPES.get(dtype.code) is not dtype:
+        return _parse_value(text, dtype, line)
+    known = _PARSED.get((dtype.code, text))
+    if known is None:
+        value = _parse_value(text, dtype, line)
+        if len(text) <= _PARSED_TEXT and len(_PARSED) < _PARSED_KEPT:
+            _PARSED[dtype.code, text] = (value.parsed, value.nodeid, value.error, tuple(value.notes))
+        return value
+    parsed, nodeid, error, notes = known
+    return Value(text, line, parsed, nodeid, error, list(notes))
+
+
+# (data type, text) -> what parse_value found: parsed, nodeid, error, notes (immutable, so shared)
+_PARSED: dict[tuple[int, str], tuple[int | float | str | bytes | None, bool, str | None, tuple[Note, ...]]] = {}
+_PARSED_KEPT, _PARSED_TEXT = 1 << 16, 64  # entries and text length remembered: memory stays bounded
+
+
+def _parse_value(text: str, dtype: DataType | None, line: int) -> Value:
     value = Value(text=text, line=line)
     stripped = text.strip()
     if dtype is None or (stripped == "" and not dtype.is_string):
