@@ -122,37 +122,8 @@ def sections(text: str, source: str, diags: Diagnostics, comment_keys: frozenset
     `seen` collects the lower-case name and line of every section read so far."""
     seen = {} if seen is None else seen
     reader = _SectionReader(source, diags, comment_keys)
-    names = reader.names
-    values, lines, keys = reader.values, reader.lines, reader.keys
-    for number, raw in enumerate(_lines(text), start=1):
-        line = raw.strip()
-        if not line:
-            continue
-        first = line[0]
-        if first not in "[;#":
-            # the common line, a new key without an inline comment, is read here: this runs once per
-            # line of the file, and every operation more per line shows in the reading time
-            written, equals, value = line.partition("=")
-            if equals and ";" not in value:
-                key, lower = names.get(written) or _names(written, names)
-                if lower not in values and reader.room:
-                    values[lower], lines[lower], keys[lower] = value.lstrip(), number, key
-                    reader.room -= 1
-                    reader.total += 1
-                    continue
-        match = _SECTION_RE.match(line) if first == "[" else None
-        if match:
-            done = reader.close()
-            if done is not None:
-                yield done
-            reader.open(match.group(1).strip(), number, seen)
-            values, lines, keys = reader.values, reader.lines, reader.keys
-        elif first in ";#":
-            reader.comment_line(line, number)
-        elif "=" in line:
-            reader.key_line(line, number)
-        else:
-            diags.add(SYN001, Loc(source, number), f"'{_clip(line)}' is neither [section] nor key=value")
+    for number, lines in _parts(text):
+        yield from reader.read(lines, number, seen)
     done = reader.close()
     if done is not None:
         yield done
@@ -165,6 +136,7 @@ class _SectionReader:
     def __init__(self, source: str, diags: Diagnostics, comment_keys: frozenset[str]) -> None:
         self.source, self.diags, self.comment_keys = source, diags, comment_keys
         self.section: IniSection | None = None
+        self.key = ""  # the open section's name in lower case
         self.kept = False  # False for a repeated section, read but left out
         # the open section's dicts (before the first section: dicts nothing reads)
         self.values: dict[str, str] = {}
@@ -177,10 +149,9 @@ class _SectionReader:
         self.file_dropped, self.file_first_dropped = 0, 0
 
     def open(self, name: str, line: int, seen: dict[str, int]) -> None:
-        key = name.lower()
-        section = self.section = IniSection(name, line)
-        self.values, self.lines, self.keys = section.values, section.lines, section.keys
-        self.room = min(MAX_KEYS, MAX_FILE_KEYS - self.total)
+        key = self.key = name.lower()
+        self.values, self.lines, self.keys = {}, {}, {}
+        self.section = IniSection(name, line, self.values, self.lines, self.keys, set())
         self.kept = key not in seen
         if self.kept:
             seen[key] = line
@@ -188,9 +159,62 @@ class _SectionReader:
             self.diags.add(SYN002, Loc(self.source, line),
                            f"section [{name}] repeats line {seen[key]}; this copy is ignored")
 
+    def read(self, lines: list[str], first_number: int, seen: dict[str, int]) -> Iterator[tuple[str, IniSection]]:
+        """Read `lines`, the first being line `first_number`; yield each section as it is complete.
+
+        The common line, a new key without an inline comment, is read here, with the open section's
+        dicts and `room` in local variables: this runs once per line of the file, and every operation
+        more per line shows in the reading time. Any other line goes to line()."""
+        names = self.names
+        values, line_of, keys, room = self.values, self.lines, self.keys, self.room
+        for number, raw in enumerate(lines, first_number):
+            line = raw.strip()
+            if not line:
+                continue
+            first = line[0]
+            if room and first not in "[;#":
+                written, equals, value = line.partition("=")
+                if equals and ";" not in value:
+                    key, lower = names.get(written) or _names(written, names)
+                    if lower not in values:
+                        values[lower], line_of[lower], keys[lower] = value.lstrip(), number, key
+                        room -= 1
+                        continue
+            self.total += self.room - room  # the keys kept above since the last line()
+            self.room = room
+            done = self.line(line, first, number, seen)
+            if done is not None:
+                yield done
+            values, line_of, keys, room = self.values, self.lines, self.keys, self.room
+        self.total += self.room - room
+        self.room = room
+
+    def line(self, line: str, first: str, number: int, seen: dict[str, int]) -> tuple[str, IniSection] | None:
+        """Any line but the common one (stripped, not blank, `first` its first character); the section
+        it completes, if it opens one."""
+        done = None
+        match = _SECTION_RE.match(line) if first == "[" else None
+        if match:
+            done = self.close()
+            self.open(match.group(1).strip(), number, seen)
+            self.recount()
+        elif first in ";#":
+            _comment_line(self.section, line, number, self.comment_keys)
+            self.recount()
+        elif "=" in line:
+            self.key_line(line, number)
+        else:
+            self.diags.add(SYN001, Loc(self.source, number), f"'{_clip(line)}' is neither [section] nor key=value")
+        return done
+
+    def recount(self) -> None:
+        """`room` again, after a line that may have changed it."""
+        room = min(MAX_KEYS - len(self.values), MAX_FILE_KEYS - self.total)  # comment keys may pass MAX_KEYS
+        self.room = max(room, 0) if self.section is not None else 0
+
     def key_line(self, line: str, number: int) -> None:
-        """A key line sections() did not keep itself: before any section, a repeated key, past a cap,
-        or with an inline comment."""
+        """A key line read() did not keep itself: before any section, a repeated key, past a cap, or
+        with an inline comment."""
         written, _, value = line.partition("=")
         key, lower = self.names.get(written) or _names(written, self.names)
         values = self.values
@@ -205,18 +229,11 @@ class _SectionReader:
         elif ";" in value:  # an inline comment to cut off and report
             _key_line(self.section, line, number, self.source, self.diags)
             self.total += 1
+            self.recount()
         else:
             self.section.put(lower, key, value.lstrip(), number)
             self.total += 1
-        self.recount()
-
-    def comment_line(self, line: str, number: int) -> None:
-        _comment_line(self.section, line, number, self.comment_keys)
-        self.recount()
-
-    def recount(self) -> None:
-        """`room` again, after a line read outside the common case."""
-        self.room = min(MAX_KEYS - len(self.values), MAX_FILE_KEYS - self.total) if self.section is not None else 0
+            self.recount()
 
     def close(self) -> tuple[str, IniSection] | None:
         section, self.section = self.section, None
@@ -227,7 +244,7 @@ class _SectionReader:
                            f"[{section.name}] has more than {MAX_KEYS} keys; the {self.dropped} from here on "
                            "are not read")
             self.dropped, self.first_dropped = 0, 0
-        return (section.name.lower(), section) if self.kept else None
+        return (self.key, section) if self.kept else None
 
     def finish(self) -> None:
         if self.file_dropped:
@@ -236,17 +253,20 @@ class _SectionReader:
                            "are not read")
 
 
-def _lines(text: str, chunk: int = 1 << 20) -> Iterator[str]:
-    """The lines of `text`, a block at a time: a list of every line of a large file costs more
-    memory than the file itself. Lines end at CR LF, LF or CR only: str.splitlines() would also
-    split at form feeds, U+0085, U+2028 and others that other EDS readers keep inside a value."""
+def _parts(text: str, size: int = 1 << 20) -> Iterator[tuple[int, list[str]]]:
+    """(number of the first line, lines) of `text`, about `size` characters at a time: a list of every
+    line of a large file costs more memory than the file itself. Lines end at CR LF, LF or CR only:
+    str.splitlines() would also split at form feeds, U+0085, U+2028 and others that other EDS readers
+    keep inside a value."""
     if "\r" in text:
         text = text.replace("\r\n", "\n").replace("\r", "\n")
-    start = 0
+    start, number = 0, 1
     while start <= len(text):
-        end = text.find("\n", start + chunk)
+        end = text.find("\n", start + size)
         end = len(text) if end < 0 else end
-        yield from text[start:end].split("\n")
+        lines = text[start:end].split("\n")
+        yield number, lines
+        number += len(lines)
         start = end + 1
 
 
