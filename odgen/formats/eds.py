@@ -35,12 +35,12 @@ _CANONICAL_KEYS = {k.lower(): k for k in KEYWORDS}
 # CANopenNode's editor writes its extensions as comments: ;StorageLocation=RAM
 _SPELLED_RIGHT = frozenset(KEYWORDS)
 COMMENT_KEYS = frozenset({"storagelocation", "countlabel", "tpdodetectcos"})
-OBJECT_KEYS = {"parametername", "objecttype", "subnumber", "compactsubobj", "objflags",
-               "storagelocation", "countlabel"}
+OBJECT_KEYS = frozenset({"parametername", "objecttype", "subnumber", "compactsubobj", "objflags",
+                         "storagelocation", "countlabel"})
 VALUE_KEYS = frozenset({"datatype", "accesstype", "defaultvalue", "lowlimit", "highlimit", "pdomapping",
               "objflags", "parametervalue", "denotation", "uploadfile", "downloadfile",
               "storagelocation", "parametername", "objecttype", "countlabel"})
-TEMPLATE_KEYS = {"datatype", "accesstype", "defaultvalue", "lowlimit", "highlimit", "pdomapping"}
+TEMPLATE_KEYS = frozenset({"datatype", "accesstype", "defaultvalue", "lowlimit", "highlimit", "pdomapping"})
 _STRINGLIKE = ("vstring", "ustring", "domain")
 HASH_COMMENT = re.compile(r"\s+#.*$")
 
@@ -70,18 +70,20 @@ class _Reader:
         and an index written without leading zeros (it depends on whether [00A0] exists)."""
         later: list[tuple[str, ini.IniSection]] = []
         for key, section in stream:
-            if _SHORT_INDEX.match(key) or not self._section(key, section, waiting=True):
+            match = _OBJECT_SECTION.match(key)
+            if (match is None and _SHORT_INDEX.match(key)) or not self._section(key, match, section, waiting=True):
                 later.append((key, section))
         for key, section in sorted(later, key=lambda item: "sub" in item[0]):  # objects before sub-objects
-            self._section(self._padded(key, section, names), section, waiting=False)
+            key = self._padded(key, section, names)
+            self._section(key, _OBJECT_SECTION.match(key), section, waiting=False)
         for index, section in self.compact:
             self._compact_section(index, section)
         self._node_id()
         return self.od
 
-    def _section(self, key: str, section: ini.IniSection, waiting: bool) -> bool:
-        """Convert one section; False when it has to wait for the rest of the file."""
-        match = _OBJECT_SECTION.match(key)
+    def _section(self, key: str, match: re.Match[str] | None, section: ini.IniSection, waiting: bool) -> bool:
+        """Convert one section (`match`: its name against _OBJECT_SECTION); False when it has to wait
+        for the rest of the file."""
         if match is None:
             self._header_section(key, section)
             return True
@@ -146,16 +148,14 @@ class _Reader:
     # -- objects -----------------------------------------------------------
 
     def _object(self, index: int, section: ini.IniSection) -> None:
-        obj = Obj(index=index, line=section.line)
         values = section.values
-        obj.name = values.get("parametername") or ""
-        obj.object_code_written = "objecttype" in values
         code = self._int(section, "objecttype")
-        obj.object_code = VAR if code is None else code  # CiA 306: no ObjectType means VAR
-        obj.sub_number = self._int(section, "subnumber")
-        obj.compact_sub_obj = self._int(section, "compactsubobj")
-        obj.count_label = values.get("countlabel")
-        obj.lines = dict(section.lines)
+        sub_number = self._int(section, "subnumber")
+        compact = self._int(section, "compactsubobj")
+        # Obj's fields in order, as _sub builds Sub; no ObjectType means VAR (CiA 306)
+        obj = Obj(index, values.get("parametername") or "", section.line, VAR if code is None else code,
+                  "objecttype" in values, {}, sub_number, 0, compact, None, None, values.get("countlabel"), None,
+                  {}, dict(section.lines))
         self._check_spellings(section)
         if obj.is_var:
             obj.subs[0] = self._sub(index, 0, section, obj.name)
@@ -168,10 +168,9 @@ class _Reader:
         obj.obj_flags = self._int_entry(section.get("ObjFlags"))
         storage = section.get("StorageLocation")
         obj.storage = storage.value if storage is not None else None
-        keep = OBJECT_KEYS | (TEMPLATE_KEYS if obj.compact_sub_obj else set())
-        for key, entry in section.entries():
-            if key not in keep:
-                obj.extra[key] = Field(entry.key, entry.value, entry.line)
+        keep = OBJECT_KEYS | TEMPLATE_KEYS if obj.compact_sub_obj else OBJECT_KEYS
+        if not keep.issuperset(section.values):
+            obj.extra = self._extra(section, keep)
         if obj.compact_sub_obj:
             self._expand_compact(obj, section)
 
@@ -185,11 +184,11 @@ class _Reader:
             object_type = self._int(section, "objecttype")
         access = self._access(section)
         pdo_mapping = self._flag(section, "pdomapping")
-        obj_flags = self._int(section, "objflags")
-        default = self._value(section, "defaultvalue", dtype)
-        low = self._value(section, "lowlimit", dtype)
-        high = self._value(section, "highlimit", dtype)
-        parameter_value = self._value(section, "parametervalue", dtype)
+        obj_flags = self._int(section, "objflags") if "objflags" in values else None
+        default = self._value(section, "defaultvalue", dtype) if "defaultvalue" in values else None
+        low = self._value(section, "lowlimit", dtype) if "lowlimit" in values else None
+        high = self._value(section, "highlimit", dtype) if "highlimit" in values else None
+        parameter_value = self._value(section, "parametervalue", dtype) if "parametervalue" in values else None
         extra = {} if VALUE_KEYS.issuperset(values) else self._extra(section, VALUE_KEYS)
         # Sub's fields in order: passed by keyword, they would cost a third of this function's time
         return Sub(subindex, name if name is not None else get("parametername") or "", section.line, object_type,

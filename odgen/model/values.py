@@ -43,7 +43,7 @@ class Value:
     parsed: int | float | str | bytes | None = None
     nodeid: bool = False
     error: str | None = None
-    notes: list[Note] = field(default_factory=list, compare=False, repr=False)
+    notes: tuple[Note, ...] = field(default=(), compare=False, repr=False)  # a tuple: most values have none
 
     def resolve(self, node_id: int) -> int | float | str | bytes | None:
         if self.nodeid and isinstance(self.parsed, int):
@@ -115,7 +115,7 @@ def _without_c_suffix(value: Value, text: str) -> str:
     suffix = _C_SUFFIX.search(text)
     if suffix is None or _INT_RE.match(text[: suffix.start()].strip()) is None:
         return text
-    value.notes.append((SYN020, f"'{text}': C suffix '{suffix.group()}' dropped; CiA 306 numbers have none"))
+    value.notes += ((SYN020, f"'{text}': C suffix '{suffix.group()}' dropped; CiA 306 numbers have none"),)
     return text[: suffix.start()]
 
 
@@ -130,10 +130,10 @@ def parse_value(text: str, dtype: DataType | None, line: int = 0) -> Value:
     if known is None:
         value = _parse_value(text, dtype, line)
         if len(text) <= _PARSED_TEXT and len(_PARSED) < _PARSED_KEPT:
-            _PARSED[dtype.code, text] = (value.parsed, value.nodeid, value.error, tuple(value.notes))
+            _PARSED[dtype.code, text] = (value.parsed, value.nodeid, value.error, value.notes)
         return value
     parsed, nodeid, error, notes = known
-    return Value(text, line, parsed, nodeid, error, list(notes))
+    return Value(text, line, parsed, nodeid, error, notes)
 
 
 # (data type, text) -> what parse_value found: parsed, nodeid, error, notes (immutable, so shared)
@@ -154,10 +154,10 @@ def _parse_value(text: str, dtype: DataType | None, line: int) -> Value:
 def _read_integer(value: Value, text: str, dtype: DataType) -> None:
     relative, rest, notes = split_nodeid(text)
     value.nodeid = relative
-    value.notes.extend(notes)
+    value.notes += tuple(notes)
     rest = _without_c_suffix(value, rest)
     number, int_notes = parse_int_literal(rest)
-    value.notes.extend(int_notes)
+    value.notes += int_notes
     if number is None:
         number = _bool_word(rest) if dtype.kind == "bool" else None
     if number is None:
@@ -189,7 +189,7 @@ def _twos_complement(value: Value, number: int, text: str, dtype: DataType) -> i
         return number
     top = 1 << dtype.bits
     if (dtype.max or 0) < number < top:
-        value.notes.append((SYN008, f"'{text}' read as the {dtype.bits}-bit two's complement {number - top}"))
+        value.notes += ((SYN008, f"'{text}' read as the {dtype.bits}-bit two's complement {number - top}"),)
         return number - top
     return number
 
@@ -204,10 +204,10 @@ def _read_real(value: Value, text: str, dtype: DataType) -> None:
         return
     if text.lower().lstrip("+-").startswith("0x"):
         value.parsed = _bits_to_real(number, dtype.bits)
-        value.notes.append((SYN009, f"'{text}' read as an IEEE 754 bit pattern = {value.parsed!r}"))
+        value.notes += ((SYN009, f"'{text}' read as an IEEE 754 bit pattern = {value.parsed!r}"),)
     else:
         value.parsed = float(number)
-    value.notes.extend(notes)
+    value.notes += notes
 
 
 def _bits_to_real(number: int, bits: int) -> float:
