@@ -59,6 +59,7 @@ class Walk:
     diags: Diagnostics
     span: tuple[int, int]  # the node-ids a $NODEID value must work for
     defined: set[int]  # data types the file defines
+    dcf_only: dict[str, list[tuple[Obj, Sub]]]  # DCF keyword -> the EDS entries that have it
 
 
 # Each check looks at one object: its entries written as sections (`written`), and those that carry a
@@ -75,7 +76,7 @@ def object_check(fn: ObjectCheck) -> ObjectCheck:
 
 @lint_pass
 def object_entries(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
-    walk = Walk(od, diags, node_span(od, options), defined_types(od))
+    walk = Walk(od, diags, node_span(od, options), defined_types(od), {key: [] for key, _ in _DCF_ONLY})
     checks = OBJECT_CHECKS
     for obj in od.objects.values():
         written = written_subs(obj)
@@ -83,6 +84,7 @@ def object_entries(od: ObjectDictionary, diags: Diagnostics, options: LintOption
         valued = written if tmpl is None else [*written, tmpl]
         for check in checks:
             check(walk, obj, written, valued)
+    dcf_only_content(walk)
 
 
 def defined_types(od: ObjectDictionary) -> set[int]:
@@ -343,12 +345,13 @@ def value_ranges(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) ->
             continue
         no_limits = sub.low is None and sub.high is None
         for keyword, value in (("defaultvalue", sub.default), ("parametervalue", sub.parameter_value)):
-            n = number(value)
-            if value is None or n is None:
+            if value is None:
                 continue
-            if no_limits and not value.nodeid and bounds[0] <= n <= bounds[1]:
-                continue  # the common case, decided here: in range, and no limits to compare with
-            _value_range(walk, obj, sub, keyword, value)
+            n = value.parsed
+            if no_limits and type(n) is int and not value.error and not value.nodeid and bounds[0] <= n <= bounds[1]:
+                continue  # the common case, decided here: an integer in range, and no limits to compare with
+            if number(value) is not None:
+                _value_range(walk, obj, sub, keyword, value)
 
 
 def _value_range(walk: Walk, obj: Obj, sub: Sub, keyword: str, value: Value) -> None:
@@ -468,27 +471,32 @@ def _bad_flags(walk: Walk, obj: Obj, flags: int, subindex: int | None, line: int
 _DCF_ONLY = (("parametervalue", "ParameterValue"), ("denotation", "Denotation"), ("paramrefd", "ParamRefd"))
 
 
-@lint_pass
-def dcf_only_content(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
+@object_check
+def dcf_only_keywords(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) -> None:
+    """The entries of an EDS with DCF keywords, reported by dcf_only_content once the walk is done."""
+    if walk.od.format != "eds":
+        return
+    for sub in written:
+        lines = sub.lines
+        if "parametervalue" not in lines and "denotation" not in lines and "paramrefd" not in lines:
+            continue
+        for key, found in walk.dcf_only.items():
+            if key in lines:
+                found.append((obj, sub))
+
+
+def dcf_only_content(walk: Walk) -> None:
     """Once per keyword and file: such files carry the keyword on every entry."""
+    od, diags, found = walk.od, walk.diags, walk.dcf_only
     if od.format != "eds":
         return
     section = od.section("DeviceComissioning")
     if section is not None:
         diags.add(OBJ024, Loc(od.source, section.line), f"[{section.name}] in an EDS")
-    found: dict[str, list[tuple[Obj, Sub]]] = {key: [] for key, _ in _DCF_ONLY}
-    for obj in od.sorted_objects():
-        for sub in written_subs(obj):
-            lines = sub.lines
-            if "parametervalue" not in lines and "denotation" not in lines and "paramrefd" not in lines:
-                continue
-            for key in found:
-                if key in lines:
-                    found[key].append((obj, sub))
     for key, name in _DCF_ONLY:
         if not found[key]:
             continue
-        obj, sub = found[key][0]
+        obj, sub = min(found[key], key=lambda entry: entry[0].index)  # the first in index order
         more = f" (and {len(found[key]) - 1} more entries)" if len(found[key]) > 1 else ""
         diags.add(OBJ024, Loc(od.source, sub.lines[key]), f"{name} in an EDS{more}",
                   obj.index, addr(obj, sub))
