@@ -348,8 +348,9 @@ def value_ranges(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) ->
             if value is None:
                 continue
             n = value.parsed
-            if no_limits and type(n) is int and not value.error and not value.nodeid and bounds[0] <= n <= bounds[1]:
-                continue  # the common case, decided here: an integer in range, and no limits to compare with
+            if no_limits and (type(n) is int or type(n) is float) and not value.error and not value.nodeid \
+                    and bounds[0] <= n <= bounds[1]:  # type(): a bool is not a number here
+                continue  # the common case, decided here: a number in range, and no limits to compare with
             if number(value) is not None:
                 _value_range(walk, obj, sub, keyword, value)
 
