@@ -87,12 +87,13 @@ class _Reader:
         if match is None:
             self._header_section(key, section)
             return True
-        index = int(match.group(1), 16)
-        if match.group(2):
+        hex_index, sub, sub_text, name_list, value_list = match.groups()
+        index = int(hex_index, 16)
+        if sub:
             if waiting and index not in self.od.objects:
                 return False
-            self._sub_section(index, match.group(3), section)
-        elif match.group(4) or match.group(5):
+            self._sub_section(index, sub_text, section)
+        elif name_list or value_list:  # [XXXXName], [XXXXValue]
             self.compact.append((index, section))
         else:
             self._object(index, section)
@@ -237,7 +238,8 @@ class _Reader:
             self.report(SYN013, section.line, f"[{section.name}]: object 0x{index:04X} {why}")
             return
         self._check_spellings(section)
-        self._spelling(section.name[4:7], "sub", section.line)
+        if section.name[4:7] != "sub":
+            self._spelling(section.name[4:7], "sub", section.line)
         parent.subs[subindex] = self._sub(index, subindex, section)
 
     # -- CompactSubObj -------------------------------------------------------

@@ -152,6 +152,7 @@ class _SectionReader:
         key = self.key = name.lower()
         self.values, self.lines, self.keys = {}, {}, {}
         self.section = IniSection(name, line, self.values, self.lines, self.keys, set())
+        self.room = min(MAX_KEYS, MAX_FILE_KEYS - self.total)  # what recount() finds for an empty section
         self.kept = key not in seen
         if self.kept:
             seen[key] = line
@@ -197,7 +198,6 @@ class _SectionReader:
         if match:
             done = self.close()
             self.open(match.group(1).strip(), number, seen)
-            self.recount()
         elif first in ";#":
             _comment_line(self.section, line, number, self.comment_keys)
             self.recount()

@@ -68,7 +68,10 @@ def parse_int_literal(text: str) -> tuple[int | None, tuple[Note, ...]]:
 
     Cached: a description repeats a few literals (0x7, 0x0007, 0, 1, rw) thousands of times, and the
     rules read each object list entry (its number and its index) more than once: room for all of them."""
-    m = _INT_RE.match(text.strip())
+    stripped = text.strip()
+    if stripped.isdigit() and stripped.isascii() and (stripped[0] != "0" or len(stripped) == 1):
+        return (int(stripped) if len(stripped) <= MAX_DIGITS else None), ()  # plain decimal: no regex
+    m = _INT_RE.match(stripped)
     if not m:
         return None, ()
     sign, digits = m.groups()

@@ -301,6 +301,7 @@ def _type_range(od: ObjectDictionary, index: int, where_sub: int | None, sub: Su
             return
 
 
+_TEXT_TYPES = frozenset(t.code for t in BASIC_TYPES.values() if t.kind in ("vstring", "domain"))
 _BOUNDS = {t.code: (t.min, t.max) for t in BASIC_TYPES.values() if t.min is not None and t.max is not None}
 
 
@@ -409,9 +410,9 @@ def pdo_mapping_flags(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub
 def string_values(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) -> None:
     od, diags = walk.od, walk.diags
     for sub in valued:
-        dtype = sub.dtype
-        if dtype is None:
+        if sub.data_type not in _TEXT_TYPES:
             continue
+        dtype = BASIC_TYPES[sub.data_type]
         if dtype.kind == "vstring":
             _visible(od, obj, sub, diags)
         elif dtype.kind == "domain" and sub.default is not None and sub.default.text.strip() not in ("", "0"):
