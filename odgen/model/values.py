@@ -22,6 +22,7 @@ from .datatypes import BASIC_TYPES, DataType
 Note = tuple[Rule, str]
 
 MAX_DIGITS = 64  # significant digits of an integer literal; 64-bit values need 20 decimal or 16 hex
+_HEX_DIGITS = "0123456789abcdefABCDEF"
 _INT_RE = re.compile(r"^([+-]?)(0[xX][0-9a-fA-F]+|[0-9]+)$")
 _C_SUFFIX = re.compile(r"(?<=[0-9a-fA-F])(?:[uU](?:ll|LL|l|L)?|(?:ll|LL|l|L)[uU]?)$")  # 0x1234LL, 10u
 _NODEID_RE = re.compile(r"\$nodeid", re.IGNORECASE)
@@ -69,8 +70,11 @@ def parse_int_literal(text: str) -> tuple[int | None, tuple[Note, ...]]:
     Cached: a description repeats a few literals (0x7, 0x0007, 0, 1, rw) thousands of times, and the
     rules read each object list entry (its number and its index) more than once: room for all of them."""
     stripped = text.strip()
+    # the two common forms without the regex: plain decimal and unsigned hex
     if stripped.isdigit() and stripped.isascii() and (stripped[0] != "0" or len(stripped) == 1):
-        return (int(stripped) if len(stripped) <= MAX_DIGITS else None), ()  # plain decimal: no regex
+        return (int(stripped) if len(stripped) <= MAX_DIGITS else None), ()
+    if stripped[:2] in ("0x", "0X") and len(stripped) > 2 and not stripped[2:].lstrip(_HEX_DIGITS):
+        return bounded_int(stripped[2:], 16), ()
     m = _INT_RE.match(stripped)
     if not m:
         return None, ()
