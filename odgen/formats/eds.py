@@ -166,9 +166,8 @@ class _Reader:
         self.od.objects[index] = obj
 
     def _container(self, obj: Obj, section: ini.IniSection) -> None:
-        obj.obj_flags = self._int_entry(section.get("ObjFlags"))
-        storage = section.get("StorageLocation")
-        obj.storage = storage.value if storage is not None else None
+        obj.obj_flags = self._int(section, "objflags")
+        obj.storage = section.values.get("storagelocation")
         keep = OBJECT_KEYS | TEMPLATE_KEYS if obj.compact_sub_obj else OBJECT_KEYS
         if not keep.issuperset(section.values):
             obj.extra = self._extra(section, keep)

@@ -194,10 +194,10 @@ class _SectionReader:
         """Any line but the common one (stripped, not blank, `first` its first character); the section
         it completes, if it opens one."""
         done = None
-        match = _SECTION_RE.match(line) if first == "[" else None
-        if match:
+        name = _section_name(line) if first == "[" else None
+        if name is not None:
             done = self.close()
-            self.open(match.group(1).strip(), number, seen)
+            self.open(name, number, seen)
         elif first in ";#":
             _comment_line(self.section, line, number, self.comment_keys)
             self.recount()
@@ -268,6 +268,14 @@ def _parts(text: str, size: int = 1 << 20) -> Iterator[tuple[int, list[str]]]:
         yield number, lines
         number += len(lines)
         start = end + 1
+
+
+def _section_name(line: str) -> str | None:
+    """The name of a `[section]` line (stripped), None if the line is no section header."""
+    if line[-1] == "]" and line.find("]") == len(line) - 1:  # the common header, without the regex
+        return line[1:-1].strip()
+    match = _SECTION_RE.match(line)
+    return match.group(1).strip() if match else None
 
 
 def _names(written: str, names: dict[str, tuple[str, str]]) -> tuple[str, str]:
