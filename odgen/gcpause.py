@@ -20,15 +20,4 @@ def no_cyclic_gc() -> Iterator[None]:
         yield
     finally:
         if enabled:
-            _promote()
             gc.enable()
-
-
-def _promote() -> None:
-    """Move every tracked object to the oldest generation without traversing it (gc.freeze, then
-    gc.unfreeze): otherwise the collection that resumes would traverse all that the pause allocated
-    at once, and again when it moves on (10 ms at 4000 objects), and find nothing to free. Not when
-    objects are frozen already: whoever froze them meant them to stay so."""
-    if gc.get_freeze_count() == 0:
-        gc.freeze()
-        gc.unfreeze()
