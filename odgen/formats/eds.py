@@ -35,12 +35,12 @@ _CANONICAL_KEYS = {k.lower(): k for k in KEYWORDS}
 # CANopenNode's editor writes its extensions as comments: ;StorageLocation=RAM
 _SPELLED_RIGHT = frozenset(KEYWORDS)
 COMMENT_KEYS = frozenset({"storagelocation", "countlabel", "tpdodetectcos"})
-OBJECT_KEYS = {"parametername", "objecttype", "subnumber", "compactsubobj", "objflags",
-               "storagelocation", "countlabel"}
-VALUE_KEYS = {"datatype", "accesstype", "defaultvalue", "lowlimit", "highlimit", "pdomapping",
+OBJECT_KEYS = frozenset({"parametername", "objecttype", "subnumber", "compactsubobj", "objflags",
+                         "storagelocation", "countlabel"})
+VALUE_KEYS = frozenset({"datatype", "accesstype", "defaultvalue", "lowlimit", "highlimit", "pdomapping",
               "objflags", "parametervalue", "denotation", "uploadfile", "downloadfile",
-              "storagelocation", "parametername", "objecttype", "countlabel"}
-TEMPLATE_KEYS = {"datatype", "accesstype", "defaultvalue", "lowlimit", "highlimit", "pdomapping"}
+              "storagelocation", "parametername", "objecttype", "countlabel"})
+TEMPLATE_KEYS = frozenset({"datatype", "accesstype", "defaultvalue", "lowlimit", "highlimit", "pdomapping"})
 _STRINGLIKE = ("vstring", "ustring", "domain")
 HASH_COMMENT = re.compile(r"\s+#.*$")
 
@@ -70,27 +70,30 @@ class _Reader:
         and an index written without leading zeros (it depends on whether [00A0] exists)."""
         later: list[tuple[str, ini.IniSection]] = []
         for key, section in stream:
-            if _SHORT_INDEX.match(key) or not self._section(key, section, waiting=True):
+            match = _OBJECT_SECTION.match(key)
+            if (match is None and _SHORT_INDEX.match(key)) or not self._section(key, match, section, waiting=True):
                 later.append((key, section))
         for key, section in sorted(later, key=lambda item: "sub" in item[0]):  # objects before sub-objects
-            self._section(self._padded(key, section, names), section, waiting=False)
+            key = self._padded(key, section, names)
+            self._section(key, _OBJECT_SECTION.match(key), section, waiting=False)
         for index, section in self.compact:
             self._compact_section(index, section)
         self._node_id()
         return self.od
 
-    def _section(self, key: str, section: ini.IniSection, waiting: bool) -> bool:
-        """Convert one section; False when it has to wait for the rest of the file."""
-        match = _OBJECT_SECTION.match(key)
+    def _section(self, key: str, match: re.Match[str] | None, section: ini.IniSection, waiting: bool) -> bool:
+        """Convert one section (`match`: its name against _OBJECT_SECTION); False when it has to wait
+        for the rest of the file."""
         if match is None:
             self._header_section(key, section)
             return True
-        index = int(match.group(1), 16)
-        if match.group(2):
+        hex_index, sub, sub_text, name_list, value_list = match.groups()
+        index = int(hex_index, 16)
+        if sub:
             if waiting and index not in self.od.objects:
                 return False
-            self._sub_section(index, match.group(3), section)
-        elif match.group(4) or match.group(5):
+            self._sub_section(index, sub_text, section)
+        elif name_list or value_list:  # [XXXXName], [XXXXValue]
             self.compact.append((index, section))
         else:
             self._object(index, section)
@@ -124,12 +127,12 @@ class _Reader:
             self.od.object_lists[key] = self._object_list(canonical, section)
             return
         target = Section(canonical or section.name, section.line)
-        target.fields = {lower: Field(entry.key, entry.value, entry.line) for lower, entry in section.entries.items()}
+        target.fields = {lower: Field(entry.key, entry.value, entry.line) for lower, entry in section.entries()}
         self.od.sections[key] = target
 
     def _object_list(self, name: str, section: ini.IniSection) -> ObjectList:
         olist = ObjectList(name, section.line)
-        for entry in section.entries.values():
+        for _, entry in section.entries():
             fld = Field(entry.key, entry.value, entry.line)
             if entry.key.lower() == "supportedobjects":
                 olist.supported = fld
@@ -146,16 +149,14 @@ class _Reader:
     # -- objects -----------------------------------------------------------
 
     def _object(self, index: int, section: ini.IniSection) -> None:
-        obj = Obj(index=index, line=section.line)
-        obj.name = section.value("ParameterName") or ""
-        code_entry = section.get("ObjectType")
-        obj.object_code_written = code_entry is not None
-        code = self._int_entry(code_entry)
-        obj.object_code = VAR if code is None else code  # CiA 306: no ObjectType means VAR
-        obj.sub_number = self._int_entry(section.get("SubNumber"))
-        obj.compact_sub_obj = self._int_entry(section.get("CompactSubObj"))
-        obj.count_label = section.value("CountLabel")
-        obj.lines = {key: entry.line for key, entry in section.entries.items()}
+        values = section.values
+        code = self._int(section, "objecttype")
+        sub_number = self._int(section, "subnumber")
+        compact = self._int(section, "compactsubobj")
+        # Obj's fields in order, as _sub builds Sub; no ObjectType means VAR (CiA 306)
+        obj = Obj(index, values.get("parametername") or "", section.line, VAR if code is None else code,
+                  "objecttype" in values, {}, sub_number, 0, compact, None, None, values.get("countlabel"), None,
+                  {}, dict(section.lines))
         self._check_spellings(section)
         if obj.is_var:
             obj.subs[0] = self._sub(index, 0, section, obj.name)
@@ -165,54 +166,55 @@ class _Reader:
         self.od.objects[index] = obj
 
     def _container(self, obj: Obj, section: ini.IniSection) -> None:
-        obj.obj_flags = self._int_entry(section.get("ObjFlags"))
-        storage = section.get("StorageLocation")
-        obj.storage = storage.value if storage is not None else None
-        keep = OBJECT_KEYS | (TEMPLATE_KEYS if obj.compact_sub_obj else set())
-        for key, entry in section.entries.items():
-            if key not in keep:
-                obj.extra[key] = Field(entry.key, entry.value, entry.line)
+        obj.obj_flags = self._int(section, "objflags")
+        obj.storage = section.values.get("storagelocation")
+        keep = OBJECT_KEYS | TEMPLATE_KEYS if obj.compact_sub_obj else OBJECT_KEYS
+        if not keep.issuperset(section.values):
+            obj.extra = self._extra(section, keep)
         if obj.compact_sub_obj:
             self._expand_compact(obj, section)
 
     def _sub(self, index: int, subindex: int, section: ini.IniSection, name: str | None = None) -> Sub:
-        entries = section.entries  # lower-case keys: this runs once per sub-entry, keep it lean
-        get = entries.get
-        data_type = self._int_entry(get("datatype"))
+        values = section.values  # lower-case keys: this runs once per sub-entry, keep it lean
+        get = values.get
+        data_type = self._int(section, "datatype")
         dtype = BASIC_TYPES.get(data_type) if data_type is not None else None
-        access = get("accesstype")
         object_type = None
-        if name is None and "objecttype" in entries:  # only real sub-object sections carry their own
-            object_type = self._int_entry(entries["objecttype"])
-        return Sub(
-            subindex=subindex,
-            name=name if name is not None else _text(get("parametername")) or "",
-            line=section.line,
-            object_type=object_type,
-            data_type=data_type,
-            access=self._strip_hash_comment(access).strip().lower() if access is not None else None,
-            pdo_mapping=self._flag(get("pdomapping")),
-            obj_flags=self._int_entry(get("objflags")),
-            default=self._value(get("defaultvalue"), dtype),
-            low=self._value(get("lowlimit"), dtype),
-            high=self._value(get("highlimit"), dtype),
-            parameter_value=self._value(get("parametervalue"), dtype),
-            denotation=_text(get("denotation")),
-            upload_file=_text(get("uploadfile")),
-            download_file=_text(get("downloadfile")),
-            storage=_text(get("storagelocation")),
-            extra={key: Field(entry.key, entry.value, entry.line)
-                   for key, entry in entries.items() if key not in VALUE_KEYS},
-            lines={key: entry.line for key, entry in entries.items()},
-        )
+        if name is None and "objecttype" in values:  # only real sub-object sections carry their own
+            object_type = self._int(section, "objecttype")
+        access = self._access(section)
+        pdo_mapping = self._flag(section, "pdomapping")
+        obj_flags = self._int(section, "objflags") if "objflags" in values else None
+        default = self._value(section, "defaultvalue", dtype) if "defaultvalue" in values else None
+        low = self._value(section, "lowlimit", dtype) if "lowlimit" in values else None
+        high = self._value(section, "highlimit", dtype) if "highlimit" in values else None
+        parameter_value = self._value(section, "parametervalue", dtype) if "parametervalue" in values else None
+        extra = {} if VALUE_KEYS.issuperset(values) else self._extra(section, VALUE_KEYS)
+        # Sub's fields in order: passed by keyword, they would cost a third of this function's time
+        return Sub(subindex, name if name is not None else get("parametername") or "", section.line, object_type,
+                   data_type, access, pdo_mapping, default, low, high, parameter_value, get("denotation"),
+                   obj_flags, get("uploadfile"), get("downloadfile"), get("storagelocation"), False, extra,
+                   dict(section.lines))
 
-    def _value(self, entry: ini.IniEntry | None, dtype: DataType | None) -> Value | None:
-        if entry is None:
+    @staticmethod
+    def _extra(section: ini.IniSection, known: frozenset[str]) -> dict[str, Field]:
+        return {key: Field(entry.key, entry.value, entry.line) for key, entry in section.entries() if key not in known}
+
+    def _access(self, section: ini.IniSection) -> str | None:
+        text = section.values.get("accesstype")
+        if text is None:
             return None
-        text = entry.value
-        if dtype is not None and dtype.kind not in _STRINGLIKE:
-            text = self._strip_hash_comment(entry)
-        return parse_value(text, dtype, entry.line)
+        if "#" in text:
+            text = self._strip_hash_comment(section.entry("accesstype"))
+        return text.strip().lower()
+
+    def _value(self, section: ini.IniSection, key: str, dtype: DataType | None) -> Value | None:
+        text = section.values.get(key)
+        if text is None:
+            return None
+        if "#" in text and dtype is not None and dtype.kind not in _STRINGLIKE:
+            text = self._strip_hash_comment(section.entry(key))
+        return parse_value(text, dtype, section.lines[key])
 
     def _strip_hash_comment(self, entry: ini.IniEntry) -> str:
         match = HASH_COMMENT.search(entry.value) if "#" in entry.value else None
@@ -235,7 +237,8 @@ class _Reader:
             self.report(SYN013, section.line, f"[{section.name}]: object 0x{index:04X} {why}")
             return
         self._check_spellings(section)
-        self._spelling(section.name[4:7], "sub", section.line)
+        if section.name[4:7] != "sub":
+            self._spelling(section.name[4:7], "sub", section.line)
         parent.subs[subindex] = self._sub(index, subindex, section)
 
     # -- CompactSubObj -------------------------------------------------------
@@ -273,7 +276,7 @@ class _Reader:
     def _compact_entries(self, obj: Obj, section: ini.IniSection) -> dict[int, ini.IniEntry]:
         result: dict[int, ini.IniEntry] = {}
         nr = section.get("NrOfEntries")
-        for key, entry in section.entries.items():
+        for key, entry in section.entries():
             if key == "nrofentries":
                 continue
             subindex, _ = parse_int_literal(key)
@@ -292,6 +295,17 @@ class _Reader:
 
     # -- small readers ---------------------------------------------------------
 
+    def _int(self, section: ini.IniSection, key: str) -> int | None:
+        """The integer under a lower-case key: a plain number is read here, anything else by _int_entry."""
+        text = section.values.get(key)
+        if text is None:
+            return None
+        if "#" not in text:
+            number, notes = parse_int_literal(text)
+            if number is not None and not notes:
+                return number
+        return self._int_entry(section.entry(key))
+
     def _int_entry(self, entry: ini.IniEntry | None) -> int | None:
         if entry is None:
             return None
@@ -305,7 +319,15 @@ class _Reader:
             self.diags.add(SYN015, self.loc(line), f"{key}='{text}' is not a number")
         return number
 
-    def _flag(self, entry: ini.IniEntry | None) -> bool:
+    def _flag(self, section: ini.IniSection, key: str) -> bool:
+        text = section.values.get(key)
+        if text is None or text == "0":
+            return False
+        if text == "1":
+            return True
+        return self._flag_entry(section.entry(key))
+
+    def _flag_entry(self, entry: ini.IniEntry | None) -> bool:
         if entry is None:
             return False
         text = self._strip_hash_comment(entry).strip().lower()
@@ -318,7 +340,9 @@ class _Reader:
         return False
 
     def _check_spellings(self, section: ini.IniSection) -> None:
-        for key, entry in section.entries.items():
+        if _SPELLED_RIGHT.issuperset(section.keys.values()):
+            return
+        for key, entry in section.entries():
             if entry.key not in _SPELLED_RIGHT:
                 self._spelling(entry.key, _CANONICAL_KEYS.get(key), entry.line)
 
@@ -331,6 +355,3 @@ class _Reader:
         self.spellings.add(written)
         self.diags.add(SYN012, self.loc(line), f"'{written}' is spelled '{canonical}' in CiA 306")
 
-
-def _text(entry: ini.IniEntry | None) -> str | None:
-    return entry.value if entry is not None else None

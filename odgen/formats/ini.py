@@ -11,6 +11,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterator
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 from ..catalogue.syntax import SYN001, SYN002, SYN003, SYN004, SYN005, SYN014, SYN021
 from ..diagnostics import Diagnostics, Loc
@@ -27,27 +28,45 @@ MAX_KEYS = 65600
 MAX_FILE_KEYS = 1_000_000
 
 
-@dataclass(slots=True)
-class IniEntry:
-    key: str
+class IniEntry(NamedTuple):
+    """One key of a section, as IniSection.get() and IniSection.entries() give it."""
+
+    key: str  # as written
     value: str
     line: int
-    commented: bool = False  # written as ";Key=Value"
-    comment: str = ""  # an inline "; ..." removed from the value
 
 
 @dataclass(slots=True)
 class IniSection:
+    """A section's keys (first wins) in three dicts by lower-case key, in file order: a section is
+    mostly read key by key, and its values and lines are what the model keeps."""
+
     name: str
     line: int
-    entries: dict[str, IniEntry] = field(default_factory=dict)  # lower-case key, first wins
+    values: dict[str, str] = field(default_factory=dict)
+    lines: dict[str, int] = field(default_factory=dict)
+    keys: dict[str, str] = field(default_factory=dict)  # the key as written
+    commented: set[str] = field(default_factory=set)  # keys written as ";Key=Value"
 
     def get(self, key: str) -> IniEntry | None:
-        return self.entries.get(key.lower())
+        lower = key.lower()
+        return self.entry(lower) if lower in self.values else None
 
     def value(self, key: str) -> str | None:
-        entry = self.entries.get(key.lower())
-        return entry.value if entry is not None else None
+        return self.values.get(key.lower())
+
+    def entry(self, lower: str) -> IniEntry:
+        """The entry of a lower-case key the section has."""
+        return IniEntry(self.keys[lower], self.values[lower], self.lines[lower])
+
+    def entries(self) -> Iterator[tuple[str, IniEntry]]:
+        """(lower-case key, entry) of every key in file order."""
+        keys, lines = self.keys, self.lines
+        for lower, value in self.values.items():
+            yield lower, IniEntry(keys[lower], value, lines[lower])
+
+    def put(self, lower: str, key: str, value: str, line: int) -> None:
+        self.values[lower], self.lines[lower], self.keys[lower] = value, line, key
 
 
 _BOMS = ((b"\xff\xfe\x00\x00", "utf-32-le"), (b"\x00\x00\xfe\xff", "utf-32-be"),
@@ -103,23 +122,8 @@ def sections(text: str, source: str, diags: Diagnostics, comment_keys: frozenset
     `seen` collects the lower-case name and line of every section read so far."""
     seen = {} if seen is None else seen
     reader = _SectionReader(source, diags, comment_keys)
-    for number, raw in enumerate(_lines(text), start=1):
-        line = raw.strip()
-        if not line:
-            continue
-        first = line[0]
-        match = _SECTION_RE.match(line) if first == "[" else None
-        if match:
-            done = reader.close()
-            if done is not None:
-                yield done
-            reader.open(match.group(1).strip(), number, seen)
-        elif first in ";#":
-            _comment_line(reader.section, line, number, comment_keys)
-        elif "=" in line:
-            reader.key_line(line, number)
-        else:
-            diags.add(SYN001, Loc(source, number), f"'{_clip(line)}' is neither [section] nor key=value")
+    for number, lines in _parts(text):
+        yield from reader.read(lines, number, seen)
     done = reader.close()
     if done is not None:
         yield done
@@ -127,22 +131,28 @@ def sections(text: str, source: str, diags: Diagnostics, comment_keys: frozenset
 
 
 class _SectionReader:
-    """The section being read: its entries, and the keys past MAX_KEYS that are counted, not kept."""
+    """The section being read: its keys, and the keys past MAX_KEYS that are counted, not kept."""
 
     def __init__(self, source: str, diags: Diagnostics, comment_keys: frozenset[str]) -> None:
-        self.source, self.diags = source, diags
+        self.source, self.diags, self.comment_keys = source, diags, comment_keys
         self.section: IniSection | None = None
+        self.key = ""  # the open section's name in lower case
         self.kept = False  # False for a repeated section, read but left out
-        self.entries: dict[str, IniEntry] = {}
+        # the open section's dicts (before the first section: dicts nothing reads)
+        self.values: dict[str, str] = {}
+        self.lines: dict[str, int] = {}
+        self.keys: dict[str, str] = {}
         self.names: dict[str, tuple[str, str]] = {}  # a key as written -> (that key, lower case)
         self.dropped, self.first_dropped = 0, 0
         self.total = 0  # keys kept in the whole file
+        self.room = 0  # keys the open section may still keep under both caps (0 before any section)
         self.file_dropped, self.file_first_dropped = 0, 0
 
     def open(self, name: str, line: int, seen: dict[str, int]) -> None:
-        key = name.lower()
-        self.section = IniSection(name, line)
-        self.entries = self.section.entries
+        key = self.key = name.lower()
+        self.values, self.lines, self.keys = {}, {}, {}
+        self.section = IniSection(name, line, self.values, self.lines, self.keys, set())
+        self.room = min(MAX_KEYS, MAX_FILE_KEYS - self.total)  # what recount() finds for an empty section
         self.kept = key not in seen
         if self.kept:
             seen[key] = line
@@ -150,15 +160,67 @@ class _SectionReader:
             self.diags.add(SYN002, Loc(self.source, line),
                            f"section [{name}] repeats line {seen[key]}; this copy is ignored")
 
+    def read(self, lines: list[str], first_number: int, seen: dict[str, int]) -> Iterator[tuple[str, IniSection]]:
+        """Read `lines`, the first being line `first_number`; yield each section as it is complete.
+
+        The common line, a new key without an inline comment, is read here, with the open section's
+        dicts and `room` in local variables: this runs once per line of the file, and every operation
+        more per line shows in the reading time. Any other line goes to line()."""
+        names = self.names
+        values, line_of, keys, room = self.values, self.lines, self.keys, self.room
+        for number, raw in enumerate(lines, first_number):
+            line = raw.strip()
+            if not line:
+                continue
+            first = line[0]
+            if room and first not in "[;#":
+                written, equals, value = line.partition("=")
+                if equals and ";" not in value:
+                    key, lower = names.get(written) or _names(written, names)
+                    if lower not in values:
+                        values[lower], line_of[lower], keys[lower] = value.lstrip(), number, key
+                        room -= 1
+                        continue
+            self.total += self.room - room  # the keys kept above since the last line()
+            self.room = room
+            done = self.line(line, first, number, seen)
+            if done is not None:
+                yield done
+            values, line_of, keys, room = self.values, self.lines, self.keys, self.room
+        self.total += self.room - room
+        self.room = room
+
+    def line(self, line: str, first: str, number: int, seen: dict[str, int]) -> tuple[str, IniSection] | None:
+        """Any line but the common one (stripped, not blank, `first` its first character); the section
+        it completes, if it opens one."""
+        done = None
+        name = _section_name(line) if first == "[" else None
+        if name is not None:
+            done = self.close()
+            self.open(name, number, seen)
+        elif first in ";#":
+            _comment_line(self.section, line, number, self.comment_keys)
+            self.recount()
+        elif "=" in line:
+            self.key_line(line, number)
+        else:
+            self.diags.add(SYN001, Loc(self.source, number), f"'{_clip(line)}' is neither [section] nor key=value")
+        return done
+
+    def recount(self) -> None:
+        """`room` again, after a line that may have changed it."""
+        room = min(MAX_KEYS - len(self.values), MAX_FILE_KEYS - self.total)  # comment keys may pass MAX_KEYS
+        self.room = max(room, 0) if self.section is not None else 0
+
     def key_line(self, line: str, number: int) -> None:
-        # the common line, a new key without an inline comment, is read here: this runs once per
-        # line of the file, and a call more per line costs a third of the reading time
+        """A key line read() did not keep itself: before any section, a repeated key, past a cap, or
+        with an inline comment."""
         written, _, value = line.partition("=")
         key, lower = self.names.get(written) or _names(written, self.names)
-        entries = self.entries
-        if self.section is None or lower in entries:  # SYN005, or a repeated key (SYN003)
+        values = self.values
+        if self.section is None or lower in values:  # SYN005, or a repeated key (SYN003)
             _key_line(self.section, line, number, self.source, self.diags)
-        elif len(entries) >= MAX_KEYS:
+        elif len(values) >= MAX_KEYS:
             self.dropped += 1
             self.first_dropped = self.first_dropped or number
         elif self.total >= MAX_FILE_KEYS:
@@ -167,9 +229,11 @@ class _SectionReader:
         elif ";" in value:  # an inline comment to cut off and report
             _key_line(self.section, line, number, self.source, self.diags)
             self.total += 1
+            self.recount()
         else:
-            entries[lower] = IniEntry(key, value.lstrip(), number)
+            self.section.put(lower, key, value.lstrip(), number)
             self.total += 1
+            self.recount()
 
     def close(self) -> tuple[str, IniSection] | None:
         section, self.section = self.section, None
@@ -180,7 +244,7 @@ class _SectionReader:
                            f"[{section.name}] has more than {MAX_KEYS} keys; the {self.dropped} from here on "
                            "are not read")
             self.dropped, self.first_dropped = 0, 0
-        return (section.name.lower(), section) if self.kept else None
+        return (self.key, section) if self.kept else None
 
     def finish(self) -> None:
         if self.file_dropped:
@@ -189,18 +253,29 @@ class _SectionReader:
                            "are not read")
 
 
-def _lines(text: str, chunk: int = 1 << 20) -> Iterator[str]:
-    """The lines of `text`, a block at a time: a list of every line of a large file costs more
-    memory than the file itself. Lines end at CR LF, LF or CR only: str.splitlines() would also
-    split at form feeds, U+0085, U+2028 and others that other EDS readers keep inside a value."""
+def _parts(text: str, size: int = 1 << 20) -> Iterator[tuple[int, list[str]]]:
+    """(number of the first line, lines) of `text`, about `size` characters at a time: a list of every
+    line of a large file costs more memory than the file itself. Lines end at CR LF, LF or CR only:
+    str.splitlines() would also split at form feeds, U+0085, U+2028 and others that other EDS readers
+    keep inside a value."""
     if "\r" in text:
         text = text.replace("\r\n", "\n").replace("\r", "\n")
-    start = 0
+    start, number = 0, 1
     while start <= len(text):
-        end = text.find("\n", start + chunk)
+        end = text.find("\n", start + size)
         end = len(text) if end < 0 else end
-        yield from text[start:end].split("\n")
+        lines = text[start:end].split("\n")
+        yield number, lines
+        number += len(lines)
         start = end + 1
+
+
+def _section_name(line: str) -> str | None:
+    """The name of a `[section]` line (stripped), None if the line is no section header."""
+    if line[-1] == "]" and line.find("]") == len(line) - 1:  # the common header, without the regex
+        return line[1:-1].strip()
+    match = _SECTION_RE.match(line)
+    return match.group(1).strip() if match else None
 
 
 def _names(written: str, names: dict[str, tuple[str, str]]) -> tuple[str, str]:
@@ -216,7 +291,10 @@ def _comment_line(section: IniSection | None, line: str, number: int, keys: froz
     match = _COMMENT_KEY_RE.match(line)
     if match and section is not None and match.group(1).lower() in keys:
         key, value = match.group(1), match.group(2).strip()
-        section.entries.setdefault(key.lower(), IniEntry(key, value, number, commented=True))
+        lower = key.lower()
+        if lower not in section.values:
+            section.put(lower, key, value, number)
+            section.commented.add(lower)
 
 
 def _key_line(section: IniSection | None, line: str, number: int, source: str, diags: Diagnostics) -> None:
@@ -232,12 +310,12 @@ def _key_line(section: IniSection | None, line: str, number: int, source: str, d
         diags.add(SYN014, Loc(source, number),
                   f"inline comment '{_clip(comment)}' after the value of '{key}' is dropped")
     lower = key.lower()
-    first = section.entries.get(lower)
-    if first is not None and not first.commented:
+    if lower in section.values and lower not in section.commented:
         diags.add(SYN003, Loc(source, number),
-                  f"key '{key}' repeats line {first.line} in [{section.name}]; this one is ignored")
+                  f"key '{key}' repeats line {section.lines[lower]} in [{section.name}]; this one is ignored")
         return
-    section.entries[lower] = IniEntry(key, value, number, comment=comment)
+    section.commented.discard(lower)
+    section.put(lower, key, value, number)
 
 
 def _clip(text: str, width: int = 40) -> str:

@@ -16,12 +16,13 @@ from functools import lru_cache
 
 from ..catalogue.rule import Rule
 from ..catalogue.syntax import SYN006, SYN007, SYN008, SYN009, SYN020
-from .datatypes import DataType
+from .datatypes import BASIC_TYPES, DataType
 
 # (rule, message) pairs a reader turns into located diagnostics.
 Note = tuple[Rule, str]
 
 MAX_DIGITS = 64  # significant digits of an integer literal; 64-bit values need 20 decimal or 16 hex
+_HEX_DIGITS = "0123456789abcdefABCDEF"
 _INT_RE = re.compile(r"^([+-]?)(0[xX][0-9a-fA-F]+|[0-9]+)$")
 _C_SUFFIX = re.compile(r"(?<=[0-9a-fA-F])(?:[uU](?:ll|LL|l|L)?|(?:ll|LL|l|L)[uU]?)$")  # 0x1234LL, 10u
 _NODEID_RE = re.compile(r"\$nodeid", re.IGNORECASE)
@@ -43,7 +44,7 @@ class Value:
     parsed: int | float | str | bytes | None = None
     nodeid: bool = False
     error: str | None = None
-    notes: list[Note] = field(default_factory=list, compare=False, repr=False)
+    notes: tuple[Note, ...] = field(default=(), compare=False, repr=False)  # a tuple: most values have none
 
     def resolve(self, node_id: int) -> int | float | str | bytes | None:
         if self.nodeid and isinstance(self.parsed, int):
@@ -62,12 +63,19 @@ def bounded_int(digits: str, base: int = 10) -> int | None:
     return int(significant or "0", base) if len(significant) <= MAX_DIGITS else None
 
 
-@lru_cache(maxsize=4096)
+@lru_cache(maxsize=1 << 16)
 def parse_int_literal(text: str) -> tuple[int | None, tuple[Note, ...]]:
     """Read one integer literal; None when it is not one.
 
-    Cached: a description repeats a few literals (0x7, 0x0007, 0, 1, rw) thousands of times."""
-    m = _INT_RE.match(text.strip())
+    Cached: a description repeats a few literals (0x7, 0x0007, 0, 1, rw) thousands of times, and the
+    rules read each object list entry (its number and its index) more than once: room for all of them."""
+    stripped = text.strip()
+    # the two common forms without the regex: plain decimal and unsigned hex
+    if stripped.isdigit() and stripped.isascii() and (stripped[0] != "0" or len(stripped) == 1):
+        return (int(stripped) if len(stripped) <= MAX_DIGITS else None), ()
+    if stripped[:2] in ("0x", "0X") and len(stripped) > 2 and not stripped[2:].lstrip(_HEX_DIGITS):
+        return bounded_int(stripped[2:], 16), ()
+    m = _INT_RE.match(stripped)
     if not m:
         return None, ()
     sign, digits = m.groups()
@@ -114,12 +122,33 @@ def _without_c_suffix(value: Value, text: str) -> str:
     suffix = _C_SUFFIX.search(text)
     if suffix is None or _INT_RE.match(text[: suffix.start()].strip()) is None:
         return text
-    value.notes.append((SYN020, f"'{text}': C suffix '{suffix.group()}' dropped; CiA 306 numbers have none"))
+    value.notes += ((SYN020, f"'{text}': C suffix '{suffix.group()}' dropped; CiA 306 numbers have none"),)
     return text[: suffix.start()]
 
 
 def parse_value(text: str, dtype: DataType | None, line: int = 0) -> Value:
-    """Parse `text` as a value of `dtype`; never raises."""
+    """Parse `text` as a value of `dtype`; never raises.
+
+    What a text means for a basic type is remembered: a description repeats a few values (0, 0x00000000,
+    $NODEID+0x180) thousands of times."""
+    if dtype is None or BASIC_TYPES.get(dtype.code) is not dtype:
+        return _parse_value(text, dtype, line)
+    known = _PARSED.get((dtype.code, text))
+    if known is None:
+        value = _parse_value(text, dtype, line)
+        if len(text) <= _PARSED_TEXT and len(_PARSED) < _PARSED_KEPT:
+            _PARSED[dtype.code, text] = (value.parsed, value.nodeid, value.error, value.notes)
+        return value
+    parsed, nodeid, error, notes = known
+    return Value(text, line, parsed, nodeid, error, notes)
+
+
+# (data type, text) -> what parse_value found: parsed, nodeid, error, notes (immutable, so shared)
+_PARSED: dict[tuple[int, str], tuple[int | float | str | bytes | None, bool, str | None, tuple[Note, ...]]] = {}
+_PARSED_KEPT, _PARSED_TEXT = 1 << 16, 64  # entries and text length remembered: memory stays bounded
+
+
+def _parse_value(text: str, dtype: DataType | None, line: int) -> Value:
     value = Value(text=text, line=line)
     stripped = text.strip()
     if dtype is None or (stripped == "" and not dtype.is_string):
@@ -132,10 +161,10 @@ def parse_value(text: str, dtype: DataType | None, line: int = 0) -> Value:
 def _read_integer(value: Value, text: str, dtype: DataType) -> None:
     relative, rest, notes = split_nodeid(text)
     value.nodeid = relative
-    value.notes.extend(notes)
+    value.notes += tuple(notes)
     rest = _without_c_suffix(value, rest)
     number, int_notes = parse_int_literal(rest)
-    value.notes.extend(int_notes)
+    value.notes += int_notes
     if number is None:
         number = _bool_word(rest) if dtype.kind == "bool" else None
     if number is None:
@@ -167,7 +196,7 @@ def _twos_complement(value: Value, number: int, text: str, dtype: DataType) -> i
         return number
     top = 1 << dtype.bits
     if (dtype.max or 0) < number < top:
-        value.notes.append((SYN008, f"'{text}' read as the {dtype.bits}-bit two's complement {number - top}"))
+        value.notes += ((SYN008, f"'{text}' read as the {dtype.bits}-bit two's complement {number - top}"),)
         return number - top
     return number
 
@@ -182,10 +211,10 @@ def _read_real(value: Value, text: str, dtype: DataType) -> None:
         return
     if text.lower().lstrip("+-").startswith("0x"):
         value.parsed = _bits_to_real(number, dtype.bits)
-        value.notes.append((SYN009, f"'{text}' read as an IEEE 754 bit pattern = {value.parsed!r}"))
+        value.notes += ((SYN009, f"'{text}' read as an IEEE 754 bit pattern = {value.parsed!r}"),)
     else:
         value.parsed = float(number)
-    value.notes.extend(notes)
+    value.notes += notes
 
 
 def _bits_to_real(number: int, bits: int) -> float:

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 from collections.abc import Sequence
 
 from .. import __version__
@@ -36,4 +35,6 @@ def render_json(results: Sequence[FileResult]) -> str:
         ],
         "summary": summary(results),
     }
+    import json  # here, not at the top: `odgen lint` prints text unless asked
+
     return json.dumps(doc, indent=2, sort_keys=False) + "\n"

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 from collections.abc import Sequence
 from pathlib import Path
 from urllib.parse import quote
@@ -101,4 +100,6 @@ def render_sarif(results: Sequence[FileResult]) -> str:
     if omitted:  # findings past a rule's cap: counted, not listed
         run["properties"] = {"omittedFindings": omitted}
     doc = {"$schema": SCHEMA_URI, "version": "2.1.0", "runs": [run]}
+    import json  # here, not at the top: `odgen lint` prints text unless asked
+
     return json.dumps(doc, indent=2) + "\n"

@@ -36,6 +36,8 @@ class Use:
 def _named_entries(od: ObjectDictionary) -> Iterator[tuple[str, Obj, Sub | None]]:
     """(name, object, sub-entry) of every COB-ID entry CiA 301 defines (PDO, SDO, EMCY, SYNC, TIME)."""
     for index in sorted(od.objects):
+        if index >= 0x2000:
+            break  # all of them are communication profile objects (0x1000-0x1FFF)
         obj = od.objects[index]
         pdo = pdo_communication(index)
         if pdo is not None:
@@ -80,7 +82,8 @@ def cob_id_collisions(od: ObjectDictionary, diags: Diagnostics, options: LintOpt
     lo, hi = node_span(od, options)
     found = _collisions(od, lo)
     if hi != lo:
-        found = {pair: can_id for pair, can_id in found.items() if pair in _collisions(od, hi)}
+        at_hi = _collisions(od, hi)
+        found = {pair: can_id for pair, can_id in found.items() if pair in at_hi}
     reported: set[Use] = set()
     for (use, first), can_id in found.items():
         if use in reported:

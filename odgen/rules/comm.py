@@ -132,7 +132,8 @@ def _not_predefined(od: ObjectDictionary, value: Value, raw: int, base: int, nam
 def pdo_cob_ids(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     span = node_span(od, options)
     for index, obj in od.objects.items():
-        if pdo_communication(index) is None or obj.is_var or 1 not in obj.subs:
+        if not RPDO_COMM <= index < TPDO_COMM + PDO_COUNT or pdo_communication(index) is None or obj.is_var \
+                or 1 not in obj.subs:
             continue
         sub = obj.subs[1]
         value, keyword = value_in_force(od, sub)
@@ -257,9 +258,9 @@ def device_profile(od: ObjectDictionary, diags: Diagnostics, options: LintOption
 @lint_pass
 def comm_records(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for index, obj in od.objects.items():
-        kind = pdo_communication(index)
-        if obj.is_var or not SDO_SERVER <= index < TPDO_MAPPING:
+        if not SDO_SERVER <= index < TPDO_MAPPING or obj.is_var:
             continue
+        kind = pdo_communication(index)
         if kind is not None:
             _pdo_record(od, obj, kind, diags)
         elif is_sdo_parameter(index):

@@ -115,23 +115,24 @@ def list_entries(od: ObjectDictionary, diags: Diagnostics, options: LintOptions)
 
 def _entry(od: ObjectDictionary, key: str, name: str, fld: Field, seen: dict[int, Field],
            diags: Diagnostics) -> None:
-    loc = Loc(od.source, fld.line)
     index, _ = parse_int_literal(fld.text)
     if index is None or not 0 <= index <= 0xFFFF:
-        diags.add(LST004, loc, f"[{name}] entry {fld.key}={fld.text.strip()} is not an object index")
+        diags.add(LST004, Loc(od.source, fld.line),
+                  f"[{name}] entry {fld.key}={fld.text.strip()} is not an object index")
         return
     if index in seen:
-        diags.add(LST006, loc, f"[{name}] entry {fld.key} lists 0x{index:04X} again "
+        diags.add(LST006, Loc(od.source, fld.line), f"[{name}] entry {fld.key} lists 0x{index:04X} again "
                   f"(first at line {seen[index].line})")
         return
     seen[index] = fld
     if index not in od.objects:
-        diags.add(LST005, loc, f"[{name}] entry {fld.key} lists 0x{index:04X}, which has no section"
-                  f"{_decimal_hint(od, fld.text)}")
+        diags.add(LST005, Loc(od.source, fld.line),
+                  f"[{name}] entry {fld.key} lists 0x{index:04X}, which has no section{_decimal_hint(od, fld.text)}")
         return  # which list it belongs in matters little for an object that does not exist
     proper = _proper_list(index)
     if proper == key:
         return  # data type definitions (0x0001-0x025F) count as optional objects
+    loc = Loc(od.source, fld.line)
     if key == "optionalobjects" and proper == "mandatoryobjects":
         diags.add(LST009, loc, f"[{name}] entry {fld.key} lists mandatory object 0x{index:04X}")
         return

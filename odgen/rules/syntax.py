@@ -20,7 +20,7 @@ def value_notes(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) 
     for obj in od.objects.values():
         for sub in obj.subs.values():
             for value in (sub.default, sub.low, sub.high, sub.parameter_value):
-                if value is not None:
+                if value is not None and (value.notes or value.error):
                     _report_value(od.source, value, obj.index, _sub_of(obj, sub.subindex), diags)
 
 
