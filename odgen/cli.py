@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import gc
 import os
 import signal
 import sys
@@ -551,8 +552,11 @@ QUICK_EXIT = frozenset({"lint", "convert", "generate", "explain", "rules", "diff
 def run() -> None:
     """The `odgen` command."""
     args = _arguments(None)
+    quick = args.command in QUICK_EXIT
+    if quick:  # no cyclic collection at all: the process ends without one anyway (gcpause.py)
+        gc.disable()
     code = _dispatch(args)
-    if args.command in QUICK_EXIT and sys.getprofile() is None and sys.gettrace() is None:  # profilers write at exit
+    if quick and sys.getprofile() is None and sys.gettrace() is None:  # profilers write at exit
         for stream in (sys.stdout, sys.stderr):
             with contextlib.suppress(OSError, ValueError):  # a closed pipe: nothing more reaches the reader
                 stream.flush()
