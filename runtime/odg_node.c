@@ -128,7 +128,7 @@ static void stored_values_lost(odg_node_t *n)
     if (n->cfg.nv != NULL && (s->boot_seen & ODG_BOOT_LOST_MASK) != 0u) {
         data[0] = s->boot_seen;
         memcpy(data + 1, s->boot_counts, 3);
-        (void)odg_node_emcy(n, ODG_NODE_EMCY_STORAGE, (uint8_t)(n->error_register | 0x01u), data, 4);
+        (void)odg_node_error_set(n, ODG_NODE_EMCY_STORAGE, 0, data, 4);
     }
 }
 
@@ -176,7 +176,7 @@ static odg_abort_t boot(odg_node_t *n, int what)
     if (n->cfg.node_id == ODG_LSS_UNCONFIGURED) {
         return ac; /* waits for an LSS master, silent */
     }
-    n->error_register = (uint8_t)odg_node_get_or_(n, 0x1001, 0, 0);
+    odg_err_reset_(n, what != BOOT_COMM); /* the errors of what was reset */
     odg_node_reload(n);
     n->hb_timer = 0;
     n->sync_prod_us = 0;
@@ -184,6 +184,7 @@ static odg_abort_t boot(odg_node_t *n, int what)
     n->emcy_queued = 0;
     n->guard_started = 0;
     n->guard_toggle = 0;
+    n->guard_lost = 0;
     (void)odg_node_send_(n, 0x700u + n->cfg.node_id, &bootup, 1);
     n->state = ODG_NMT_PRE_OPERATIONAL;
     if (what != BOOT_COMM) {
@@ -335,18 +336,10 @@ odg_nmt_state_t odg_node_state(const odg_node_t *node)
     return (odg_nmt_state_t)node->state;
 }
 
-/* 0x1001 is read-only for SDO: the node sets it as the application would (odg_set). */
-static void set_error_register(odg_node_t *n, uint8_t reg)
-{
-    n->error_register = reg;
-    (void)odg_set_u8(n->cfg.dict, 0x1001, 0, reg);
-}
-
 odg_abort_t odg_node_emcy(odg_node_t *node, uint16_t code, uint8_t error_register,
                           const uint8_t *vendor, uint8_t n_vendor)
 {
     uint8_t d[8];
-    set_error_register(node, error_register);
     odg_err_record_(node, code, vendor, n_vendor);
     if ((node->state != ODG_NMT_PRE_OPERATIONAL && node->state != ODG_NMT_OPERATIONAL) ||
         (node->emcy_cob & ODG_COB_INVALID)) {

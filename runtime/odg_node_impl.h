@@ -56,6 +56,8 @@ void odg_time_receive_(odg_node_t *n, const odg_frame_t *f);
 void odg_err_record_(odg_node_t *n, uint16_t code, const uint8_t *vendor, uint8_t n_vendor);
 odg_abort_t odg_err_check_(const odg_node_t *n, uint8_t sub, uint32_t value);
 void odg_err_written_(odg_node_t *n); /* after an SDO write to 0x1003: sub 0 = 0 clears */
+/* At a reset: forget every active error (`all`) or those of communication; 0x1001 follows. */
+void odg_err_reset_(odg_node_t *n, int all);
 /* Send an EMCY frame now, or when the inhibit time (0x1015) since the last one has passed. */
 odg_abort_t odg_emcy_send_(odg_node_t *n, const uint8_t *data);
 void odg_emcy_tick_(odg_node_t *n, uint32_t ms);

@@ -21,6 +21,7 @@
 #define TYPE_RTR 253u      /* TPDO: sampled and sent on a remote request */
 #define TYPE_EVENT 254u    /* 254, 255: event-driven */
 #define COB_NO_RTR 0x40000000u /* TPDO COB-ID bit 30: no remote requests */
+#define EMCY_PDO_LENGTH 0x8210u /* PDO not processed due to length error */
 
 #ifndef ODG_NODE_TPDO_COS
 #define ODG_NODE_TPDO_COS 1
@@ -347,27 +348,21 @@ static void apply(odg_node_t *n, const odg_pdo_t *p, const uint8_t *data)
     }
 }
 
-/* A frame shorter than the mapping is not processed: EMCY 0x8210 once, and an error reset
- * (0x0000) once a frame of the right length comes again. Longer frames are processed. */
+/* A frame shorter than the mapping is not processed: the error 0x8210 (PDO length) is active
+ * until every RPDO's last frame had the right length again. Longer frames are processed. */
 static void length_error(odg_node_t *n, odg_pdo_t *p, int error)
 {
-    uint8_t reg = n->error_register;
     uint16_t k;
     if (error == ((p->flags & ODG_PDO_F_LEN_ERR) != 0u)) {
         return;
     }
     p->flags ^= ODG_PDO_F_LEN_ERR;
-    if (error) {
-        (void)odg_node_emcy(n, 0x8210, (uint8_t)(reg | 0x11u), NULL, 0); /* generic + communication */
-        return;
-    }
-    for (k = 0; k < ODG_NODE_MAX_RPDO; k++) {
+    for (k = 0; !error && k < ODG_NODE_MAX_RPDO; k++) {
         if (n->rpdo[k].flags & ODG_PDO_F_LEN_ERR) {
             return; /* another RPDO is still in error */
         }
     }
-    reg &= (uint8_t)~0x10u;
-    (void)odg_node_emcy(n, 0x0000, (uint8_t)(reg == 0x01u ? 0u : reg), NULL, 0);
+    (void)(error ? odg_node_error_set(n, EMCY_PDO_LENGTH, 0, NULL, 0) : odg_node_error_clear(n, EMCY_PDO_LENGTH));
 }
 
 void odg_pdo_receive_(odg_node_t *n, const odg_frame_t *f)

@@ -482,7 +482,10 @@ static void test_emcy(void)
     CHECK_EQ(sent[0].data[1], 0x32);
     CHECK_EQ(sent[0].data[2], 0x05);
     CHECK(memcmp(sent[0].data + 3, vendor, 5) == 0);
+    CHECK_EQ(upload_u32(0x1001, 0), 0); /* a frame as given: 0x1001 follows the active errors */
+    CHECK_EQ(odg_node_error_set(&node, 0x3210, 0, vendor, 2), 0);
     CHECK_EQ(upload_u32(0x1001, 0), 0x05); /* read-only for SDO, updated by the node */
+    CHECK_EQ(odg_node_error_clear(&node, 0x3210), 0);
     nmt(ODG_NMT_STOP, NID);
     clear();
     CHECK_EQ(odg_node_emcy(&node, 0x0000, 0x00, NULL, 0), ODG_ABORT_DATA_STATE);
