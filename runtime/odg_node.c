@@ -4,6 +4,7 @@
  */
 #include <string.h>
 
+#include "odg_impl.h"
 #include "odg_node_impl.h"
 
 /* ---- helpers shared with odg_sdo.c and odg_pdo.c ------------------------------------ */
@@ -111,6 +112,92 @@ void odg_node_reload(odg_node_t *node)
     }
 }
 
+/* ---- the communication values in force at boot ------------------------------------------- */
+
+/* What reset communication brings back: the numbers in 0x1000-0x1FFF an SDO client may write,
+ * but not the error history 0x1003 (events, not parameters) nor the commands 0x1010/0x1011. */
+static int comm_value(const odg_entry_t *e, const odg_sub_t *s)
+{
+    uint32_t cls = ODG_S_CLASS(s->storage);
+    return e->index >= 0x1000u && e->index != 0x1003u && (s->attr & ODG_A_WRITE) != 0u &&
+           (cls == ODG_S_RAM || cls == ODG_S_PERSIST) && s->size <= 8u && s->type != ODG_T_VISIBLE_STRING &&
+           s->type != ODG_T_OCTET_STRING && s->type != ODG_T_UNICODE_STRING && s->type != ODG_T_DOMAIN;
+}
+
+/* One value and its place in node->comm (little-endian, its wire size): COMM_KEEP copies the
+ * dictionary's value there, COMM_BACK back; COMM_SAVED and COMM_LOADED act on the values of the
+ * persistence groups 0x1010/0x1011 sub `sub` named (1: all), which the next boot would load:
+ * the value saved, or the group's default. */
+enum { COMM_KEEP, COMM_BACK, COMM_SAVED, COMM_LOADED };
+
+static void comm_copy(odg_node_t *n, const odg_sub_t *s, uint8_t *at, int how, uint8_t sub)
+{
+    const odg_dict_t *d = n->cfg.dict;
+    const odg_group_t *g = ODG_S_CLASS(s->storage) == ODG_S_PERSIST ? &d->groups[ODG_S_GROUP(s->storage)] : NULL;
+    uint8_t *p = odg_value_(d, s);
+    uint64_t v = 0;
+    uint32_t k = s->size;
+    if (how == COMM_BACK) {
+        while (k-- > 0u) {
+            v = v << 8 | at[k];
+        }
+        odg_store_(p, s->size, v);
+        return;
+    }
+    if (how != COMM_KEEP && (g == NULL || (sub != 1u && g->store_sub != sub))) {
+        return; /* not a value of the groups saved or loaded */
+    }
+    v = odg_load_(p, s->size);
+    if (how == COMM_LOADED) {
+        v = odg_load_((const uint8_t *)g->defaults + s->offset, s->size) +
+            ((s->attr & ODG_A_NODEID) ? n->cfg.node_id : 0u);
+    }
+    for (k = 0; k < s->size; k++, v >>= 8) {
+        at[k] = (uint8_t)v;
+    }
+}
+
+/* Walk the communication values, objects in index order while they fit whole into
+ * node->comm (all of them for n == NULL, which only counts); returns the bytes they take. */
+static uint32_t comm_walk(odg_node_t *n, const odg_dict_t *d, int how, uint8_t sub)
+{
+    uint32_t at = 0, size;
+    uint16_t e, k;
+    for (e = 0; e < d->n_entries && d->entries[e].index <= 0x1FFFu; e++) {
+        const odg_entry_t *en = &d->entries[e];
+        const odg_sub_t *s = &d->subs[en->first];
+        for (size = 0, k = 0; k < en->count; k++) {
+            size += comm_value(en, &s[k]) ? s[k].size : 0u;
+        }
+        if (n != NULL && at + size > ODG_NODE_COMM_BYTES) {
+            break; /* the rest keep their values at reset communication (NODE.md) */
+        }
+        for (k = 0; n != NULL && k < en->count; k++) {
+            if (comm_value(en, &s[k])) {
+                comm_copy(n, &s[k], &n->comm[at], how, sub);
+                at += s[k].size;
+            }
+        }
+        at += n == NULL ? size : 0u;
+    }
+    return at;
+}
+
+uint32_t odg_node_comm_bytes(const odg_dict_t *dict)
+{
+    return comm_walk(NULL, dict, COMM_KEEP, 0);
+}
+
+void odg_node_comm_keep(odg_node_t *node)
+{
+    (void)comm_walk(node, node->cfg.dict, COMM_KEEP, 0);
+}
+
+void odg_node_stored_(odg_node_t *n, uint8_t sub, int restore)
+{
+    (void)comm_walk(n, n->cfg.dict, restore ? COMM_LOADED : COMM_SAVED, sub);
+}
+
 /* ---- NMT ------------------------------------------------------------------------------- */
 
 enum { BOOT_COMM = 0, BOOT_RESET = 1, BOOT_POWER_ON = 2 }; /* boot(): what is reset */
@@ -158,9 +245,10 @@ static odg_abort_t init_dict(odg_node_t *n, int keep_clients)
     return ac;
 }
 
-/* Initialising: drop the SDO transfer, re-read the communication entries (after odg_init for
- * a reset of the node, `what` BOOT_RESET, or the first boot, BOOT_POWER_ON), send the boot-up
- * frame, and go pre-operational. */
+/* Initialising: drop the SDO transfer; for a reset of the node (`what` BOOT_RESET) or the first
+ * boot (BOOT_POWER_ON) initialise the dictionary and copy its communication values, for a
+ * reset of communication (BOOT_COMM) put that copy back; re-read the communication entries,
+ * send the boot-up frame, and go pre-operational. */
 static odg_abort_t boot(odg_node_t *n, int what)
 {
     static const uint8_t bootup = 0x00;
@@ -177,7 +265,13 @@ static odg_abort_t boot(odg_node_t *n, int what)
         return ac; /* waits for an LSS master, silent */
     }
     odg_err_reset_(n, what != BOOT_COMM); /* the errors of what was reset */
-    odg_node_reload(n);
+    if (what == BOOT_COMM) {
+        (void)comm_walk(n, n->cfg.dict, COMM_BACK, 0);
+        odg_changed(n->cfg.dict, NULL); /* the node re-reads them, the application hears of it */
+    } else {
+        (void)comm_walk(n, n->cfg.dict, COMM_KEEP, 0); /* the values reset communication restores */
+        odg_node_reload(n);
+    }
     n->hb_timer = 0;
     n->sync_prod_us = 0;
     n->sync_counter = 0;

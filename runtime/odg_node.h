@@ -56,6 +56,12 @@ extern "C" {
 #ifndef ODG_NODE_MAX_HB
 #define ODG_NODE_MAX_HB 8u
 #endif
+/* Bytes the node keeps of the communication values in force at boot, which reset communication
+ * brings back: objects of 0x1000-0x1FFF in index order while they fit whole (the rest keep
+ * their values); odg_node_comm_bytes(dict) says how many a dictionary needs. */
+#ifndef ODG_NODE_COMM_BYTES
+#define ODG_NODE_COMM_BYTES 512u
+#endif
 /* SDO: ms of silence within a transfer before it is aborted (0x05040000). */
 #ifndef ODG_NODE_SDO_TIMEOUT_MS
 #define ODG_NODE_SDO_TIMEOUT_MS 1000u
@@ -216,6 +222,7 @@ typedef struct odg_node {
     uint16_t err_code[ODG_NODE_MAX_ERRORS]; /* the active errors (odg_err.c) */
     uint8_t err_bits[ODG_NODE_MAX_ERRORS];  /* the error register bits of each */
     uint8_t err_active;       /* how many */
+    uint8_t comm[ODG_NODE_COMM_BYTES > 0u ? ODG_NODE_COMM_BYTES : 1u]; /* values at boot */
     uint8_t state;            /* odg_nmt_state_t */
     uint8_t error_register;   /* of the active errors (and stored in 0x1001) */
 } odg_node_t;
@@ -288,6 +295,16 @@ void odg_node_tpdo_request(odg_node_t *node, uint16_t n);
  * node is not pre-operational or operational, VALUE_RANGE for ms >= 2^28, HARDWARE when
  * `send` failed. */
 odg_abort_t odg_node_time_send(odg_node_t *node, uint32_t ms, uint16_t days);
+
+/* Reset communication brings back the communication values (0x1000-0x1FFF, numbers an SDO
+ * client may write, but not 0x1003) in force at the last boot: defaults, or the values stored
+ * and loaded; after an SDO "save" (0x1010) those saved, after "load" (0x1011) the defaults, of
+ * the persistence groups concerned. odg_node_comm_keep makes the values the dictionary holds now
+ * the ones to come back (after the application configured them at start, say). */
+void odg_node_comm_keep(odg_node_t *node);
+
+/* The bytes the communication values of `dict` take (ODG_NODE_COMM_BYTES should be as many). */
+uint32_t odg_node_comm_bytes(const odg_dict_t *dict);
 
 /* Re-read every communication entry (0x1005, 0x1014, 0x1200, PDOs) after the application
  * changed them behind the dictionary's back (through an odg_ptr pointer, say); writes by

@@ -41,6 +41,9 @@ enum {
 #define ODG_PDO_F_SAMPLED  0x40u /* TPDO type 252: data/len hold what the last SYNC sampled */
 
 /* odg_node.c */
+/* After the SDO server wrote "save" (restore 0) or "load" (1) to 0x1010/0x1011 sub `sub`:
+ * reset communication brings back what the next boot would load. */
+void odg_node_stored_(odg_node_t *n, uint8_t sub, int restore);
 int odg_node_send_(odg_node_t *n, uint32_t cob, const uint8_t *data, uint8_t len);
 /* A number of up to 4 bytes from the dictionary (little-endian wire bytes), via odg_read. */
 odg_abort_t odg_node_get_(const odg_node_t *n, uint16_t index, uint8_t sub, uint32_t *value);

@@ -354,7 +354,7 @@ static void test_emcy_and_resets(void)
     clear();
     CHECK_EQ(odg_node_emcy(&node, 0x5000, 0x81, NULL, 0), ODG_ABORT_DATA_STATE);
     CHECK_EQ(n_sent, 0);
-    /* reset communication re-reads the entries (the values stay as written) */
+    /* reset communication: the communication values of the boot again, and the node serves them */
     CHECK_EQ(download_u32(0x1800, 1, INVALID | TPDO1, 4), 0);
     clear();
     nmt(ODG_NMT_RESET_COMM, 0);
@@ -362,7 +362,9 @@ static void test_emcy_and_resets(void)
     CHECK_EQ(odg_node_state(&node), ODG_NMT_PRE_OPERATIONAL);
     nmt(ODG_NMT_START, 0);
     after(1);
-    CHECK_EQ(count_id(TPDO1), 0);
+    CHECK_EQ(count_id(TPDO1), odg_node_comm_bytes(&pdo_node) <= ODG_NODE_COMM_BYTES); /* else kept */
+    CHECK_EQ(count_id(EMCY), 0);
+    CHECK_EQ(download_u32(0x1800, 1, INVALID | TPDO1, 4), 0);
     /* reset node: the defaults again */
     nmt(ODG_NMT_RESET_NODE, NID);
     CHECK_EQ(upload_u32(0x1001, 0), 0);
@@ -379,6 +381,69 @@ static void test_emcy_and_resets(void)
     pdo_node_x2000_u8_value = 0x77;
     run_ms(10);
     CHECK_EQ(count_id(TPDO1), 0);
+}
+
+/* Reset communication: the values of 0x1000-0x1FFF an SDO client may write come back as they
+ * were at boot (here the defaults: RAM only), the application's stay, as do 0x1003 and what
+ * odg_node_comm_keep made current. Built with a small ODG_NODE_COMM_BYTES too: the objects
+ * past it keep their values. */
+static unsigned app_told;
+
+static void app_told_fn(odg_client_t *self, const odg_ref_t *ref)
+{
+    (void)self;
+    app_told += ref == NULL;
+}
+
+static void test_reset_communication(void)
+{
+    static odg_client_t app;
+    int all = odg_node_comm_bytes(&pdo_node) <= ODG_NODE_COMM_BYTES;
+    CHECK(odg_node_comm_bytes(&pdo_node) > 0u);
+    CHECK(all || ODG_NODE_COMM_BYTES < 512u); /* the default holds this dictionary's */
+    nmt(ODG_NMT_RESET_NODE, NID);
+    CHECK_EQ(odg_node_error_set(&node, 0x5000, 0, NULL, 0), 0);
+    CHECK_EQ(download_u32(0x1005, 0, 0x81, 4), 0);
+    CHECK_EQ(download_u32(0x1017, 0, 700, 2), 0);
+    CHECK_EQ(download_u32(0x1016, 1, 0x00090064u, 4), 0);
+    CHECK_EQ(download_u32(0x1029, 1, 2, 1), 0);
+    CHECK_EQ(download_u32(0x1800, 1, INVALID | TPDO1, 4), 0);
+    CHECK_EQ(download_u32(0x1800, 2, 7, 1), 0);
+    CHECK_EQ(download_u32(0x1A00, 0, 0, 1), 0);
+    CHECK_EQ(download_u32(0x2000, 0, 0x5A, 1), 0);
+    app.changed = app_told_fn;
+    odg_attach(&pdo_node, &app);
+    app_told = 0;
+    nmt(ODG_NMT_RESET_COMM, NID);
+    CHECK_EQ(app_told, 1); /* the application hears that any value may have changed */
+    CHECK_EQ(upload_u32(0x1005, 0), ODG_NODE_COMM_BYTES >= 4u ? 0x80u : 0x81u); /* the first object */
+    CHECK_EQ(upload_u32(0x2000, 0), 0x5A);
+    CHECK_EQ(upload_u32(0x1003, 0), 1);     /* the error history is kept ... */
+    CHECK_EQ(upload_u32(0x1001, 0), 0x01);  /* ... and the error still active */
+    CHECK_EQ(upload_u32(0x1017, 0), all ? 0u : 700u);
+    CHECK_EQ(upload_u32(0x1016, 1), all ? 0u : 0x00090064u);
+    CHECK_EQ(upload_u32(0x1029, 1), all ? 0u : 2u);
+    CHECK_EQ(upload_u32(0x1800, 1), all ? TPDO1 : INVALID | TPDO1);
+    CHECK_EQ(upload_u32(0x1800, 2), all ? 255u : 7u);
+    CHECK_EQ(upload_u32(0x1A00, 0), all ? 2u : 0u);
+    if (all) { /* and served: TPDO1 valid and event-driven again */
+        nmt(ODG_NMT_START, NID);
+        clear();
+        after(1);
+        CHECK_EQ(count_id(TPDO1), 1);
+    }
+    /* what the application configured at start (odg_node_comm_keep) comes back instead */
+    CHECK_EQ(odg_set_u16(&pdo_node, 0x1017, 0, 40), ODG_OK);
+    odg_node_comm_keep(&node);
+    CHECK_EQ(download_u32(0x1017, 0, 90, 2), 0);
+    nmt(ODG_NMT_RESET_COMM, NID);
+    CHECK_EQ(upload_u32(0x1017, 0), all ? 40u : 90u);
+    /* reset node: the defaults, and the start values forgotten */
+    nmt(ODG_NMT_RESET_NODE, NID);
+    CHECK_EQ(download_u32(0x1017, 0, 90, 2), 0);
+    nmt(ODG_NMT_RESET_COMM, NID);
+    CHECK_EQ(upload_u32(0x1017, 0), all ? 0u : 90u);
+    nmt(ODG_NMT_RESET_NODE, NID);
 }
 
 /* The node hears communication parameters the application sets (odg_set) at once, without
@@ -841,6 +906,7 @@ int main(void)
     test_rpdo();
     test_remap();
     test_emcy_and_resets();
+    test_reset_communication();
     test_application_writes();
     test_application_client();
     test_error_history();
