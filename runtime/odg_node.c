@@ -64,17 +64,27 @@ odg_abort_t odg_node_check_(odg_node_t *n, uint16_t index, uint8_t sub, const ui
     return index == 0x1003u ? odg_err_check_(n, sub, v) : odg_pdo_check_(n, index, sub, v);
 }
 
-/* COB-IDs of SYNC, EMCY and the SDO server. The default SDO server (0x1200) always answers on
- * the pre-defined connection set (CiA 301: its COB-IDs are 0x600/0x580 + node-id, read-only),
- * whatever a description writes there: a bogus value must not make the node unreachable. */
+/* COB-IDs of SYNC, EMCY and TIME: re-read whenever one of them changes. */
 static void load_cobs(odg_node_t *n)
 {
     uint32_t id = n->cfg.node_id;
-    n->sdo_rx = 0x600u + id;
-    n->sdo_tx = 0x580u + id;
     n->sync_cob = odg_node_get_or_(n, 0x1005, 0, 0x80u);
     n->emcy_cob = odg_node_get_or_(n, 0x1014, 0, 0x80u + id);
     n->time_cob = odg_node_get_or_(n, 0x1012, 0, 0);
+}
+
+/* The SDO server's COB-IDs from 0x1200 (without it, the pre-defined 0x600/0x580 + node-id), read
+ * at boot and by odg_node_reload only: a write to 0x1200 takes effect at the next reset of
+ * communication, so the answer to that write still goes where the client waits for it. Bit 31
+ * of either (or a 29-bit COB-ID, whose frames the node ignores) disables the server. */
+static void load_sdo_cobs(odg_node_t *n)
+{
+    uint32_t id = n->cfg.node_id;
+    n->sdo_rx = odg_node_get_or_(n, 0x1200, 1, 0x600u + id);
+    n->sdo_tx = odg_node_get_or_(n, 0x1200, 2, 0x580u + id);
+    if ((n->sdo_tx | n->sdo_rx) & (ODG_COB_INVALID | ODG_COB_EXTENDED)) {
+        n->sdo_rx |= ODG_COB_INVALID;
+    }
 }
 
 /* A value changed, whoever wrote it (SDO server, application, persistence layer): re-read
@@ -103,6 +113,7 @@ void odg_node_reload(odg_node_t *node)
 {
     uint16_t k;
     load_cobs(node);
+    load_sdo_cobs(node);
     odg_hb_load_(node);
     for (k = 0; k < ODG_NODE_MAX_RPDO; k++) {
         odg_pdo_load_(node, 0, k);

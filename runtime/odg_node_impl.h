@@ -7,6 +7,7 @@
 #include "odg_node.h"
 
 #define ODG_COB_INVALID 0x80000000u /* bit 31 of a COB-ID entry: not valid / not used */
+#define ODG_COB_EXTENDED 0x20000000u /* bit 29: a 29-bit CAN-ID */
 #define ODG_COB_ID(c) ((c) & 0x7FFu)
 #define ODG_TIME_CONSUME 0x80000000u /* 0x1012 bit 31 */
 #define ODG_TIME_PRODUCE 0x40000000u /* 0x1012 bit 30 */

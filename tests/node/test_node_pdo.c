@@ -446,6 +446,35 @@ static void test_reset_communication(void)
     nmt(ODG_NMT_RESET_NODE, NID);
 }
 
+/* The SDO server takes its COB-IDs from 0x1200 at boot and reset communication (read-only for
+ * SDO, set here by the application); bit 31 disables it; reset node brings the defaults back. */
+static void test_sdo_server_cob_ids(void)
+{
+    static const uint8_t upload_1000[8] = {0x40, 0x00, 0x10, 0, 0, 0, 0, 0};
+    nmt(ODG_NMT_RESET_NODE, NID);
+    CHECK_EQ(upload_u32(0x1200, 1), 0x600u + NID);
+    CHECK_EQ(upload_u32(0x1200, 2), 0x580u + NID);
+    CHECK_EQ(download_u32(0x1200, 1, 0x640, 4), ODG_ABORT_READ_ONLY);
+    CHECK_EQ(odg_set_u32(&pdo_node, 0x1200, 1, 0x640), ODG_OK);
+    CHECK_EQ(odg_set_u32(&pdo_node, 0x1200, 2, 0x5C0), ODG_OK);
+    CHECK_EQ(upload_u32(0x1200, 1), 0x640); /* not yet in force */
+    nmt(ODG_NMT_RESET_COMM, NID);
+    clear();
+    rx_frame(SDO_RX, upload_1000, 8);
+    CHECK_EQ(n_sent, 0);
+    rx_frame(0x640, upload_1000, 8);
+    CHECK_EQ(n_sent, 1);
+    CHECK(sent[0].id == 0x5C0 && sent[0].data[0] == 0x43 && sent[0].data[1] == 0x00 && sent[0].data[2] == 0x10);
+    CHECK_EQ(odg_set_u32(&pdo_node, 0x1200, 2, INVALID | 0x5C0u), ODG_OK);
+    nmt(ODG_NMT_RESET_COMM, NID);
+    clear();
+    rx_frame(0x640, upload_1000, 8);
+    rx_frame(SDO_RX, upload_1000, 8);
+    CHECK_EQ(n_sent, 0); /* disabled */
+    nmt(ODG_NMT_RESET_NODE, NID);
+    CHECK_EQ(upload_u32(0x1200, 1), 0x600u + NID);
+}
+
 /* The node hears communication parameters the application sets (odg_set) at once, without
  * odg_node_reload; a write through an odg_ptr pointer only after odg_changed. */
 static void test_application_writes(void)
@@ -636,6 +665,21 @@ static void test_error_register(void)
     CHECK_EQ(REG, 0);
     CHECK_EQ(odg_node_error_clear(&node, 0x4210), 0);
     CHECK_EQ(n_sent, 2);
+    /* the RPDO length error outlives stop and start, and ends with the RPDO reconfigured */
+    nmt(ODG_NMT_START, NID);
+    rx(RPDO1, 9, 0);
+    CHECK_EQ(REG, 0x11);
+    nmt(ODG_NMT_STOP, NID);
+    nmt(ODG_NMT_START, NID);
+    CHECK_EQ(REG, 0x11);
+    rx(RPDO1, 9, 0, 0);
+    CHECK_EQ(REG, 0);
+    rx(RPDO1, 9, 0);
+    clear();
+    CHECK_EQ(download_u32(0x1400, 1, INVALID | RPDO1, 4), 0);
+    CHECK_EQ(REG, 0);
+    CHECK(FRAME_IS(last_id(EMCY), 0, 0, 0, 0, 0, 0, 0, 0));
+    nmt(ODG_NMT_RESET_NODE, NID);
 #undef REG
 }
 
@@ -907,6 +951,7 @@ int main(void)
     test_remap();
     test_emcy_and_resets();
     test_reset_communication();
+    test_sdo_server_cob_ids();
     test_application_writes();
     test_application_client();
     test_error_history();
