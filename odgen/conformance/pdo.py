@@ -11,9 +11,10 @@ import time
 from dataclasses import dataclass
 
 from ..codegen.selftest import expected_bytes, write_cases
+from ..model.cia301 import CONSUMER_HEARTBEAT, ERROR_REGISTER, HEARTBEAT
 from ..roundtrip.checks import ACTIVE, Check
-from .checks import EMCY_RPDO_LENGTH, INCOMPATIBLE, MAP_TOO_LONG, NOT_MAPPABLE, RANGE, RESTORE, SIGNATURE, STORE, \
-    Entry, entries, is_command
+from .checks import EMCY_HEARTBEAT, EMCY_RPDO_LENGTH, INCOMPATIBLE, MAP_TOO_LONG, NOT_MAPPABLE, RANGE, RESTORE, \
+    SIGNATURE, STORE, Entry, entries, is_command
 from .client import Client
 
 INVALID = 0x80000000
@@ -238,6 +239,78 @@ def check_emcy_inhibit(c: Client) -> Check:
             gap = 1000 * (stamps[1] - stamps[0]) if len(stamps) >= 2 else None
             check.expect(gap is not None and gap >= 90, f"two EMCYs {gap and round(gap)} ms apart, inhibit 100 ms")
     c.download(0x1015, 0, saved or b"\x00\x00")
+    return check
+
+
+# Error register bits (0x1001): generic, and communication for the 0x81xx/0x82xx codes.
+REG_GENERIC, REG_COMMUNICATION = 0x01, 0x10
+
+
+def _register_follows(c: Client, check: Check, frame: bytes | None, code: int, when: str) -> None:
+    """An EMCY of `code` came, its error register has the generic and communication bits, and
+    0x1001 reads the same."""
+    check.expect(frame is not None, f"{when}: no EMCY 0x{code:04X}")
+    if frame is not None:
+        register = c.number(ERROR_REGISTER)
+        want = REG_GENERIC | REG_COMMUNICATION
+        check.expect(frame[2] & want == want, f"{when}: EMCY register 0x{frame[2]:02X}, want bits 0x{want:02X}")
+        check.expect(register == frame[2], f"{when}: 0x1001 reads {register}, the EMCY said 0x{frame[2]:02X}")
+
+
+def _heartbeat_error(c: Client, check: Check, cob: int) -> None:
+    """A second error while the first is active: a watched heartbeat stops (EMCY 0x8130); when it
+    comes back, 0x1001 still shows the first error."""
+    other = c.node_id % 127 + 1
+    saved = c.upload(CONSUMER_HEARTBEAT, 1)[0]
+    if c.download(CONSUMER_HEARTBEAT, 1, (other << 16 | 200).to_bytes(4, "little")) != 0:
+        check.expect(False, "0x1016sub1 refused")
+        return
+    for _ in range(3):
+        c.send(HEARTBEAT + other, b"\x05")
+        time.sleep(0.05)  # pacing the heartbeats of the node played here
+    stopped = time.monotonic()
+    frame = c.wait_frame(stopped, lambda got, d: got == cob and d[:2] == EMCY_HEARTBEAT.to_bytes(2, "little"))
+    _register_follows(c, check, frame, EMCY_HEARTBEAT, "a watched heartbeat stopped")
+    c.send(HEARTBEAT + other, b"\x05")  # back: its error is gone, the RPDO's is not
+    c.download(CONSUMER_HEARTBEAT, 1, saved or bytes(4))
+    register = c.number(ERROR_REGISTER) or 0
+    want = REG_GENERIC | REG_COMMUNICATION
+    check.expect(register & want == want, f"heartbeat back, the RPDO still too short: 0x1001 reads 0x{register:02X}")
+
+
+def check_error_register(c: Client) -> Check:
+    check = Check("error register 0x1001 follows the active errors; EMCY error reset when the last is gone")
+    found = _setup(c, check, tx=False)
+    emcy = c.emcy_cob()
+    if found is None:
+        return check
+    if emcy is None or emcy & INVALID:
+        check.skipped = "EMCY disabled (0x1014 bit 31)"
+        return check
+    pdo, e = found
+    cob = emcy & 0x7FF
+    c.watch(cob)
+    size = e.dtype.bits // 8 or 1
+    consumer = c.od.find(CONSUMER_HEARTBEAT, 1)
+    with Configured(c, pdo, e, 0xFF) as conf:
+        if not conf.ok:
+            check.expect(False, f"RPDO 0x{pdo.comm:04X}: {conf.failed[0]} aborted 0x{conf.failed[1]:08X}")
+            return check
+        c.nmt("OPERATIONAL")
+        sent = time.monotonic()
+        c.send(pdo.cob, bytes(size - 1))
+        frame = c.wait_frame(sent, lambda got, d: got == cob and d[:2] == EMCY_RPDO_LENGTH.to_bytes(2, "little"))
+        _register_follows(c, check, frame, EMCY_RPDO_LENGTH, "short RPDO")
+        if consumer is not None and consumer.writable:
+            _heartbeat_error(c, check, cob)
+            c.nmt("OPERATIONAL")  # 0x1029 may have left it
+        sent = time.monotonic()
+        c.send(pdo.cob, bytes(size))
+        frame = c.wait_frame(sent, lambda got, d: got == cob and d[:2] == b"\x00\x00")
+        check.expect(frame is not None, "right length again, no error active: no error reset EMCY (0x0000)")
+        register = c.number(ERROR_REGISTER)
+        check.expect(frame is None or frame[2] == 0, f"error reset EMCY with register 0x{(frame or bytes(3))[2]:02X}")
+        check.expect(register == 0, f"no error active: 0x1001 reads {register}")
     return check
 
 

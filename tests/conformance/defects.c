@@ -3,14 +3,15 @@
  *
  * Built into the node program as its application (-DODG_APP) with -DODG_DEFECT=N: at start it
  * puts itself between the node and the bus, and changes or drops the frames the node sends in
- * one way per check family, as a faulty node would (tests/test_conformance.py).
+ * one way per check family, as a faulty node would (tests/test_conformance.py); one defect
+ * works from the application's tick instead.
  */
 #include <string.h>
 
 #include "odg_app.h"
 
 #ifndef ODG_DEFECT
-#error "define ODG_DEFECT (1..12)"
+#error "define ODG_DEFECT (1..15)"
 #endif
 
 enum {
@@ -25,7 +26,10 @@ enum {
     SYNC_COUNTER,     /* the SYNC counter does not count */
     HB_CONSUMER_EMCY, /* a heartbeat timeout is reported with the wrong EMCY code */
     EMCY_TWICE,       /* every EMCY goes out twice, the inhibit time ignored */
-    GUARD_TOGGLE      /* the node guarding answer's toggle bit never changes */
+    GUARD_TOGGLE,     /* the node guarding answer's toggle bit never changes */
+    REGISTER_STALE,   /* the error reset EMCY still says generic and communication error */
+    COMM_KEPT,        /* reset communication keeps the communication values written since boot */
+    SDO_SERVER_COB    /* an upload of 0x1200 says bit 31: the server it answers on is not valid */
 };
 
 static odg_send_fn real_send;
@@ -118,6 +122,16 @@ static int mangle(odg_frame_t *f)
             f->data[0] &= 0x7Fu;
         }
         break;
+    case REGISTER_STALE:
+        if (id == 0x80u + node_id && f->data[0] == 0u && f->data[1] == 0u) {
+            f->data[2] = 0x11u;
+        }
+        break;
+    case SDO_SERVER_COB:
+        if (sdo && (f->data[0] & 0xE3u) == 0x43u && index == 0x1200u) {
+            f->data[7] |= 0x80u;
+        }
+        break;
     default:
         break;
     }
@@ -143,6 +157,8 @@ void odg_app_init(odg_node_t *node)
 
 void odg_app_tick(odg_node_t *node, uint32_t elapsed_ms)
 {
-    (void)node;
     (void)elapsed_ms;
+    if (ODG_DEFECT == COMM_KEPT) {
+        odg_node_comm_keep(node); /* the values of now are the ones reset communication restores */
+    }
 }
