@@ -33,7 +33,6 @@
 
 uint8_t odg_node_error_bits(uint16_t code)
 {
-    uint8_t bits = ODG_ERR_GENERIC;
     switch (code >> 12) {
     case 0x0u:
         return 0; /* error reset / no error */
@@ -44,9 +43,10 @@ uint8_t odg_node_error_bits(uint16_t code)
     case 0x4u:
         return ODG_ERR_GENERIC | ODG_ERR_TEMPERATURE;
     case 0x8u: /* monitoring: only 0x81xx and 0x82xx are communication, the rest device profiles' */
-        return (code >> 8) == 0x81u || (code >> 8) == 0x82u ? ODG_ERR_GENERIC | ODG_ERR_COMMUNICATION : bits;
+        return (code >> 8) == 0x81u || (code >> 8) == 0x82u ? ODG_ERR_GENERIC | ODG_ERR_COMMUNICATION
+                                                            : ODG_ERR_GENERIC;
     default:
-        return (code >> 8) == 0xFFu ? ODG_ERR_GENERIC | ODG_ERR_MANUFACTURER : bits;
+        return (code >> 8) == 0xFFu ? ODG_ERR_GENERIC | ODG_ERR_MANUFACTURER : ODG_ERR_GENERIC;
     }
 }
 

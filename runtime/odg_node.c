@@ -158,11 +158,9 @@ static void comm_copy(odg_node_t *n, const odg_sub_t *s, uint8_t *at, int how, u
     if (how != COMM_KEEP && (g == NULL || (sub != 1u && g->store_sub != sub))) {
         return; /* not a value of the groups saved or loaded */
     }
-    v = odg_load_(p, s->size);
-    if (how == COMM_LOADED) {
-        v = odg_load_((const uint8_t *)g->defaults + s->offset, s->size) +
-            ((s->attr & ODG_A_NODEID) ? n->cfg.node_id : 0u);
-    }
+    v = how != COMM_LOADED ? odg_load_(p, s->size)
+                           : odg_load_((const uint8_t *)g->defaults + s->offset, s->size) +
+                                 ((s->attr & ODG_A_NODEID) ? n->cfg.node_id : 0u);
     for (k = 0; k < s->size; k++, v >>= 8) {
         at[k] = (uint8_t)v;
     }

@@ -33,12 +33,14 @@ EXAMPLE = ROOT / "examples" / "io-node" / "io-node.eds"
 DEFECT_CHECKS = {1: "sdo.upload", 2: "sdo.limits", 3: "access.read-only", 4: "nmt.states", 5: "nmt.heartbeat",
                  6: "pdo.tpdo-types", 7: "emcy.rpdo-length", 8: "store.signature", 9: "sync.producer",
                  10: "nmt.hb-consumer", 11: "emcy.inhibit", 12: "nmt.guarding", 13: "emcy.error-register",
-                 14: "nmt.reset-comm", 15: "sdo.server"}
-# The description each defect's node is built from: the example, or one with a SYNC producer,
-# a heartbeat consumer, an EMCY inhibit time and guarding.
+                 14: "nmt.reset-comm", 15: "sdo.server", 16: "lss.inquire",
+                 17: "sync.window"}
+# The description each defect's node is built from: the example, one with a SYNC producer, a
+# heartbeat consumer, an EMCY inhibit time and guarding, or one with the LSS slave.
 PDO_NODE = ROOT / "tests" / "node" / "pdo-node.eds"
-DEFECT_FILES = {n: PDO_NODE if n >= 9 else EXAMPLE for n in DEFECT_CHECKS}
-CHECKS = 22  # node.answers and the battery (odgen/conformance/__init__.py)
+LSS_NODE = ROOT / "tests" / "node" / "lss-node.eds"
+DEFECT_FILES = {n: LSS_NODE if n >= 16 else PDO_NODE if n >= 9 else EXAMPLE for n in DEFECT_CHECKS}
+CHECKS = 24  # node.answers and the battery (odgen/conformance/__init__.py)
 
 
 def sdo_server_at(path: Path, out: Path, request: str, response: str) -> Path:
@@ -68,7 +70,7 @@ def results(vcan_bus, tmp_path_factory: pytest.TempPathFactory, monkeypatch_modu
     moved = sdo_server_at(PDO_NODE, tmp_path_factory.mktemp("moved") / "sdo-moved.eds", "$NODEID+0x640",
                           "$NODEID+0x5C0")
     plan = [{"name": path.name, "exe": str(_build(path)), "file": str(path), "cli": path == EXAMPLE}
-            for path in [*vcan_files(), PDO_NODE, moved]]
+            for path in [*vcan_files(), PDO_NODE, LSS_NODE, moved]]
     plan += [{"name": f"defect-{n}", "exe": str(_build(DEFECT_FILES[n], n)), "file": str(DEFECT_FILES[n]),
               "cli": n == 1} for n in DEFECT_CHECKS]
     for node in plan:
@@ -91,7 +93,7 @@ def monkeypatch_module():
 
 def test_every_built_node_passes(results: dict[str, dict]) -> None:
     clean = {name: node for name, node in results.items() if not name.startswith("defect-")}
-    assert len(clean) == len(vcan_files()) + 2
+    assert len(clean) == len(vcan_files()) + 3
     failing = {name: "\n".join(node["text"]) for name, node in clean.items() if node["failed"]}
     assert not failing, "\n\n".join(failing.values())[-6000:]
     assert all(node["checks"] == CHECKS for node in clean.values())
@@ -101,6 +103,12 @@ def test_moved_sdo_server(results: dict[str, dict]) -> None:
     """A node whose 0x1200 says 0x640/0x5C0 + id serves SDO there only, and the battery follows it."""
     text = "\n".join(results["sdo-moved.eds"]["text"])
     assert " ok   sdo.server:" in text and " ok   nmt.reset-comm:" in text, text
+
+
+def test_lss_node(results: dict[str, dict]) -> None:
+    """The LSS and SYNC window checks ran (not skipped) against the node with the LSS slave."""
+    text = "\n".join(results[LSS_NODE.name]["text"])
+    assert " ok   lss.inquire:" in text and " ok   sync.window:" in text, text
 
 
 @pytest.mark.parametrize("defect", list(DEFECT_CHECKS))

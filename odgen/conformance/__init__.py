@@ -33,6 +33,7 @@ CHECKS: tuple[tuple[str, Callable[[Client], Check]], ...] = (
     ("nmt.states", checks.check_nmt_states),
     ("nmt.heartbeat", checks.check_heartbeat),
     ("sync.producer", checks.check_sync_producer),
+    ("sync.window", pdo.check_sync_window),
     ("pdo.sequence", pdo.check_pdo_sequence),
     ("pdo.tpdo-types", pdo.check_tpdo_types),
     ("emcy.rpdo-length", pdo.check_emcy),
@@ -43,6 +44,7 @@ CHECKS: tuple[tuple[str, Callable[[Client], Check]], ...] = (
     ("nmt.boot-up", checks.check_bootup),
     ("nmt.reset-comm", checks.check_reset_communication),
     ("sdo.server", checks.check_sdo_server),
+    ("lss.inquire", checks.check_lss),
     ("store.signature", pdo.check_signatures),
     ("store.save-load", pdo.check_store_restore),
 )

@@ -15,11 +15,12 @@ from dataclasses import dataclass
 from ..codegen.selftest import expected_bytes, write_cases
 from ..model.wire import wire_bytes
 from ..model import Obj, Sub
-from ..model.cia301 import COMMUNICATION_AREA, HEARTBEAT, MANUFACTURER_AREA, PRODUCER_HEARTBEAT, \
+from ..model.cia301 import COMMUNICATION_AREA, HEARTBEAT, IDENTITY, MANUFACTURER_AREA, PRODUCER_HEARTBEAT, \
     SDO_REQUEST, SDO_RESPONSE, SDO_SERVER
+from ..rules.common import header_field, header_int
 from ..model.datatypes import BASIC_TYPES, DataType
 from ..roundtrip.checks import ABORTS, ACTIVE, NO_OBJECT, NO_SUB, WRITE_ONLY, Check
-from .client import DEADLINE, SILENCE, Client
+from .client import DEADLINE, SDO_TIMEOUT, SILENCE, Client
 
 READ_ONLY = ABORTS["ODG_ABORT_READ_ONLY"]
 RANGE = 0x06090030  # "value range of parameter exceeded": the general code a node may give
@@ -423,4 +424,35 @@ def check_guarding(c: Client) -> Check:
     for index in (0x100C, 0x100D, 0x1017):
         if saved.get(index) is not None:
             c.download(index, 0, saved[index] or b"")
+    return check
+
+
+# ---- LSS (CiA 305) --------------------------------------------------------------------------------
+
+LSS_INQUIRE = (0x5A, 0x5B, 0x5C, 0x5D)  # vendor-ID, product code, revision, serial number: 0x1018 sub 1-4
+
+
+def check_lss(c: Client) -> Check:
+    check = Check("LSS: in configuration mode the node answers its identity (0x1018 sub 1-4) and node-id")
+    if header_int(header_field(c.od, "DeviceInfo", "LSS_Supported")) != 1:
+        check.skipped = "the description does not say LSS_Supported=1"
+        return check
+    from canopen.lss import LssError  # the client's, loaded with it
+
+    identity = [c.number(IDENTITY, sub) if c.od.find(IDENTITY, sub) is not None else None for sub in range(1, 5)]
+    lss = c.network.lss
+    lss.RESPONSE_TIMEOUT = SDO_TIMEOUT
+    lss.send_switch_state_global(lss.CONFIGURATION_STATE)
+    try:
+        for sub, (command, want) in enumerate(zip(LSS_INQUIRE, identity, strict=True), start=1):
+            got = lss.inquire_lss_address(command)
+            check.expect(want is None or got == want, f"inquire 0x{command:02X}: 0x{got:08X}, 0x1018sub{sub} "
+                                                      f"reads {want if want is None else hex(want)}")
+        node_id = lss.inquire_node_id()
+        check.expect(node_id == c.node_id, f"inquire node-id: {node_id}, the node is {c.node_id}")
+    except LssError as err:
+        check.expect(False, f"no LSS answer in configuration mode: {err}")
+    finally:
+        lss.send_switch_state_global(lss.WAITING_STATE)
+    check.expect(c.answers(), "no SDO answer after LSS configuration mode and back to waiting")
     return check
