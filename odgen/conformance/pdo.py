@@ -248,7 +248,7 @@ def check_emcy(c: Client) -> Check:
         c.nmt("OPERATIONAL")
         sent = time.monotonic()
         c.send(pdo.cob, bytes(size - 1))
-        frame = c.wait_frame(sent, lambda cob, d: cob == cob and d[:2] != b"\x00\x00")
+        frame = c.wait_frame(sent, lambda got, d: got == cob and d[:2] != b"\x00\x00")
         check.expect(frame is not None and int.from_bytes(frame[:2], "little") == EMCY_RPDO_LENGTH,
                      f"short RPDO: EMCY {frame!r}, want code 0x{EMCY_RPDO_LENGTH:04X}")
         if frame is None:
@@ -269,7 +269,7 @@ def check_emcy(c: Client) -> Check:
                              "0x1003sub0 = 0 did not clear the history")
         sent = time.monotonic()
         c.send(pdo.cob, bytes(size))
-        frame = c.wait_frame(sent, lambda cob, d: cob == cob)
+        frame = c.wait_frame(sent, lambda got, d: got == cob)
         check.expect(frame is not None and frame[:2] == b"\x00\x00", f"right length again: EMCY {frame!r}, want 0x0000")
     return check
 
