@@ -1,6 +1,12 @@
 /*
- * odg_err.c - the node's pre-defined error field (0x1003): the history of the errors its EMCY
- * frames reported, newest first; and the EMCY inhibit time (0x1015).
+ * odg_err.c - the node's errors: those active and the error register 0x1001 that follows them,
+ * the pre-defined error field (0x1003: the history of the errors its EMCY frames reported,
+ * newest first), and the EMCY inhibit time (0x1015).
+ *
+ * Active errors (odg_node_error_set / _clear), at most ODG_NODE_MAX_ERRORS, by code: 0x1001 is
+ * the union of their register bits with the generic bit, 0 when none is active. An EMCY goes
+ * out when an error becomes active, and an "error reset" (0x0000) when the last one is gone;
+ * CiA 301 lets a device also send one when some but not all are gone, this one does not.
  *
  * Each EMCY with a non-zero code (odg_node_emcy) pushes code | vendor bytes 0-1 << 16 into
  * sub 1, moving the older ones down; sub 0 counts them, up to the highest sub-index the
@@ -20,7 +26,100 @@
 #include "odg_impl.h"
 #include "odg_node_impl.h"
 
+#define ERROR_REGISTER 0x1001u
 #define HISTORY 0x1003u
+
+/* ---- active errors and the error register ------------------------------------------------ */
+
+uint8_t odg_node_error_bits(uint16_t code)
+{
+    switch (code >> 12) {
+    case 0x0u:
+        return 0; /* error reset / no error */
+    case 0x2u:
+        return ODG_ERR_GENERIC | ODG_ERR_CURRENT;
+    case 0x3u:
+        return ODG_ERR_GENERIC | ODG_ERR_VOLTAGE;
+    case 0x4u:
+        return ODG_ERR_GENERIC | ODG_ERR_TEMPERATURE;
+    case 0x8u: /* monitoring: only 0x81xx and 0x82xx are communication, the rest device profiles' */
+        return (code >> 8) == 0x81u || (code >> 8) == 0x82u ? ODG_ERR_GENERIC | ODG_ERR_COMMUNICATION
+                                                            : ODG_ERR_GENERIC;
+    default:
+        return (code >> 8) == 0xFFu ? ODG_ERR_GENERIC | ODG_ERR_MANUFACTURER : ODG_ERR_GENERIC;
+    }
+}
+
+/* 0x1001 from the active errors; read-only for SDO, so set as the application would. */
+static void register_update(odg_node_t *n)
+{
+    uint8_t k, now, reg = 0;
+    for (k = 0; k < n->err_active; k++) {
+        reg |= n->err_bits[k];
+    }
+    n->error_register = reg;
+    if (odg_get_u8(n->cfg.dict, ERROR_REGISTER, 0, &now) == ODG_OK && now != reg) {
+        (void)odg_set_u8(n->cfg.dict, ERROR_REGISTER, 0, reg); /* the clients hear of changes only */
+    }
+}
+
+static uint8_t active(const odg_node_t *n, uint16_t code)
+{
+    uint8_t k = 0;
+    while (k < n->err_active && n->err_code[k] != code) {
+        k++;
+    }
+    return k; /* err_active: not active */
+}
+
+static void forget(odg_node_t *n, uint8_t k)
+{
+    n->err_active--;
+    memmove(&n->err_code[k], &n->err_code[k + 1u], (size_t)(n->err_active - k) * sizeof n->err_code[0]);
+    memmove(&n->err_bits[k], &n->err_bits[k + 1u], (size_t)(n->err_active - k));
+}
+
+odg_abort_t odg_node_error_set(odg_node_t *node, uint16_t code, uint8_t bits, const uint8_t *vendor,
+                               uint8_t n_vendor)
+{
+    if (code == 0u) {
+        return ODG_ABORT_VALUE_RANGE;
+    }
+    if (active(node, code) < node->err_active) {
+        return ODG_OK;
+    }
+    if (node->err_active >= ODG_NODE_MAX_ERRORS) {
+        return ODG_ABORT_NO_RESOURCE;
+    }
+    node->err_code[node->err_active] = code;
+    node->err_bits[node->err_active++] = (uint8_t)(odg_node_error_bits(code) | bits | ODG_ERR_GENERIC);
+    register_update(node);
+    return odg_node_emcy(node, code, node->error_register, vendor, n_vendor);
+}
+
+odg_abort_t odg_node_error_clear(odg_node_t *node, uint16_t code)
+{
+    uint8_t k = active(node, code);
+    if (k >= node->err_active) {
+        return ODG_OK;
+    }
+    forget(node, k);
+    register_update(node);
+    return node->err_active == 0u ? odg_node_emcy(node, 0x0000, node->error_register, NULL, 0) : ODG_OK;
+}
+
+void odg_err_reset_(odg_node_t *n, int all)
+{
+    uint8_t k = n->err_active;
+    while (k-- > 0u) {
+        if (all || (n->err_code[k] >> 8) == 0x81u || (n->err_code[k] >> 8) == 0x82u) {
+            forget(n, k);
+        }
+    }
+    register_update(n);
+}
+
+/* ---- the pre-defined error field --------------------------------------------------------- */
 
 /* The storage of a numeric 0x1003 sub, or NULL when it has none the node may write. */
 static uint8_t *slot(const odg_node_t *n, uint8_t sub, uint32_t *size)

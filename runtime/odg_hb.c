@@ -16,16 +16,29 @@
  * toggle bit (bit 7, 0 in the first answer after a boot, then alternating), while the node
  * produces no heartbeat (0x1017 = 0 or absent: CiA 301 uses one or the other). Life
  * guarding: with guard time 0x100C (ms) and life time factor 0x100D both non-zero, from the
- * first remote frame on, no remote frame for their product is a life guarding event: EMCY
- * 0x8130 (byte 3: the node's own id), then 0x1029 sub 1 as above; watched again from the next
- * remote frame.
+ * first remote frame on, no remote frame for their product is a life guarding event: error
+ * 0x8130 (EMCY byte 3: the node's own id), then 0x1029 sub 1 as above; watched again from (and
+ * the error gone with) the next remote frame.
  */
 #include <string.h>
 
 #include "odg_node_impl.h"
 
 #define EMCY_HEARTBEAT 0x8130u
-#define REG_COMMUNICATION 0x11u /* error register: generic (bit 0) and communication (bit 4) */
+
+/* The error 0x8130 is gone when no watched node and no life guarding is in error. */
+static void errors_gone(odg_node_t *n)
+{
+    uint32_t k;
+    for (k = 0; k < ODG_NODE_MAX_HB; k++) {
+        if (n->hb_watch[k].lost) {
+            return;
+        }
+    }
+    if (!n->guard_lost) {
+        (void)odg_node_error_clear(n, EMCY_HEARTBEAT);
+    }
+}
 
 static uint8_t watched_id(uint32_t entry)
 {
@@ -43,6 +56,7 @@ void odg_hb_load_(odg_node_t *n)
             n->hb_watch[k].time = (uint16_t)entry;
         }
     }
+    errors_gone(n); /* entries rewritten: none is in error */
 }
 
 odg_abort_t odg_hb_check_(const odg_node_t *n, uint8_t sub, uint32_t value)
@@ -77,6 +91,10 @@ void odg_hb_receive_(odg_node_t *n, const odg_frame_t *f)
                 report(n, id, w->state);
             }
             w->started = 1;
+            if (w->lost) {
+                w->lost = 0;
+                errors_gone(n);
+            }
         }
     }
 }
@@ -108,6 +126,10 @@ void odg_guard_rtr_(odg_node_t *n, const odg_frame_t *f)
     }
     n->guard_elapsed = 0;
     n->guard_started = 1;
+    if (n->guard_lost) {
+        n->guard_lost = 0;
+        errors_gone(n);
+    }
 }
 
 static void life_guarding(odg_node_t *n, uint32_t ms)
@@ -119,8 +141,8 @@ static void life_guarding(odg_node_t *n, uint32_t ms)
     n->guard_elapsed = n->guard_elapsed + ms < ms ? 0xFFFFFFFFu : n->guard_elapsed + ms;
     if (n->guard_elapsed > life) {
         n->guard_started = 0; /* watched again from the next remote frame */
-        (void)odg_node_emcy(n, EMCY_HEARTBEAT, (uint8_t)(n->error_register | REG_COMMUNICATION),
-                            &n->cfg.node_id, 1);
+        n->guard_lost = 1;
+        (void)odg_node_error_set(n, EMCY_HEARTBEAT, 0, &n->cfg.node_id, 1);
         communication_error(n);
     }
 }
@@ -136,8 +158,8 @@ void odg_hb_tick_(odg_node_t *n, uint32_t ms)
         w->elapsed = w->elapsed + ms < w->elapsed ? 0xFFFFFFFFu : w->elapsed + ms;
         if (w->elapsed > w->time) {
             w->started = 0; /* watched again from its next heartbeat */
-            (void)odg_node_emcy(n, EMCY_HEARTBEAT, (uint8_t)(n->error_register | REG_COMMUNICATION),
-                                &w->id, 1);
+            w->lost = 1;
+            (void)odg_node_error_set(n, EMCY_HEARTBEAT, 0, &w->id, 1);
             report(n, w->id, ODG_HB_TIMEOUT);
             communication_error(n);
         }

@@ -4,6 +4,7 @@
  */
 #include <string.h>
 
+#include "odg_impl.h"
 #include "odg_node_impl.h"
 
 /* ---- helpers shared with odg_sdo.c and odg_pdo.c ------------------------------------ */
@@ -63,17 +64,27 @@ odg_abort_t odg_node_check_(odg_node_t *n, uint16_t index, uint8_t sub, const ui
     return index == 0x1003u ? odg_err_check_(n, sub, v) : odg_pdo_check_(n, index, sub, v);
 }
 
-/* COB-IDs of SYNC, EMCY and the SDO server. The default SDO server (0x1200) always answers on
- * the pre-defined connection set (CiA 301: its COB-IDs are 0x600/0x580 + node-id, read-only),
- * whatever a description writes there: a bogus value must not make the node unreachable. */
+/* COB-IDs of SYNC, EMCY and TIME: re-read whenever one of them changes. */
 static void load_cobs(odg_node_t *n)
 {
     uint32_t id = n->cfg.node_id;
-    n->sdo_rx = 0x600u + id;
-    n->sdo_tx = 0x580u + id;
     n->sync_cob = odg_node_get_or_(n, 0x1005, 0, 0x80u);
     n->emcy_cob = odg_node_get_or_(n, 0x1014, 0, 0x80u + id);
     n->time_cob = odg_node_get_or_(n, 0x1012, 0, 0);
+}
+
+/* The SDO server's COB-IDs from 0x1200 (without it, the pre-defined 0x600/0x580 + node-id), read
+ * at boot and by odg_node_reload only: a write to 0x1200 takes effect at the next reset of
+ * communication, so the answer to that write still goes where the client waits for it. Bit 31
+ * of either (or a 29-bit COB-ID, whose frames the node ignores) disables the server. */
+static void load_sdo_cobs(odg_node_t *n)
+{
+    uint32_t id = n->cfg.node_id;
+    n->sdo_rx = odg_node_get_or_(n, 0x1200, 1, 0x600u + id);
+    n->sdo_tx = odg_node_get_or_(n, 0x1200, 2, 0x580u + id);
+    if ((n->sdo_tx | n->sdo_rx) & (ODG_COB_INVALID | ODG_COB_EXTENDED)) {
+        n->sdo_rx |= ODG_COB_INVALID;
+    }
 }
 
 /* A value changed, whoever wrote it (SDO server, application, persistence layer): re-read
@@ -102,6 +113,7 @@ void odg_node_reload(odg_node_t *node)
 {
     uint16_t k;
     load_cobs(node);
+    load_sdo_cobs(node);
     odg_hb_load_(node);
     for (k = 0; k < ODG_NODE_MAX_RPDO; k++) {
         odg_pdo_load_(node, 0, k);
@@ -109,6 +121,129 @@ void odg_node_reload(odg_node_t *node)
     for (k = 0; k < ODG_NODE_MAX_TPDO; k++) {
         odg_pdo_load_(node, 1, k);
     }
+}
+
+/* ---- the communication values in force at boot ------------------------------------------- */
+
+/* What reset communication brings back: the numbers in 0x1000-0x1FFF an SDO client may write,
+ * but not the error history 0x1003 (events, not parameters) nor the commands 0x1010/0x1011. */
+static int comm_value(uint16_t index, const odg_sub_t *s)
+{
+    uint32_t cls = ODG_S_CLASS(s->storage);
+    return index != 0x1003u && (s->attr & ODG_A_WRITE) != 0u && (cls == ODG_S_RAM || cls == ODG_S_PERSIST) &&
+           s->size <= 8u && s->type != ODG_T_VISIBLE_STRING && s->type != ODG_T_OCTET_STRING &&
+           s->type != ODG_T_UNICODE_STRING && s->type != ODG_T_DOMAIN;
+}
+
+/* Bytes of the C type holding a number of wire size `size`: the copy keeps values as stored. */
+static uint32_t native_size(uint32_t size)
+{
+    return size == 3u ? 4u : (size > 4u ? 8u : size);
+}
+
+/* A number's default with the node-id added, as the generated reset does for $NODEID values. */
+static void add_node_id(uint8_t *v, uint32_t size, uint8_t id)
+{
+    uint8_t u8;
+    uint16_t u16;
+    uint32_t u32;
+    uint64_t u64;
+    if (size == 1u) {
+        memcpy(&u8, v, 1);
+        u8 = (uint8_t)(u8 + id);
+        memcpy(v, &u8, 1);
+    } else if (size == 2u) {
+        memcpy(&u16, v, 2);
+        u16 = (uint16_t)(u16 + id);
+        memcpy(v, &u16, 2);
+    } else if (size == 4u) {
+        memcpy(&u32, v, 4);
+        u32 += id;
+        memcpy(v, &u32, 4);
+    } else {
+        memcpy(&u64, v, 8);
+        u64 += id;
+        memcpy(v, &u64, 8);
+    }
+}
+
+/* One value and its place in node->comm (the bytes of its C type): COMM_KEEP copies the
+ * dictionary's value there, COMM_BACK back; COMM_SAVED and COMM_LOADED act on the values of the
+ * persistence groups 0x1010/0x1011 sub `sub` named (1: all), which the next boot would load:
+ * the value saved, or the group's default. */
+enum { COMM_KEEP, COMM_BACK, COMM_SAVED, COMM_LOADED };
+
+static void comm_copy(odg_node_t *n, const odg_sub_t *s, uint8_t *at, int how, uint8_t sub)
+{
+    const odg_dict_t *d = n->cfg.dict;
+    const odg_group_t *g = ODG_S_CLASS(s->storage) == ODG_S_PERSIST ? &d->groups[ODG_S_GROUP(s->storage)] : NULL;
+    uint32_t size = native_size(s->size);
+    if (how == COMM_BACK) {
+        memcpy(odg_value_(d, s), at, size);
+    } else if (how == COMM_KEEP || (g != NULL && (sub == 1u || g->store_sub == sub))) {
+        memcpy(at, how == COMM_LOADED ? (const uint8_t *)g->defaults + s->offset : odg_value_(d, s), size);
+        if (how == COMM_LOADED && (s->attr & ODG_A_NODEID)) {
+            add_node_id(at, size, n->cfg.node_id);
+        }
+    }
+}
+
+/* The communication values of one object: their bytes, and with `n` (not NULL) each copied
+ * to `at` in sub-index order. Sub-indices are looked up one by one (odg_find), so that an
+ * object's elements are found however the dictionary describes them. */
+static uint32_t comm_object(const odg_dict_t *d, odg_node_t *n, const odg_entry_t *en, uint8_t *at, int how,
+                            uint8_t sub)
+{
+    uint8_t last = d->subs[en->first + en->count - 1u].sub, k = 0;
+    uint32_t bytes = 0;
+    odg_ref_t r;
+    do {
+        if (odg_find(d, en->index, k, &r) == ODG_OK && comm_value(en->index, r.sub)) {
+            if (n != NULL) {
+                comm_copy(n, r.sub, at + bytes, how, sub);
+            }
+            bytes += native_size(r.sub->size);
+        }
+    } while (k++ < last);
+    return bytes;
+}
+
+/* Walk the communication values, objects in index order while they fit whole into
+ * node->comm (all of them for n == NULL, which only counts); returns the bytes they take. */
+static uint32_t comm_walk(odg_node_t *n, const odg_dict_t *d, int how, uint8_t sub)
+{
+    uint32_t at = 0, size;
+    uint16_t e;
+    for (e = 0; e < d->n_entries && d->entries[e].index <= 0x1FFFu; e++) {
+        const odg_entry_t *en = &d->entries[e];
+        if (en->index < 0x1000u) {
+            continue; /* data type definitions */
+        }
+        size = comm_object(d, NULL, en, NULL, how, sub);
+        if (n != NULL && at + size > ODG_NODE_COMM_BYTES) {
+            break; /* the rest keep their values at reset communication (NODE.md) */
+        }
+        if (n != NULL) {
+            (void)comm_object(d, n, en, &n->comm[at], how, sub);
+        }
+        at += size;
+    }
+    return at;
+}
+
+uint32_t odg_node_comm_bytes(const odg_dict_t *dict)
+{
+    return comm_walk(NULL, dict, COMM_KEEP, 0);
+}
+
+void odg_node_comm_keep(odg_node_t *node)
+{
+    (void)comm_walk(node, node->cfg.dict, COMM_KEEP, 0);
+}
+
+void odg_node_stored_(odg_node_t *n, uint8_t sub, int restore)
+{
+    (void)comm_walk(n, n->cfg.dict, restore ? COMM_LOADED : COMM_SAVED, sub);
 }
 
 /* ---- NMT ------------------------------------------------------------------------------- */
@@ -128,7 +263,7 @@ static void stored_values_lost(odg_node_t *n)
     if (n->cfg.nv != NULL && (s->boot_seen & ODG_BOOT_LOST_MASK) != 0u) {
         data[0] = s->boot_seen;
         memcpy(data + 1, s->boot_counts, 3);
-        (void)odg_node_emcy(n, ODG_NODE_EMCY_STORAGE, (uint8_t)(n->error_register | 0x01u), data, 4);
+        (void)odg_node_error_set(n, ODG_NODE_EMCY_STORAGE, 0, data, 4);
     }
 }
 
@@ -158,9 +293,10 @@ static odg_abort_t init_dict(odg_node_t *n, int keep_clients)
     return ac;
 }
 
-/* Initialising: drop the SDO transfer, re-read the communication entries (after odg_init for
- * a reset of the node, `what` BOOT_RESET, or the first boot, BOOT_POWER_ON), send the boot-up
- * frame, and go pre-operational. */
+/* Initialising: drop the SDO transfer; for a reset of the node (`what` BOOT_RESET) or the first
+ * boot (BOOT_POWER_ON) initialise the dictionary and copy its communication values, for a
+ * reset of communication (BOOT_COMM) put that copy back; re-read the communication entries,
+ * send the boot-up frame, and go pre-operational. */
 static odg_abort_t boot(odg_node_t *n, int what)
 {
     static const uint8_t bootup = 0x00;
@@ -176,14 +312,21 @@ static odg_abort_t boot(odg_node_t *n, int what)
     if (n->cfg.node_id == ODG_LSS_UNCONFIGURED) {
         return ac; /* waits for an LSS master, silent */
     }
-    n->error_register = (uint8_t)odg_node_get_or_(n, 0x1001, 0, 0);
-    odg_node_reload(n);
+    odg_err_reset_(n, what != BOOT_COMM); /* the errors of what was reset */
+    if (what == BOOT_COMM) {
+        (void)comm_walk(n, n->cfg.dict, COMM_BACK, 0);
+        odg_changed(n->cfg.dict, NULL); /* the node re-reads them, the application hears of it */
+    } else {
+        (void)comm_walk(n, n->cfg.dict, COMM_KEEP, 0); /* the values reset communication restores */
+        odg_node_reload(n);
+    }
     n->hb_timer = 0;
     n->sync_prod_us = 0;
     n->sync_counter = 0;
     n->emcy_queued = 0;
     n->guard_started = 0;
     n->guard_toggle = 0;
+    n->guard_lost = 0;
     (void)odg_node_send_(n, 0x700u + n->cfg.node_id, &bootup, 1);
     n->state = ODG_NMT_PRE_OPERATIONAL;
     if (what != BOOT_COMM) {
@@ -335,18 +478,10 @@ odg_nmt_state_t odg_node_state(const odg_node_t *node)
     return (odg_nmt_state_t)node->state;
 }
 
-/* 0x1001 is read-only for SDO: the node sets it as the application would (odg_set). */
-static void set_error_register(odg_node_t *n, uint8_t reg)
-{
-    n->error_register = reg;
-    (void)odg_set_u8(n->cfg.dict, 0x1001, 0, reg);
-}
-
 odg_abort_t odg_node_emcy(odg_node_t *node, uint16_t code, uint8_t error_register,
                           const uint8_t *vendor, uint8_t n_vendor)
 {
     uint8_t d[8];
-    set_error_register(node, error_register);
     odg_err_record_(node, code, vendor, n_vendor);
     if ((node->state != ODG_NMT_PRE_OPERATIONAL && node->state != ODG_NMT_OPERATIONAL) ||
         (node->emcy_cob & ODG_COB_INVALID)) {

@@ -48,9 +48,19 @@ extern "C" {
 #ifndef ODG_NODE_EMCY_QUEUE
 #define ODG_NODE_EMCY_QUEUE 4u
 #endif
+/* Errors active at once (odg_node_error_set) at most; more are refused. */
+#ifndef ODG_NODE_MAX_ERRORS
+#define ODG_NODE_MAX_ERRORS 8u
+#endif
 /* Heartbeat consumer: how many 0x1016 entries (sub 1..) the node watches. */
 #ifndef ODG_NODE_MAX_HB
 #define ODG_NODE_MAX_HB 8u
+#endif
+/* Bytes the node keeps of the communication values in force at boot, which reset communication
+ * brings back: objects of 0x1000-0x1FFF in index order while they fit whole (the rest keep
+ * their values); odg_node_comm_bytes(dict) says how many a dictionary needs. */
+#ifndef ODG_NODE_COMM_BYTES
+#define ODG_NODE_COMM_BYTES 512u
 #endif
 /* SDO: ms of silence within a transfer before it is aborted (0x05040000). */
 #ifndef ODG_NODE_SDO_TIMEOUT_MS
@@ -63,6 +73,15 @@ extern "C" {
 
 /* EMCY error code sent at boot when stored values were lost (see odg_node_init). */
 #define ODG_NODE_EMCY_STORAGE 0x5530u
+
+/* Error register bits (0x1001, CiA 301). odg_node_error_bits says which an error code sets. */
+#define ODG_ERR_GENERIC 0x01u       /* set while any error is active */
+#define ODG_ERR_CURRENT 0x02u       /* codes 0x2xxx */
+#define ODG_ERR_VOLTAGE 0x04u       /* codes 0x3xxx */
+#define ODG_ERR_TEMPERATURE 0x08u   /* codes 0x4xxx */
+#define ODG_ERR_COMMUNICATION 0x10u /* codes 0x81xx (communication) and 0x82xx (protocol) */
+#define ODG_ERR_PROFILE 0x20u       /* device profile specific: by the caller (bits) */
+#define ODG_ERR_MANUFACTURER 0x80u  /* codes 0xFFxx (device specific) */
 
 /* ---- frames ------------------------------------------------------------------------ */
 
@@ -163,6 +182,7 @@ typedef struct odg_hb_watch {
     uint8_t id;       /* node-id watched; 0: entry unused */
     uint8_t state;    /* the state its last heartbeat said */
     uint8_t started;  /* a heartbeat came since the entry was set or timed out */
+    uint8_t lost;     /* timed out, and no heartbeat since (EMCY 0x8130 active) */
 } odg_hb_watch_t;
 
 /* The event odg_node_on_heartbeat reports when a watched node's heartbeat is overdue; other
@@ -192,14 +212,19 @@ typedef struct odg_node {
     uint32_t guard_elapsed;    /* life guarding: ms since the last remote frame (odg_hb.c) */
     uint8_t guard_started;     /* life guarding: a remote frame came since boot or the last event */
     uint8_t guard_toggle;      /* node guarding: the toggle bit of the next answer */
+    uint8_t guard_lost;        /* life guarding: an event, and no remote frame since */
     uint32_t emcy_inhibit_us;  /* EMCY: µs until the next may be sent (odg_err.c) */
     uint8_t emcy_queue[ODG_NODE_EMCY_QUEUE][8]; /* EMCY frames waiting for the inhibit time */
     uint8_t emcy_queued;
     uint8_t emcy_fresh;        /* EMCY: one was sent since the last tick */
     void (*on_heartbeat)(void *ctx, uint8_t node_id, uint8_t event);
     void *on_heartbeat_ctx;
+    uint16_t err_code[ODG_NODE_MAX_ERRORS]; /* the active errors (odg_err.c) */
+    uint8_t err_bits[ODG_NODE_MAX_ERRORS];  /* the error register bits of each */
+    uint8_t err_active;       /* how many */
+    uint8_t comm[ODG_NODE_COMM_BYTES > 0u ? ODG_NODE_COMM_BYTES : 1u]; /* values at boot */
     uint8_t state;            /* odg_nmt_state_t */
-    uint8_t error_register;   /* as last sent in an EMCY (and stored in 0x1001) */
+    uint8_t error_register;   /* of the active errors (and stored in 0x1001) */
 } odg_node_t;
 
 /* ---- API ------------------------------------------------------------------------------ */
@@ -223,10 +248,34 @@ void odg_node_tick(odg_node_t *node, uint32_t elapsed_ms);
 
 odg_nmt_state_t odg_node_state(const odg_node_t *node);
 
-/* Send an EMCY frame (code, error register, up to 5 vendor bytes; `vendor` may be NULL) on
- * the COB-ID of 0x1014 (default 0x80 + node-id) and store `error_register` into 0x1001 when
- * the dictionary has it. ODG_ABORT_DATA_STATE when stopped or initialising, or when the EMCY
- * COB-ID is marked invalid (bit 31); ODG_ABORT_HARDWARE when `send` failed. */
+/* An error of `code` (non-zero, CiA 301 EMCY codes) became active: the error register 0x1001
+ * takes the bits of its class (odg_node_error_bits) and `bits` (ODG_ERR_PROFILE, say) and the
+ * generic bit, and an EMCY with code, register and up to 5 vendor bytes (`vendor` may be NULL)
+ * goes out; the code enters 0x1003. A code already active changes nothing and sends nothing.
+ * ODG_ABORT_NO_RESOURCE when ODG_NODE_MAX_ERRORS are active (nothing changes), VALUE_RANGE
+ * for code 0; otherwise as odg_node_emcy (the error is active whether the EMCY went out or
+ * not). */
+odg_abort_t odg_node_error_set(odg_node_t *node, uint16_t code, uint8_t bits, const uint8_t *vendor,
+                               uint8_t n_vendor);
+
+/* The error of `code` is gone: 0x1001 loses the bits no other active error has; when it was
+ * the last one, an EMCY "error reset" (code 0x0000) with the register (then 0) goes out. A code
+ * not active changes nothing. Returns as odg_node_emcy, ODG_OK when nothing was to be sent.
+ * Reset node clears every error, reset communication those of codes 0x81xx/0x82xx (the
+ * communication it restarts), both without an EMCY. */
+odg_abort_t odg_node_error_clear(odg_node_t *node, uint16_t code);
+
+/* The error register bits an EMCY error code sets: generic, and current (0x2xxx), voltage
+ * (0x3xxx), temperature (0x4xxx), communication (0x81xx, 0x82xx) or manufacturer (0xFFxx);
+ * 0 for code 0x0000. */
+uint8_t odg_node_error_bits(uint16_t code);
+
+/* Send an EMCY frame as given (code, error register byte, up to 5 vendor bytes; `vendor` may
+ * be NULL) on the COB-ID of 0x1014 (default 0x80 + node-id), waiting for the inhibit time
+ * 0x1015; a non-zero code enters 0x1003. 0x1001 and the active errors are not changed: for
+ * errors that come and go use odg_node_error_set / odg_node_error_clear. ODG_ABORT_DATA_STATE
+ * when stopped or initialising, or when the EMCY COB-ID is marked invalid (bit 31);
+ * ODG_ABORT_HARDWARE when `send` failed or the inhibit queue is full. */
 odg_abort_t odg_node_emcy(odg_node_t *node, uint16_t code, uint8_t error_register,
                           const uint8_t *vendor, uint8_t n_vendor);
 
@@ -246,6 +295,16 @@ void odg_node_tpdo_request(odg_node_t *node, uint16_t n);
  * node is not pre-operational or operational, VALUE_RANGE for ms >= 2^28, HARDWARE when
  * `send` failed. */
 odg_abort_t odg_node_time_send(odg_node_t *node, uint32_t ms, uint16_t days);
+
+/* Reset communication brings back the communication values (0x1000-0x1FFF, numbers an SDO
+ * client may write, but not 0x1003) in force at the last boot: defaults, or the values stored
+ * and loaded; after an SDO "save" (0x1010) those saved, after "load" (0x1011) the defaults, of
+ * the persistence groups concerned. odg_node_comm_keep makes the values the dictionary holds now
+ * the ones to come back (after the application configured them at start, say). */
+void odg_node_comm_keep(odg_node_t *node);
+
+/* The bytes the communication values of `dict` take (ODG_NODE_COMM_BYTES should be as many). */
+uint32_t odg_node_comm_bytes(const odg_dict_t *dict);
 
 /* Re-read every communication entry (0x1005, 0x1014, 0x1200, PDOs) after the application
  * changed them behind the dictionary's back (through an odg_ptr pointer, say); writes by

@@ -7,6 +7,7 @@
 #include "odg_node.h"
 
 #define ODG_COB_INVALID 0x80000000u /* bit 31 of a COB-ID entry: not valid / not used */
+#define ODG_COB_EXTENDED 0x20000000u /* bit 29: a 29-bit CAN-ID */
 #define ODG_COB_ID(c) ((c) & 0x7FFu)
 #define ODG_TIME_CONSUME 0x80000000u /* 0x1012 bit 31 */
 #define ODG_TIME_PRODUCE 0x40000000u /* 0x1012 bit 30 */
@@ -41,6 +42,9 @@ enum {
 #define ODG_PDO_F_SAMPLED  0x40u /* TPDO type 252: data/len hold what the last SYNC sampled */
 
 /* odg_node.c */
+/* After the SDO server wrote "save" (restore 0) or "load" (1) to 0x1010/0x1011 sub `sub`:
+ * reset communication brings back what the next boot would load. */
+void odg_node_stored_(odg_node_t *n, uint8_t sub, int restore);
 int odg_node_send_(odg_node_t *n, uint32_t cob, const uint8_t *data, uint8_t len);
 /* A number of up to 4 bytes from the dictionary (little-endian wire bytes), via odg_read. */
 odg_abort_t odg_node_get_(const odg_node_t *n, uint16_t index, uint8_t sub, uint32_t *value);
@@ -56,6 +60,8 @@ void odg_time_receive_(odg_node_t *n, const odg_frame_t *f);
 void odg_err_record_(odg_node_t *n, uint16_t code, const uint8_t *vendor, uint8_t n_vendor);
 odg_abort_t odg_err_check_(const odg_node_t *n, uint8_t sub, uint32_t value);
 void odg_err_written_(odg_node_t *n); /* after an SDO write to 0x1003: sub 0 = 0 clears */
+/* At a reset: forget every active error (`all`) or those of communication; 0x1001 follows. */
+void odg_err_reset_(odg_node_t *n, int all);
 /* Send an EMCY frame now, or when the inhibit time (0x1015) since the last one has passed. */
 odg_abort_t odg_emcy_send_(odg_node_t *n, const uint8_t *data);
 void odg_emcy_tick_(odg_node_t *n, uint32_t ms);

@@ -21,6 +21,7 @@
 #define TYPE_RTR 253u      /* TPDO: sampled and sent on a remote request */
 #define TYPE_EVENT 254u    /* 254, 255: event-driven */
 #define COB_NO_RTR 0x40000000u /* TPDO COB-ID bit 30: no remote requests */
+#define EMCY_PDO_LENGTH 0x8210u /* PDO not processed due to length error */
 
 #ifndef ODG_NODE_TPDO_COS
 #define ODG_NODE_TPDO_COS 1
@@ -96,6 +97,18 @@ static void restart(odg_pdo_t *p)
     p->event_left = p->event;
 }
 
+/* The error 0x8210 is gone when no RPDO's last frame was too short. */
+static void length_errors_gone(odg_node_t *n)
+{
+    uint16_t k;
+    for (k = 0; k < ODG_NODE_MAX_RPDO; k++) {
+        if (n->rpdo[k].flags & ODG_PDO_F_LEN_ERR) {
+            return;
+        }
+    }
+    (void)odg_node_error_clear(n, EMCY_PDO_LENGTH);
+}
+
 void odg_pdo_load_(odg_node_t *n, int tx, uint16_t k)
 {
     uint16_t comm = comm_index(tx, k);
@@ -105,6 +118,10 @@ void odg_pdo_load_(odg_node_t *n, int tx, uint16_t k)
         return;
     }
     p = tx ? &n->tpdo[k] : &n->rpdo[k];
+    if (p->flags & ODG_PDO_F_LEN_ERR) { /* an RPDO reconfigured: its length error is moot */
+        p->flags = 0;
+        length_errors_gone(n);
+    }
     memset(p, 0, sizeof *p);
     if (odg_node_get_(n, comm, 1, &p->cob) != ODG_OK) {
         p->cob = ODG_COB_INVALID; /* no such PDO */
@@ -138,7 +155,7 @@ void odg_pdo_start_(odg_node_t *n)
         restart(&n->tpdo[k]);
     }
     for (k = 0; k < ODG_NODE_MAX_RPDO; k++) {
-        n->rpdo[k].flags = 0;
+        n->rpdo[k].flags &= ODG_PDO_F_LEN_ERR; /* data waiting for a SYNC dropped, the error kept */
     }
 }
 
@@ -347,27 +364,20 @@ static void apply(odg_node_t *n, const odg_pdo_t *p, const uint8_t *data)
     }
 }
 
-/* A frame shorter than the mapping is not processed: EMCY 0x8210 once, and an error reset
- * (0x0000) once a frame of the right length comes again. Longer frames are processed. */
+/* A frame shorter than the mapping is not processed: the error 0x8210 (PDO length) is active
+ * until every RPDO's last frame had the right length again, or the RPDO was reconfigured.
+ * Longer frames are processed. */
 static void length_error(odg_node_t *n, odg_pdo_t *p, int error)
 {
-    uint8_t reg = n->error_register;
-    uint16_t k;
     if (error == ((p->flags & ODG_PDO_F_LEN_ERR) != 0u)) {
         return;
     }
     p->flags ^= ODG_PDO_F_LEN_ERR;
     if (error) {
-        (void)odg_node_emcy(n, 0x8210, (uint8_t)(reg | 0x11u), NULL, 0); /* generic + communication */
-        return;
+        (void)odg_node_error_set(n, EMCY_PDO_LENGTH, 0, NULL, 0);
+    } else {
+        length_errors_gone(n);
     }
-    for (k = 0; k < ODG_NODE_MAX_RPDO; k++) {
-        if (n->rpdo[k].flags & ODG_PDO_F_LEN_ERR) {
-            return; /* another RPDO is still in error */
-        }
-    }
-    reg &= (uint8_t)~0x10u;
-    (void)odg_node_emcy(n, 0x0000, (uint8_t)(reg == 0x01u ? 0u : reg), NULL, 0);
 }
 
 void odg_pdo_receive_(odg_node_t *n, const odg_frame_t *f)

@@ -89,8 +89,12 @@ void odg_sdo_drop_(odg_node_t *n)
 static odg_abort_t write_whole(odg_node_t *n, const uint8_t *data, uint32_t len)
 {
     odg_sdo_t *s = &n->sdo;
+    uint8_t storage = s->ref.sub->storage;
     odg_abort_t ac = (s->ref.sub->attr & ODG_A_WRITE) ? odg_node_check_(n, s->index, s->sub, data, len) : ODG_OK;
-    return ac != ODG_OK ? ac : odg_write(&s->ref, data, len);
+    if (ac == ODG_OK && (ac = odg_write(&s->ref, data, len)) == ODG_OK && ODG_S_CLASS(storage) == ODG_S_STORE) {
+        odg_node_stored_(n, s->sub, (storage & ODG_S_RESTORE_FLAG) != 0u); /* a "save" or "load" done */
+    }
+    return ac;
 }
 
 static void begin_download(odg_node_t *n, uint32_t total)

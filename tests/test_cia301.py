@@ -51,6 +51,7 @@ def test_store_and_restore_command_words_are_the_runtimes() -> None:
 @pytest.mark.parametrize("name", INDEXED)
 def test_every_index_the_runtime_names_is_named_here(name: str) -> None:
     named = {v for v in vars(cia301).values() if isinstance(v, int)}
+    named |= {n for v in vars(cia301).values() if isinstance(v, tuple) for n in v if isinstance(n, int)}  # areas
     named.add(cia301.TPDO_MAPPING + cia301.PDO_COUNT)  # the end of the PDO records
     indices = {n for n in _hex(_code(name)) if 0x1000 <= n <= 0x1FFF}
     assert indices, f"{name}: no index found; has the file moved?"

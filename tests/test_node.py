@@ -102,6 +102,17 @@ def test_sdo_small_block_size(generated: Path, tmp_path: Path) -> None:
     run(exe, tmp_path)
 
 
+@pytest.mark.parametrize("size", [0, 8])
+def test_small_communication_copy(size: int, generated: Path, tmp_path: Path) -> None:
+    """With room for fewer communication values than the dictionary has, reset communication
+    brings back the first objects that fit and leaves the rest as they are (none with 0)."""
+    gen = generated / "pdo_node"
+    sources = (NODE_TESTS / "test_node_pdo.c", gen / "pdo_node.c", *CORE, *NODE)
+    exe = tmp_path / "test_node_pdo"
+    build("gcc", ("-O2", f"-DODG_NODE_COMM_BYTES={size}u"), sources, (gen, RUNTIME, NODE_TESTS, CHECK_H), exe)
+    run(exe, tmp_path)
+
+
 @pytest.mark.parametrize("cc", ["gcc", "clang"])
 def test_node_sources_warning_free(cc: str, tmp_path: Path) -> None:
     """The node sources compile alone, -Wconversion clean, with and without the LSS slave; the

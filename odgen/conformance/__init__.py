@@ -18,7 +18,7 @@ from xml.etree import ElementTree as ET
 from ..errors import OdgenError
 from ..fileio import write_atomic
 from ..formats import load_path
-from ..roundtrip.checks import Check
+from ..roundtrip.checks import Check, reachable_sdo_server
 from . import checks, pdo
 from .client import Client
 
@@ -33,13 +33,18 @@ CHECKS: tuple[tuple[str, Callable[[Client], Check]], ...] = (
     ("nmt.states", checks.check_nmt_states),
     ("nmt.heartbeat", checks.check_heartbeat),
     ("sync.producer", checks.check_sync_producer),
+    ("sync.window", pdo.check_sync_window),
     ("pdo.sequence", pdo.check_pdo_sequence),
     ("pdo.tpdo-types", pdo.check_tpdo_types),
     ("emcy.rpdo-length", pdo.check_emcy),
     ("emcy.inhibit", pdo.check_emcy_inhibit),
+    ("emcy.error-register", pdo.check_error_register),
     ("nmt.hb-consumer", checks.check_hb_consumer),
     ("nmt.guarding", checks.check_guarding),
     ("nmt.boot-up", checks.check_bootup),
+    ("nmt.reset-comm", checks.check_reset_communication),
+    ("sdo.server", checks.check_sdo_server),
+    ("lss.inquire", checks.check_lss),
     ("store.signature", pdo.check_signatures),
     ("store.save-load", pdo.check_store_restore),
 )
@@ -60,6 +65,7 @@ def run(path: Path, iface: str, node_id: int, only: Callable[[str], bool] = lamb
     od, diags = load_path(path)
     if od is None:
         raise OdgenError(f"{path}: cannot be read: " + "; ".join(d.text() for d in diags)[:500])
+    reachable_sdo_server(od, node_id, path)
     with tempfile.TemporaryDirectory(prefix="odgen-conformance-") as tmp:
         client = Client(od, iface, node_id, Path(tmp))
         try:

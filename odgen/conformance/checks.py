@@ -15,9 +15,12 @@ from dataclasses import dataclass
 from ..codegen.selftest import expected_bytes, write_cases
 from ..model.wire import wire_bytes
 from ..model import Obj, Sub
+from ..model.cia301 import COMMUNICATION_AREA, HEARTBEAT, IDENTITY, MANUFACTURER_AREA, PRODUCER_HEARTBEAT, \
+    SDO_REQUEST, SDO_RESPONSE, SDO_SERVER
+from ..rules.common import header_field, header_int
 from ..model.datatypes import BASIC_TYPES, DataType
 from ..roundtrip.checks import ABORTS, ACTIVE, NO_OBJECT, NO_SUB, WRITE_ONLY, Check
-from .client import DEADLINE, Client
+from .client import DEADLINE, SDO_TIMEOUT, SILENCE, Client
 
 READ_ONLY = ABORTS["ODG_ABORT_READ_ONLY"]
 RANGE = 0x06090030  # "value range of parameter exceeded": the general code a node may give
@@ -213,6 +216,69 @@ def check_bootup(c: Client) -> Check:
     return check
 
 
+def _booted(c: Client, command: str) -> bool:
+    sent = c.nmt(command)
+    return c.wait_frame(sent, lambda cob, d: cob == HEARTBEAT + c.node_id and d[:1] == b"\x00") is not None
+
+
+def _changes(c: Client, first: int, last: int, most: int) -> list[tuple[Entry, bytes, bytes]]:
+    """Up to `most` writable numbers of first..last the node takes another valid value for, written:
+    (entry, described value, value written). Objects with steps of their own are left alone, but
+    for the heartbeat period."""
+    out: list[tuple[Entry, bytes, bytes]] = []
+    for e in entries(c):
+        if len(out) >= most or not first <= e.obj.index <= last or not e.sub.writable or not e.sub.readable:
+            continue
+        if not e.dtype.is_numeric or is_command(e) or (e.obj.index in ACTIVE and e.obj.index != PRODUCER_HEARTBEAT):
+            continue
+        described = expected_bytes(c.od, e.sub, e.dtype, c.node_id)
+        other = next((d for d, expect in write_cases(e.sub, e.dtype) if expect == "ODG_OK" and d != described), None)
+        if described is not None and other is not None and c.download(*e.key, other) == 0:
+            out.append((e, described, other))
+    return out
+
+
+def check_reset_communication(c: Client) -> Check:
+    check = Check("reset communication: the communication area takes back its values, the application area keeps its")
+    comm = _changes(c, *COMMUNICATION_AREA, most=8)
+    app = _changes(c, MANUFACTURER_AREA[0], 0xFFFF, most=1)
+    if not comm:
+        check.skipped = "no communication entry a client may change (but PDO, SDO, SYNC, EMCY ones)"
+        return check
+    check.expect(_booted(c, "RESET COMMUNICATION"), f"reset communication: no boot-up within {DEADLINE:g} s")
+    for e, described, written in comm:
+        back = c.upload(*e.key)[0]
+        check.expect(back == described, f"{e.label}: {_hex(back)} after reset communication, "
+                                        f"{_hex(written)} written, {_hex(described)} described")
+        if back != described:
+            c.download(*e.key, described)  # for the checks that follow
+    for e, described, written in app:
+        back = c.upload(*e.key)[0]
+        check.expect(back == written, f"{e.label}: {_hex(back)} after reset communication, {_hex(written)} written")
+        c.download(*e.key, described)
+    return check
+
+
+def check_sdo_server(c: Client) -> Check:
+    check = Check("the SDO server answers on the COB-IDs of 0x1200, also after reset communication")
+    if c.od.find(SDO_SERVER, 1) is None or c.od.find(SDO_SERVER, 2) is None:
+        check.skipped = "no 0x1200 sub 1/2: the pre-defined COB-IDs, checked by every other step"
+        return check
+    for sub, used in ((1, c.sdo_rx), (2, c.sdo_tx)):
+        value = c.number(SDO_SERVER, sub)
+        check.expect(value == used, f"0x1200sub{sub} reads {value if value is None else hex(value)}, "
+                                    f"the server uses 0x{used:03X} (bit 31 clear)")
+    check.expect(_booted(c, "RESET COMMUNICATION"), f"reset communication: no boot-up within {DEADLINE:g} s")
+    check.expect(c.answers(), "no SDO answer after reset communication")
+    if (c.sdo_rx, c.sdo_tx) != (SDO_REQUEST + c.node_id, SDO_RESPONSE + c.node_id):
+        c.watch(SDO_RESPONSE + c.node_id)
+        sent = time.monotonic()
+        c.send(SDO_REQUEST + c.node_id, bytes([0x40, 0x00, 0x10, 0, 0, 0, 0, 0]))  # upload 0x1000
+        stray = c.wait_frame(sent, lambda cob, d: cob == SDO_RESPONSE + c.node_id, deadline=SILENCE)
+        check.expect(stray is None, "the server moved by 0x1200 still answers on the pre-defined COB-IDs")
+    return check
+
+
 def _heartbeat_period(c: Client) -> int:
     data = c.upload(0x1017, 0)[0] if c.od.find(0x1017) is not None else None
     return int.from_bytes(data, "little") if data else 0
@@ -358,4 +424,35 @@ def check_guarding(c: Client) -> Check:
     for index in (0x100C, 0x100D, 0x1017):
         if saved.get(index) is not None:
             c.download(index, 0, saved[index] or b"")
+    return check
+
+
+# ---- LSS (CiA 305) --------------------------------------------------------------------------------
+
+LSS_INQUIRE = (0x5A, 0x5B, 0x5C, 0x5D)  # vendor-ID, product code, revision, serial number: 0x1018 sub 1-4
+
+
+def check_lss(c: Client) -> Check:
+    check = Check("LSS: in configuration mode the node answers its identity (0x1018 sub 1-4) and node-id")
+    if header_int(header_field(c.od, "DeviceInfo", "LSS_Supported")) != 1:
+        check.skipped = "the description does not say LSS_Supported=1"
+        return check
+    from canopen.lss import LssError  # the client's, loaded with it
+
+    identity = [c.number(IDENTITY, sub) if c.od.find(IDENTITY, sub) is not None else None for sub in range(1, 5)]
+    lss = c.network.lss
+    lss.RESPONSE_TIMEOUT = SDO_TIMEOUT
+    lss.send_switch_state_global(lss.CONFIGURATION_STATE)
+    try:
+        for sub, (command, want) in enumerate(zip(LSS_INQUIRE, identity, strict=True), start=1):
+            got = lss.inquire_lss_address(command)
+            check.expect(want is None or got == want, f"inquire 0x{command:02X}: 0x{got:08X}, 0x1018sub{sub} "
+                                                      f"reads {want if want is None else hex(want)}")
+        node_id = lss.inquire_node_id()
+        check.expect(node_id == c.node_id, f"inquire node-id: {node_id}, the node is {c.node_id}")
+    except LssError as err:
+        check.expect(False, f"no LSS answer in configuration mode: {err}")
+    finally:
+        lss.send_switch_state_global(lss.WAITING_STATE)
+    check.expect(c.answers(), "no SDO answer after LSS configuration mode and back to waiting")
     return check

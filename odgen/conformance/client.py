@@ -16,7 +16,8 @@ from pathlib import Path
 
 from ..errors import OdgenError
 from ..model import ObjectDictionary
-from ..roundtrip.checks import client_eds
+from ..model.cia301 import SDO_REQUEST, SDO_RESPONSE
+from ..roundtrip.checks import client_eds, sdo_server_cob_ids
 
 # Waits end at the awaited frame; the deadlines only bound a failure, so they are generous.
 DEADLINE = 10.0
@@ -46,6 +47,9 @@ class Client:
         except Exception as err:  # canopen's own reader: not odgen's fault, one sentence
             self.network.disconnect()
             raise OdgenError(f"python canopen cannot load the description: {type(err).__name__}: {err}") from None
+        # where 0x1200 says (run() refused a disabled server)
+        self.sdo_rx, self.sdo_tx = sdo_server_cob_ids(od, node_id) or (SDO_REQUEST + node_id, SDO_RESPONSE + node_id)
+        self.node.sdo.rx_cobid, self.node.sdo.tx_cobid = self.sdo_rx, self.sdo_tx
         self.network.add_node(self.node)
         self.node.sdo.RESPONSE_TIMEOUT = SDO_TIMEOUT
         self.frames: list[tuple[float, int, bytes]] = []  # (time, COB-ID, data) of watched frames

@@ -11,9 +11,11 @@ import time
 from dataclasses import dataclass
 
 from ..codegen.selftest import expected_bytes, write_cases
+from ..model.cia301 import CAN_ID_MASK, CONSUMER_HEARTBEAT, ERROR_REGISTER, HEARTBEAT, SYNC_COB_ID, SYNC_PERIOD, \
+    SYNC_WINDOW
 from ..roundtrip.checks import ACTIVE, Check
-from .checks import EMCY_RPDO_LENGTH, INCOMPATIBLE, MAP_TOO_LONG, NOT_MAPPABLE, RANGE, RESTORE, SIGNATURE, STORE, \
-    Entry, entries, is_command
+from .checks import EMCY_HEARTBEAT, EMCY_RPDO_LENGTH, INCOMPATIBLE, MAP_TOO_LONG, NOT_MAPPABLE, RANGE, RESTORE, \
+    SIGNATURE, STORE, SYNC_GENERATE, Entry, entries, is_command
 from .client import Client
 
 INVALID = 0x80000000
@@ -165,20 +167,79 @@ def check_tpdo_types(c: Client) -> Check:
     return check
 
 
+WINDOW_US, SYNC_EVERY_US = 10000, 50000
+
+
+def _late(syncs: list[float], tpdos: list[float]) -> list[str]:
+    """SYNCs (but the last, whose TPDO may still come) without a TPDO within the window."""
+    late = []
+    for at in syncs[:-1]:
+        after = [t for t in tpdos if t >= at]
+        delay = 1000 * (after[0] - at) if after else None
+        if delay is None or delay > WINDOW_US / 1000:
+            late.append("none" if delay is None else f"{delay:.1f} ms")
+    return late
+
+
+def check_sync_window(c: Client) -> Check:
+    check = Check("SYNC window (0x1007): a type 1 TPDO follows each SYNC the node produces within 10 ms")
+    needed = [c.od.find(index) for index in (SYNC_COB_ID, SYNC_PERIOD, SYNC_WINDOW)]
+    found = _setup(c, check, tx=True)
+    if found is None or not all(s is not None and s.writable for s in needed):
+        check.skipped = check.skipped or "0x1005, 0x1006 and 0x1007 are not all writable"
+        return check
+    pdo, e = found
+    saved = {index: c.upload(index, 0)[0] for index in (SYNC_COB_ID, SYNC_PERIOD, SYNC_WINDOW)}
+    sync_id = (c.number(SYNC_COB_ID) or 0x80) & CAN_ID_MASK
+    c.watch(sync_id)
+    c.watch(pdo.cob)
+    check.expect(c.download(SYNC_WINDOW, 0, WINDOW_US.to_bytes(4, "little")) == 0, "0x1007 = 10000 us refused")
+    with Configured(c, pdo, e, 1) as conf:
+        check.expect(conf.ok, f"TPDO 0x{pdo.comm:04X}: {conf.failed[0]} aborted 0x{conf.failed[1]:08X}")
+        if conf.ok:
+            c.nmt("OPERATIONAL")
+            c.download(SYNC_PERIOD, 0, SYNC_EVERY_US.to_bytes(4, "little"))
+            c.download(SYNC_COB_ID, 0, (sync_id | SYNC_GENERATE).to_bytes(4, "little"))
+            late: list[str] = []
+            for _ in range(3):  # a machine stalled between the two frames: measured again
+                start = time.monotonic()
+                time.sleep(0.5)  # a measuring window, not a wait for an event
+                syncs, tpdos = c.received_since(start, sync_id), c.received_since(start, pdo.cob)
+                late = _late(syncs, tpdos) if len(syncs) >= 3 else ["fewer than 3 SYNCs in 0.5 s"]
+                if not late:
+                    break
+            check.expect(not late, f"SYNCs without their TPDO within the window: {late[:5]}")
+            c.download(SYNC_COB_ID, 0, saved[SYNC_COB_ID] or sync_id.to_bytes(4, "little"))
+            c.download(SYNC_PERIOD, 0, bytes(4))
+    for index in (SYNC_PERIOD, SYNC_WINDOW):
+        if saved[index] is not None:
+            c.download(index, 0, saved[index] or b"")
+    return check
+
+
 # ---- EMCY -----------------------------------------------------------------------------------
+
+
+def _rpdo_and_emcy(c: Client, check: Check) -> tuple[Pdo, Entry, int] | None:
+    """An RPDO to provoke length errors with, its entry, and the EMCY CAN-ID (watched); None, the
+    check skipped, without them."""
+    found = _setup(c, check, tx=False)
+    emcy = c.emcy_cob()
+    if found is None:
+        return None
+    if emcy is None or emcy & INVALID:
+        check.skipped = "EMCY disabled (0x1014 bit 31)"
+        return None
+    c.watch(emcy & CAN_ID_MASK)
+    return found[0], found[1], emcy & CAN_ID_MASK
 
 
 def check_emcy(c: Client) -> Check:
     check = Check("EMCY on an RPDO length error; error register and 0x1003 follow; reset EMCY")
-    found = _setup(c, check, tx=False)
-    emcy = c.emcy_cob()
+    found = _rpdo_and_emcy(c, check)
     if found is None:
         return check
-    if emcy is None or emcy & INVALID:
-        check.skipped = "EMCY disabled (0x1014 bit 31)"
-        return check
-    pdo, e = found
-    c.watch(emcy & 0x7FF)
+    pdo, e, cob = found
     size = e.dtype.bits // 8 or 1
     with Configured(c, pdo, e, 0xFF) as conf:
         if not conf.ok:
@@ -187,7 +248,7 @@ def check_emcy(c: Client) -> Check:
         c.nmt("OPERATIONAL")
         sent = time.monotonic()
         c.send(pdo.cob, bytes(size - 1))
-        frame = c.wait_frame(sent, lambda cob, d: cob == emcy & 0x7FF and d[:2] != b"\x00\x00")
+        frame = c.wait_frame(sent, lambda got, d: got == cob and d[:2] != b"\x00\x00")
         check.expect(frame is not None and int.from_bytes(frame[:2], "little") == EMCY_RPDO_LENGTH,
                      f"short RPDO: EMCY {frame!r}, want code 0x{EMCY_RPDO_LENGTH:04X}")
         if frame is None:
@@ -208,7 +269,7 @@ def check_emcy(c: Client) -> Check:
                              "0x1003sub0 = 0 did not clear the history")
         sent = time.monotonic()
         c.send(pdo.cob, bytes(size))
-        frame = c.wait_frame(sent, lambda cob, d: cob == emcy & 0x7FF)
+        frame = c.wait_frame(sent, lambda got, d: got == cob)
         check.expect(frame is not None and frame[:2] == b"\x00\x00", f"right length again: EMCY {frame!r}, want 0x0000")
     return check
 
@@ -238,6 +299,72 @@ def check_emcy_inhibit(c: Client) -> Check:
             gap = 1000 * (stamps[1] - stamps[0]) if len(stamps) >= 2 else None
             check.expect(gap is not None and gap >= 90, f"two EMCYs {gap and round(gap)} ms apart, inhibit 100 ms")
     c.download(0x1015, 0, saved or b"\x00\x00")
+    return check
+
+
+# Error register bits (0x1001): generic, and communication for the 0x81xx/0x82xx codes.
+REG_GENERIC, REG_COMMUNICATION = 0x01, 0x10
+
+
+def _register_follows(c: Client, check: Check, frame: bytes | None, code: int, when: str) -> None:
+    """An EMCY of `code` came, its error register has the generic and communication bits, and
+    0x1001 reads the same."""
+    check.expect(frame is not None, f"{when}: no EMCY 0x{code:04X}")
+    if frame is not None:
+        register = c.number(ERROR_REGISTER)
+        want = REG_GENERIC | REG_COMMUNICATION
+        check.expect(frame[2] & want == want, f"{when}: EMCY register 0x{frame[2]:02X}, want bits 0x{want:02X}")
+        check.expect(register == frame[2], f"{when}: 0x1001 reads {register}, the EMCY said 0x{frame[2]:02X}")
+
+
+def _heartbeat_error(c: Client, check: Check, cob: int) -> None:
+    """A second error while the first is active: a watched heartbeat stops (EMCY 0x8130); when it
+    comes back, 0x1001 still shows the first error."""
+    other = c.node_id % 127 + 1
+    saved = c.upload(CONSUMER_HEARTBEAT, 1)[0]
+    if c.download(CONSUMER_HEARTBEAT, 1, (other << 16 | 200).to_bytes(4, "little")) != 0:
+        check.expect(False, "0x1016sub1 refused")
+        return
+    for _ in range(3):
+        c.send(HEARTBEAT + other, b"\x05")
+        time.sleep(0.05)  # pacing the heartbeats of the node played here
+    stopped = time.monotonic()
+    frame = c.wait_frame(stopped, lambda got, d: got == cob and d[:2] == EMCY_HEARTBEAT.to_bytes(2, "little"))
+    _register_follows(c, check, frame, EMCY_HEARTBEAT, "a watched heartbeat stopped")
+    c.send(HEARTBEAT + other, b"\x05")  # back: its error is gone, the RPDO's is not
+    c.download(CONSUMER_HEARTBEAT, 1, saved or bytes(4))
+    register = c.number(ERROR_REGISTER) or 0
+    want = REG_GENERIC | REG_COMMUNICATION
+    check.expect(register & want == want, f"heartbeat back, the RPDO still too short: 0x1001 reads 0x{register:02X}")
+
+
+def check_error_register(c: Client) -> Check:
+    check = Check("error register 0x1001 follows the active errors; EMCY error reset when the last is gone")
+    found = _rpdo_and_emcy(c, check)
+    if found is None:
+        return check
+    pdo, e, cob = found
+    size = e.dtype.bits // 8 or 1
+    consumer = c.od.find(CONSUMER_HEARTBEAT, 1)
+    with Configured(c, pdo, e, 0xFF) as conf:
+        if not conf.ok:
+            check.expect(False, f"RPDO 0x{pdo.comm:04X}: {conf.failed[0]} aborted 0x{conf.failed[1]:08X}")
+            return check
+        c.nmt("OPERATIONAL")
+        sent = time.monotonic()
+        c.send(pdo.cob, bytes(size - 1))
+        frame = c.wait_frame(sent, lambda got, d: got == cob and d[:2] == EMCY_RPDO_LENGTH.to_bytes(2, "little"))
+        _register_follows(c, check, frame, EMCY_RPDO_LENGTH, "short RPDO")
+        if consumer is not None and consumer.writable:
+            _heartbeat_error(c, check, cob)
+            c.nmt("OPERATIONAL")  # 0x1029 may have left it
+        sent = time.monotonic()
+        c.send(pdo.cob, bytes(size))
+        frame = c.wait_frame(sent, lambda got, d: got == cob and d[:2] == b"\x00\x00")
+        check.expect(frame is not None, "right length again, no error active: no error reset EMCY (0x0000)")
+        register = c.number(ERROR_REGISTER)
+        check.expect(frame is None or frame[2] == 0, f"error reset EMCY with register 0x{(frame or bytes(3))[2]:02X}")
+        check.expect(register == 0, f"no error active: 0x1001 reads {register}")
     return check
 
 

@@ -37,12 +37,13 @@ class FileOutcome:
 
 def roundtrip_file(path: Path, iface: str, node_id: int, options: Path | None,
                    input_format: str | None = None) -> FileOutcome:
-    from .checks import run_checks, session  # needs python canopen and a CAN interface
+    from .checks import reachable_sdo_server, run_checks, session  # needs python canopen and a CAN interface
 
     request = Request(path, name="od", options=options, node_id=node_id, defaults=ROUNDTRIP_DEFAULTS,
                       input_format=input_format)
     program, result = build_node(request)
     assert result.od is not None and result.placements is not None
+    reachable_sdo_server(result.od, node_id, path)
     with session(result.od, result.placements, program, iface, node_id) as s:
         checks = run_checks(s)
     return FileOutcome(str(path), [c.as_dict() for c in checks])

@@ -27,9 +27,10 @@ from ..codegen.selftest import expected_bytes, write_cases
 from ..formats.eds_writer import write_eds
 from ..model import ARRAY, RECORD, Obj, ObjectDictionary, Sub
 from ..model.cia301 import (
-    ABORT_CODES, COMMUNICATION_AREA, EMCY_COB_ID, EMCY_INHIBIT, ERROR_HISTORY, LOAD, PDO_COUNT, PRODUCER_HEARTBEAT,
-    RESTORE, RPDO_COMM, RPDO_MAPPING, SAVE, SDO_SERVER, STORE, SYNC_COB_ID, SYNC_PERIOD, SYNC_WINDOW, TIME_COB_ID,
-    TPDO_COMM, TPDO_MAPPING, is_pdo_mapping, unused_manufacturer_index)
+    ABORT_CODES, CAN_ID_MASK, COB_EXTENDED, COB_INVALID, COMMUNICATION_AREA, EMCY_COB_ID, EMCY_INHIBIT, ERROR_HISTORY,
+    LOAD, PDO_COUNT, PRODUCER_HEARTBEAT, RESTORE, RPDO_COMM, RPDO_MAPPING, SAVE, SDO_REQUEST, SDO_RESPONSE, SDO_SERVER,
+    STORE, SYNC_COB_ID, SYNC_PERIOD, SYNC_WINDOW, TIME_COB_ID, TPDO_COMM, TPDO_MAPPING, is_pdo_mapping,
+    unused_manufacturer_index)
 from ..model.datatypes import BASIC_TYPES, UNSIGNED16, DataType
 from ..model.wire import wire_bytes
 
@@ -42,6 +43,30 @@ ACTIVE = frozenset({ERROR_HISTORY, SYNC_COB_ID, SYNC_PERIOD, SYNC_WINDOW, STORE,
                     EMCY_INHIBIT, PRODUCER_HEARTBEAT}) | frozenset(range(SDO_SERVER, TPDO_MAPPING + PDO_COUNT))
 BOOT_TIMEOUT = 30.0  # waits end at the boot-up: generous for a loaded machine
 SDO_TIMEOUT = 3.0  # an answer normally takes milliseconds; the deadline only bounds a failure
+
+
+def sdo_server_cob_ids(od: ObjectDictionary, node_id: int) -> tuple[int, int] | None:
+    """The COB-IDs (request, response) the default SDO server of a node built from `od` uses:
+    0x1200 sub 1 and 2 as described ($NODEID applied), the pre-defined 0x600/0x580 + node-id
+    without them; None when bit 31 (or 29) of either disables the server (runtime/NODE.md)."""
+    ids = []
+    for subindex, base in ((1, SDO_REQUEST), (2, SDO_RESPONSE)):
+        sub = od.find(SDO_SERVER, subindex)
+        dtype = BASIC_TYPES.get(sub.data_type or 0) if sub is not None else None
+        data = expected_bytes(od, sub, dtype, node_id) if sub is not None and dtype is not None else None
+        ids.append(int.from_bytes(data, "little") if data else base + node_id)
+    if (ids[0] | ids[1]) & (COB_INVALID | COB_EXTENDED):
+        return None
+    return ids[0] & CAN_ID_MASK, ids[1] & CAN_ID_MASK
+
+
+def reachable_sdo_server(od: ObjectDictionary, node_id: int, path: object) -> tuple[int, int]:
+    """sdo_server_cob_ids, or an OdgenError saying the description leaves nothing to talk to."""
+    cobs = sdo_server_cob_ids(od, node_id)
+    if cobs is None:
+        raise OdgenError(f"{path}: 0x1200 disables the default SDO server (COB-ID bit 31), so a node built "
+                         "from it answers no SDO request: describe 0x1200 sub 1/2 as $NODEID+0x600/$NODEID+0x580")
+    return cobs
 
 
 @dataclass
@@ -96,6 +121,9 @@ class Session:
         except Exception as err:  # canopen's own import: not odgen's fault, report it per file
             self.network.disconnect()
             raise OdgenError(f"python canopen cannot load the description: {type(err).__name__}: {err}") from None
+        cobs = sdo_server_cob_ids(od, node_id)  # roundtrip_file refused a disabled server
+        if cobs is not None:
+            self.node.sdo.rx_cobid, self.node.sdo.tx_cobid = cobs
         self.network.add_node(self.node)
         self.node.sdo.RESPONSE_TIMEOUT = SDO_TIMEOUT
         self.booted = threading.Event()

@@ -13,7 +13,9 @@
  * says otherwise (-DODG_DICT_HEADER='"my.h"'). Hook functions that an options file names
  * must come from another source file on the command line. With --nv the persistence groups
  * live in that file (created when missing), so 0x1010 "save" survives a restart. Prints
- * nothing but errors (stderr); SIGTERM and SIGINT end it with status 0.
+ * nothing but errors (stderr), and a warning when ODG_NODE_COMM_BYTES is too small for the
+ * dictionary's communication values (odgen node builds with enough); SIGTERM and SIGINT end it
+ * with status 0.
  * Built with -DODG_NODE_LSS=1 (the LSS slave) --node-id may be left out: the node then waits
  * for an LSS master (or uses the node-id a master stored in --nv); bit timings a master
  * configures or activates are logged on stdout (the program cannot change the bit rate).
@@ -164,6 +166,10 @@ int main(int argc, char **argv)
     if (odg_init(dict, node_id > 127 ? 1u : (uint8_t)node_id) != ODG_OK || odg_verify(dict, &bad) != ODG_OK) {
         fprintf(stderr, "odg-node: the dictionary's tables are inconsistent at 0x%04X\n", bad);
         return 1;
+    }
+    if (odg_node_comm_bytes(dict) > ODG_NODE_COMM_BYTES) { /* a warning: the node runs */
+        fprintf(stderr, "odg-node: reset communication restores only part of the communication values: "
+                        "build with -DODG_NODE_COMM_BYTES=%lu\n", (unsigned long)odg_node_comm_bytes(dict));
     }
     if ((fd = odg_socketcan_open(iface)) < 0) {
         return fail(iface, strerror(errno));

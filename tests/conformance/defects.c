@@ -10,7 +10,7 @@
 #include "odg_app.h"
 
 #ifndef ODG_DEFECT
-#error "define ODG_DEFECT (1..12)"
+#error "define ODG_DEFECT (1..17)"
 #endif
 
 enum {
@@ -25,13 +25,22 @@ enum {
     SYNC_COUNTER,     /* the SYNC counter does not count */
     HB_CONSUMER_EMCY, /* a heartbeat timeout is reported with the wrong EMCY code */
     EMCY_TWICE,       /* every EMCY goes out twice, the inhibit time ignored */
-    GUARD_TOGGLE      /* the node guarding answer's toggle bit never changes */
+    GUARD_TOGGLE,     /* the node guarding answer's toggle bit never changes */
+    REGISTER_STALE,   /* the error reset EMCY still says generic and communication error */
+    COMM_KEPT,        /* reset communication keeps the communication values written since boot */
+    SDO_SERVER_COB,   /* an upload of 0x1200 says bit 31: the server it answers on is not valid */
+    LSS_IDENTITY,     /* the LSS answer to "inquire serial number" is not 0x1018 sub 4 */
+    SYNC_LATE         /* TPDOs go out 20 ms late, past a SYNC window of 10 ms */
 };
 
 static odg_send_fn real_send;
 static void *real_ctx;
+static odg_node_t *the_node;
 static uint8_t node_id;
 static unsigned heartbeats;
+static odg_frame_t held; /* SYNC_LATE: a TPDO held back, for held_ms so far */
+static uint32_t held_ms;
+static int holding;
 
 static uint32_t abort_code(const odg_frame_t *f)
 {
@@ -118,6 +127,29 @@ static int mangle(odg_frame_t *f)
             f->data[0] &= 0x7Fu;
         }
         break;
+    case REGISTER_STALE:
+        if (id == 0x80u + node_id && f->data[0] == 0u && f->data[1] == 0u) {
+            f->data[2] = 0x11u;
+        }
+        break;
+    case SYNC_LATE:
+        if (id >= 0x181u && id <= 0x4FFu && (id & 0x7Fu) == node_id && !holding) {
+            held = *f;
+            held_ms = 0;
+            holding = 1;
+            return 0;
+        }
+        break;
+    case LSS_IDENTITY:
+        if (id == 0x7E4u && f->data[0] == 0x5Du) {
+            f->data[1] ^= 0x01u;
+        }
+        break;
+    case SDO_SERVER_COB:
+        if (sdo && (f->data[0] & 0xE3u) == 0x43u && index == 0x1200u) {
+            f->data[7] |= 0x80u;
+        }
+        break;
     default:
         break;
     }
@@ -128,6 +160,9 @@ static int defect_send(void *ctx, const odg_frame_t *frame)
 {
     odg_frame_t f;
     (void)ctx;
+    if (ODG_DEFECT == COMM_KEPT) { /* before each answer, so also after each SDO write */
+        odg_node_comm_keep(the_node); /* the values of now are the ones reset communication restores */
+    }
     memcpy(&f, frame, sizeof f);
     return mangle(&f) ? real_send(real_ctx, &f) : 0;
 }
@@ -137,6 +172,7 @@ void odg_app_init(odg_node_t *node)
     real_send = node->cfg.send;
     real_ctx = node->cfg.send_ctx;
     node_id = node->cfg.node_id;
+    the_node = node;
     node->cfg.send = defect_send;
     node->cfg.send_ctx = NULL;
 }
@@ -144,5 +180,8 @@ void odg_app_init(odg_node_t *node)
 void odg_app_tick(odg_node_t *node, uint32_t elapsed_ms)
 {
     (void)node;
-    (void)elapsed_ms;
+    if (ODG_DEFECT == SYNC_LATE && holding && (held_ms += elapsed_ms) >= 20u) {
+        holding = 0;
+        (void)real_send(real_ctx, &held);
+    }
 }

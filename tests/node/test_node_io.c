@@ -161,6 +161,41 @@ static void test_power_cycle(void)
     remove(NV_PATH);
 }
 
+/* Reset communication brings back the communication values of the boot (defaults on erased
+ * NV), then those saved by 0x1010, then after 0x1011 "load" the defaults; the application
+ * parameter 0x2000 keeps its RAM value through each. */
+static void test_reset_communication(void)
+{
+    static const uint8_t save[4] = {'s', 'a', 'v', 'e'}, load[4] = {'l', 'o', 'a', 'd'};
+    remove(NV_PATH);
+    power_on();
+    CHECK_EQ(download_u32(0x1017, 0, 250, 2), 0);
+    CHECK_EQ(download_u32(0x1800, 5, 500, 2), 0);
+    CHECK_EQ(download_u32(0x2000, 0, 20, 2), 0);
+    nmt(ODG_NMT_RESET_COMM, NID);
+    CHECK_EQ(upload_u32(0x1017, 0), 1000);
+    CHECK_EQ(upload_u32(0x1800, 5), 100);
+    CHECK_EQ(upload_u32(0x2000, 0), 20);
+    CHECK_EQ(download_u32(0x1017, 0, 300, 2), 0);
+    CHECK_EQ(download(0x1010, 1, save, 4), 0);
+    CHECK_EQ(download_u32(0x1017, 0, 400, 2), 0);
+    CHECK_EQ(download_u32(0x2000, 0, 30, 2), 0);
+    nmt(ODG_NMT_RESET_COMM, NID);
+    CHECK_EQ(upload_u32(0x1017, 0), 300); /* saved */
+    CHECK_EQ(upload_u32(0x2000, 0), 30);
+    CHECK_EQ(download(0x1011, 1, load, 4), 0);
+    CHECK_EQ(upload_u32(0x1017, 0), 300); /* "load" takes effect at the next reset ... */
+    nmt(ODG_NMT_RESET_COMM, NID);
+    CHECK_EQ(upload_u32(0x1017, 0), 1000); /* ... of communication, for communication values */
+    CHECK_EQ(upload_u32(0x1400, 1), 0x200u + NID); /* $NODEID defaults */
+    CHECK_EQ(upload_u32(0x2000, 0), 30);
+    nmt(ODG_NMT_RESET_NODE, NID);
+    CHECK_EQ(upload_u32(0x2000, 0), 10);
+    CHECK_EQ(upload_u32(0x1017, 0), 1000);
+    power_off();
+    remove(NV_PATH);
+}
+
 /* Values loaded by the persistence layer reach the node like any other write: the stored
  * TPDO settings come back, and the node serves them without a reset. */
 static void test_reload_from_nv(void)
@@ -192,6 +227,7 @@ int main(void)
 {
     test_io();
     test_power_cycle();
+    test_reset_communication();
     test_reload_from_nv();
     return done();
 }

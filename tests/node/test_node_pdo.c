@@ -345,7 +345,7 @@ static void test_emcy_and_resets(void)
     clear();
     CHECK_EQ(odg_node_emcy(&node, 0x5000, 0x81, (const uint8_t *)"\x01\x02", 2), 0);
     CHECK(FRAME_IS(last_id(EMCY), 0x00, 0x50, 0x81, 1, 2, 0, 0, 0));
-    CHECK_EQ(upload_u32(0x1001, 0), 0x81);
+    CHECK_EQ(upload_u32(0x1001, 0), 0); /* a frame as given: no error becomes active */
     CHECK_EQ(download_u32(0x1014, 0, 0x90, 4), 0);
     clear();
     CHECK_EQ(odg_node_emcy(&node, 0x5000, 0x81, NULL, 0), 0);
@@ -354,7 +354,7 @@ static void test_emcy_and_resets(void)
     clear();
     CHECK_EQ(odg_node_emcy(&node, 0x5000, 0x81, NULL, 0), ODG_ABORT_DATA_STATE);
     CHECK_EQ(n_sent, 0);
-    /* reset communication re-reads the entries (the values stay as written) */
+    /* reset communication: the communication values of the boot again, and the node serves them */
     CHECK_EQ(download_u32(0x1800, 1, INVALID | TPDO1, 4), 0);
     clear();
     nmt(ODG_NMT_RESET_COMM, 0);
@@ -362,7 +362,9 @@ static void test_emcy_and_resets(void)
     CHECK_EQ(odg_node_state(&node), ODG_NMT_PRE_OPERATIONAL);
     nmt(ODG_NMT_START, 0);
     after(1);
-    CHECK_EQ(count_id(TPDO1), 0);
+    CHECK_EQ(count_id(TPDO1), odg_node_comm_bytes(&pdo_node) <= ODG_NODE_COMM_BYTES); /* else kept */
+    CHECK_EQ(count_id(EMCY), 0);
+    CHECK_EQ(download_u32(0x1800, 1, INVALID | TPDO1, 4), 0);
     /* reset node: the defaults again */
     nmt(ODG_NMT_RESET_NODE, NID);
     CHECK_EQ(upload_u32(0x1001, 0), 0);
@@ -379,6 +381,98 @@ static void test_emcy_and_resets(void)
     pdo_node_x2000_u8_value = 0x77;
     run_ms(10);
     CHECK_EQ(count_id(TPDO1), 0);
+}
+
+/* Reset communication: the values of 0x1000-0x1FFF an SDO client may write come back as they
+ * were at boot (here the defaults: RAM only), the application's stay, as do 0x1003 and what
+ * odg_node_comm_keep made current. Built with a small ODG_NODE_COMM_BYTES too: the objects
+ * past it keep their values. */
+static unsigned app_told;
+
+static void app_told_fn(odg_client_t *self, const odg_ref_t *ref)
+{
+    (void)self;
+    app_told += ref == NULL;
+}
+
+static void test_reset_communication(void)
+{
+    static odg_client_t app;
+    int all = odg_node_comm_bytes(&pdo_node) <= ODG_NODE_COMM_BYTES;
+    CHECK(odg_node_comm_bytes(&pdo_node) > 0u);
+    CHECK(all || ODG_NODE_COMM_BYTES < 512u); /* the default holds this dictionary's */
+    nmt(ODG_NMT_RESET_NODE, NID);
+    CHECK_EQ(odg_node_error_set(&node, 0x5000, 0, NULL, 0), 0);
+    CHECK_EQ(download_u32(0x1005, 0, 0x81, 4), 0);
+    CHECK_EQ(download_u32(0x1017, 0, 700, 2), 0);
+    CHECK_EQ(download_u32(0x1016, 1, 0x00090064u, 4), 0);
+    CHECK_EQ(download_u32(0x1029, 1, 2, 1), 0);
+    CHECK_EQ(download_u32(0x1800, 1, INVALID | TPDO1, 4), 0);
+    CHECK_EQ(download_u32(0x1800, 2, 7, 1), 0);
+    CHECK_EQ(download_u32(0x1A00, 0, 0, 1), 0);
+    CHECK_EQ(download_u32(0x2000, 0, 0x5A, 1), 0);
+    app.changed = app_told_fn;
+    odg_attach(&pdo_node, &app);
+    app_told = 0;
+    nmt(ODG_NMT_RESET_COMM, NID);
+    CHECK_EQ(app_told, 1); /* the application hears that any value may have changed */
+    CHECK_EQ(upload_u32(0x1005, 0), ODG_NODE_COMM_BYTES >= 4u ? 0x80u : 0x81u); /* the first object */
+    CHECK_EQ(upload_u32(0x2000, 0), 0x5A);
+    CHECK_EQ(upload_u32(0x1003, 0), 1);     /* the error history is kept ... */
+    CHECK_EQ(upload_u32(0x1001, 0), 0x01);  /* ... and the error still active */
+    CHECK_EQ(upload_u32(0x1017, 0), all ? 0u : 700u);
+    CHECK_EQ(upload_u32(0x1016, 1), all ? 0u : 0x00090064u);
+    CHECK_EQ(upload_u32(0x1029, 1), all ? 0u : 2u);
+    CHECK_EQ(upload_u32(0x1800, 1), all ? TPDO1 : INVALID | TPDO1);
+    CHECK_EQ(upload_u32(0x1800, 2), all ? 255u : 7u);
+    CHECK_EQ(upload_u32(0x1A00, 0), all ? 2u : 0u);
+    if (all) { /* and served: TPDO1 valid and event-driven again */
+        nmt(ODG_NMT_START, NID);
+        clear();
+        after(1);
+        CHECK_EQ(count_id(TPDO1), 1);
+    }
+    /* what the application configured at start (odg_node_comm_keep) comes back instead */
+    CHECK_EQ(odg_set_u16(&pdo_node, 0x1017, 0, 40), ODG_OK);
+    odg_node_comm_keep(&node);
+    CHECK_EQ(download_u32(0x1017, 0, 90, 2), 0);
+    nmt(ODG_NMT_RESET_COMM, NID);
+    CHECK_EQ(upload_u32(0x1017, 0), all ? 40u : 90u);
+    /* reset node: the defaults, and the start values forgotten */
+    nmt(ODG_NMT_RESET_NODE, NID);
+    CHECK_EQ(download_u32(0x1017, 0, 90, 2), 0);
+    nmt(ODG_NMT_RESET_COMM, NID);
+    CHECK_EQ(upload_u32(0x1017, 0), all ? 0u : 90u);
+    nmt(ODG_NMT_RESET_NODE, NID);
+}
+
+/* The SDO server takes its COB-IDs from 0x1200 at boot and reset communication (read-only for
+ * SDO, set here by the application); bit 31 disables it; reset node brings the defaults back. */
+static void test_sdo_server_cob_ids(void)
+{
+    static const uint8_t upload_1000[8] = {0x40, 0x00, 0x10, 0, 0, 0, 0, 0};
+    nmt(ODG_NMT_RESET_NODE, NID);
+    CHECK_EQ(upload_u32(0x1200, 1), 0x600u + NID);
+    CHECK_EQ(upload_u32(0x1200, 2), 0x580u + NID);
+    CHECK_EQ(download_u32(0x1200, 1, 0x640, 4), ODG_ABORT_READ_ONLY);
+    CHECK_EQ(odg_set_u32(&pdo_node, 0x1200, 1, 0x640), ODG_OK);
+    CHECK_EQ(odg_set_u32(&pdo_node, 0x1200, 2, 0x5C0), ODG_OK);
+    CHECK_EQ(upload_u32(0x1200, 1), 0x640); /* not yet in force */
+    nmt(ODG_NMT_RESET_COMM, NID);
+    clear();
+    rx_frame(SDO_RX, upload_1000, 8);
+    CHECK_EQ(n_sent, 0);
+    rx_frame(0x640, upload_1000, 8);
+    CHECK_EQ(n_sent, 1);
+    CHECK(sent[0].id == 0x5C0 && sent[0].data[0] == 0x43 && sent[0].data[1] == 0x00 && sent[0].data[2] == 0x10);
+    CHECK_EQ(odg_set_u32(&pdo_node, 0x1200, 2, INVALID | 0x5C0u), ODG_OK);
+    nmt(ODG_NMT_RESET_COMM, NID);
+    clear();
+    rx_frame(0x640, upload_1000, 8);
+    rx_frame(SDO_RX, upload_1000, 8);
+    CHECK_EQ(n_sent, 0); /* disabled */
+    nmt(ODG_NMT_RESET_NODE, NID);
+    CHECK_EQ(upload_u32(0x1200, 1), 0x600u + NID);
 }
 
 /* The node hears communication parameters the application sets (odg_set) at once, without
@@ -497,6 +591,98 @@ static void test_error_history(void)
     CHECK_EQ(download_u32(0x1601, 1, 0x20020020, 4), ODG_ABORT_READ_ONLY);
 }
 
+/* Active errors and the error register 0x1001: bits by the codes' classes plus the caller's,
+ * generic while any is active; EMCY when one comes, error reset when the last goes. */
+static void test_error_register(void)
+{
+    unsigned k;
+#define REG pdo_node_x1001_error_register
+    CHECK_EQ(odg_node_error_bits(0x0000), 0);
+    CHECK_EQ(odg_node_error_bits(0x1000), ODG_ERR_GENERIC);
+    CHECK_EQ(odg_node_error_bits(0x2310), ODG_ERR_GENERIC | ODG_ERR_CURRENT);
+    CHECK_EQ(odg_node_error_bits(0x3210), ODG_ERR_GENERIC | ODG_ERR_VOLTAGE);
+    CHECK_EQ(odg_node_error_bits(0x4210), ODG_ERR_GENERIC | ODG_ERR_TEMPERATURE);
+    CHECK_EQ(odg_node_error_bits(0x5530), ODG_ERR_GENERIC);
+    CHECK_EQ(odg_node_error_bits(0x8110), ODG_ERR_GENERIC | ODG_ERR_COMMUNICATION);
+    CHECK_EQ(odg_node_error_bits(0x8210), ODG_ERR_GENERIC | ODG_ERR_COMMUNICATION);
+    CHECK_EQ(odg_node_error_bits(0x8611), ODG_ERR_GENERIC); /* CiA 402 following error */
+    CHECK_EQ(odg_node_error_bits(0xFF42), ODG_ERR_GENERIC | ODG_ERR_MANUFACTURER);
+    nmt(ODG_NMT_RESET_NODE, NID);
+    nmt(ODG_NMT_START, NID);
+    clear();
+    CHECK_EQ(odg_node_error_set(&node, 0x4210, 0, NULL, 0), 0);
+    CHECK(FRAME_IS(last_id(EMCY), 0x10, 0x42, 0x09, 0, 0, 0, 0, 0));
+    CHECK_EQ(upload_u32(0x1001, 0), 0x09); /* read-only for SDO, set by the node */
+    clear();
+    CHECK_EQ(odg_node_error_set(&node, 0x4210, 0, NULL, 0), 0); /* still active: nothing new */
+    CHECK_EQ(count_id(EMCY), 0);
+    CHECK_EQ(odg_node_error_set(&node, 0x3110, 0, (const uint8_t *)"\x07", 1), 0);
+    CHECK(FRAME_IS(last_id(EMCY), 0x10, 0x31, 0x0D, 7, 0, 0, 0, 0));
+    CHECK_EQ(odg_node_error_set(&node, 0xFF01, ODG_ERR_PROFILE, NULL, 0), 0);
+    CHECK(FRAME_IS(last_id(EMCY), 0x01, 0xFF, 0xAD, 0, 0, 0, 0, 0));
+    CHECK_EQ(odg_node_error_clear(&node, 0x3110), 0); /* others remain: no EMCY */
+    CHECK_EQ(odg_node_error_clear(&node, 0x9000), 0); /* never active */
+    CHECK_EQ(count_id(EMCY), 2);
+    CHECK_EQ(REG, 0xA9);
+    CHECK_EQ(odg_node_error_clear(&node, 0x4210), 0);
+    CHECK_EQ(REG, 0xA1);
+    CHECK_EQ(odg_node_error_clear(&node, 0xFF01), 0);
+    CHECK_EQ(count_id(EMCY), 3);
+    CHECK(FRAME_IS(last_id(EMCY), 0, 0, 0, 0, 0, 0, 0, 0));
+    CHECK_EQ(REG, 0);
+    CHECK_EQ(upload_u32(0x1003, 0), 3); /* an error reset is no error */
+    CHECK_EQ(upload_u32(0x1001, 0), 0);
+    CHECK_EQ(odg_node_error_set(&node, 0, 0, NULL, 0), ODG_ABORT_VALUE_RANGE);
+    /* a full table refuses, changing nothing */
+    for (k = 0; k < ODG_NODE_MAX_ERRORS; k++) {
+        CHECK_EQ(odg_node_error_set(&node, (uint16_t)(0x1000 + k), 0, NULL, 0), 0);
+    }
+    clear();
+    CHECK_EQ(odg_node_error_set(&node, 0x2000, 0, NULL, 0), ODG_ABORT_NO_RESOURCE);
+    CHECK_EQ(n_sent, 0);
+    CHECK_EQ(REG, ODG_ERR_GENERIC);
+    for (k = 0; k < ODG_NODE_MAX_ERRORS; k++) {
+        CHECK_EQ(odg_node_error_clear(&node, (uint16_t)(0x1000 + k)), 0);
+    }
+    CHECK_EQ(count_id(EMCY), 1);
+    /* recorded when stopped, though not sent */
+    nmt(ODG_NMT_STOP, NID);
+    CHECK_EQ(odg_node_error_set(&node, 0x8110, 0, NULL, 0), ODG_ABORT_DATA_STATE);
+    CHECK_EQ(REG, 0x11);
+    /* a raw EMCY frame leaves 0x1001 alone */
+    nmt(ODG_NMT_START, NID);
+    CHECK_EQ(odg_node_emcy(&node, 0x5000, 0x81, NULL, 0), 0);
+    CHECK_EQ(REG, 0x11);
+    /* reset communication forgets the communication errors, silently; reset node all */
+    CHECK_EQ(odg_node_error_set(&node, 0x4210, 0, NULL, 0), 0);
+    CHECK_EQ(REG, 0x19);
+    clear();
+    nmt(ODG_NMT_RESET_COMM, NID);
+    CHECK_EQ(n_sent, 1);
+    CHECK_EQ(REG, 0x09);
+    nmt(ODG_NMT_RESET_NODE, NID);
+    CHECK_EQ(n_sent, 2);
+    CHECK_EQ(REG, 0);
+    CHECK_EQ(odg_node_error_clear(&node, 0x4210), 0);
+    CHECK_EQ(n_sent, 2);
+    /* the RPDO length error outlives stop and start, and ends with the RPDO reconfigured */
+    nmt(ODG_NMT_START, NID);
+    rx(RPDO1, 9, 0);
+    CHECK_EQ(REG, 0x11);
+    nmt(ODG_NMT_STOP, NID);
+    nmt(ODG_NMT_START, NID);
+    CHECK_EQ(REG, 0x11);
+    rx(RPDO1, 9, 0, 0);
+    CHECK_EQ(REG, 0);
+    rx(RPDO1, 9, 0);
+    clear();
+    CHECK_EQ(download_u32(0x1400, 1, INVALID | RPDO1, 4), 0);
+    CHECK_EQ(REG, 0);
+    CHECK(FRAME_IS(last_id(EMCY), 0, 0, 0, 0, 0, 0, 0, 0));
+    nmt(ODG_NMT_RESET_NODE, NID);
+#undef REG
+}
+
 /* SYNC producer: 0x1005 bit 30 and 0x1006 (µs); counter 1..0x1019; TPDO2 (every 3rd SYNC)
  * follows the node's own SYNC; 0x1019 only while 0x1006 is 0. */
 static void test_sync_producer(void)
@@ -582,9 +768,25 @@ static void test_heartbeat_consumer(void)
     CHECK_EQ(hb_events[2][1], ODG_HB_TIMEOUT);
     CHECK_EQ(odg_node_state(&node), ODG_NMT_PRE_OPERATIONAL); /* 0x1029 sub 1 = 0 */
     CHECK_EQ(upload_u32(0x1003, 1), 0x00098130u);
+    CHECK_EQ(upload_u32(0x1001, 0), 0x11);
     clear();
     run_ms(500); /* no second EMCY until node 9 is heard again */
     CHECK_EQ(count_id(EMCY), 0);
+    rx(0x709, 0x05); /* back: the error is gone */
+    CHECK_EQ(count_id(EMCY), 1);
+    CHECK(FRAME_IS(last_id(EMCY), 0, 0, 0, 0, 0, 0, 0, 0));
+    CHECK_EQ(upload_u32(0x1001, 0), 0);
+    /* two nodes late: one EMCY, the error gone when both are heard again */
+    rx(0x70A, 0x05);
+    clear();
+    run_ms(201);
+    CHECK_EQ(count_id(EMCY), 1);
+    rx(0x709, 0x05);
+    CHECK_EQ(count_id(EMCY), 1);
+    CHECK_EQ(pdo_node_x1001_error_register, 0x11);
+    rx(0x70A, 0x05);
+    CHECK_EQ(count_id(EMCY), 2);
+    CHECK_EQ(pdo_node_x1001_error_register, 0);
     /* 0x1029 sub 1 = 1: no change; 2: stopped */
     CHECK_EQ(download_u32(0x1029, 1, 1, 1), 0);
     nmt(ODG_NMT_START, NID);
@@ -682,7 +884,15 @@ static void test_guarding(void)
     clear();
     run_ms(500); /* one event, until the next remote frame */
     CHECK_EQ(count_id(EMCY), 0);
-    nmt(ODG_NMT_RESET_COMM, NID); /* toggle from 0 again */
+    rtr(0x700 + NID); /* which ends the error */
+    CHECK(FRAME_IS(last_id(EMCY), 0, 0, 0, 0, 0, 0, 0, 0));
+    CHECK_EQ(upload_u32(0x1001, 0), 0);
+    run_ms(101);
+    CHECK_EQ(upload_u32(0x1001, 0), 0x11);
+    clear();
+    nmt(ODG_NMT_RESET_COMM, NID); /* ends it too, silently; toggle from 0 again */
+    CHECK_EQ(n_sent, 1);
+    CHECK_EQ(upload_u32(0x1001, 0), 0);
     clear();
     rtr(0x700 + NID);
     CHECK(FRAME_IS(last_id(0x700 + NID), 0x7F));
@@ -740,9 +950,12 @@ int main(void)
     test_rpdo();
     test_remap();
     test_emcy_and_resets();
+    test_reset_communication();
+    test_sdo_server_cob_ids();
     test_application_writes();
     test_application_client();
     test_error_history();
+    test_error_register();
     test_sync_producer();
     test_heartbeat_consumer();
     test_emcy_inhibit();

@@ -108,14 +108,14 @@ static void test_nmt_and_heartbeat(void)
     run_ms(3000);
     CHECK_EQ(count_id(0x705), 0);
 
-    /* reset communication: boot-up, pre-operational; values are kept */
+    /* reset communication: boot-up, pre-operational; the communication values of the boot */
     clear();
     nmt(ODG_NMT_RESET_COMM, NID);
     CHECK_EQ(n_sent, 1);
     CHECK_EQ(sent[0].id, 0x705);
     CHECK_EQ(sent[0].data[0], 0);
     CHECK_EQ(odg_node_state(&node), ODG_NMT_PRE_OPERATIONAL);
-    CHECK_EQ(upload_u32(0x1017, 0), 0);
+    CHECK_EQ(upload_u32(0x1017, 0), 1000);
     /* reset node: the dictionary is initialised again (no NV here: defaults) */
     CHECK_EQ(download_u32(0x2005, 0, 9, 1), 0);
     clear();
@@ -138,9 +138,10 @@ static void test_persistence(void)
     CHECK_EQ(download_u32(0x2005, 0, 42, 1), 0);
     CHECK_EQ(download(0x1010, 1, save, 4), 0);
     CHECK_EQ(download_u32(0x1017, 0, 700, 2), 0);
-    /* reset communication keeps the RAM values; reset node reloads what was stored */
+    /* reset communication and reset node: what was stored */
     nmt(ODG_NMT_RESET_COMM, NID);
-    CHECK_EQ(upload_u32(0x1017, 0), 700);
+    CHECK_EQ(upload_u32(0x1017, 0), 250);
+    CHECK_EQ(download_u32(0x1017, 0, 700, 2), 0);
     nmt(ODG_NMT_RESET_NODE, NID);
     CHECK_EQ(upload_u32(0x1017, 0), 250);
     CHECK_EQ(upload_u32(0x2005, 0), 42);
@@ -482,7 +483,10 @@ static void test_emcy(void)
     CHECK_EQ(sent[0].data[1], 0x32);
     CHECK_EQ(sent[0].data[2], 0x05);
     CHECK(memcmp(sent[0].data + 3, vendor, 5) == 0);
+    CHECK_EQ(upload_u32(0x1001, 0), 0); /* a frame as given: 0x1001 follows the active errors */
+    CHECK_EQ(odg_node_error_set(&node, 0x3210, 0, vendor, 2), 0);
     CHECK_EQ(upload_u32(0x1001, 0), 0x05); /* read-only for SDO, updated by the node */
+    CHECK_EQ(odg_node_error_clear(&node, 0x3210), 0);
     nmt(ODG_NMT_STOP, NID);
     clear();
     CHECK_EQ(odg_node_emcy(&node, 0x0000, 0x00, NULL, 0), ODG_ABORT_DATA_STATE);
