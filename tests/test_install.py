@@ -111,14 +111,20 @@ def _build(build: Path) -> str:
     return done.stdout
 
 
-def test_cmake_firmware_outside_the_repository(installed: Path, tmp_path: Path) -> None:
-    """find odgen on PATH, include its module, build odgen::runtime; regenerate only when needed."""
+def _firmware_project(tmp_path: Path) -> Path:
+    """examples/cmake-firmware with its description beside it, outside the repository."""
     if shutil.which("cmake") is None:
         pytest.fail("cmake is missing: `make sysdeps` installs it")
     project = tmp_path / "fw"
     shutil.copytree(EXAMPLES / "cmake-firmware", project)
     for name in ("io-node.eds", "io-node.toml"):
         shutil.copy(EXAMPLES / "io-node" / name, project)
+    return project
+
+
+def test_cmake_firmware_outside_the_repository(installed: Path, tmp_path: Path) -> None:
+    """find odgen on PATH, include its module, build odgen::runtime; regenerate only when needed."""
+    project = _firmware_project(tmp_path)
     env = dict(os.environ, PATH=f"{installed}{os.pathsep}{os.environ['PATH']}")
     build = tmp_path / "build"
     run(["cmake", "-S", str(project), "-B", str(build), f"-DIO_NODE_DIR={project}"], tmp_path, env=env)
@@ -143,12 +149,7 @@ def test_cmake_firmware_outside_the_repository(installed: Path, tmp_path: Path) 
 def test_find_package_finds_the_installed_odgen(installed: Path, tmp_path: Path) -> None:
     """The wheel puts odgenConfig.cmake into <venv>/share/odgen/cmake: with the venv's bin/ on PATH,
     find_package(odgen 0.1) needs nothing else; a version the installed odgen is not is refused."""
-    if shutil.which("cmake") is None:
-        pytest.fail("cmake is missing: `make sysdeps` installs it")
-    project = tmp_path / "fw"
-    shutil.copytree(EXAMPLES / "cmake-firmware", project)
-    for name in ("io-node.eds", "io-node.toml"):
-        shutil.copy(EXAMPLES / "io-node" / name, project)
+    project = _firmware_project(tmp_path)
     lists = project / "CMakeLists.txt"
     text = lists.read_text(encoding="utf-8")
     start, end = text.index("find_program(ODGEN_EXECUTABLE"), text.index('include("${ODGEN_CMAKE_DIR}/odgen.cmake")')
