@@ -8,6 +8,7 @@ type, validate. The PDO's parameters are written back afterwards.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from ..codegen.selftest import expected_bytes, write_cases
@@ -82,6 +83,10 @@ class Configured:
         self.ok = True
         return self
 
+    def finding(self, what: str) -> str:
+        """The step that aborted, as a finding about `what` (the PDO)."""
+        return f"{what}: {self.failed[0]} aborted 0x{self.failed[1]:08X}"
+
     def __exit__(self, *exc: object) -> None:
         c, p = self.c, self.pdo
         c.nmt("PRE-OPERATIONAL")
@@ -108,7 +113,7 @@ def check_pdo_sequence(c: Client) -> Check:
         return check
     pdo, e = found
     with Configured(c, pdo, e, 1) as conf:
-        check.expect(conf.ok, f"0x{pdo.mapping:04X}: {conf.failed[0]} aborted 0x{conf.failed[1]:08X}")
+        check.expect(conf.ok, conf.finding(f"0x{pdo.mapping:04X}"))
         code = c.download(pdo.mapping, 0, b"\x00")
         check.expect(code != 0, f"0x{pdo.mapping:04X}sub0 = 0 while the PDO is valid was accepted")
         c.download(pdo.comm, 1, (pdo.cob | INVALID).to_bytes(4, "little"))
@@ -195,7 +200,7 @@ def check_sync_window(c: Client) -> Check:
     c.watch(pdo.cob)
     check.expect(c.download(SYNC_WINDOW, 0, WINDOW_US.to_bytes(4, "little")) == 0, "0x1007 = 10000 us refused")
     with Configured(c, pdo, e, 1) as conf:
-        check.expect(conf.ok, f"TPDO 0x{pdo.comm:04X}: {conf.failed[0]} aborted 0x{conf.failed[1]:08X}")
+        check.expect(conf.ok, conf.finding(f"TPDO 0x{pdo.comm:04X}"))
         if conf.ok:
             c.nmt("OPERATIONAL")
             c.download(SYNC_PERIOD, 0, SYNC_EVERY_US.to_bytes(4, "little"))
@@ -234,6 +239,15 @@ def _rpdo_and_emcy(c: Client, check: Check) -> tuple[Pdo, Entry, int] | None:
     return found[0], found[1], emcy & CAN_ID_MASK
 
 
+def _short_rpdo(c: Client, pdo: Pdo, size: int, matches: Callable[[int, bytes], bool]) -> bytes | None:
+    """Operational, then the RPDO one byte shorter than its mapping (`size` bytes): the frame after
+    it that `matches` (CAN-ID, data) accepts, or None."""
+    c.nmt("OPERATIONAL")
+    sent = time.monotonic()
+    c.send(pdo.cob, bytes(size - 1))
+    return c.wait_frame(sent, matches)
+
+
 def check_emcy(c: Client) -> Check:
     check = Check("EMCY on an RPDO length error; error register and 0x1003 follow; reset EMCY")
     found = _rpdo_and_emcy(c, check)
@@ -243,12 +257,9 @@ def check_emcy(c: Client) -> Check:
     size = e.dtype.bits // 8 or 1
     with Configured(c, pdo, e, 0xFF) as conf:
         if not conf.ok:
-            check.expect(False, f"RPDO 0x{pdo.comm:04X}: {conf.failed[0]} aborted 0x{conf.failed[1]:08X}")
+            check.expect(False, conf.finding(f"RPDO 0x{pdo.comm:04X}"))
             return check
-        c.nmt("OPERATIONAL")
-        sent = time.monotonic()
-        c.send(pdo.cob, bytes(size - 1))
-        frame = c.wait_frame(sent, lambda got, d: got == cob and d[:2] != b"\x00\x00")
+        frame = _short_rpdo(c, pdo, size, lambda got, d: got == cob and d[:2] != b"\x00\x00")
         check.expect(frame is not None and int.from_bytes(frame[:2], "little") == EMCY_RPDO_LENGTH,
                      f"short RPDO: EMCY {frame!r}, want code 0x{EMCY_RPDO_LENGTH:04X}")
         if frame is None:
@@ -348,12 +359,9 @@ def check_error_register(c: Client) -> Check:
     consumer = c.od.find(CONSUMER_HEARTBEAT, 1)
     with Configured(c, pdo, e, 0xFF) as conf:
         if not conf.ok:
-            check.expect(False, f"RPDO 0x{pdo.comm:04X}: {conf.failed[0]} aborted 0x{conf.failed[1]:08X}")
+            check.expect(False, conf.finding(f"RPDO 0x{pdo.comm:04X}"))
             return check
-        c.nmt("OPERATIONAL")
-        sent = time.monotonic()
-        c.send(pdo.cob, bytes(size - 1))
-        frame = c.wait_frame(sent, lambda got, d: got == cob and d[:2] == EMCY_RPDO_LENGTH.to_bytes(2, "little"))
+        frame = _short_rpdo(c, pdo, size, lambda got, d: got == cob and d[:2] == EMCY_RPDO_LENGTH.to_bytes(2, "little"))
         _register_follows(c, check, frame, EMCY_RPDO_LENGTH, "short RPDO")
         if consumer is not None and consumer.writable:
             _heartbeat_error(c, check, cob)
