@@ -164,10 +164,11 @@ def _generate(request: Request) -> Result:
     return result
 
 
-def view_model(result: Result, name: str, lookup: str, digest: str) -> DictView:
-    """Everything the templates print for a prepared (loaded, linted, placed) description."""
+def view_model(result: Result, name: str, lookup: str, source_digest: str) -> DictView:
+    """Everything the templates print for a prepared (loaded, linted, placed) description;
+    `source_digest` is digest() of the request, printed in the headers."""
     assert result.od is not None and result.placements is not None
-    view = build(result.od, result.placements, name, version=__version__, digest=digest, lookup=lookup,
+    view = build(result.od, result.placements, name, version=__version__, digest=source_digest, lookup=lookup,
                  diags=result.diags)
     view.persist = persist_view(result.od, result.placements, result.persist, result.diags)
     view.config = runtime_config(view)

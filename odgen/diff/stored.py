@@ -52,7 +52,7 @@ def plans(old: Stored, new: Stored) -> dict[str, GroupPlan]:
     for name in sorted(set(old.groups) | set(new.groups)):
         steps = plan(old.groups.get(name), new.groups.get(name))
         a, b = old.regions.get(name), new.regions.get(name)
-        if a is not None and b is not None and a.offset != b.offset:  # a region grown in place is found again
+        if a is not None and b is not None and a.offset != b.offset:  # moved; one grown in place is found again
             moved = f"offset 0x{a.offset:X} ({a.size} bytes) -> offset 0x{b.offset:X} ({b.size} bytes)"
             out[name] = GroupPlan(_defaults(steps, "the group's NV region moved"), moved)
             continue
