@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from ..catalogue.gen import GEN002, GEN003
 from ..diagnostics import Diagnostics, Loc
 from ..model import Obj, ObjectDictionary, Sub
-from ..model.cia301 import RESTORE, RUNTIME_UPDATED, STORE
+from ..model.cia301 import RUNTIME_UPDATED, is_store_command
 from .names import identifier
 from .options import OptionEntry, Options
 
@@ -54,7 +54,7 @@ def storage_from_description(text: str | None) -> str | None:
 
 
 def auto_storage(index: int, sub: Sub) -> tuple[str, str]:
-    if index in (STORE, RESTORE) and sub.subindex > 0:
+    if is_store_command(index, sub.subindex):
         return STORE_CLASS, "auto: 0x1010/0x1011 store/restore commands"
     if sub.data_type == 0x000F:
         return "ram", "auto: DOMAIN buffers live in RAM"

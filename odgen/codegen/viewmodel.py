@@ -19,7 +19,8 @@ from ..model import Obj, ObjectDictionary, Sub, Value
 from ..model.datatypes import BASIC_TYPES, DataType
 from .names import comment, identifier, string_literal
 from .packing import packable
-from .placement import RESTORE, STORE, STORE_CLASS, Placement
+from ..model.cia301 import RESTORE, STORE
+from .placement import STORE_CLASS, Placement
 
 MAX_C_STRING = 4095
 DEFAULT_DOMAIN_CAPACITY = 0  # a DOMAIN holds its default unless the options give a capacity

@@ -16,7 +16,7 @@ from ..codegen.selftest import expected_bytes, write_cases
 from ..model.wire import wire_bytes
 from ..model import Obj, Sub
 from ..model.cia301 import COMMUNICATION_AREA, HEARTBEAT, IDENTITY, MANUFACTURER_AREA, PRODUCER_HEARTBEAT, \
-    SDO_REQUEST, SDO_RESPONSE, SDO_SERVER
+    SDO_REQUEST, SDO_RESPONSE, SDO_SERVER, is_store_command
 from ..rules.common import header_field, header_int
 from ..model.datatypes import BASIC_TYPES, DataType
 from ..roundtrip.checks import ABORTS, ACTIVE, NO_OBJECT, NO_SUB, WRITE_ONLY, Check
@@ -27,7 +27,6 @@ RANGE = 0x06090030  # "value range of parameter exceeded": the general code a no
 LENGTH = 0x06070010  # "data type does not match, length does not match": likewise
 NOT_MAPPABLE, MAP_TOO_LONG, INCOMPATIBLE = 0x06040041, 0x06040042, 0x06040043
 SIGNATURE = 0x08000020
-STORE, RESTORE = 0x1010, 0x1011
 EMCY_RPDO_LENGTH = 0x8210
 # Accepted in place of the specific code: CiA 301 lets a device answer with the general one.
 ALSO = {0x06090031: RANGE, 0x06090032: RANGE, 0x06070012: LENGTH, 0x06070013: LENGTH}
@@ -59,8 +58,7 @@ def entries(c: Client) -> list[Entry]:
 
 
 def is_command(e: Entry) -> bool:
-    """0x1010/0x1011 subs >= 1: a read gives the capabilities, a write is a command."""
-    return e.obj.index in (STORE, RESTORE) and e.sub.subindex > 0
+    return is_store_command(e.obj.index, e.sub.subindex)
 
 
 def _code_ok(got: int, want: int) -> bool:

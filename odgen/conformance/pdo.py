@@ -12,11 +12,11 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from ..codegen.selftest import expected_bytes, write_cases
-from ..model.cia301 import CAN_ID_MASK, CONSUMER_HEARTBEAT, ERROR_REGISTER, HEARTBEAT, SYNC_COB_ID, SYNC_PERIOD, \
-    SYNC_WINDOW
+from ..model.cia301 import CAN_ID_MASK, CONSUMER_HEARTBEAT, ERROR_REGISTER, HEARTBEAT, RESTORE, STORE, SYNC_COB_ID, \
+    SYNC_PERIOD, SYNC_WINDOW
 from ..roundtrip.checks import ACTIVE, Check
-from .checks import EMCY_HEARTBEAT, EMCY_RPDO_LENGTH, INCOMPATIBLE, MAP_TOO_LONG, NOT_MAPPABLE, RANGE, RESTORE, \
-    SIGNATURE, STORE, SYNC_GENERATE, Entry, entries, is_command
+from .checks import EMCY_HEARTBEAT, EMCY_RPDO_LENGTH, INCOMPATIBLE, MAP_TOO_LONG, NOT_MAPPABLE, RANGE, \
+    SIGNATURE, SYNC_GENERATE, Entry, entries, is_command
 from .client import Client
 
 INVALID = 0x80000000

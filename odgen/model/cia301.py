@@ -92,6 +92,11 @@ def pdo_communication(index: int) -> str | None:
     return None
 
 
+def is_store_command(index: int, subindex: int) -> bool:
+    """0x1010/0x1011 sub 1..: a read gives the capabilities, a write is a store or restore command."""
+    return index in (STORE, RESTORE) and subindex > 0
+
+
 def is_pdo_mapping(index: int) -> bool:
     return _in(index, RPDO_MAPPING, PDO_COUNT) or _in(index, TPDO_MAPPING, PDO_COUNT)
 
