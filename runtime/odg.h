@@ -74,6 +74,9 @@ extern "C" {
 #ifndef ODG_CFG_PERSIST_ODG1 /* a persistence group without migration ("ODG1" images) */
 #define ODG_CFG_PERSIST_ODG1 1
 #endif
+#ifndef ODG_CFG_PERSIST_MIGRATION /* a persistence group migrated at boot ("ODG2" images) */
+#define ODG_CFG_PERSIST_MIGRATION 1
+#endif
 #ifndef ODG_CFG_HASH /* lookup by a generated perfect hash (odgen --lookup hash) */
 #define ODG_CFG_HASH 1
 #endif

@@ -39,6 +39,12 @@
 #define MAGIC 0x3147444Fu /* "ODG1" as a little-endian UNSIGNED32 */
 #define CHUNK 32u         /* bytes read at a time when only checking a slot */
 
+/* The migration code is left out by -DODG_NO_MIGRATION, or by a dictionary configuration
+ * none of whose groups migrates. */
+#if !ODG_CFG_PERSIST_MIGRATION && !defined(ODG_NO_MIGRATION)
+#define ODG_NO_MIGRATION
+#endif
+
 /* Whether group `g` keeps "ODG2" images (it has a layout descriptor); a build for dictionaries
  * whose every group migrates (ODG_CFG_PERSIST_ODG1 0) leaves the "ODG1" group paths out. */
 #ifdef ODG_NO_MIGRATION
@@ -78,17 +84,6 @@ static void put32(uint8_t *p, uint32_t v)
 static uint32_t get32(const uint8_t *p)
 {
     return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
-}
-
-/* Whether `n` bytes differ (headers read back; a loop costs less FLASH than libc's memcmp). */
-static int differ(const uint8_t *a, const uint8_t *b, uint32_t n)
-{
-    while (n-- > 0u) {
-        if (a[n] != b[n]) {
-            return 1;
-        }
-    }
-    return 0;
 }
 
 uint32_t odg_persist_slot_size(uint32_t size)
@@ -188,13 +183,8 @@ static int slot_blank(const odg_nv_driver_t *nv, uint32_t addr, uint32_t size)
  * when something else is there, since then values once stored were lost. */
 static odg_boot_status_t no_image(const odg_nv_driver_t *nv, const odg_group_t *g)
 {
-    uint32_t size = ODG_PERSIST_SLOT_SIZE(g->size);
-    int a = slot_blank(nv, slot_addr(g, 0), size), b;
-    if (a < 0) {
-        return ODG_BOOT_NV_ERROR;
-    }
-    b = a ? slot_blank(nv, slot_addr(g, 1), size) : 0;
-    return b < 0 ? ODG_BOOT_NV_ERROR : (b ? ODG_BOOT_DEFAULTS : ODG_BOOT_DAMAGED);
+    int v = slot_blank(nv, g->nv_addr, 2u * ODG_PERSIST_SLOT_SIZE(g->size)); /* B follows A */
+    return v < 0 ? ODG_BOOT_NV_ERROR : (v ? ODG_BOOT_DEFAULTS : ODG_BOOT_DAMAGED);
 }
 
 /* Defaults into the mirror of group `g`, with the node-id added to $NODEID values (what the
@@ -214,6 +204,17 @@ static void defaults(const odg_dict_t *d, uint8_t g)
 }
 
 #ifndef ODG_NO_MIGRATION
+/* Whether `n` bytes differ (headers read back; a loop costs less FLASH than libc's memcmp). */
+static int differ(const uint8_t *a, const uint8_t *b, uint32_t n)
+{
+    while (n-- > 0u) {
+        if (a[n] != b[n]) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
 /* ---- "ODG2": self-describing images, migrated at boot (docs/persistence.md) -------------- */
 
 #define HDR2 ODG_PERSIST_HEADER2_SIZE
@@ -825,7 +826,7 @@ static odg_abort_t store_image1(const odg_nv_driver_t *nv, const odg_group_t *gr
         nv->write(nv->ctx, addr + HDR, gr->mirror, gr->size) != 0 ||
         nv->write(nv->ctx, addr + 4u, h + 4, HDR - 4u) != 0 ||
         nv->write(nv->ctx, addr, h, 4u) != 0 ||
-        slot_read(nv, addr, gr->size, hdr[0], NULL) != 1 || differ(hdr[0], h, HDR)) {
+        slot_read(nv, addr, gr->size, hdr[0], NULL) != 1 || get32(hdr[0] + 16) != get32(h + 16)) {
         return ODG_ABORT_HARDWARE;
     }
     return ODG_OK;
@@ -860,47 +861,34 @@ static odg_abort_t erase1(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_
 {
     const odg_group_t *gr = &d->groups[g];
     uint8_t hdr[2][HDR];
-    int k;
+    int k, n;
     k = newest(nv, gr, hdr);
     if (k == -2) {
         return ODG_ABORT_HARDWARE;
     }
     /* the older slot first: a power cut in between leaves the newest image (nothing
      * happened), never the older one */
-    k = k == 0;
-    if (nv->erase(nv->ctx, slot_addr(gr, k), ODG_PERSIST_SLOT_SIZE(gr->size)) != 0 ||
-        nv->erase(nv->ctx, slot_addr(gr, !k), ODG_PERSIST_SLOT_SIZE(gr->size)) != 0) {
-        return ODG_ABORT_HARDWARE;
+    for (n = 0, k = k == 0; n < 2; n++, k = !k) {
+        if (nv->erase(nv->ctx, slot_addr(gr, k), ODG_PERSIST_SLOT_SIZE(gr->size)) != 0) {
+            return ODG_ABORT_HARDWARE;
+        }
     }
     return ODG_OK;
 }
 
-/* Store group `g` in the format of its group: "ODG2" with a layout, else "ODG1". */
-static odg_abort_t store(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
+/* Store group `g` (restore = 0) in the format of its group, "ODG2" with a layout, else "ODG1";
+ * or make its next boot use the defaults (restore = 1). */
+static odg_abort_t act(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, int restore)
 {
     if (nv == NULL || g >= d->n_groups) {
         return ODG_ABORT_DATA_STORE;
     }
 #ifndef ODG_NO_MIGRATION
     if (MIGRATES(&d->groups[g])) {
-        return store2(d, nv, g);
+        return restore ? erase2(d, nv, g) : store2(d, nv, g);
     }
 #endif
-    return store1(d, nv, g);
-}
-
-/* Make the next boot of group `g` use the defaults. */
-static odg_abort_t erase(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
-{
-    if (nv == NULL || g >= d->n_groups) {
-        return ODG_ABORT_DATA_STORE;
-    }
-#ifndef ODG_NO_MIGRATION
-    if (MIGRATES(&d->groups[g])) {
-        return erase2(d, nv, g);
-    }
-#endif
-    return erase1(d, nv, g);
+    return restore ? erase1(d, nv, g) : store1(d, nv, g);
 }
 
 /* 0x1010 / 0x1011 sub `sub`, handed over by the core: sub 1 acts on every group, another on
@@ -912,7 +900,7 @@ static odg_abort_t command(odg_client_t *self, const odg_dict_t *d, uint8_t sub,
     uint8_t g;
     for (g = 0; g < d->n_groups; g++) {
         if (sub == 1u || d->groups[g].store_sub == sub) {
-            ac = restore ? erase(d, nv, g) : store(d, nv, g);
+            ac = act(d, nv, g, restore);
             if (ac != ODG_OK) {
                 break;
             }
@@ -934,12 +922,12 @@ static const odg_nv_driver_t *driver(const odg_dict_t *d)
 
 odg_abort_t odg_persist_store(const odg_dict_t *dict, uint8_t g)
 {
-    return store(dict, driver(dict), g);
+    return act(dict, driver(dict), g, 0);
 }
 
 odg_abort_t odg_persist_restore(const odg_dict_t *dict, uint8_t g)
 {
-    return erase(dict, driver(dict), g);
+    return act(dict, driver(dict), g, 1);
 }
 
 static odg_boot_status_t boot_group(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g,
@@ -960,18 +948,15 @@ static odg_boot_status_t boot_group(const odg_dict_t *d, const odg_nv_driver_t *
         st = ODG_BOOT_NV_ERROR;
     } else if (k == -1) {
         st = no_image(nv, gr);
+    } else if (slot_read(nv, slot_addr(gr, k), gr->size, h, (uint8_t *)gr->mirror) != 1) {
+        st = ODG_BOOT_NV_ERROR; /* it was valid a moment ago: a flaky read */
+    } else if (get32(h + 8) != gr->signature || get32(h + 12) != gr->size) {
+        st = ODG_BOOT_SIGNATURE; /* an image of another layout, read over the defaults below */
     } else {
-        if (get32(hdr[k] + 8) != gr->signature || get32(hdr[k] + 12) != gr->size) {
-            st = ODG_BOOT_SIGNATURE;
-        } else if (slot_read(nv, slot_addr(gr, k), gr->size, h, (uint8_t *)gr->mirror) == 1 &&
-                   !differ(h, hdr[k], HDR)) {
-            return ODG_BOOT_LOADED;
-        } else {
-            st = ODG_BOOT_NV_ERROR; /* it was valid a moment ago: a flaky read */
-        }
+        return ODG_BOOT_LOADED;
     }
     defaults(d, g);
-    if (st != ODG_BOOT_NV_ERROR && store(d, nv, g) != ODG_OK) {
+    if (st != ODG_BOOT_NV_ERROR && store1(d, nv, g) != ODG_OK) {
         st = ODG_BOOT_NV_ERROR;
     }
     return st;
@@ -1007,17 +992,21 @@ static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_
         odg_attach(dict, &p->client);
     }
     s->boot_seen = 0;
+#ifndef ODG_NO_MIGRATION /* the counts of entries a migration converted, defaulted, dropped */
     s->boot_counts[0] = s->boot_counts[1] = s->boot_counts[2] = 0;
+#endif
     for (g = 0; g < dict->n_groups; g++) {
         odg_boot_t b = {ODG_BOOT_NV_ERROR, 0, 0, 0, 0};
         if (nv != NULL) {
             b.status = (uint8_t)boot_group(dict, nv, g, &b);
         }
-        s->boot_seen = (uint8_t)(s->boot_seen | 1u << b.status |
-                                 (b.defaulted || b.dropped ? ODG_BOOT_ENTRIES_LOST : 0u));
+        s->boot_seen = (uint8_t)(s->boot_seen | 1u << b.status);
+#ifndef ODG_NO_MIGRATION
+        s->boot_seen = (uint8_t)(s->boot_seen | (b.defaulted || b.dropped ? ODG_BOOT_ENTRIES_LOST : 0u));
         s->boot_counts[0] = add_sat(s->boot_counts[0], b.defaulted);
         s->boot_counts[1] = add_sat(s->boot_counts[1], b.dropped);
         s->boot_counts[2] = add_sat(s->boot_counts[2], b.converted);
+#endif
         if (b.status == ODG_BOOT_NV_ERROR && ac == ODG_OK) {
             ac = ODG_ABORT_HARDWARE;
         }

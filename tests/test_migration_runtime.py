@@ -368,14 +368,18 @@ def test_migration_matches_policy(name: str, runtime: str, tmp_path: Path) -> No
 
 
 @pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
+@pytest.mark.parametrize("runtime", ["full", "configured"])
 @pytest.mark.parametrize("name", ["unchanged", "added", "widened"])
-def test_without_migration(name: str, tmp_path: Path) -> None:
+def test_without_migration(name: str, runtime: str, tmp_path: Path) -> None:
     """[persist] migration = false: "ODG1" images of the mirror in the group's region; an unchanged
-    layout loads, any change gives the defaults (SIGNATURE), while the other group keeps its values."""
+    layout loads, any change gives the defaults (SIGNATURE), while the other group keeps its values.
+    `configured`: the runtime built with od_config.h, which then leaves the migration code out."""
     case = CASES[name]
     off = "[persist]\nmigration = false\n"
-    v1, _ = firmware(tmp_path, "v1", case.v1, 1000, False, off)
-    v2, _ = firmware(tmp_path, "v2", case.v2, 1000, False, off)
+    configured = runtime == "configured"
+    v1, _ = firmware(tmp_path, "v1", case.v1, 1000, False, off, configured)
+    v2, _ = firmware(tmp_path, "v2", case.v2, 1000, False, off, configured)
+    assert "#define ODG_CFG_PERSIST_MIGRATION 0" in (tmp_path / "v2" / "od_config.h").read_text()
     nv = tmp_path / "od.nv"
     stored = run(v1, nv, *(_set(k, h) for k, h in case.stored.items()), "set:1017:00:FA00", "store",
                  "dump")

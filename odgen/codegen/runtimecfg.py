@@ -4,7 +4,7 @@ Each switch turns a feature of runtime/odg.c on when the dictionary has somethin
 the rest is left out of the build (64-bit arithmetic on a 32-bit core, string and domain
 handling, hooks, limit checks, persistence groups, the 0x1010/0x1011 commands, the lookup modes
 the dictionary does not use, and in runtime/odg_persist.c the migration of strings and domains
-and the "ODG1" path of groups without migration).
+the "ODG1" path of groups without migration, and the boot migration when no group migrates).
 """
 
 from __future__ import annotations
@@ -61,6 +61,7 @@ def runtime_config(view: DictView) -> list[Switch]:
          [p for e in view.entries if view.persist is not None and e.index == view.persist.status_object
           for p in range(e.first, e.first + e.count)]),
         ("ODG_CFG_PERSIST_ODG1", "persistence groups without migration", persisted[:1] if not migration else []),
+        ("ODG_CFG_PERSIST_MIGRATION", "persistence groups migrated at boot", persisted[:1] if migration else []),
     ]
     switches = [Switch(macro, what, bool(where), _first(view, where)) for macro, what, where in needs]
     for switch in switches:  # a packed descriptor's sub is the last element's: name them all

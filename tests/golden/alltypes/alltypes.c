@@ -33,6 +33,9 @@
 #if !ODG_CFG_STORE
 #error "alltypes uses 0x1010 / 0x1011 commands: build the runtime with ODG_CFG_STORE 1 (alltypes_config.h)"
 #endif
+#if !ODG_CFG_PERSIST_MIGRATION
+#error "alltypes uses persistence groups migrated at boot: build the runtime with ODG_CFG_PERSIST_MIGRATION 1 (alltypes_config.h)"
+#endif
 #if !ODG_CFG_HASH
 #error "alltypes uses lookup by perfect hash: build the runtime with ODG_CFG_HASH 1 (alltypes_config.h)"
 #endif

@@ -21,6 +21,9 @@
 #if !ODG_CFG_PACKED
 #error "io_node_persist uses ARRAYs and RECORDs whose elements share one descriptor: build the runtime with ODG_CFG_PACKED 1 (io_node_persist_config.h)"
 #endif
+#if !ODG_CFG_PERSIST_MIGRATION
+#error "io_node_persist uses persistence groups migrated at boot: build the runtime with ODG_CFG_PERSIST_MIGRATION 1 (io_node_persist_config.h)"
+#endif
 #if !ODG_CFG_HASH
 #error "io_node_persist uses lookup by perfect hash: build the runtime with ODG_CFG_HASH 1 (io_node_persist_config.h)"
 #endif
