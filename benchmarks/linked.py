@@ -60,23 +60,25 @@ What was tried, and the measured reason where a FLASH goal is not met (DS301 bse
 - Uniform ARRAY and RECORD elements share one descriptor (`ODG_E_PACKED`: 0x1003, 0x1016, the PDO
   mapping records, 0x1018): descriptors 1360 -> 712 B, without persistence 2688 -> 2156 B;
   demoDevice's descriptors 2288 -> 992 B.
-- The runtime copies with a byte loop of its own (`odg_copy_`): libc's memcpy (308 B) is no
-  longer linked for DS301. demoDevice still links it, through its generated reset: GCC turns the
-  struct copy of its defaults into a memcpy call, where it turns DS301's mostly-zero defaults into
-  a memset and a few stores (the runtime copying the defaults instead kept a 448-byte defaults
-  table in DS301's FLASH, so the reset stays generated).
-- Persistence (`odg_persist.c`), 8248 -> 5640 B with boot migration: built to the dictionary's
+- The runtime copies with a byte loop of its own (`odg_copy`), and so does the generated reset
+  for the persistence groups' defaults (in FLASH for the layer anyway) and for a RAM block of
+  which a quarter or more starts non-zero; a sparser RAM block is assigned, which GCC turns into
+  a memset and a few stores with no defaults table (DS301). libc's memcpy (308 B), which
+  demoDevice linked through its reset's struct copies, is no longer linked: demoDevice without
+  persistence 3984 -> 3668 B; on the corpus no dictionary links more than before (4 B at most).
+- Persistence (`odg_persist.c`), 8248 -> 5632 B with boot migration: built to the dictionary's
   groups (`ODG_CFG_PERSIST_STREAMS`, `ODG_CFG_PERSIST_ODG1`, `ODG_CFG_PERSIST_STATUS`; numbers as
   32 bits without 64-bit types), the layout descriptors read from the tables instead of const
   tables (demoDevice: 1128 B), CRC-32 bit by bit (no 64-byte table), no libc memcmp.
-- Persistence without migration (`[persist] migration = false`), 3700 -> 3512 B (demoDevice 5536
-  -> 5364 B): the generated configuration leaves the migration out (`ODG_CFG_PERSIST_MIGRATION 0`,
-  which before took `-DODG_NO_MIGRATION` by hand), "no image" checks both slots as one erased range,
+- Persistence without migration (`[persist] migration = false`), 3700 -> 3504 B (demoDevice 5536
+  -> 5048 B, 316 B of it the reset's copies above): the generated configuration leaves the
+  migration out (`ODG_CFG_PERSIST_MIGRATION 0`, which before took `-DODG_NO_MIGRATION` by
+  hand), "no image" checks both slots as one erased range,
   the boot checks the layout signature on the header read with the image, the store's read-back
   compares the CRC it wrote, store and restore share one entry point, and the counts only a
   migration produces are left out. The layer is then about 1.36 KB (boot, power-safe store with
   read-back, restore in power-safe order, CRC): both dictionaries are within CANopenNode's figure,
-  which links no storage at all (its CO_storage is not in its main); demoDevice by 4 bytes.
+  which links no storage at all (its CO_storage is not in its main).
 - With boot migration (odgen's default) the goal is not met: the migration entry by entry (record
   walk, widening and limits, streams, the store of the migrated image, the "ODG1" check that tells
   an old image from damage) adds about 2.1 KB linked. It is what lets stored parameters survive a

@@ -152,7 +152,7 @@ static void pack(const odg_ref_t *r, uint8_t *b)
     if (!IS_COMMAND(s)) {
 #if ODG_LITTLE_ENDIAN
         /* the wire bytes are the first bytes of the C type that holds the value */
-        odg_copy_(b, odg_value_(r->dict, s), s->size);
+        odg_copy(b, odg_value_(r->dict, s), s->size);
         return;
 #else
         v = odg_load_(odg_value_(r->dict, s), s->size);
@@ -169,7 +169,7 @@ static num_t unpack(const odg_sub_t *s, const uint8_t *b)
     uint32_t n = s->size;
     num_t v = 0, m;
 #if ODG_LITTLE_ENDIAN
-    odg_copy_(&v, b, n); /* n <= sizeof v: odg_verify and the dictionary's configuration check */
+    odg_copy(&v, b, n); /* n <= sizeof v: odg_verify and the dictionary's configuration check */
 #else
     uint32_t i = n;
     while (i-- > 0u) {
@@ -452,7 +452,7 @@ odg_abort_t odg_read(const odg_ref_t *ref, uint32_t offset, void *buf, uint32_t 
         len = cap;
     }
     if (!IS_UNICODE(s)) {
-        odg_copy_(out, src + offset, len); /* a loop here would become a call of libc memcpy */
+        odg_copy(out, src + offset, len); /* a loop here would become a call of libc memcpy */
     }
     for (i = 0; IS_UNICODE(s) && i < len; i++) {
         uint32_t k = offset + i;
@@ -711,7 +711,7 @@ odg_abort_t odg_init(const odg_dict_t *dict, uint8_t node_id)
     return ODG_OK;
 }
 
-void odg_copy_(void *dst, const void *src, uint32_t n)
+void odg_copy(void *dst, const void *src, uint32_t n)
 {
     uint8_t *d = (uint8_t *)dst;
     const uint8_t *s = (const uint8_t *)src;
@@ -745,7 +745,7 @@ odg_abort_t odg_get(const odg_dict_t *dict, uint16_t index, uint8_t sub, void *v
     odg_ref_t r;
     odg_abort_t ac = typed(dict, index, sub, size, &r);
     if (ac == ODG_OK) {
-        odg_copy_(value, odg_value_(dict, r.sub), size);
+        odg_copy(value, odg_value_(dict, r.sub), size);
     }
     return ac;
 }
@@ -759,7 +759,7 @@ odg_abort_t odg_set(const odg_dict_t *dict, uint16_t index, uint8_t sub, const v
         ac = ODG_ABORT_READ_ONLY;
     }
     if (ac == ODG_OK) {
-        odg_copy_(odg_value_(dict, r.sub), value, size);
+        odg_copy(odg_value_(dict, r.sub), value, size);
         odg_changed(dict, &r);
     }
     return ac;

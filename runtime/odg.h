@@ -419,6 +419,10 @@ typedef struct odg_ref {
  * stored values is the persistence layer's part (odg_persist_init, after this). */
 odg_abort_t odg_init(const odg_dict_t *dict, uint8_t node_id);
 
+/* Copy `n` bytes: a byte loop, so neither the runtime nor a generated reset links libc's
+ * memcpy for it (a few hundred bytes on small cores). */
+void odg_copy(void *dst, const void *src, uint32_t n);
+
 /* Attach `client` (see odg_client_t); attaching one already attached does nothing. */
 void odg_attach(const odg_dict_t *dict, odg_client_t *client);
 

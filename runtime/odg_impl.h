@@ -38,7 +38,4 @@ static inline void odg_element_(const odg_sub_t *s, uint8_t k, odg_sub_t *out)
     out->offset = (uint16_t)(s->offset + (uint32_t)(k - 1u) * ODG_STRIDE(s->size));
 }
 
-/* Copy `n` bytes (a byte loop: the runtime links no libc memcpy of its own). */
-void odg_copy_(void *dst, const void *src, uint32_t n);
-
 #endif /* ODG_IMPL_H */

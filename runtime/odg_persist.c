@@ -193,7 +193,7 @@ static void defaults(const odg_dict_t *d, uint8_t g)
 {
     const odg_group_t *gr = &d->groups[g];
     uint32_t p;
-    odg_copy_(gr->mirror, gr->defaults, gr->size);
+    odg_copy(gr->mirror, gr->defaults, gr->size);
     for (p = 0; p < d->n_subs; p++) {
         const odg_sub_t *s = &d->subs[p];
         if ((s->attr & ODG_A_NODEID) && s->storage == (uint8_t)(ODG_S_PERSIST | (unsigned)g << 2)) {
@@ -415,7 +415,7 @@ static int newest2(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t *a
         if (v > 0 && (!found || newer(get32(t + 4), get32(h + 4)))) {
             found = 1;
             *at = cand[k];
-            odg_copy_(h, t, HDR2);
+            odg_copy(h, t, HDR2);
         }
         if (k == 0u && v >= 0 && (cand[2] = named_b(gr, t)) != 0u) {
             n = 3;

@@ -240,9 +240,9 @@ ODG_ATTR_ROM static const uint8_t alltypes_hash_disp[16] = {
 
 static void alltypes_reset(const odg_dict_t *dict)
 {
-    alltypes_ram = alltypes_ram_defaults;
-    alltypes_persist_app = alltypes_persist_app_defaults;
-    alltypes_persist_comm = alltypes_persist_comm_defaults;
+    odg_copy(&alltypes_ram, &alltypes_ram_defaults, (uint32_t)sizeof alltypes_ram);
+    odg_copy(&alltypes_persist_app, &alltypes_persist_app_defaults, (uint32_t)sizeof alltypes_persist_app);
+    odg_copy(&alltypes_persist_comm, &alltypes_persist_comm_defaults, (uint32_t)sizeof alltypes_persist_comm);
     alltypes_persist_comm.x2007_uint32_value = (uint32_t)(alltypes_persist_comm.x2007_uint32_value + dict->state->node_id);
     (void)dict;
 }

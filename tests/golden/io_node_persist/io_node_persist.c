@@ -174,9 +174,9 @@ ODG_ATTR_ROM static const uint8_t io_node_persist_hash_disp[8] = {
 
 static void io_node_persist_reset(const odg_dict_t *dict)
 {
-    io_node_persist_ram = io_node_persist_ram_defaults;
-    io_node_persist_persist_app = io_node_persist_persist_app_defaults;
-    io_node_persist_persist_comm = io_node_persist_persist_comm_defaults;
+    odg_copy(&io_node_persist_ram, &io_node_persist_ram_defaults, (uint32_t)sizeof io_node_persist_ram);
+    odg_copy(&io_node_persist_persist_app, &io_node_persist_persist_app_defaults, (uint32_t)sizeof io_node_persist_persist_app);
+    odg_copy(&io_node_persist_persist_comm, &io_node_persist_persist_comm_defaults, (uint32_t)sizeof io_node_persist_persist_comm);
     io_node_persist_ram.x1200_sdo_server_parameter_s1_cob_id_client_to_server_rx = (uint32_t)(io_node_persist_ram.x1200_sdo_server_parameter_s1_cob_id_client_to_server_rx + dict->state->node_id);
     io_node_persist_ram.x1200_sdo_server_parameter_s2_cob_id_server_to_client_tx = (uint32_t)(io_node_persist_ram.x1200_sdo_server_parameter_s2_cob_id_server_to_client_tx + dict->state->node_id);
     io_node_persist_persist_comm.x1400_rpdo_communication_parameter_s1_cob_id_used_by_rpdo = (uint32_t)(io_node_persist_persist_comm.x1400_rpdo_communication_parameter_s1_cob_id_used_by_rpdo + dict->state->node_id);

@@ -51,7 +51,7 @@ ODG_ATTR_RAM static odg_state_t plain_bsearch_state;
 
 static void plain_bsearch_reset(const odg_dict_t *dict)
 {
-    plain_bsearch_ram = plain_bsearch_ram_defaults;
+    odg_copy(&plain_bsearch_ram, &plain_bsearch_ram_defaults, (uint32_t)sizeof plain_bsearch_ram);
     (void)dict;
 }
 
