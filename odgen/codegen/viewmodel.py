@@ -3,6 +3,13 @@
 The templates only loop over these lists. Values live in one struct per storage
 class (rom in FLASH; ram and each persistence group in RAM with a const defaults
 copy), members ordered by alignment so the compiler adds no padding.
+
+The rows of the large per-sub-entry tables (value members, sub-entries, name
+macros, accessors) are tuples of fields already formatted as C
+text, which the templates unpack in their loops (`{% for name, value, note in
+v.macros %}`): a large dictionary has five such rows per sub-entry, and reaching a
+field by position costs the render a fraction of a jinja2 attribute lookup. The C
+syntax around the fields stays in the templates.
 """
 
 from __future__ import annotations
@@ -11,7 +18,7 @@ import math
 import struct
 import zlib
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, NamedTuple
 
 from ..catalogue.gen import GEN004, GEN005, GEN006, GEN007
 from ..diagnostics import Diagnostics, Loc
@@ -35,8 +42,7 @@ _ALIGN = {"int8_t": 1, "uint8_t": 1, "char": 1, "int16_t": 2, "uint16_t": 2, "in
 _GROUP_SUBS = {"comm": 2, "app": 3, "application": 3}
 
 
-@dataclass
-class Member:
+class Member(NamedTuple):
     """One value in a storage struct."""
 
     name: str
@@ -62,8 +68,9 @@ class StorageStruct:
         return "const " if self.const else ""
 
 
-@dataclass
-class SubView:
+class SubView(NamedTuple):
+    """A row of NAME_subs."""
+
     offset: str
     size: int
     sub: int
@@ -100,20 +107,6 @@ class GroupView:
     type_name: str
     signature: int
     store_sub: int  # the group's place in NV: persistview.PersistView
-
-
-@dataclass
-class NameMacro:
-    name: str
-    value: str
-    note: str
-
-
-@dataclass
-class Accessor:
-    name: str
-    expr: str
-    note: str
 
 
 @dataclass
@@ -164,8 +157,8 @@ class DictView:
     domains: list[DomainView] = field(default_factory=list)
     nodeid_fixes: list[NodeIdFix] = field(default_factory=list)
     packed: list[PackedView] = field(default_factory=list)
-    macros: list[NameMacro] = field(default_factory=list)
-    accessors: list[Accessor] = field(default_factory=list)
+    macros: list[tuple[str, str, str]] = field(default_factory=list)  # #define name value /* note */
+    accessors: list[tuple[str, str]] = field(default_factory=list)  # #define name expression
     persist: Any = None  # persistview.PersistView: NV regions, layouts, status object
     config: list = field(default_factory=list)  # runtimecfg.Switch: the runtime's ODG_CFG_* switches
     hash: object = None  # lookup.PerfectHash for --lookup hash
@@ -338,7 +331,7 @@ def member_bytes(m: Member) -> int:
 
 def _generated_symbols(view: DictView) -> set[str]:
     tables = ("entries", "subs", "limits", "hook_map", "hook_slots", "groups", "state", "find", "reset")
-    names = {view.name, *(f"{view.name}_{t}" for t in tables), *(a.name for a in view.accessors)}
+    names = {view.name, *(f"{view.name}_{t}" for t in tables), *(name for name, _ in view.accessors)}
     names |= {s.name for s in view.structs} | {s.defaults for s in view.structs} | {d.name for d in view.domains}
     return names
 
@@ -384,15 +377,16 @@ def _entry(b: _Builder, view: DictView, obj: Obj) -> None:
     view.entries.append(EntryView(obj.index, len(view.subs), len(subs), code + (" | ODG_E_DENSE" if dense else ""),
                                   comment(obj.name)))
     obj_ident = f"X{obj.index:04X}_" + identifier(obj.name, "object").upper()
-    view.macros.append(NameMacro(f"{view.upper}_IDX_{obj_ident}", f"0x{obj.index:04X}u", comment(obj.name)))
+    view.macros.append((f"{view.upper}_IDX_{obj_ident}", f"0x{obj.index:04X}u", comment(obj.name)))
     for sub in subs:
         _sub(b, view, obj, sub)
     if packable(b.od, obj, b.placements):
-        _pack(view, view.entries[-1])
+        _pack(view)
 
 
-def _pack(view: DictView, entry: EntryView) -> None:
+def _pack(view: DictView) -> None:
     """One descriptor for the elements 1..N of the entry just described (packing.py)."""
+    entry = view.entries[-1]
     elements = view.subs[entry.first + 1:]
     one = elements[0]
     if len(elements) != entry.count - 1 or any((s.type, s.size, s.attr, s.storage) != (one.type, one.size, one.attr,
@@ -400,8 +394,7 @@ def _pack(view: DictView, entry: EntryView) -> None:
         return
     last = elements[-1]
     view.packed.append(PackedView(entry.index, one.offset, last.offset, len(elements), one.size))
-    one.sub = last.sub
-    one.note = f"sub-indices 1..{last.sub} (1: {one.note})"
+    view.subs[entry.first + 1] = one._replace(sub=last.sub, note=f"sub-indices 1..{last.sub} (1: {one.note})")
     del view.subs[entry.first + 2:]
     entry.count = 2
     entry.code += " | ODG_E_PACKED"  # sub 0 stays where ODG_E_DENSE says
@@ -435,7 +428,7 @@ def _sub(b: _Builder, view: DictView, obj: Obj, sub: Sub) -> None:
             view.functions.append(placement.function)
     if not obj.is_var:
         sub_ident = f"X{obj.index:04X}_S{sub.subindex}_" + identifier(sub.name, "sub").upper()
-        view.macros.append(NameMacro(f"{view.upper}_SUB_{sub_ident}", f"0x{sub.subindex:02X}u", comment(sub.name)))
+        view.macros.append((f"{view.upper}_SUB_{sub_ident}", f"0x{sub.subindex:02X}u", comment(sub.name)))
 
 
 def _attr_flags(od: ObjectDictionary, sub: Sub, placement: Placement, dtype: DataType) -> str:
@@ -476,7 +469,7 @@ def _value_member(b: _Builder, view: DictView, obj: Obj, sub: Sub, dtype: DataTy
     if dtype.kind in ("vstring", "ostring", "ustring"):
         array, init, size = _string_init(dtype, value, placement.capacity)
         target.members.append(Member(member, ctype, array, init, note, _ALIGN[ctype], key))
-        _accessor(view, member, target, note)
+        _accessor(view, member, target)
         return _offset(target, member), size
     if dtype.kind == "domain":
         return _domain(b, view, target, member, value, placement, note, key)
@@ -484,7 +477,7 @@ def _value_member(b: _Builder, view: DictView, obj: Obj, sub: Sub, dtype: DataTy
     target.members.append(Member(member, ctype, "", init, note, _ALIGN[ctype], key))
     if value is not None and value.nodeid and isinstance(value.parsed, int):
         view.nodeid_fixes.append(NodeIdFix(f"{target.name}.{member}", ctype))
-    _accessor(view, member, target, note)
+    _accessor(view, member, target)
     return _offset(target, member), max(dtype.bits // 8, 1)
 
 
@@ -492,8 +485,8 @@ def _offset(target: StorageStruct, member: str) -> str:
     return f"offsetof({target.type_name}, {member})"
 
 
-def _accessor(view: DictView, member: str, target: StorageStruct, note: str) -> None:
-    view.accessors.append(Accessor(f"{view.name}_{member}", f"({target.name}.{member})", note))
+def _accessor(view: DictView, member: str, target: StorageStruct) -> None:
+    view.accessors.append((f"{view.name}_{member}", f"({target.name}.{member})"))
 
 
 def initial_number(od: ObjectDictionary, sub: Sub, dtype: DataType) -> int | float:
