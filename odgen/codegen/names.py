@@ -65,8 +65,11 @@ def is_identifier(text: str) -> bool:
     return bool(_IDENT_RE.match(text)) and text not in C_KEYWORDS and not text.startswith("__")
 
 
+COMMENT_WIDTH = 60
+
+
 @functools.lru_cache(maxsize=8192)
-def comment(text: str, width: int = 60) -> str:
+def comment(text: str, width: int = COMMENT_WIDTH) -> str:
     """Text safe inside /* */: no comment terminators, no line breaks, printable ASCII."""
     flat = " ".join(text.split())
     if not (flat.isascii() and flat.isprintable()):  # the common case needs no per-character pass

@@ -14,6 +14,7 @@ syntax around the fields stays in the templates.
 
 from __future__ import annotations
 
+import functools
 import math
 import struct
 import zlib
@@ -23,8 +24,9 @@ from typing import Any, NamedTuple
 from ..catalogue.gen import GEN004, GEN005, GEN006, GEN007
 from ..diagnostics import Diagnostics, Loc
 from ..model import Obj, ObjectDictionary, Sub, Value
+from ..model.od import READABLE, WRITABLE
 from ..model.datatypes import BASIC_TYPES, DataType
-from .names import comment, identifier, string_literal
+from .names import COMMENT_WIDTH, comment, identifier, string_literal
 from .packing import packable
 from ..model.cia301 import RESTORE, STORE
 from .placement import STORE_CLASS, Placement
@@ -222,6 +224,9 @@ def ctype_of(dtype: DataType) -> str:
     return "uint8_t"  # octet string, domain
 
 
+_CTYPES = {code: ctype_of(dtype) for code, dtype in BASIC_TYPES.items()}  # by data type code
+
+
 def int_literal(value: int, ctype: str) -> str:
     if ctype in ("int64_t", "int32_t"):
         macro = "INT64_C" if ctype == "int64_t" else "INT32_C"
@@ -263,23 +268,30 @@ class _Builder:
                  diags: Diagnostics) -> None:
         self.od, self.placements, self.diags = od, placements, diags
         self.name = name
-        self.structs: dict[str, StorageStruct] = {}
+        self.structs: dict[str, StorageStruct] = {}  # by storage class, "persist:app"
         self.member_names: dict[str, tuple[int, int]] = {}
+        self.storage_codes: dict[str, str] = {}  # ODG_S_* by storage class
 
     def struct_for(self, storage: str) -> StorageStruct:
-        key = storage.replace(":", "_")
-        if key not in self.structs:
+        struct = self.structs.get(storage)
+        if struct is None:
+            key = storage.replace(":", "_")
             const = storage == "rom"
             group = storage.split(":", 1)[1] if ":" in storage else ""
             attr = "ODG_ATTR_ROM" if const else ("ODG_ATTR_PERSIST_" + group.upper() if group else "ODG_ATTR_RAM")
             var = f"{self.name}_{key}"
-            self.structs[key] = StorageStruct(var, f"{var}_t", attr, const,
-                                              defaults="" if const else f"{var}_defaults")
-        return self.structs[key]
+            struct = self.structs[storage] = StorageStruct(var, f"{var}_t", attr, const,
+                                                           defaults="" if const else f"{var}_defaults")
+        return struct
 
-    def member_name(self, obj: Obj, sub: Sub) -> str:
-        base = f"x{obj.index:04X}_" + identifier(obj.name, "object")
-        name = base if obj.is_var else f"{base}_s{sub.subindex}_" + identifier(sub.name, "sub")
+    def storage_code(self, placement: Placement) -> str:
+        code = self.storage_codes.get(placement.storage)
+        if code is None:
+            code = self.storage_codes[placement.storage] = _storage_code(placement.storage, self.name.upper())
+        return code
+
+    def member_name(self, name: str, obj: Obj, sub: Sub) -> str:
+        """`name` for the value member of `sub`, reported (GEN004) when another sub-entry has it."""
         key = (obj.index, sub.subindex)
         if self.member_names.setdefault(name, key) != key:
             self.diags.add(GEN004, Loc(self.od.source, sub.line), f"C name {name} is used twice", obj.index)
@@ -296,7 +308,8 @@ def build(od: ObjectDictionary, placements: dict[tuple[int, int], Placement], na
             diags.add(GEN006, Loc(od.source, obj.line), "defines a data type; not generated", obj.index)
             continue
         _entry(b, view, obj)
-    view.structs = [_sorted_struct(s) for _, s in sorted(b.structs.items(), key=lambda kv: _struct_order(kv[0]))]
+    view.structs = [_sorted_struct(s) for _, s in sorted(b.structs.items(),
+                                                         key=lambda kv: _struct_order(kv[0].replace(":", "_")))]
     view.groups = _groups(od, view)
     _check_group_names(b, view)
     _check_functions(b, view)
@@ -374,14 +387,24 @@ def _entry(b: _Builder, view: DictView, obj: Obj) -> None:
     subs = obj.sorted_subs()
     dense = [s.subindex for s in subs] == list(range(len(subs)))
     code = {2: "ODG_OBJ_DOMAIN", 8: "ODG_OBJ_ARRAY", 9: "ODG_OBJ_RECORD"}.get(obj.structure, "ODG_OBJ_VAR")
+    note = comment(obj.name)
     view.entries.append(EntryView(obj.index, len(view.subs), len(subs), code + (" | ODG_E_DENSE" if dense else ""),
-                                  comment(obj.name)))
-    obj_ident = f"X{obj.index:04X}_" + identifier(obj.name, "object").upper()
-    view.macros.append((f"{view.upper}_IDX_{obj_ident}", f"0x{obj.index:04X}u", comment(obj.name)))
+                                  note))
+    hex_index, ident = f"{obj.index:04X}", identifier(obj.name, "object")
+    view.macros.append((f"{view.upper}_IDX_X{hex_index}_{ident.upper()}", f"0x{hex_index}u", note))
+    names = _Names(hex_index, f"x{hex_index}_{ident}", obj.is_var)
     for sub in subs:
-        _sub(b, view, obj, sub)
+        _sub(b, view, obj, sub, names)
     if packable(b.od, obj, b.placements):
         _pack(view)
+
+
+class _Names(NamedTuple):
+    """What the C names of an object's sub-entries are made of, worked out once per object."""
+
+    hex_index: str  # "2000"
+    member: str  # the value member of a VAR; the prefix of an ARRAY's or RECORD's, "x2000_name"
+    is_var: bool
 
 
 def _pack(view: DictView) -> None:
@@ -400,98 +423,114 @@ def _pack(view: DictView) -> None:
     entry.code += " | ODG_E_PACKED"  # sub 0 stays where ODG_E_DENSE says
 
 
-def _sub(b: _Builder, view: DictView, obj: Obj, sub: Sub) -> None:
-    placement = b.placements[(obj.index, sub.subindex)]
+def _sub(b: _Builder, view: DictView, obj: Obj, sub: Sub, names: _Names) -> None:
+    """The sub-entry's descriptor, value member, accessor and name macro (this runs once per sub-entry:
+    the value in force, the name's identifier and its comment are worked out once here)."""
+    subindex = sub.subindex
+    placement = b.placements[(obj.index, subindex)]
     dtype = BASIC_TYPES.get(sub.data_type or 0)
     if dtype is None:
         b.diags.add(GEN005, Loc(b.od.source, sub.line_of("datatype")),
                     f"has DataType 0x{sub.data_type or 0:04X}, not a basic type", obj.index,
-                    None if obj.is_var else sub.subindex)
+                    None if names.is_var else subindex)
         return
-    member = b.member_name(obj, sub)
+    ident = "" if names.is_var else identifier(sub.name, "sub")
+    member = b.member_name(names.member if names.is_var else f"{names.member}_s{subindex}_{ident}", obj, sub)
+    note = comment(sub.name)
+    value = b.od.value_in_force(sub)
+    nodeid = value is not None and value.nodeid and isinstance(value.parsed, int)
+    attr = _attr_flags(sub.access, sub.pdo_mapping and dtype.is_numeric, nodeid, bool(placement.hooks))
     pos = len(view.subs)
-    attr = _attr_flags(b.od, sub, placement, dtype)
     if placement.storage == STORE_CLASS:
         storage = "ODG_S_STORE" + (" | ODG_S_RESTORE_FLAG" if obj.index == RESTORE else "")
-        view.subs.append(SubView("0", 4, sub.subindex, dtype.code, attr, storage, comment(sub.name)))
+        view.subs.append(SubView("0", 4, subindex, dtype.code, attr, storage, note))
         return
-    offset, size = _value_member(b, view, obj, sub, dtype, placement, member)
-    if _limit(view, pos, sub, dtype):
+    target = b.struct_for(placement.storage)
+    member_note = _prefixed_comment(f"0x{names.hex_index}sub{subindex}", sub.name, note)
+    offset, size = _value_member(b, view, target, (obj.index, subindex), sub, dtype, placement, member, value,
+                                 member_note)
+    if (sub.low is not None or sub.high is not None) and _limit(view, pos, sub, dtype):
         attr += " | ODG_A_LIMIT"
-    view.subs.append(SubView(offset, size, sub.subindex, dtype.code, attr,
-                             _storage_code(placement, view), comment(sub.name)))
+    view.subs.append(SubView(offset, size, subindex, dtype.code, attr, b.storage_code(placement), note))
     if placement.hooks:
         kinds = " | ".join(f"ODG_HOOK_{k.upper()}" for k in placement.hooks)
-        label = comment(f"0x{obj.index:04X}sub{sub.subindex}")
+        label = comment(f"0x{obj.index:04X}sub{subindex}")
         view.hooks.append(HookView(pos, kinds, placement.function or "NULL", label))
         if placement.function and placement.function not in view.functions:
             view.functions.append(placement.function)
-    if not obj.is_var:
-        sub_ident = f"X{obj.index:04X}_S{sub.subindex}_" + identifier(sub.name, "sub").upper()
-        view.macros.append((f"{view.upper}_SUB_{sub_ident}", f"0x{sub.subindex:02X}u", comment(sub.name)))
+    if not names.is_var:
+        view.macros.append((f"{view.upper}_SUB_X{names.hex_index}_S{subindex}_{ident.upper()}",
+                            f"0x{subindex:02X}u", note))
 
 
-def _attr_flags(od: ObjectDictionary, sub: Sub, placement: Placement, dtype: DataType) -> str:
+def _prefixed_comment(prefix: str, text: str, flat: str) -> str:
+    """comment(f"{prefix} {text}") for a `prefix` without spaces or comment characters, from `flat`
+    = comment(text) when that is whole and the two fit the width (the common case, without a second
+    pass over the text)."""
+    if flat and len(prefix) + 1 + len(flat) <= COMMENT_WIDTH:
+        return f"{prefix} {flat}"
+    return comment(f"{prefix} {text}")
+
+
+@functools.cache
+def _attr_flags(access: str | None, pdo: bool, nodeid: bool, hooked: bool) -> str:
+    """ODG_A_* of a sub-entry: its access, PDO mapping (`pdo`: mappable and numeric), a $NODEID
+    default, hooks. Few combinations occur, so each is worked out once."""
     flags = []
-    if sub.readable:
+    if access in READABLE:
         flags.append("ODG_A_READ")
-    if sub.writable:
+    if access in WRITABLE:
         flags.append("ODG_A_WRITE")
-    if sub.pdo_mapping and dtype.is_numeric:
-        if sub.access in ("ro", "const", "rwr", "rw"):
+    if pdo:
+        if access in ("ro", "const", "rwr", "rw"):
             flags.append("ODG_A_TPDO")
-        if sub.access in ("wo", "rww", "rw"):
+        if access in ("wo", "rww", "rw"):
             flags.append("ODG_A_RPDO")
-    value = od.value_in_force(sub)
-    if value is not None and value.nodeid and isinstance(value.parsed, int):
+    if nodeid:
         flags.append("ODG_A_NODEID")
-    if placement.hooks:
+    if hooked:
         flags.append("ODG_A_HOOK")
     return " | ".join(flags) or "0"
 
 
-def _storage_code(placement: Placement, view: DictView) -> str:
-    if placement.storage == "rom":
+def _storage_code(storage: str, upper: str) -> str:
+    if storage == "rom":
         return "ODG_S_ROM"
-    if placement.storage == "ram":
+    if storage == "ram":
         return "ODG_S_RAM"
-    group = placement.group or "app"
-    return f"ODG_S_PERSIST | ({view.upper}_GROUP_{group.upper()} << 2)"
+    group = storage.split(":", 1)[1] if storage.startswith("persist:") else "app"
+    return f"ODG_S_PERSIST | ({upper}_GROUP_{group.upper()} << 2)"
 
 
-def _value_member(b: _Builder, view: DictView, obj: Obj, sub: Sub, dtype: DataType, placement: Placement,
-                  member: str) -> tuple[str, int]:
-    target = b.struct_for(placement.storage)
-    value = b.od.value_in_force(sub)
-    ctype = ctype_of(dtype)
-    note = comment(f"0x{obj.index:04X}sub{sub.subindex} {sub.name}")
-    key = (obj.index, sub.subindex)
-    if dtype.kind in ("vstring", "ostring", "ustring"):
+def _value_member(b: _Builder, view: DictView, target: StorageStruct, key: tuple[int, int], sub: Sub,
+                  dtype: DataType, placement: Placement, member: str, value: Value | None,
+                  note: str) -> tuple[str, int]:
+    """The member holding the value in the struct of its storage class; (offset, size) for the descriptor."""
+    ctype = _CTYPES[dtype.code]
+    kind = dtype.kind
+    if kind in ("vstring", "ostring", "ustring"):
         array, init, size = _string_init(dtype, value, placement.capacity)
         target.members.append(Member(member, ctype, array, init, note, _ALIGN[ctype], key))
-        _accessor(view, member, target)
-        return _offset(target, member), size
-    if dtype.kind == "domain":
+    elif kind == "domain":
         return _domain(b, view, target, member, value, placement, note, key)
-    init = _scalar_init(b.od, sub, dtype, ctype)
-    target.members.append(Member(member, ctype, "", init, note, _ALIGN[ctype], key))
-    if value is not None and value.nodeid and isinstance(value.parsed, int):
-        view.nodeid_fixes.append(NodeIdFix(f"{target.name}.{member}", ctype))
-    _accessor(view, member, target)
-    return _offset(target, member), max(dtype.bits // 8, 1)
-
-
-def _offset(target: StorageStruct, member: str) -> str:
-    return f"offsetof({target.type_name}, {member})"
-
-
-def _accessor(view: DictView, member: str, target: StorageStruct) -> None:
+    else:
+        number = _initial(value, sub, dtype)
+        init = real_literal(float(number), dtype.bits) if kind == "real" else int_literal(int(number), ctype)
+        target.members.append(Member(member, ctype, "", init, note, _ALIGN[ctype], key))
+        if value is not None and value.nodeid and isinstance(value.parsed, int):
+            view.nodeid_fixes.append(NodeIdFix(f"{target.name}.{member}", ctype))
+        size = max(dtype.bits // 8, 1)
     view.accessors.append((f"{view.name}_{member}", f"({target.name}.{member})"))
+    return f"offsetof({target.type_name}, {member})", size
 
 
 def initial_number(od: ObjectDictionary, sub: Sub, dtype: DataType) -> int | float:
     """The value an entry starts with: its default, or without one 0 moved into its limits."""
-    value = od.value_in_force(sub)
+    return _initial(od.value_in_force(sub), sub, dtype)
+
+
+def _initial(value: Value | None, sub: Sub, dtype: DataType) -> int | float:
+    """initial_number() of the value in force."""
     parsed = value.parsed if value is not None and value.error is None else None
     if isinstance(parsed, (int, float)) and not isinstance(parsed, bool):
         return float(parsed) if dtype.kind == "real" else int(parsed)
@@ -500,13 +539,6 @@ def initial_number(od: ObjectDictionary, sub: Sub, dtype: DataType) -> int | flo
         if bound is not None and bound.error is None and not bound.nodeid and isinstance(bound.parsed, (int, float)):
             zero = pick(zero, bound.parsed)
     return zero
-
-
-def _scalar_init(od: ObjectDictionary, sub: Sub, dtype: DataType, ctype: str) -> str:
-    number = initial_number(od, sub, dtype)
-    if dtype.kind == "real":
-        return real_literal(float(number), dtype.bits)
-    return int_literal(int(number), ctype)
 
 
 def _string_init(dtype: DataType, value: Value | None, capacity: int | None) -> tuple[str, str, int]:
