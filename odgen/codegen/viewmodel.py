@@ -4,12 +4,13 @@ The templates only loop over these lists. Values live in one struct per storage
 class (rom in FLASH; ram and each persistence group in RAM with a const defaults
 copy), members ordered by alignment so the compiler adds no padding.
 
-The rows of the large per-sub-entry tables (value members, sub-entries, name
-macros, accessors) are tuples of fields already formatted as C
-text, which the templates unpack in their loops (`{% for name, value, note in
-v.macros %}`): a large dictionary has five such rows per sub-entry, and reaching a
-field by position costs the render a fraction of a jinja2 attribute lookup. The C
-syntax around the fields stays in the templates.
+The large tables have a row per sub-entry (value members, sub-entries, name macros,
+accessors) or per entry: five rows per sub-entry in all. A jinja2 loop pays for every
+field and every piece of text of every row, which made up most of a large render, so
+the templates print these tables with the `rows` filter (generate.py): each row is
+one printf-style line, written in the template, filled from the row's fields. Rows
+are NamedTuples whose fields the template names, or plain tuples in the order of
+their line (macros, accessors), built once per sub-entry here.
 """
 
 from __future__ import annotations
