@@ -126,12 +126,13 @@ def rows(items: Iterable[tuple[Any, ...]], line: str, *fields: str) -> str:
     dict.c.j2 and dict.h.j2 print their per-sub-entry tables with it (`{{ v.macros | rows("#define %s
     %s /* %s */") }}`): a jinja2 loop pays for every field and piece of text of every row, which in a
     large dictionary is most of the render; the line's C stays in the template all the same."""
+    line += "\n"
     if not fields:
-        return "".join([line % item + "\n" for item in items])
+        return "".join([line % item for item in items])
     get = operator.attrgetter(*fields)
     if len(fields) == 1:
-        return "".join([line % (get(item),) + "\n" for item in items])
-    return "".join([line % get(item) + "\n" for item in items])
+        return "".join([line % (value,) for value in map(get, items)])
+    return "".join([line % values for values in map(get, items)])
 
 
 def digest(request: Request, name: str) -> str:

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import functools
 import math
+import operator
 import struct
 import zlib
 from dataclasses import dataclass, field
@@ -380,14 +381,20 @@ def _struct_order(key: str) -> tuple[int, str]:
 
 
 def _sorted_struct(s: StorageStruct) -> StorageStruct:
-    s.members.sort(key=lambda m: (-m.align, m.key))
+    """Members by alignment, widest first, then by (index, sub): two stable sorts, the first of which
+    finds the members already in order (they are added object by object)."""
+    s.members.sort(key=operator.attrgetter("key"))
+    s.members.sort(key=operator.attrgetter("align"), reverse=True)
     return s
+
+
+_OBJECT_CODES = {2: "ODG_OBJ_DOMAIN", 8: "ODG_OBJ_ARRAY", 9: "ODG_OBJ_RECORD"}
 
 
 def _entry(b: _Builder, view: DictView, obj: Obj) -> None:
     subs = obj.sorted_subs()
-    dense = [s.subindex for s in subs] == list(range(len(subs)))
-    code = {2: "ODG_OBJ_DOMAIN", 8: "ODG_OBJ_ARRAY", 9: "ODG_OBJ_RECORD"}.get(obj.structure, "ODG_OBJ_VAR")
+    dense = not subs or subs[-1].subindex == len(subs) - 1  # sub-indices 0..n-1 (distinct and sorted)
+    code = _OBJECT_CODES.get(obj.structure, "ODG_OBJ_VAR")
     note = comment(obj.name)
     view.entries.append(EntryView(obj.index, len(view.subs), len(subs), code + (" | ODG_E_DENSE" if dense else ""),
                                   note))
