@@ -17,10 +17,10 @@ from __future__ import annotations
 
 import functools
 import math
-import operator
 import struct
 import zlib
 from dataclasses import dataclass, field
+from operator import attrgetter
 from typing import Any, NamedTuple
 
 from ..catalogue.gen import GEN004, GEN005, GEN006, GEN007
@@ -383,8 +383,8 @@ def _struct_order(key: str) -> tuple[int, str]:
 def _sorted_struct(s: StorageStruct) -> StorageStruct:
     """Members by alignment, widest first, then by (index, sub): two stable sorts, the first of which
     finds the members already in order (they are added object by object)."""
-    s.members.sort(key=operator.attrgetter("key"))
-    s.members.sort(key=operator.attrgetter("align"), reverse=True)
+    s.members.sort(key=attrgetter("key"))
+    s.members.sort(key=attrgetter("align"), reverse=True)
     return s
 
 
