@@ -34,13 +34,14 @@ strtod fabs floor ceil sqrt pow isnan isinf signal raise va_list jmp_buf FILE EO
 
 MAX_IDENT = 48
 _IDENT_RE = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+_WORD_RE = re.compile(r"[a-z0-9]+")  # the words of an identifier, in lower case
 
 
 @functools.lru_cache(maxsize=8192)  # generation asks for the same names many times over
 def identifier(text: str, fallback: str = "entry") -> str:
     """A lower-case C identifier from free text: `Vendor-ID` -> `vendor_id`."""
-    words = re.findall(r"[A-Za-z0-9]+", text.encode("ascii", "ignore").decode())
-    ident = "_".join(w.lower() for w in words)[:MAX_IDENT].strip("_") or fallback
+    ascii_text = text if text.isascii() else text.encode("ascii", "ignore").decode()
+    ident = "_".join(_WORD_RE.findall(ascii_text.lower()))[:MAX_IDENT].strip("_") or fallback
     if ident[0].isdigit():
         ident = "n" + ident
     if ident in C_KEYWORDS or ident.startswith("__"):

@@ -367,8 +367,11 @@ def _check_group_names(b: _Builder, view: DictView) -> None:
 
 def _check_functions(b: _Builder, view: DictView) -> None:
     """Hook functions named in the options must not clash with generated or runtime names."""
+    named = [placement for placement in b.placements.values() if placement.function]
+    if not named:
+        return
     taken = _generated_symbols(view)
-    for placement in b.placements.values():
+    for placement in named:
         fn = placement.function
         if fn and (fn in taken or fn.startswith("odg_")) and placement.function_loc is not None:
             clash = f"hook function {fn} clashes with a generated or runtime name"
