@@ -36,22 +36,24 @@ without cyclic collection and end with os._exit after flushing (the teardown of 
 
 For `odgen generate`: the large tables (value members, sub-entries, entries, name macros, accessors;
 five rows per sub-entry) are printed by a `rows` filter, a printf-style line per row written in the
-template and filled from the row's fields, instead of a jinja2 loop that yields every field and piece
-of text separately (render 0.065 -> 0.035 s); the rows are NamedTuples or tuples, and a sub-entry's
-value in force, name identifier and comment are worked out once, its ODG_A_*/ODG_S_* codes cached
-per combination (view-model 0.152 -> 0.111 s, of which ~0.035 s are the NV layouts, the runtime
-configuration and the perfect hash); an options entry's place is formatted once, not per matched
-sub-entry (place with the benchmark's options 24 -> 18 ms). Whole process 0.54 -> 0.46 s in one
-run (0.59x -> 0.50x canopen). Outside the stages the whole process spends ~35 ms starting the
-interpreter (site and the editable install's finder ~20 ms, modules odgen imports anyway), ~15 ms
-importing the command line and parsing arguments, ~5 ms reading the options file (tomllib), ~5 ms
-comparing the outputs with the files already there, ~2 ms hashing the input.
+template and filled from the row's fields, instead of a jinja2 loop that yields every field and
+piece of text separately (render 0.060 -> 0.034 s); the rows are NamedTuples or tuples, a
+sub-entry's value in force, name identifier and comment are worked out once, its ODG_A_*/ODG_S_*
+codes cached per combination, identifier() lowers ASCII names once, the NV layouts sort only the
+persisted placements (view-model 0.138 -> 0.093 s, of which ~15 ms are the runtime configuration and
+the perfect hash; with the benchmark's persistence group the NV layouts add 16 -> 13 ms); an options
+entry's place is formatted once, not per matched sub-entry (place with the benchmark's options
+24 -> 18 ms). Whole process 0.524 -> 0.431 s in one run (0.63x -> 0.52x canopen, objdictgen
+6.4x -> 7.7x). Outside the stages the whole process spends ~35 ms starting the interpreter (site and
+the editable install's finder ~20 ms, modules odgen imports anyway), ~15 ms importing the command
+line and parsing arguments, ~5 ms reading the options file (tomllib), ~5 ms comparing the outputs
+with the files already there, ~2 ms hashing the input.
 Measured and dropped: reading each section's keys with one regex and dict(zip()) (slower than the
-line loop for sections of a few keys, 5.5 vs 3.0 us for seven), a faster identifier() (no gain),
-filtering the placements before sorting them for the NV layouts (no gain). What is left is spread
-over every sub-entry in every stage (~38 us per sub-entry: parse 13, lint 5, place 2, view-model 14,
-render 4) plus ~0.1 s of start-up and imports (jinja2 ~25 ms, making 45 dataclasses 20-30 ms); 0.40x would
-need about 0.33 s, a reader and view-model with far fewer Python operations per sub-entry."""
+line loop for sections of a few keys, 5.5 vs 3.0 us for seven), reading a plain [section] line
+inline, remembering int_literal() (no gain measurable). What is left is spread over every sub-entry
+in every stage (~35 us per sub-entry: parse 12, lint 5, place 2, view-model 12, render 4) plus
+~0.1 s of start-up and imports (jinja2 ~25 ms, making 45 dataclasses 20-30 ms); 0.40x would need
+about 0.33 s, a reader and view-model with far fewer Python operations per sub-entry."""
 
 
 def stages(path: Path) -> dict[str, float]:
