@@ -32,13 +32,28 @@ inline, integer literals and values of a basic type read without the regex path 
 (parse 0.145 -> ~0.10 s); the OBJ lint checks share one walk over the dictionary (lint 0.095 ->
 ~0.04 s); compiled templates come from jinja2's bytecode cache (34 -> 2 ms); file-only commands run
 without cyclic collection and end with os._exit after flushing (the teardown of a large model,
-~30 ms). That met `odgen lint` <= 0.25x canopen. For `odgen generate`, local changes to the
-view-model (name parts once per object, one value lookup per entry) measured no gain and were
-dropped: its cost is the five objects built per sub-entry (descriptor, value member, accessor,
-two name macros) and the render walking them again (about 165000 attribute lookups through
-jinja2). 0.40x of canopen means about 0.36 s for the whole process, so the view-model and the
-render (together about 0.2 s) would have to halve, e.g. by handing the templates pre-joined table
-rows, which moves C syntax out of the templates."""
+~30 ms). That met `odgen lint` <= 0.25x canopen.
+
+For `odgen generate`: the large tables (value members, sub-entries, entries, name macros, accessors;
+five rows per sub-entry) are printed by a `rows` filter, a printf-style line per row written in the
+template and filled from the row's fields, instead of a jinja2 loop that yields every field and
+piece of text separately (render 0.060 -> 0.034 s); the rows are NamedTuples or tuples, a
+sub-entry's value in force, name identifier and comment are worked out once, its ODG_A_*/ODG_S_*
+codes cached per combination, identifier() lowers ASCII names once, the NV layouts sort only the
+persisted placements (view-model 0.138 -> 0.093 s, of which ~15 ms are the runtime configuration and
+the perfect hash; with the benchmark's persistence group the NV layouts add 16 -> 13 ms); an options
+entry's place is formatted once, not per matched sub-entry (place with the benchmark's options
+24 -> 18 ms). Whole process 0.524 -> 0.431 s in one run (0.63x -> 0.52x canopen, objdictgen
+6.4x -> 7.7x). Outside the stages the whole process spends ~35 ms starting the interpreter (site and
+the editable install's finder ~20 ms, modules odgen imports anyway), ~15 ms importing the command
+line and parsing arguments, ~5 ms reading the options file (tomllib), ~5 ms comparing the outputs
+with the files already there, ~2 ms hashing the input.
+Measured and dropped: reading each section's keys with one regex and dict(zip()) (slower than the
+line loop for sections of a few keys, 5.5 vs 3.0 us for seven), reading a plain [section] line
+inline, remembering int_literal() (no gain measurable). What is left is spread over every sub-entry
+in every stage (~35 us per sub-entry: parse 12, lint 5, place 2, view-model 12, render 4) plus
+~0.1 s of start-up and imports (jinja2 ~25 ms, making 45 dataclasses 20-30 ms); 0.40x would need
+about 0.33 s, a reader and view-model with far fewer Python operations per sub-entry."""
 
 
 def stages(path: Path) -> dict[str, float]:

@@ -4,8 +4,11 @@ from __future__ import annotations
 
 import contextlib
 import hashlib
+import operator
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import jinja2
 
@@ -109,9 +112,27 @@ def _template_cache() -> jinja2.BytecodeCache | None:
 
 
 def environment() -> jinja2.Environment:
-    return jinja2.Environment(loader=jinja2.FileSystemLoader(str(templates_dir())), undefined=jinja2.StrictUndefined,
-                              trim_blocks=True, lstrip_blocks=True, keep_trailing_newline=True,
-                              autoescape=False, bytecode_cache=_template_cache())
+    env = jinja2.Environment(loader=jinja2.FileSystemLoader(str(templates_dir())), undefined=jinja2.StrictUndefined,
+                             trim_blocks=True, lstrip_blocks=True, keep_trailing_newline=True,
+                             autoescape=False, bytecode_cache=_template_cache())
+    env.filters["rows"] = rows
+    return env
+
+
+def rows(items: Iterable[tuple[Any, ...]], line: str, *fields: str) -> str:
+    """The lines of a large table: each item through the printf-style `line`, which takes the item's
+    `fields` (by name) or else the whole tuple; every line ends with a newline.
+
+    dict.c.j2 and dict.h.j2 print their per-sub-entry tables with it (`{{ v.macros | rows("#define %s
+    %s /* %s */") }}`): a jinja2 loop pays for every field and piece of text of every row, which in a
+    large dictionary is most of the render; the line's C stays in the template all the same."""
+    line += "\n"
+    if not fields:
+        return "".join([line % item for item in items])
+    get = operator.attrgetter(*fields)
+    if len(fields) == 1:
+        return "".join([line % (value,) for value in map(get, items)])
+    return "".join([line % values for values in map(get, items)])
 
 
 def digest(request: Request, name: str) -> str:

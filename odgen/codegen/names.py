@@ -34,13 +34,14 @@ strtod fabs floor ceil sqrt pow isnan isinf signal raise va_list jmp_buf FILE EO
 
 MAX_IDENT = 48
 _IDENT_RE = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+_WORD_RE = re.compile(r"[a-z0-9]+")  # the words of an identifier, in lower case
 
 
 @functools.lru_cache(maxsize=8192)  # generation asks for the same names many times over
 def identifier(text: str, fallback: str = "entry") -> str:
     """A lower-case C identifier from free text: `Vendor-ID` -> `vendor_id`."""
-    words = re.findall(r"[A-Za-z0-9]+", text.encode("ascii", "ignore").decode())
-    ident = "_".join(w.lower() for w in words)[:MAX_IDENT].strip("_") or fallback
+    ascii_text = text if text.isascii() else text.encode("ascii", "ignore").decode()
+    ident = "_".join(_WORD_RE.findall(ascii_text.lower()))[:MAX_IDENT].strip("_") or fallback
     if ident[0].isdigit():
         ident = "n" + ident
     if ident in C_KEYWORDS or ident.startswith("__"):
@@ -65,8 +66,11 @@ def is_identifier(text: str) -> bool:
     return bool(_IDENT_RE.match(text)) and text not in C_KEYWORDS and not text.startswith("__")
 
 
+COMMENT_WIDTH = 60
+
+
 @functools.lru_cache(maxsize=8192)
-def comment(text: str, width: int = 60) -> str:
+def comment(text: str, width: int = COMMENT_WIDTH) -> str:
     """Text safe inside /* */: no comment terminators, no line breaks, printable ASCII."""
     flat = " ".join(text.split())
     if not (flat.isascii() and flat.isprintable()):  # the common case needs no per-character pass

@@ -72,36 +72,38 @@ def auto_storage(index: int, sub: Sub) -> tuple[str, str]:
 def place(od: ObjectDictionary, options: Options, diags: Diagnostics) -> dict[tuple[int, int], Placement]:
     """Placement of every (index, sub) of the dictionary; GEN findings into `diags`."""
     result: dict[tuple[int, int], Placement] = {}
+    entries = [(entry, loc, str(loc)) for entry in options.entries for loc in [Loc(entry.source, entry.line)]]
     for obj in od.sorted_objects():
         for sub in obj.sorted_subs():
-            result[(obj.index, sub.subindex)] = _place_one(od, obj, sub, options)
+            result[(obj.index, sub.subindex)] = _place_one(od, obj, sub, entries)
     for entry in options.entries:
         if not entry.used:
             patterns = ", ".join(p.text for p in entry.patterns)
             diags.add(GEN002, Loc(entry.source, entry.line), f"match {patterns} selects no entry")
     for (index, subindex), placement in result.items():
-        _validate(od, index, subindex, placement, diags)
+        if placement.storage == "rom":
+            _validate(od, index, subindex, placement, diags)
     return result
 
 
-def _place_one(od: ObjectDictionary, obj: Obj, sub: Sub, options: Options) -> Placement:
+def _place_one(od: ObjectDictionary, obj: Obj, sub: Sub, entries: list[tuple[OptionEntry, Loc, str]]) -> Placement:
+    """The placement of one sub-entry; `entries` are the options' entries with their place (and its text)."""
     storage, why = auto_storage(obj.index, sub)
-    described = storage_from_description(sub.storage or obj.storage)
+    described = storage_from_description(sub.storage or obj.storage) if sub.storage or obj.storage else None
     if described is not None and storage != STORE_CLASS:
         line = sub.line_of("storagelocation") if sub.storage else obj.line_of("storagelocation")
         storage, why = described, f"{od.source}:{line}: storage location {sub.storage or obj.storage}"
         if storage == "rom" and _unfit_for_rom(sub):  # CANopenNode v1: CO_OD_ROM is RAM that 0x1010 saves
             storage, why = "persist:rom", why + " (CANopenNode v1: kept in RAM, saved by 0x1010)"
     placement = Placement(storage, why)
-    for entry in options.entries:
+    for entry, loc, origin in entries:
         if any(p.matches(obj.index, sub.subindex) for p in entry.patterns):
             entry.used = True
-            _apply(placement, entry, Loc(entry.source, entry.line))
+            _apply(placement, entry, loc, origin)
     return placement
 
 
-def _apply(placement: Placement, entry: OptionEntry, loc: Loc) -> None:
-    origin = str(loc)
+def _apply(placement: Placement, entry: OptionEntry, loc: Loc, origin: str) -> None:
     if entry.storage is not None and placement.storage != STORE_CLASS:
         storage = "persist:app" if entry.storage == "persist" else entry.storage  # the default group
         placement.storage, placement.storage_from = storage, origin

@@ -3,22 +3,33 @@
 The templates only loop over these lists. Values live in one struct per storage
 class (rom in FLASH; ram and each persistence group in RAM with a const defaults
 copy), members ordered by alignment so the compiler adds no padding.
+
+The large tables have a row per sub-entry (value members, sub-entries, name macros,
+accessors) or per entry: five rows per sub-entry in all. A jinja2 loop pays for every
+field and every piece of text of every row, which made up most of a large render, so
+the templates print these tables with the `rows` filter (generate.py): each row is
+one printf-style line, written in the template, filled from the row's fields. Rows
+are NamedTuples whose fields the template names, or plain tuples in the order of
+their line (macros, accessors), built once per sub-entry here.
 """
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 import struct
 import zlib
 from dataclasses import dataclass, field
-from typing import Any
+from operator import attrgetter
+from typing import Any, NamedTuple
 
 from ..catalogue.gen import GEN004, GEN005, GEN006, GEN007
 from ..diagnostics import Diagnostics, Loc
 from ..model import Obj, ObjectDictionary, Sub, Value
+from ..model.od import READABLE, WRITABLE
 from ..model.datatypes import BASIC_TYPES, DataType
-from .names import comment, identifier, string_literal
+from .names import COMMENT_WIDTH, comment, identifier, string_literal
 from .packing import packable
 from ..model.cia301 import RESTORE, STORE
 from .placement import STORE_CLASS, Placement
@@ -41,8 +52,7 @@ _ZERO_INIT = re.compile(r'0|0\.0f?|U?INT(32|64)_C\((0x)?0\)|\{0\}|\{0x0000\}|""'
 DENSE = 0.25
 
 
-@dataclass
-class Member:
+class Member(NamedTuple):
     """One value in a storage struct."""
 
     name: str
@@ -80,8 +90,9 @@ class StorageStruct:
         return nonzero >= DENSE * len(self.members)
 
 
-@dataclass
-class SubView:
+class SubView(NamedTuple):
+    """A row of NAME_subs."""
+
     offset: str
     size: int
     sub: int
@@ -118,20 +129,6 @@ class GroupView:
     type_name: str
     signature: int
     store_sub: int  # the group's place in NV: persistview.PersistView
-
-
-@dataclass
-class NameMacro:
-    name: str
-    value: str
-    note: str
-
-
-@dataclass
-class Accessor:
-    name: str
-    expr: str
-    note: str
 
 
 @dataclass
@@ -182,8 +179,8 @@ class DictView:
     domains: list[DomainView] = field(default_factory=list)
     nodeid_fixes: list[NodeIdFix] = field(default_factory=list)
     packed: list[PackedView] = field(default_factory=list)
-    macros: list[NameMacro] = field(default_factory=list)
-    accessors: list[Accessor] = field(default_factory=list)
+    macros: list[tuple[str, str, str]] = field(default_factory=list)  # #define name value /* note */
+    accessors: list[tuple[str, str]] = field(default_factory=list)  # #define name expression
     persist: Any = None  # persistview.PersistView: NV regions, layouts, status object
     config: list = field(default_factory=list)  # runtimecfg.Switch: the runtime's ODG_CFG_* switches
     hash: object = None  # lookup.PerfectHash for --lookup hash
@@ -247,6 +244,9 @@ def ctype_of(dtype: DataType) -> str:
     return "uint8_t"  # octet string, domain
 
 
+_CTYPES = {code: ctype_of(dtype) for code, dtype in BASIC_TYPES.items()}  # by data type code
+
+
 def int_literal(value: int, ctype: str) -> str:
     if ctype in ("int64_t", "int32_t"):
         macro = "INT64_C" if ctype == "int64_t" else "INT32_C"
@@ -288,23 +288,30 @@ class _Builder:
                  diags: Diagnostics) -> None:
         self.od, self.placements, self.diags = od, placements, diags
         self.name = name
-        self.structs: dict[str, StorageStruct] = {}
+        self.structs: dict[str, StorageStruct] = {}  # by storage class, "persist:app"
         self.member_names: dict[str, tuple[int, int]] = {}
+        self.storage_codes: dict[str, str] = {}  # ODG_S_* by storage class
 
     def struct_for(self, storage: str) -> StorageStruct:
-        key = storage.replace(":", "_")
-        if key not in self.structs:
+        struct = self.structs.get(storage)
+        if struct is None:
+            key = storage.replace(":", "_")
             const = storage == "rom"
             group = storage.split(":", 1)[1] if ":" in storage else ""
             attr = "ODG_ATTR_ROM" if const else ("ODG_ATTR_PERSIST_" + group.upper() if group else "ODG_ATTR_RAM")
             var = f"{self.name}_{key}"
-            self.structs[key] = StorageStruct(var, f"{var}_t", attr, const,
-                                              defaults="" if const else f"{var}_defaults")
-        return self.structs[key]
+            struct = self.structs[storage] = StorageStruct(var, f"{var}_t", attr, const,
+                                                           defaults="" if const else f"{var}_defaults")
+        return struct
 
-    def member_name(self, obj: Obj, sub: Sub) -> str:
-        base = f"x{obj.index:04X}_" + identifier(obj.name, "object")
-        name = base if obj.is_var else f"{base}_s{sub.subindex}_" + identifier(sub.name, "sub")
+    def storage_code(self, placement: Placement) -> str:
+        code = self.storage_codes.get(placement.storage)
+        if code is None:
+            code = self.storage_codes[placement.storage] = _storage_code(placement.storage, self.name.upper())
+        return code
+
+    def member_name(self, name: str, obj: Obj, sub: Sub) -> str:
+        """`name` for the value member of `sub`, reported (GEN004) when another sub-entry has it."""
         key = (obj.index, sub.subindex)
         if self.member_names.setdefault(name, key) != key:
             self.diags.add(GEN004, Loc(self.od.source, sub.line), f"C name {name} is used twice", obj.index)
@@ -321,7 +328,8 @@ def build(od: ObjectDictionary, placements: dict[tuple[int, int], Placement], na
             diags.add(GEN006, Loc(od.source, obj.line), "defines a data type; not generated", obj.index)
             continue
         _entry(b, view, obj)
-    view.structs = [_sorted_struct(s) for _, s in sorted(b.structs.items(), key=lambda kv: _struct_order(kv[0]))]
+    view.structs = [_sorted_struct(s) for _, s in sorted(b.structs.items(),
+                                                         key=lambda kv: _struct_order(kv[0].replace(":", "_")))]
     view.groups = _groups(od, view)
     _check_group_names(b, view)
     _check_functions(b, view)
@@ -356,7 +364,7 @@ def member_bytes(m: Member) -> int:
 
 def _generated_symbols(view: DictView) -> set[str]:
     tables = ("entries", "subs", "limits", "hook_map", "hook_slots", "groups", "state", "find", "reset")
-    names = {view.name, *(f"{view.name}_{t}" for t in tables), *(a.name for a in view.accessors)}
+    names = {view.name, *(f"{view.name}_{t}" for t in tables), *(name for name, _ in view.accessors)}
     names |= {s.name for s in view.structs} | {s.defaults for s in view.structs} | {d.name for d in view.domains}
     return names
 
@@ -377,8 +385,11 @@ def _check_group_names(b: _Builder, view: DictView) -> None:
 
 def _check_functions(b: _Builder, view: DictView) -> None:
     """Hook functions named in the options must not clash with generated or runtime names."""
+    named = [placement for placement in b.placements.values() if placement.function]
+    if not named:
+        return
     taken = _generated_symbols(view)
-    for placement in b.placements.values():
+    for placement in named:
         fn = placement.function
         if fn and (fn in taken or fn.startswith("odg_")) and placement.function_loc is not None:
             clash = f"hook function {fn} clashes with a generated or runtime name"
@@ -391,26 +402,43 @@ def _struct_order(key: str) -> tuple[int, str]:
 
 
 def _sorted_struct(s: StorageStruct) -> StorageStruct:
-    s.members.sort(key=lambda m: (-m.align, m.key))
+    """Members by alignment, widest first, then by (index, sub): two stable sorts, the first of which
+    finds the members already in order (they are added object by object)."""
+    s.members.sort(key=attrgetter("key"))
+    s.members.sort(key=attrgetter("align"), reverse=True)
     return s
+
+
+_OBJECT_CODES = {2: "ODG_OBJ_DOMAIN", 8: "ODG_OBJ_ARRAY", 9: "ODG_OBJ_RECORD"}
 
 
 def _entry(b: _Builder, view: DictView, obj: Obj) -> None:
     subs = obj.sorted_subs()
-    dense = [s.subindex for s in subs] == list(range(len(subs)))
-    code = {2: "ODG_OBJ_DOMAIN", 8: "ODG_OBJ_ARRAY", 9: "ODG_OBJ_RECORD"}.get(obj.structure, "ODG_OBJ_VAR")
+    dense = not subs or subs[-1].subindex == len(subs) - 1  # sub-indices 0..n-1 (distinct and sorted)
+    code = _OBJECT_CODES.get(obj.structure, "ODG_OBJ_VAR")
+    note = comment(obj.name)
     view.entries.append(EntryView(obj.index, len(view.subs), len(subs), code + (" | ODG_E_DENSE" if dense else ""),
-                                  comment(obj.name)))
-    obj_ident = f"X{obj.index:04X}_" + identifier(obj.name, "object").upper()
-    view.macros.append(NameMacro(f"{view.upper}_IDX_{obj_ident}", f"0x{obj.index:04X}u", comment(obj.name)))
+                                  note))
+    hex_index, ident = f"{obj.index:04X}", identifier(obj.name, "object")
+    view.macros.append((f"{view.upper}_IDX_X{hex_index}_{ident.upper()}", f"0x{hex_index}u", note))
+    names = _Names(hex_index, f"x{hex_index}_{ident}", obj.is_var)
     for sub in subs:
-        _sub(b, view, obj, sub)
+        _sub(b, view, obj, sub, names)
     if packable(b.od, obj, b.placements):
-        _pack(view, view.entries[-1])
+        _pack(view)
 
 
-def _pack(view: DictView, entry: EntryView) -> None:
+class _Names(NamedTuple):
+    """What the C names of an object's sub-entries are made of, worked out once per object."""
+
+    hex_index: str  # "2000"
+    member: str  # the value member of a VAR; the prefix of an ARRAY's or RECORD's, "x2000_name"
+    is_var: bool
+
+
+def _pack(view: DictView) -> None:
     """One descriptor for the elements 1..N of the entry just described (packing.py)."""
+    entry = view.entries[-1]
     elements = view.subs[entry.first + 1:]
     one = elements[0]
     if len(elements) != entry.count - 1 or any((s.type, s.size, s.attr, s.storage) != (one.type, one.size, one.attr,
@@ -418,105 +446,120 @@ def _pack(view: DictView, entry: EntryView) -> None:
         return
     last = elements[-1]
     view.packed.append(PackedView(entry.index, one.offset, last.offset, len(elements), one.size))
-    one.sub = last.sub
-    one.note = f"sub-indices 1..{last.sub} (1: {one.note})"
+    view.subs[entry.first + 1] = one._replace(sub=last.sub, note=f"sub-indices 1..{last.sub} (1: {one.note})")
     del view.subs[entry.first + 2:]
     entry.count = 2
     entry.code += " | ODG_E_PACKED"  # sub 0 stays where ODG_E_DENSE says
 
 
-def _sub(b: _Builder, view: DictView, obj: Obj, sub: Sub) -> None:
-    placement = b.placements[(obj.index, sub.subindex)]
+def _sub(b: _Builder, view: DictView, obj: Obj, sub: Sub, names: _Names) -> None:
+    """The sub-entry's descriptor, value member, accessor and name macro (this runs once per sub-entry:
+    the value in force, the name's identifier and its comment are worked out once here)."""
+    subindex = sub.subindex
+    placement = b.placements[(obj.index, subindex)]
     dtype = BASIC_TYPES.get(sub.data_type or 0)
     if dtype is None:
         b.diags.add(GEN005, Loc(b.od.source, sub.line_of("datatype")),
                     f"has DataType 0x{sub.data_type or 0:04X}, not a basic type", obj.index,
-                    None if obj.is_var else sub.subindex)
+                    None if names.is_var else subindex)
         return
-    member = b.member_name(obj, sub)
+    ident = "" if names.is_var else identifier(sub.name, "sub")
+    member = b.member_name(names.member if names.is_var else f"{names.member}_s{subindex}_{ident}", obj, sub)
+    note = comment(sub.name)
+    value = b.od.value_in_force(sub)
+    nodeid = value is not None and value.nodeid and isinstance(value.parsed, int)
+    attr = _attr_flags(sub.access, sub.pdo_mapping and dtype.is_numeric, nodeid, bool(placement.hooks))
     pos = len(view.subs)
-    attr = _attr_flags(b.od, sub, placement, dtype)
     if placement.storage == STORE_CLASS:
         storage = "ODG_S_STORE" + (" | ODG_S_RESTORE_FLAG" if obj.index == RESTORE else "")
-        view.subs.append(SubView("0", 4, sub.subindex, dtype.code, attr, storage, comment(sub.name)))
+        view.subs.append(SubView("0", 4, subindex, dtype.code, attr, storage, note))
         return
-    offset, size = _value_member(b, view, obj, sub, dtype, placement, member)
-    if _limit(view, pos, sub, dtype):
+    target = b.struct_for(placement.storage)
+    member_note = _prefixed_comment(f"0x{names.hex_index}sub{subindex}", sub.name, note)
+    offset, size = _value_member(b, view, target, (obj.index, subindex), sub, dtype, placement, member, value,
+                                 member_note)
+    if (sub.low is not None or sub.high is not None) and _limit(view, pos, sub, dtype):
         attr += " | ODG_A_LIMIT"
-    view.subs.append(SubView(offset, size, sub.subindex, dtype.code, attr,
-                             _storage_code(placement, view), comment(sub.name)))
+    view.subs.append(SubView(offset, size, subindex, dtype.code, attr, b.storage_code(placement), note))
     if placement.hooks:
         kinds = " | ".join(f"ODG_HOOK_{k.upper()}" for k in placement.hooks)
-        label = comment(f"0x{obj.index:04X}sub{sub.subindex}")
+        label = comment(f"0x{obj.index:04X}sub{subindex}")
         view.hooks.append(HookView(pos, kinds, placement.function or "NULL", label))
         if placement.function and placement.function not in view.functions:
             view.functions.append(placement.function)
-    if not obj.is_var:
-        sub_ident = f"X{obj.index:04X}_S{sub.subindex}_" + identifier(sub.name, "sub").upper()
-        view.macros.append(NameMacro(f"{view.upper}_SUB_{sub_ident}", f"0x{sub.subindex:02X}u", comment(sub.name)))
+    if not names.is_var:
+        view.macros.append((f"{view.upper}_SUB_X{names.hex_index}_S{subindex}_{ident.upper()}",
+                            f"0x{subindex:02X}u", note))
 
 
-def _attr_flags(od: ObjectDictionary, sub: Sub, placement: Placement, dtype: DataType) -> str:
+def _prefixed_comment(prefix: str, text: str, flat: str) -> str:
+    """comment(f"{prefix} {text}") for a `prefix` without spaces or comment characters, from `flat`
+    = comment(text) when that is whole and the two fit the width (the common case, without a second
+    pass over the text)."""
+    if flat and len(prefix) + 1 + len(flat) <= COMMENT_WIDTH:
+        return f"{prefix} {flat}"
+    return comment(f"{prefix} {text}")
+
+
+@functools.cache
+def _attr_flags(access: str | None, pdo: bool, nodeid: bool, hooked: bool) -> str:
+    """ODG_A_* of a sub-entry: its access, PDO mapping (`pdo`: mappable and numeric), a $NODEID
+    default, hooks. Few combinations occur, so each is worked out once."""
     flags = []
-    if sub.readable:
+    if access in READABLE:
         flags.append("ODG_A_READ")
-    if sub.writable:
+    if access in WRITABLE:
         flags.append("ODG_A_WRITE")
-    if sub.pdo_mapping and dtype.is_numeric:
-        if sub.access in ("ro", "const", "rwr", "rw"):
+    if pdo:
+        if access in ("ro", "const", "rwr", "rw"):
             flags.append("ODG_A_TPDO")
-        if sub.access in ("wo", "rww", "rw"):
+        if access in ("wo", "rww", "rw"):
             flags.append("ODG_A_RPDO")
-    value = od.value_in_force(sub)
-    if value is not None and value.nodeid and isinstance(value.parsed, int):
+    if nodeid:
         flags.append("ODG_A_NODEID")
-    if placement.hooks:
+    if hooked:
         flags.append("ODG_A_HOOK")
     return " | ".join(flags) or "0"
 
 
-def _storage_code(placement: Placement, view: DictView) -> str:
-    if placement.storage == "rom":
+def _storage_code(storage: str, upper: str) -> str:
+    if storage == "rom":
         return "ODG_S_ROM"
-    if placement.storage == "ram":
+    if storage == "ram":
         return "ODG_S_RAM"
-    group = placement.group or "app"
-    return f"ODG_S_PERSIST | ({view.upper}_GROUP_{group.upper()} << 2)"
+    group = storage.split(":", 1)[1] if storage.startswith("persist:") else "app"
+    return f"ODG_S_PERSIST | ({upper}_GROUP_{group.upper()} << 2)"
 
 
-def _value_member(b: _Builder, view: DictView, obj: Obj, sub: Sub, dtype: DataType, placement: Placement,
-                  member: str) -> tuple[str, int]:
-    target = b.struct_for(placement.storage)
-    value = b.od.value_in_force(sub)
-    ctype = ctype_of(dtype)
-    note = comment(f"0x{obj.index:04X}sub{sub.subindex} {sub.name}")
-    key = (obj.index, sub.subindex)
-    if dtype.kind in ("vstring", "ostring", "ustring"):
+def _value_member(b: _Builder, view: DictView, target: StorageStruct, key: tuple[int, int], sub: Sub,
+                  dtype: DataType, placement: Placement, member: str, value: Value | None,
+                  note: str) -> tuple[str, int]:
+    """The member holding the value in the struct of its storage class; (offset, size) for the descriptor."""
+    ctype = _CTYPES[dtype.code]
+    kind = dtype.kind
+    if kind in ("vstring", "ostring", "ustring"):
         array, init, size = _string_init(dtype, value, placement.capacity)
         target.members.append(Member(member, ctype, array, init, note, _ALIGN[ctype], key))
-        _accessor(view, member, target, note)
-        return _offset(target, member), size
-    if dtype.kind == "domain":
+    elif kind == "domain":
         return _domain(b, view, target, member, value, placement, note, key)
-    init = _scalar_init(b.od, sub, dtype, ctype)
-    target.members.append(Member(member, ctype, "", init, note, _ALIGN[ctype], key))
-    if value is not None and value.nodeid and isinstance(value.parsed, int):
-        view.nodeid_fixes.append(NodeIdFix(f"{target.name}.{member}", ctype))
-    _accessor(view, member, target, note)
-    return _offset(target, member), max(dtype.bits // 8, 1)
-
-
-def _offset(target: StorageStruct, member: str) -> str:
-    return f"offsetof({target.type_name}, {member})"
-
-
-def _accessor(view: DictView, member: str, target: StorageStruct, note: str) -> None:
-    view.accessors.append(Accessor(f"{view.name}_{member}", f"({target.name}.{member})", note))
+    else:
+        number = _initial(value, sub, dtype)
+        init = real_literal(float(number), dtype.bits) if kind == "real" else int_literal(int(number), ctype)
+        target.members.append(Member(member, ctype, "", init, note, _ALIGN[ctype], key))
+        if value is not None and value.nodeid and isinstance(value.parsed, int):
+            view.nodeid_fixes.append(NodeIdFix(f"{target.name}.{member}", ctype))
+        size = max(dtype.bits // 8, 1)
+    view.accessors.append((f"{view.name}_{member}", f"({target.name}.{member})"))
+    return f"offsetof({target.type_name}, {member})", size
 
 
 def initial_number(od: ObjectDictionary, sub: Sub, dtype: DataType) -> int | float:
     """The value an entry starts with: its default, or without one 0 moved into its limits."""
-    value = od.value_in_force(sub)
+    return _initial(od.value_in_force(sub), sub, dtype)
+
+
+def _initial(value: Value | None, sub: Sub, dtype: DataType) -> int | float:
+    """initial_number() of the value in force."""
     parsed = value.parsed if value is not None and value.error is None else None
     if isinstance(parsed, (int, float)) and not isinstance(parsed, bool):
         return float(parsed) if dtype.kind == "real" else int(parsed)
@@ -525,13 +568,6 @@ def initial_number(od: ObjectDictionary, sub: Sub, dtype: DataType) -> int | flo
         if bound is not None and bound.error is None and not bound.nodeid and isinstance(bound.parsed, (int, float)):
             zero = pick(zero, bound.parsed)
     return zero
-
-
-def _scalar_init(od: ObjectDictionary, sub: Sub, dtype: DataType, ctype: str) -> str:
-    number = initial_number(od, sub, dtype)
-    if dtype.kind == "real":
-        return real_literal(float(number), dtype.bits)
-    return int_literal(int(number), ctype)
 
 
 def _string_init(dtype: DataType, value: Value | None, capacity: int | None) -> tuple[str, str, int]:

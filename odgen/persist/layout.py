@@ -13,11 +13,13 @@ def group_layouts(od: ObjectDictionary, placements: dict[tuple[int, int], Placem
     """Every persistence group with its entries in (index, sub) order; entries of a type without a
     stored form (a DEFSTRUCT type) are left out, as the generator refuses them."""
     groups: dict[str, list[EntryLayout]] = {}
-    for (index, subindex), placement in sorted(placements.items()):
+    persisted = sorted((key, group, placement) for key, placement in placements.items()
+                       if (group := placement.group) is not None)
+    for (index, subindex), group, placement in persisted:
         sub = od.find(index, subindex)
-        if placement.group is None or sub is None or sub.dtype is None:
-            continue
-        groups.setdefault(placement.group, []).append(entry_layout(index, sub, sub.dtype, placement))
+        dtype = sub.dtype if sub is not None else None
+        if sub is not None and dtype is not None:
+            groups.setdefault(group, []).append(entry_layout(index, sub, dtype, placement))
     return {name: GroupLayout(name, tuple(entries)) for name, entries in sorted(groups.items())}
 
 
