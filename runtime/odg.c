@@ -1004,8 +1004,11 @@ static int layout_ok(const odg_dict_t *d, uint8_t gi)
 {
     const odg_group_t *g = &d->groups[gi];
     uint32_t e, p, k, n = 0, bytes = 2u;
-    if (g->n_layout == 0u || !ODG_CFG_PERSIST_MIGRATION) {
-        return g->n_layout == 0u ? ODG_CFG_PERSIST_ODG1 : 0;
+    if (g->n_layout == 0u) {
+        return ODG_CFG_PERSIST_ODG1;
+    }
+    if (!ODG_CFG_PERSIST_MIGRATION) {
+        return 0;
     }
     for (e = 0; e < d->n_entries; e++) {
         const odg_entry_t *en = &d->entries[e];
