@@ -73,12 +73,12 @@ What was tried, and the measured reason where a FLASH goal is not met (DS301 bse
 - Persistence without migration (`[persist] migration = false`), 3700 -> 3504 B (demoDevice 5536
   -> 5048 B, 316 B of it the reset's copies above): the generated configuration leaves the
   migration out (`ODG_CFG_PERSIST_MIGRATION 0`, which before took `-DODG_NO_MIGRATION` by
-  hand), "no image" checks both slots as one erased range,
-  the boot checks the layout signature on the header read with the image, the store's read-back
-  compares the CRC it wrote, store and restore share one entry point, and the counts only a
-  migration produces are left out. The layer is then about 1.36 KB (boot, power-safe store with
-  read-back, restore in power-safe order, CRC): both dictionaries are within CANopenNode's figure,
-  which links no storage at all (its CO_storage is not in its main).
+  hand), "no image" checks both slots as one erased range, the boot checks the layout signature
+  on the header read with the image, the store's read-back compares the CRC it wrote, store and
+  restore share one entry point, and the counts only a migration produces are left out. The
+  layer is then about 1.36 KB (boot, power-safe store with read-back, restore in power-safe
+  order, CRC): both dictionaries are within CANopenNode's figure, which links no storage at all
+  (its CO_storage is not in its main).
 - With boot migration (odgen's default) the goal is not met: the migration entry by entry (record
   walk, widening and limits, streams, the store of the migrated image, the "ODG1" check that tells
   an old image from damage) adds about 2.1 KB linked. It is what lets stored parameters survive a
@@ -201,15 +201,17 @@ def generate(source: Path, work: Path, lookup: str, options: str) -> str:
 def measure(label: str, source: Path, lookup: str, empty: tuple[int, int]) -> dict[str, object]:
     row: dict[str, object] = {"input": label, "lookup": lookup}
     base = BUILD / f"{label}-{lookup}"
-    generated: set[Path] = set()
-    for key, _, _, options, defines in BUILDS:
-        work = base / "no-migration" if options else base
-        refused = generate(source, work, lookup, options) if work not in generated else ""
+
+    def work(options: str) -> Path:
+        return base / "no-migration" if options else base
+
+    for options in dict.fromkeys(b[3] for b in BUILDS):  # one dictionary per options file
+        refused = generate(source, work(options), lookup, options)
         if refused:
             row["refused"] = refused
             return row
-        generated.add(work)
-        elf, why = build(work, USE_MAIN, key, defines)
+    for key, _, _, options, defines in BUILDS:
+        elf, why = build(work(options), USE_MAIN, key, defines)
         if elf is None:
             row[key] = {"failed": why}
             continue
