@@ -15,8 +15,9 @@ from dataclasses import dataclass
 from ..codegen.selftest import expected_bytes, write_cases
 from ..model.wire import wire_bytes
 from ..model import Obj, Sub
-from ..model.cia301 import COMMUNICATION_AREA, HEARTBEAT, IDENTITY, MANUFACTURER_AREA, PRODUCER_HEARTBEAT, \
-    SDO_REQUEST, SDO_RESPONSE, SDO_SERVER, is_store_command
+from ..model.cia301 import COMMUNICATION_AREA, CONSUMER_HEARTBEAT, ERROR_BEHAVIOUR, GUARD_TIME, HEARTBEAT, IDENTITY, \
+    LIFE_TIME_FACTOR, MANUFACTURER_AREA, PRODUCER_HEARTBEAT, SDO_REQUEST, SDO_RESPONSE, SDO_SERVER, SYNC_COB_ID, \
+    SYNC_OVERFLOW, SYNC_PERIOD, is_store_command
 from ..rules.common import header_field, header_int
 from ..model.datatypes import BASIC_TYPES, DataType
 from ..roundtrip.checks import ABORTS, ACTIVE, NO_OBJECT, NO_SUB, WRITE_ONLY, Check
@@ -52,7 +53,7 @@ def entries(c: Client) -> list[Entry]:
     for obj in c.od.sorted_objects():
         for sub in obj.sorted_subs():
             dtype = BASIC_TYPES.get(sub.data_type or 0)
-            if dtype is not None and obj.index >= 0x1000:
+            if dtype is not None and obj.index >= COMMUNICATION_AREA[0]:
                 out.append(Entry(obj, sub, dtype))
     return out
 
@@ -173,7 +174,7 @@ def check_missing(c: Client) -> Check:
         code = c.upload(index, 0)[1]
         check.expect(code == NO_OBJECT, f"0x{index:04X}: read gave 0x{code:08X}")
     for obj in c.od.sorted_objects():
-        if obj.index >= 0x1000 and obj.subs:
+        if obj.index >= COMMUNICATION_AREA[0] and obj.subs:
             absent = next((i for i in range(0xFE, 0, -1) if i not in obj.subs), None)
             if absent is not None:
                 code = c.upload(obj.index, absent)[1]
@@ -187,10 +188,10 @@ def check_missing(c: Client) -> Check:
 
 def check_nmt_states(c: Client) -> Check:
     check = Check("NMT: SDO answers in pre-operational and operational, not in stopped; heartbeat shows the state")
-    hb = c.od.find(0x1017)
-    original = c.upload(0x1017, 0)[0] if hb is not None else None
+    hb = c.od.find(PRODUCER_HEARTBEAT)
+    original = c.upload(PRODUCER_HEARTBEAT, 0)[0] if hb is not None else None
     if hb is not None and hb.writable:
-        c.download(0x1017, 0, (100).to_bytes(2, "little"))  # a heartbeat soon after each command
+        c.download(PRODUCER_HEARTBEAT, 0, (100).to_bytes(2, "little"))  # a heartbeat soon after each command
     beating = _heartbeat_period(c)
     for command, state, sdo in (("OPERATIONAL", 0x05, True), ("STOPPED", 0x04, False),
                                 ("PRE-OPERATIONAL", 0x7F, True)):
@@ -200,7 +201,7 @@ def check_nmt_states(c: Client) -> Check:
         answered = c.answers()
         check.expect(answered == sdo, f"{command}: the SDO server {'did not answer' if sdo else 'answered'}")
     if original is not None and hb is not None and hb.writable:
-        c.download(0x1017, 0, original)
+        c.download(PRODUCER_HEARTBEAT, 0, original)
     return check
 
 
@@ -278,7 +279,7 @@ def check_sdo_server(c: Client) -> Check:
 
 
 def _heartbeat_period(c: Client) -> int:
-    data = c.upload(0x1017, 0)[0] if c.od.find(0x1017) is not None else None
+    data = c.upload(PRODUCER_HEARTBEAT, 0)[0] if c.od.find(PRODUCER_HEARTBEAT) is not None else None
     return int.from_bytes(data, "little") if data else 0
 
 
@@ -288,14 +289,14 @@ def _ms(medians: list[float | None]) -> str:
 
 def check_heartbeat(c: Client) -> Check:
     check = Check("heartbeat period as configured in 0x1017")
-    hb = c.od.find(0x1017)
+    hb = c.od.find(PRODUCER_HEARTBEAT)
     if hb is None:
         check.skipped = "no 0x1017"
         return check
-    original = c.upload(0x1017, 0)[0]
+    original = c.upload(PRODUCER_HEARTBEAT, 0)[0]
     period = 100 if hb.writable else _heartbeat_period(c)
     if hb.writable:
-        check.expect(c.download(0x1017, 0, period.to_bytes(2, "little")) == 0, "0x1017 = 100 ms refused")
+        check.expect(c.download(PRODUCER_HEARTBEAT, 0, period.to_bytes(2, "little")) == 0, "0x1017 = 100 ms refused")
     if not period or period > 2000:
         check.skipped = f"0x1017 is read-only with {period} ms"
         return check
@@ -303,7 +304,7 @@ def check_heartbeat(c: Client) -> Check:
     check.expect(medians[-1] is not None and 0.8 * period <= medians[-1] <= 1.3 * period,
                  f"heartbeat every {_ms(medians)} ms, configured {period}")
     if original is not None and hb.writable:
-        c.download(0x1017, 0, original)
+        c.download(PRODUCER_HEARTBEAT, 0, original)
     return check
 
 
@@ -314,22 +315,23 @@ SYNC_GENERATE, DEVICE_STATE = 0x40000000, 0x08000022
 
 def check_sync_producer(c: Client) -> Check:
     check = Check("SYNC producer: 0x1005 bit 30, period 0x1006, counter 0x1019 (written only while 0x1006 is 0)")
-    cob, period, counter = c.od.find(0x1005), c.od.find(0x1006), c.od.find(0x1019)
+    cob, period, counter = c.od.find(SYNC_COB_ID), c.od.find(SYNC_PERIOD), c.od.find(SYNC_OVERFLOW)
     if cob is None or period is None or not (cob.writable and period.writable):
         check.skipped = "0x1005 and 0x1006 are not both writable"
         return check
-    saved = {index: c.upload(index, 0)[0] for index in (0x1005, 0x1006, 0x1019) if c.od.find(index) is not None}
-    sync_id = (c.number(0x1005) or 0x80) & 0x7FF
+    saved = {index: c.upload(index, 0)[0] for index in (SYNC_COB_ID, SYNC_PERIOD, SYNC_OVERFLOW)
+             if c.od.find(index) is not None}
+    sync_id = (c.number(SYNC_COB_ID) or 0x80) & 0x7FF
     c.watch(sync_id)
-    c.download(0x1006, 0, bytes(4))
+    c.download(SYNC_PERIOD, 0, bytes(4))
     overflow = counter is not None and counter.writable
     if overflow:
-        check.expect(c.download(0x1019, 0, b"\x03") == 0, "0x1019 = 3 refused while 0x1006 is 0")
-    check.expect(c.download(0x1006, 0, (20000).to_bytes(4, "little")) == 0, "0x1006 = 20000 us refused")
+        check.expect(c.download(SYNC_OVERFLOW, 0, b"\x03") == 0, "0x1019 = 3 refused while 0x1006 is 0")
+    check.expect(c.download(SYNC_PERIOD, 0, (20000).to_bytes(4, "little")) == 0, "0x1006 = 20000 us refused")
     if overflow:
-        code = c.download(0x1019, 0, b"\x04")
+        code = c.download(SYNC_OVERFLOW, 0, b"\x04")
         check.expect(code == DEVICE_STATE, f"0x1019 written while 0x1006 is not 0 gave 0x{code:08X}")
-    check.expect(c.download(0x1005, 0, (sync_id | SYNC_GENERATE).to_bytes(4, "little")) == 0,
+    check.expect(c.download(SYNC_COB_ID, 0, (sync_id | SYNC_GENERATE).to_bytes(4, "little")) == 0,
                  "0x1005 bit 30 refused")
     start = time.monotonic()
     medians = c.period(sync_id, 0.3, lambda m: 14 <= m <= 30)
@@ -339,9 +341,9 @@ def check_sync_producer(c: Client) -> Check:
         bad = [(a, b) for a, b in zip(frames, frames[1:], strict=False)
                if len(a) != 1 or len(b) != 1 or b[0] != a[0] % 3 + 1]
         check.expect(bool(frames) and not bad, f"SYNC counters 1, 2, 3, 1, ... expected, got {frames[:8]}")
-    c.download(0x1005, 0, saved.get(0x1005) or (0x80).to_bytes(4, "little"))
-    c.download(0x1006, 0, bytes(4))
-    for index in (0x1019, 0x1006):
+    c.download(SYNC_COB_ID, 0, saved.get(SYNC_COB_ID) or (0x80).to_bytes(4, "little"))
+    c.download(SYNC_PERIOD, 0, bytes(4))
+    for index in (SYNC_OVERFLOW, SYNC_PERIOD):
         if saved.get(index) is not None:
             c.download(index, 0, saved[index] or b"")
     return check
@@ -356,32 +358,33 @@ AFTER_ERROR = {0: 0x7F, 1: 0x05, 2: 0x04}
 
 def check_hb_consumer(c: Client) -> Check:
     check = Check("heartbeat consumer (0x1016): EMCY 0x8130 when a watched heartbeat stops; 0x1029 sub 1 obeyed")
-    entry, hb = c.od.find(0x1016, 1), c.od.find(0x1017)
+    entry, hb = c.od.find(CONSUMER_HEARTBEAT, 1), c.od.find(PRODUCER_HEARTBEAT)
     emcy = c.emcy_cob()
     if entry is None or not entry.writable or emcy is None or emcy & 0x80000000:
         check.skipped = "no writable 0x1016 sub 1, or EMCY disabled"
         return check
     other = c.node_id % 127 + 1
-    saved, saved_hb = c.upload(0x1016, 1)[0], c.upload(0x1017, 0)[0] if hb is not None else None
-    beating = hb is not None and hb.writable and c.download(0x1017, 0, (100).to_bytes(2, "little")) == 0
+    saved, saved_hb = c.upload(CONSUMER_HEARTBEAT, 1)[0], c.upload(PRODUCER_HEARTBEAT, 0)[0] if hb is not None else None
+    beating = hb is not None and hb.writable and c.download(PRODUCER_HEARTBEAT, 0, (100).to_bytes(2, "little")) == 0
     c.watch(emcy & 0x7FF)
     c.nmt("OPERATIONAL")
-    check.expect(c.download(0x1016, 1, (other << 16 | 200).to_bytes(4, "little")) == 0, "0x1016sub1 refused")
+    check.expect(c.download(CONSUMER_HEARTBEAT, 1, (other << 16 | 200).to_bytes(4, "little")) == 0,
+                 "0x1016sub1 refused")
     for _ in range(3):
         c.send(0x700 + other, b"\x05")
         time.sleep(0.05)  # pacing the heartbeats of the node played here
     last = time.monotonic()
     frame = c.wait_frame(last, lambda cob, d: cob == emcy & 0x7FF and d[:2] == EMCY_HEARTBEAT.to_bytes(2, "little"))
     check.expect(frame is not None, f"no EMCY 0x{EMCY_HEARTBEAT:04X} after node {other}'s heartbeat stopped")
-    behaviour = c.upload(0x1029, 1)[0] if c.od.find(0x1029, 1) is not None else b"\x00"
+    behaviour = c.upload(ERROR_BEHAVIOUR, 1)[0] if c.od.find(ERROR_BEHAVIOUR, 1) is not None else b"\x00"
     want = AFTER_ERROR.get(behaviour[0] if behaviour else 0)
     if beating and want is not None:
         check.expect(c.heartbeat_state(time.monotonic(), want),
                      f"0x1029sub1 = {behaviour!r}: no heartbeat with state 0x{want:02X} after the error")
     c.nmt("PRE-OPERATIONAL")
-    c.download(0x1016, 1, saved or bytes(4))
+    c.download(CONSUMER_HEARTBEAT, 1, saved or bytes(4))
     if saved_hb is not None and beating:
-        c.download(0x1017, 0, saved_hb)
+        c.download(PRODUCER_HEARTBEAT, 0, saved_hb)
     return check
 
 
@@ -396,13 +399,14 @@ def _guard(c: Client) -> bytes | None:
 
 def check_guarding(c: Client) -> Check:
     check = Check("node guarding answers state and toggle; life guarding (0x100C x 0x100D) raises EMCY 0x8130")
-    guard, factor, hb = c.od.find(0x100C), c.od.find(0x100D), c.od.find(0x1017)
+    guard, factor, hb = c.od.find(GUARD_TIME), c.od.find(LIFE_TIME_FACTOR), c.od.find(PRODUCER_HEARTBEAT)
     if guard is None or factor is None or (hb is not None and not hb.writable and _heartbeat_period(c)):
         check.skipped = "no 0x100C/0x100D, or a heartbeat that cannot be switched off"
         return check
-    saved = {index: c.upload(index, 0)[0] for index in (0x100C, 0x100D, 0x1017) if c.od.find(index) is not None}
+    saved = {index: c.upload(index, 0)[0] for index in (GUARD_TIME, LIFE_TIME_FACTOR, PRODUCER_HEARTBEAT)
+             if c.od.find(index) is not None}
     if hb is not None:
-        c.download(0x1017, 0, b"\x00\x00")  # guarding and heartbeat are not used together
+        c.download(PRODUCER_HEARTBEAT, 0, b"\x00\x00")  # guarding and heartbeat are not used together
     answers = [_guard(c), _guard(c)]
     check.expect(None not in answers, f"no answer to a remote frame on 0x{0x700 + c.node_id:03X}")
     if None not in answers:
@@ -412,14 +416,14 @@ def check_guarding(c: Client) -> Check:
     emcy = c.emcy_cob()
     if guard.writable and factor.writable and emcy is not None and not emcy & 0x80000000:
         c.watch(emcy & 0x7FF)
-        c.download(0x100C, 0, (100).to_bytes(2, "little"))
-        c.download(0x100D, 0, b"\x02")
+        c.download(GUARD_TIME, 0, (100).to_bytes(2, "little"))
+        c.download(LIFE_TIME_FACTOR, 0, b"\x02")
         _guard(c)
         sent = time.monotonic()
         frame = c.wait_frame(sent, lambda cob, d: cob == emcy & 0x7FF and d[:2] == EMCY_HEARTBEAT.to_bytes(2, "little"))
         check.expect(frame is not None, "no EMCY 0x8130 after the remote frames stopped (life time 200 ms)")
     c.nmt("PRE-OPERATIONAL")
-    for index in (0x100C, 0x100D, 0x1017):
+    for index in (GUARD_TIME, LIFE_TIME_FACTOR, PRODUCER_HEARTBEAT):
         if saved.get(index) is not None:
             c.download(index, 0, saved[index] or b"")
     return check

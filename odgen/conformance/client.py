@@ -16,7 +16,7 @@ from pathlib import Path
 
 from ..errors import OdgenError
 from ..model import ObjectDictionary
-from ..model.cia301 import SDO_REQUEST, SDO_RESPONSE
+from ..model.cia301 import DEVICE_TYPE, EMCY_COB_ID, SDO_REQUEST, SDO_RESPONSE
 from ..roundtrip.checks import client_eds, sdo_server_cob_ids
 
 # Waits end at the awaited frame; the deadlines only bound a failure, so they are generous.
@@ -150,12 +150,12 @@ class Client:
 
     def emcy_cob(self) -> int | None:
         """The EMCY COB-ID entry (0x1014, bit 31: disabled), the default one without 0x1014."""
-        return self.number(0x1014) if self.od.find(0x1014) is not None else 0x80 + self.node_id
+        return self.number(EMCY_COB_ID) if self.od.find(EMCY_COB_ID) is not None else 0x80 + self.node_id
 
     def answers(self) -> bool:
         """Whether the SDO server answers at all, within SILENCE (for states where it must not)."""
         self.node.sdo.RESPONSE_TIMEOUT = SILENCE
         try:
-            return self.upload(0x1000, 0)[1] != -1
+            return self.upload(DEVICE_TYPE, 0)[1] != -1
         finally:
             self.node.sdo.RESPONSE_TIMEOUT = SDO_TIMEOUT

@@ -12,8 +12,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from ..codegen.selftest import expected_bytes, write_cases
-from ..model.cia301 import CAN_ID_MASK, CONSUMER_HEARTBEAT, ERROR_REGISTER, HEARTBEAT, RESTORE, STORE, SYNC_COB_ID, \
-    SYNC_PERIOD, SYNC_WINDOW
+from ..model.cia301 import CAN_ID_MASK, CONSUMER_HEARTBEAT, EMCY_INHIBIT, ERROR_HISTORY, ERROR_REGISTER, HEARTBEAT, \
+    RESTORE, STORE, SYNC_COB_ID, SYNC_PERIOD, SYNC_WINDOW
 from ..roundtrip.checks import ACTIVE, Check
 from .checks import EMCY_HEARTBEAT, EMCY_RPDO_LENGTH, INCOMPATIBLE, MAP_TOO_LONG, NOT_MAPPABLE, RANGE, \
     SIGNATURE, SYNC_GENERATE, Entry, entries, is_command
@@ -139,7 +139,7 @@ def check_tpdo_types(c: Client) -> Check:
         return check
     pdo, e = found
     c.watch(pdo.cob)
-    sync_cob = (c.number(0x1005) or 0x80) & 0x7FF if c.od.find(0x1005) is not None else 0x80
+    sync_cob = (c.number(SYNC_COB_ID) or 0x80) & 0x7FF if c.od.find(SYNC_COB_ID) is not None else 0x80
     with Configured(c, pdo, e, 1) as conf:
         if conf.ok:
             c.nmt("OPERATIONAL")
@@ -264,19 +264,19 @@ def check_emcy(c: Client) -> Check:
                      f"short RPDO: EMCY {frame!r}, want code 0x{EMCY_RPDO_LENGTH:04X}")
         if frame is None:
             return check
-        register = c.upload(0x1001, 0)[0]
+        register = c.upload(ERROR_REGISTER, 0)[0]
         check.expect(frame[2] != 0 and register == frame[2:3],
                      f"error register: EMCY says {frame[2]:#04x}, 0x1001 reads {register!r}")
-        if c.od.find(0x1003, 1) is not None:
-            count, first = c.upload(0x1003, 0)[0], c.upload(0x1003, 1)[0]
+        if c.od.find(ERROR_HISTORY, 1) is not None:
+            count, first = c.upload(ERROR_HISTORY, 0)[0], c.upload(ERROR_HISTORY, 1)[0]
             check.expect(count is not None and count != b"\x00" and first is not None
                          and int.from_bytes(first[:2], "little") == EMCY_RPDO_LENGTH,
                          f"0x1003: {count!r} errors, newest {first!r}")
-            history = c.od.find(0x1003, 0)
+            history = c.od.find(ERROR_HISTORY, 0)
             if history is not None and history.writable:
-                code = c.download(0x1003, 0, b"\x01")
+                code = c.download(ERROR_HISTORY, 0, b"\x01")
                 check.expect(code == RANGE, f"0x1003sub0 = 1 gave 0x{code:08X}, want 0x{RANGE:08X}")
-                check.expect(c.download(0x1003, 0, b"\x00") == 0 and c.upload(0x1003, 0)[0] == b"\x00",
+                check.expect(c.download(ERROR_HISTORY, 0, b"\x00") == 0 and c.upload(ERROR_HISTORY, 0)[0] == b"\x00",
                              "0x1003sub0 = 0 did not clear the history")
         sent = time.monotonic()
         c.send(pdo.cob, bytes(size))
@@ -287,7 +287,7 @@ def check_emcy(c: Client) -> Check:
 
 def check_emcy_inhibit(c: Client) -> Check:
     check = Check("EMCY inhibit time (0x1015): two errors in a row, the second EMCY not within 100 ms")
-    inhibit = c.od.find(0x1015)
+    inhibit = c.od.find(EMCY_INHIBIT)
     found = _setup(c, check, tx=False)
     emcy = c.emcy_cob()
     if found is None or inhibit is None or not inhibit.writable or emcy is None or emcy & INVALID:
@@ -296,8 +296,8 @@ def check_emcy_inhibit(c: Client) -> Check:
     pdo, e = found
     cob = emcy & 0x7FF
     c.watch(cob)
-    saved = c.upload(0x1015, 0)[0]
-    check.expect(c.download(0x1015, 0, (1000).to_bytes(2, "little")) == 0, "0x1015 = 1000 (100 ms) refused")
+    saved = c.upload(EMCY_INHIBIT, 0)[0]
+    check.expect(c.download(EMCY_INHIBIT, 0, (1000).to_bytes(2, "little")) == 0, "0x1015 = 1000 (100 ms) refused")
     size = e.dtype.bits // 8 or 1
     with Configured(c, pdo, e, 0xFF) as conf:
         if conf.ok:
@@ -309,7 +309,7 @@ def check_emcy_inhibit(c: Client) -> Check:
             stamps = c.received_since(start, cob)
             gap = 1000 * (stamps[1] - stamps[0]) if len(stamps) >= 2 else None
             check.expect(gap is not None and gap >= 90, f"two EMCYs {gap and round(gap)} ms apart, inhibit 100 ms")
-    c.download(0x1015, 0, saved or b"\x00\x00")
+    c.download(EMCY_INHIBIT, 0, saved or b"\x00\x00")
     return check
 
 
