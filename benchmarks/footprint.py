@@ -108,7 +108,26 @@ def measure(label: str, eds: Path, lookup: str) -> dict[str, object]:
         rom, ref_ram, data = ref
         row["cnn_flash"], row["cnn_ram"] = rom + data, ref_ram
         row["flash_ratio"], row["ram_ratio"] = flash / (rom + data), ram / ref_ram
+        if ram > ref_ram / 2 and lookup == "bsearch":  # the RAM goal is not met: say what the RAM holds
+            row["ram_why"] = ram_reasons(eds)
     return row
+
+
+def ram_reasons(eds: Path) -> dict[str, int]:
+    """Bytes of the dictionary's RAM values by why odgen placed each there (the placement's reason,
+    as `odgen explain` prints it), from odgen's own view-model; padding between values not counted."""
+    from odgen.codegen.generate import Request, prepare, view_model
+    from odgen.codegen.viewmodel import member_bytes
+
+    result = prepare(Request(eds))
+    if result.placements is None:
+        return {}
+    view = view_model(result, "od", "bsearch", "")
+    reasons: dict[str, int] = {}
+    for member in (m for struct in view.structs if struct.name == "od_ram" for m in struct.members):
+        why = result.placements[member.key].storage_from
+        reasons[why] = reasons.get(why, 0) + member_bytes(member)
+    return dict(sorted(reasons.items(), key=lambda kv: -kv[1]))
 
 
 def _core_path(work: Path, defines: list[str]) -> int:
@@ -200,6 +219,19 @@ def targets(rows: list[dict[str, object]]) -> list[Target]:
     return out
 
 
+def _ram_notes(rows: list[dict[str, object]]) -> list[str]:
+    """Where the RAM goal (<= 50%) is not met: the RAM values by why each is in RAM."""
+    notes = [f"- {r['input']}: RAM {r['ram']} B; its values by why they are in RAM: "
+             + ", ".join(f"{why} {n} B" for why, n in r["ram_why"].items())  # type: ignore[attr-defined]
+             for r in rows if r.get("ram_why")]
+    if not notes:
+        return []
+    return ["", "### Where the RAM goal is not met", "",
+            "odgen keeps a value in RAM only when a write may change it (over SDO or a PDO, or by the stack) or "
+            "when it depends on the node-id; the rest is const in FLASH. Measured here (bsearch; `odgen explain` "
+            "gives the reason per entry):", "", *notes]
+
+
 def markdown(rows: list[dict[str, object]], runtime: dict[str, int], odg_note: str,
              odg_rows: list[dict[str, object]]) -> str:
     lines = ["## Footprint on Cortex-M4 (arm-none-eabi-gcc -Os, per object file)", "",
@@ -225,6 +257,7 @@ def markdown(rows: list[dict[str, object]], runtime: dict[str, int], odg_note: s
     for r in rows:
         if "classes" in r and r["lookup"] == first:
             lines.append(f"| {r['input']} | " + " | ".join(str(v) for v in r["classes"].values()) + " |")  # type: ignore[attr-defined]
+    lines += _ram_notes(rows)
     lines += ["", "### objdictgen (CanFestival) generated C", "", odg_note]
     if odg_rows:
         lines += ["", "| input | text | rodata | data | bss | FLASH | RAM |", "|---|---:|---:|---:|---:|---:|---:|"]

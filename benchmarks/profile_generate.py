@@ -32,7 +32,8 @@ inline, integer literals and values of a basic type read without the regex path 
 (parse 0.145 -> ~0.10 s); the OBJ lint checks share one walk over the dictionary (lint 0.095 ->
 ~0.04 s); compiled templates come from jinja2's bytecode cache (34 -> 2 ms); file-only commands run
 without cyclic collection and end with os._exit after flushing (the teardown of a large model,
-~30 ms). That met `odgen lint` <= 0.25x canopen.
+~30 ms). That brought `odgen lint` to 0.24x-0.26x of canopen (the goal, 0.25x, is met in
+some runs).
 
 For `odgen generate`: the large tables (value members, sub-entries, entries, name macros, accessors;
 five rows per sub-entry) are printed by a `rows` filter, a printf-style line per row written in the
