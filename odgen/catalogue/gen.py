@@ -70,3 +70,13 @@ GEN008 = define(
     example="odgen generate main.eds -o gen --name main",
     fix="Choose another --name, e.g. prefixed with the product: `--name pump_od`.",
     blocks=True)
+
+GEN009 = define(
+    "GEN009", E, "nothing to generate", ref="odgen generate",
+    why="A description without a single sub-entry from 0x1000 on (every object missing, a data type "
+    "definition, or an ARRAY/RECORD without sub-objects) gives a dictionary with empty tables: C99 has "
+    "no zero-size arrays, so its C would not compile, and a node would have nothing to serve.",
+    example="[FileInfo]\n...\n[DeviceInfo]\n...\n# and no [1000], [1001], [1018] or any other object",
+    fix="Describe the objects of the device, at least the mandatory 0x1000, 0x1001 and 0x1018 "
+    "(COM001 names those missing).",
+    blocks=True)

@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 from operator import attrgetter
 from typing import Any, NamedTuple
 
-from ..catalogue.gen import GEN004, GEN005, GEN006, GEN007
+from ..catalogue.gen import GEN004, GEN005, GEN006, GEN007, GEN009
 from ..diagnostics import Diagnostics, Loc
 from ..model import Obj, ObjectDictionary, Sub, Value
 from ..model.od import READABLE, WRITABLE
@@ -328,6 +328,8 @@ def build(od: ObjectDictionary, placements: dict[tuple[int, int], Placement], na
             diags.add(GEN006, Loc(od.source, obj.line), "defines a data type; not generated", obj.index)
             continue
         _entry(b, view, obj)
+    if not view.subs:  # C99 has no zero-size arrays: empty tables would not compile
+        diags.add(GEN009, Loc(od.source), "the description has no sub-entry from 0x1000 on: nothing to generate")
     view.structs = [_sorted_struct(s) for _, s in sorted(b.structs.items(),
                                                          key=lambda kv: _struct_order(kv[0].replace(":", "_")))]
     view.groups = _groups(od, view)
