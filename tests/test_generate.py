@@ -63,6 +63,17 @@ def test_every_gen_rule_has_a_fixture() -> None:
     assert {r for r in RULES if r.startswith("GEN")} == {rule for rule, _, _ in _fixture_cases()}
 
 
+def test_a_description_without_objects_is_refused_not_turned_into_empty_tables(tmp_path: Path) -> None:
+    """Only header sections: C99 has no zero-size arrays, so there is nothing to generate (GEN009)."""
+    header = PLAIN.read_text().split("[MandatoryObjects]")[0]
+    bare = tmp_path / "bare.eds"
+    bare.write_text(header)
+    result = generate(Request(bare, name="od"))
+    assert result.files == {} and [d.rule for d in result.refused] == ["GEN009"], _rendered(result)
+    assert f"{bare}: error[GEN009]: the description has no object from 0x1000 on: nothing to generate" \
+        in _rendered(result)
+
+
 def test_refuses_on_lint_errors_and_writes_nothing(tmp_path: Path) -> None:
     bad = FIXTURES / "syntax" / "SYN003.eds"
     assert main(["generate", str(bad), "-o", str(tmp_path / "out")]) == 1

@@ -73,10 +73,10 @@ GEN008 = define(
 
 GEN009 = define(
     "GEN009", E, "nothing to generate", ref="odgen generate",
-    why="A description without a single sub-entry from 0x1000 on (every object missing, a data type "
-    "definition, or an ARRAY/RECORD without sub-objects) gives a dictionary with empty tables: C99 has "
-    "no zero-size arrays, so its C would not compile, and a node would have nothing to serve.",
-    example="[FileInfo]\n...\n[DeviceInfo]\n...\n# and no [1000], [1001], [1018] or any other object",
-    fix="Describe the objects of the device, at least the mandatory 0x1000, 0x1001 and 0x1018 "
-    "(COM001 names those missing).",
+    why="An ARRAY or RECORD without any sub-object, not even sub 0, has nothing a client could read or "
+    "write, and the runtime's table check (odg_verify) refuses an entry without sub-entries. A "
+    "description without any object from 0x1000 on would give empty tables, which C99 does not allow.",
+    example="[1018]\nParameterName=Identity\nObjectType=0x9\nSubNumber=2\n# and no [1018sub0], [1018sub1]",
+    fix="Describe the sub-objects SubNumber announces (OBJ009 counts them), and at least the mandatory "
+    "objects 0x1000, 0x1001 and 0x1018 (COM001 names those missing).",
     blocks=True)

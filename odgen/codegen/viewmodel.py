@@ -328,8 +328,8 @@ def build(od: ObjectDictionary, placements: dict[tuple[int, int], Placement], na
             diags.add(GEN006, Loc(od.source, obj.line), "defines a data type; not generated", obj.index)
             continue
         _entry(b, view, obj)
-    if not view.subs:  # C99 has no zero-size arrays: empty tables would not compile
-        diags.add(GEN009, Loc(od.source), "the description has no sub-entry from 0x1000 on: nothing to generate")
+    if not view.entries:  # C99 has no zero-size arrays: empty tables would not compile
+        diags.add(GEN009, Loc(od.source), "the description has no object from 0x1000 on: nothing to generate")
     view.structs = [_sorted_struct(s) for _, s in sorted(b.structs.items(),
                                                          key=lambda kv: _struct_order(kv[0].replace(":", "_")))]
     view.groups = _groups(od, view)
@@ -416,6 +416,10 @@ _OBJECT_CODES = {2: "ODG_OBJ_DOMAIN", 8: "ODG_OBJ_ARRAY", 9: "ODG_OBJ_RECORD"}
 
 def _entry(b: _Builder, view: DictView, obj: Obj) -> None:
     subs = obj.sorted_subs()
+    if not subs:  # nothing a client could read; odg_verify refuses an entry without sub-entries
+        b.diags.add(GEN009, Loc(b.od.source, obj.line), "has no sub-entry, not even sub 0: nothing to generate",
+                    obj.index)
+        return
     dense = not subs or subs[-1].subindex == len(subs) - 1  # sub-indices 0..n-1 (distinct and sorted)
     code = _OBJECT_CODES.get(obj.structure, "ODG_OBJ_VAR")
     note = comment(obj.name)
