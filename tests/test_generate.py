@@ -12,7 +12,9 @@ from odgen.cli import main
 from odgen.codegen.check import run_check
 from odgen.codegen.generate import Request, generate
 from odgen.codegen.names import comment, identifier, name_clash, string_literal
+from odgen.codegen.selftest import expected_bytes
 from odgen.diagnostics import RULES
+from odgen.model.datatypes import BASIC_TYPES
 
 from .conftest import FIXTURES, ROOT
 
@@ -72,6 +74,25 @@ def test_a_description_without_objects_is_refused_not_turned_into_empty_tables(t
     assert result.files == {} and [d.rule for d in result.refused] == ["GEN009"], _rendered(result)
     assert f"{bare}: error[GEN009]: the description has no object from 0x1000 on: nothing to generate" \
         in _rendered(result)
+
+
+def test_a_nodeid_minus_default_of_an_unsigned_type_reads_node_id_minus_one(tmp_path: Path) -> None:
+    """`$NODEID-1` (SYN007: not the CiA 306 form, read anyway) is stored as the offset -1 modulo
+    2^bits, as C converts it; the reset adds the node-id. It was printed as `UINT32_C(0x-1)`."""
+    objects = "".join(f"[{index:04X}]\nParameterName=N{index:X}\nObjectType=0x7\nDataType=0x{code:04X}\n"
+                      "AccessType=rw\nDefaultValue=$NODEID-1\nPDOMapping=0\n\n"
+                      for index, code in ((0x2100, 0x0007), (0x2101, 0x001B), (0x2102, 0x0005)))
+    eds = tmp_path / "minus.eds"
+    listed = "[ManufacturerObjects]\nSupportedObjects=4\n1=0x2000\n2=0x2100\n3=0x2101\n4=0x2102\n"
+    eds.write_text(PLAIN.read_text().replace("[ManufacturerObjects]\nSupportedObjects=1\n1=0x2000\n", listed)
+                   + "\n" + objects)
+    result = generate(Request(eds, name="od"))
+    assert "UINT32_C(0xFFFFFFFF)" in result.files["od.c"] and "UINT64_C(0xFFFFFFFFFFFFFFFF)" in result.files["od.c"]
+    for index, code, size in ((0x2100, 0x0007, 4), (0x2101, 0x001B, 8), (0x2102, 0x0005, 1)):
+        sub = result.od.objects[index].subs[0]  # what the self-test expects a read to give, node-id 5
+        assert expected_bytes(result.od, sub, BASIC_TYPES[code], 5) == (4).to_bytes(size, "little")
+    outcome = run_check(Request(eds, name="od", node_id=5))  # and the C gives it
+    assert outcome.ok, outcome.output
 
 
 def test_refuses_on_lint_errors_and_writes_nothing(tmp_path: Path) -> None:

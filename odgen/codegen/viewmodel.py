@@ -247,7 +247,13 @@ def ctype_of(dtype: DataType) -> str:
 _CTYPES = {code: ctype_of(dtype) for code, dtype in BASIC_TYPES.items()}  # by data type code
 
 
+_UNSIGNED_BITS = {"uint8_t": 8, "uint16_t": 16, "uint32_t": 32, "uint64_t": 64}
+
+
 def int_literal(value: int, ctype: str) -> str:
+    bits = _UNSIGNED_BITS.get(ctype)
+    if bits is not None:  # modulo 2^bits, as C converts: `$NODEID-1` is stored as the offset -1
+        value &= (1 << bits) - 1
     if ctype in ("int64_t", "int32_t"):
         macro = "INT64_C" if ctype == "int64_t" else "INT32_C"
         bits = 64 if ctype == "int64_t" else 32
