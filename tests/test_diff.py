@@ -145,6 +145,15 @@ def test_versions_not_raised_are_found_in_the_class_that_needs_them(tmp_path: Pa
     assert "raise the major revision" in found[0].message
 
 
+def test_a_file_version_that_is_no_plain_number_is_no_version(tmp_path: Path) -> None:
+    """5000 digits made int() raise (an internal error), and so did `²`, which isdigit() accepts."""
+    huge = _variant(tmp_path, DIFF / "breaking.eds", FileVersion_2="FileVersion=" + "9" * 5000)
+    found = [c.message for c in diff_paths(BASE, huge, OPTIONS, OPTIONS).changes if c.kind == "DIF402"]
+    assert found == ["NEW has no numeric FileVersion; cannot tell whether it was raised"]
+    odd = _variant(tmp_path, DIFF / "breaking.eds", FileRevision_0="FileRevision=\u00b2")
+    assert not [c for c in diff_paths(BASE, odd, OPTIONS, OPTIONS).changes if c.kind == "DIF402"]  # 1 -> 2 raised
+
+
 def test_sarif_is_valid_and_located_in_new(tmp_path: Path) -> None:
     out = tmp_path / "diff.sarif"
     new = DIFF / "breaking.eds"

@@ -81,7 +81,10 @@ def _file_change(old: ObjectDictionary, new: ObjectDictionary, cls: str) -> Chan
 
 
 Version = tuple[int, int | None]
-_NUMBER = re.compile(r"^\s*(\d+)(?:\.(\d+))?\s*$")
+# ASCII digits, at most nine: isdigit() is true for `²`, which int() refuses, and int() raises past
+# 4300 digits.
+_NUMBER = re.compile(r"^\s*([0-9]{1,9})(?:\.([0-9]{1,9}))?\s*$")
+_REVISION = re.compile(r"^[0-9]{1,9}$")
 
 
 def file_version(od: ObjectDictionary) -> Version | None:
@@ -94,7 +97,7 @@ def file_version(od: ObjectDictionary) -> Version | None:
         return None
     revision = m.group(2)
     written = section.text("FileRevision").strip()
-    if written.isdigit():
+    if _REVISION.match(written):
         revision = written
     return int(m.group(1)), int(revision) if revision is not None else None
 
