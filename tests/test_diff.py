@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import random
 import re
 from importlib import resources
 from pathlib import Path
@@ -14,10 +15,14 @@ from odgen.cli import main
 from odgen.diff import diff_models, diff_paths
 from odgen.codegen.placement import storage_from_description
 from odgen.diff.changes import BREAKING, COMPATIBLE, KINDS, STORED, Change
+from odgen.diff.report import RENDERERS as DIFF_RENDERERS
+from odgen.errors import OdgenError
 from odgen.formats import load_path
 from odgen.formats.eds_writer import write_eds
 from odgen.report.sarif import artifact_location
 from odgen.model import ObjectDictionary
+
+from fuzz import mutate
 
 from .conftest import CORPUS, FIXTURES, corpus_params
 from .test_xdd import TWINS, disabled
@@ -152,6 +157,27 @@ def test_a_file_version_that_is_no_plain_number_is_no_version(tmp_path: Path) ->
     assert found == ["NEW has no numeric FileVersion; cannot tell whether it was raised"]
     odd = _variant(tmp_path, DIFF / "breaking.eds", FileRevision_0="FileRevision=\u00b2")
     assert not [c for c in diff_paths(BASE, odd, OPTIONS, OPTIONS).changes if c.kind == "DIF402"]  # 1 -> 2 raised
+
+
+def test_seeded_mutant_pairs_diff_without_an_internal_error(tmp_path: Path) -> None:
+    """Two mutants of one description file (fuzz/mutate.py): a report or the user's message, never
+    an exception of odgen's own."""
+    rng = random.Random(20261125)
+    seeds = mutate.load_seeds(with_corpus=False)
+    compared = 0
+    for _ in range(300):
+        seed = rng.choice(seeds)
+        old, new = (tmp_path / f"{side}.{seed.fmt}" for side in ("old", "new"))
+        old.write_bytes(mutate.mutate(seed, rng).data)
+        new.write_bytes(mutate.mutate(seed, rng).data)
+        try:
+            result = diff_paths(old, new)
+        except OdgenError:
+            continue  # a side diff cannot read: exit 1 with its findings
+        for render in DIFF_RENDERERS.values():
+            assert render(result)
+        compared += 1
+    assert compared > 100, "most pairs are readable"
 
 
 def test_sarif_is_valid_and_located_in_new(tmp_path: Path) -> None:
