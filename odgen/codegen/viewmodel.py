@@ -426,7 +426,7 @@ def _entry(b: _Builder, view: DictView, obj: Obj) -> None:
         b.diags.add(GEN009, Loc(b.od.source, obj.line), "has no sub-entry, not even sub 0: nothing to generate",
                     obj.index)
         return
-    dense = not subs or subs[-1].subindex == len(subs) - 1  # sub-indices 0..n-1 (distinct and sorted)
+    dense = subs[-1].subindex == len(subs) - 1  # sub-indices 0..n-1 (distinct and sorted)
     code = _OBJECT_CODES.get(obj.structure, "ODG_OBJ_VAR")
     note = comment(obj.name)
     view.entries.append(EntryView(obj.index, len(view.subs), len(subs), code + (" | ODG_E_DENSE" if dense else ""),
