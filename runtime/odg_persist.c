@@ -114,33 +114,48 @@ static int newer(uint32_t a, uint32_t b)
     return a - b - 1u < 0x7FFFFFFFu;
 }
 
+/* Read the `n`-byte header of the slot at `addr` into `h`: 1 when it starts with `magic`, 0 when
+ * not, -1 when the driver failed. Both formats have it so. */
+static int hdr_read(const odg_nv_driver_t *nv, uint32_t addr, uint8_t *h, uint32_t n, uint32_t magic)
+{
+    if (nv->read(nv->ctx, addr, h, n) != 0) {
+        return -1;
+    }
+    return get32(h) == magic;
+}
+
+/* Whether the CRC-32 that ends the `n`-byte header `h` of the slot at `addr` matches the header
+ * before it and the `len` image bytes after it (read into `dst` when not NULL, which must hold
+ * them): 1 yes, 0 no, -1 the driver failed. Both formats have it so. */
+static int crc_ok(const odg_nv_driver_t *nv, uint32_t addr, const uint8_t *h, uint32_t n,
+                  uint32_t len, uint8_t *dst)
+{
+    uint8_t chunk[CHUNK];
+    uint32_t crc = odg_crc32(0, h, n - 4u), off, k;
+    for (off = 0; off < len; off += k) {
+        uint8_t *p = dst ? dst + off : chunk;
+        k = len - off;
+        if (dst == NULL && k > CHUNK) {
+            k = CHUNK;
+        }
+        if (nv->read(nv->ctx, addr + n + off, p, k) != 0) {
+            return -1;
+        }
+        crc = odg_crc32(crc, p, k);
+    }
+    return crc == get32(h + n - 4u);
+}
+
 /* Read and check the slot at `addr` (header into `hdr`; the image into `dst` when not NULL,
  * which must hold `max` bytes). 1: valid, 0: not, -1: the driver failed. */
 static int slot_read(const odg_nv_driver_t *nv, uint32_t addr, uint32_t max, uint8_t *hdr,
                      uint8_t *dst)
 {
-    uint8_t chunk[CHUNK];
-    uint32_t crc, len, off, n;
-    if (nv->read(nv->ctx, addr, hdr, HDR) != 0) {
-        return -1;
+    int v = hdr_read(nv, addr, hdr, HDR, MAGIC);
+    if (v != 1 || get32(hdr + 12) > max) {
+        return v < 0 ? -1 : 0;
     }
-    len = get32(hdr + 12);
-    if (get32(hdr) != MAGIC || len > max) {
-        return 0;
-    }
-    crc = odg_crc32(0, hdr, 16);
-    for (off = 0; off < len; off += n) {
-        uint8_t *p = dst ? dst + off : chunk;
-        n = len - off;
-        if (dst == NULL && n > CHUNK) {
-            n = CHUNK;
-        }
-        if (nv->read(nv->ctx, addr + HDR + off, p, n) != 0) {
-            return -1;
-        }
-        crc = odg_crc32(crc, p, n);
-    }
-    return crc == get32(hdr + 16);
+    return crc_ok(nv, addr, hdr, HDR, get32(hdr + 12), dst);
 }
 
 /* Check both slots of group `g`: -2 on a driver error, -1 when neither is valid, else the
@@ -343,29 +358,20 @@ static uint32_t image_size(const odg_dict_t *d, uint8_t g)
 static int slot2_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t addr, uint8_t *h,
                       int ours)
 {
-    uint8_t c[CHUNK];
-    uint32_t crc, len, region, off, n, cnt, sum, prev = 0, i;
-    if (nv->read(nv->ctx, addr, h, HDR2) != 0) {
-        return -1;
-    }
+    uint8_t c[REC];
+    uint32_t len, region, cnt, sum, prev = 0, i;
+    int v = hdr_read(nv, addr, h, HDR2, MAGIC2);
     region = get32(h + 12);
     len = get32(h + 16);
-    if (get32(h) != MAGIC2 || region > 0x01000000u || region / 2u < HDR2 + 2u || len < 2u ||
+    if (v != 1 || region > 0x01000000u || region / 2u < HDR2 + 2u || len < 2u ||
         len > region / 2u - HDR2 ||
         (ours && (get32(h + 8) != gr->id ||
                   (addr != gr->nv_addr && addr - gr->nv_addr != region / 2u)))) {
-        return 0;
+        return v < 0 ? -1 : 0;
     }
-    crc = odg_crc32(0, h, 20);
-    for (off = 0; off < len; off += n) {
-        n = len - off < CHUNK ? len - off : CHUNK;
-        if (nv->read(nv->ctx, addr + HDR2 + off, c, n) != 0) {
-            return -1;
-        }
-        crc = odg_crc32(crc, c, n);
-    }
-    if (crc != get32(h + 20) || nv->read(nv->ctx, addr + HDR2, c, 2) != 0) {
-        return crc != get32(h + 20) ? 0 : -1;
+    v = crc_ok(nv, addr, h, HDR2, len, NULL);
+    if (v != 1 || nv->read(nv->ctx, addr + HDR2, c, 2) != 0) {
+        return v == 0 ? 0 : -1;
     }
     cnt = get16(c);
     for (i = 0, sum = 2u + REC * cnt; i < cnt && sum <= len; i++) {
@@ -536,9 +542,7 @@ static odg_abort_t store2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_
     o.fail = nv->erase(nv->ctx, addr, half) != 0;
     emit(&o, gr->n_layout, 2);
     for (recs_start(&r, d, g); (s = recs_next(&r)) != NULL;) { /* the layout descriptor */
-        emit(&o, r.key >> 8, 2);
-        emit(&o, s->sub, 1);
-        emit(&o, s->type, 1);
+        emit(&o, r.key >> 8 | (uint32_t)s->sub << 16 | (uint32_t)s->type << 24, 4);
         emit(&o, s->size, 2);
     }
     for (recs_start(&r, d, g); (s = recs_next(&r)) != NULL;) {
