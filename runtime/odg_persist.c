@@ -219,17 +219,6 @@ static void defaults(const odg_dict_t *d, uint8_t g)
 }
 
 #ifndef ODG_NO_MIGRATION
-/* Whether `n` bytes differ (headers read back; a loop costs less FLASH than libc's memcmp). */
-static int differ(const uint8_t *a, const uint8_t *b, uint32_t n)
-{
-    while (n-- > 0u) {
-        if (a[n] != b[n]) {
-            return 1;
-        }
-    }
-    return 0;
-}
-
 /* ---- "ODG2": self-describing images, migrated at boot (docs/persistence.md) -------------- */
 
 #define HDR2 ODG_PERSIST_HEADER2_SIZE
@@ -385,6 +374,15 @@ static int slot2_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t
         sum += value_size(c);
     }
     return sum == len;
+}
+
+/* Whether the slot at `addr` reads back as the valid image whose header is `h`: the CRC, which
+ * covers the rest of the header and the image, is the same (the ODG1 store checks the same). */
+static int reads_back(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t addr,
+                      const uint8_t *h)
+{
+    uint8_t t[HDR2];
+    return slot2_read(nv, gr, addr, t, 1) == 1 && get32(t + 20) == get32(h + 20);
 }
 
 /* The slot B named by the header of slot A (`h`, read but not checked): the middle of the
@@ -552,8 +550,7 @@ static odg_abort_t store2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_
     /* the CRC covers the bytes written; the read-back below checks that they landed */
     put32(h + 20, o.crc);
     if (o.fail || nv->write(nv->ctx, addr + 4u, h + 4, HDR2 - 4u) != 0 ||
-        nv->write(nv->ctx, addr, h, 4u) != 0 || slot2_read(nv, gr, addr, t, 1) != 1 ||
-        differ(t, h, HDR2)) {
+        nv->write(nv->ctx, addr, h, 4u) != 0 || !reads_back(nv, gr, addr, h)) {
         return ODG_ABORT_HARDWARE;
     }
     return ODG_OK;
@@ -589,7 +586,7 @@ static odg_abort_t erase2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_
 
 /* ---- boot migration: docs/persistence.md section 3, odgen/persist/migration.py ----------- */
 
-enum { KEPT = 0, CONVERTED = 1, DEFAULTED = 2, FAILED = -1 };
+enum { KEPT = 0, CONVERTED = 1, DEFAULTED = 2, DROPPED = 3, FAILED = -1 };
 
 /* UNSIGNEDn -> UNSIGNEDm, INTEGERn -> INTEGERm, UNSIGNEDn -> INTEGERm with m > n. */
 static int widens(uint8_t from, uint8_t to)
@@ -696,12 +693,13 @@ static int restore(const odg_dict_t *d, const odg_nv_driver_t *nv, uint32_t pos,
 }
 
 /* Every entry of group `g` from the image at `at`, merged by key with the firmware's layout;
- * the mirror holds the defaults before. Counts into `b`; -1 when the driver failed. */
+ * the mirror holds the defaults before. Counts into n[KEPT .. DROPPED]; -1 when the driver
+ * failed. */
 static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, uint32_t at,
-                   odg_boot_t *b)
+                   uint16_t n[4])
 {
     uint8_t st[REC];
-    uint32_t base = at + HDR2, cnt, j = 0, vo;
+    uint32_t base = at + HDR2, cnt, j = 0, vo, key;
     const odg_sub_t *s;
     recs_t fw;
     int have = 0, r;
@@ -712,31 +710,30 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
     vo = base + 2u + REC * cnt;
     for (recs_start(&fw, d, g); (s = recs_next(&fw)) != NULL;) {
         r = DEFAULTED;
-        for (;;) { /* stored entries before this key are no longer in the group */
-            if (!have && j < cnt && nv->read(nv->ctx, base + 2u + REC * j, st, REC) != 0) {
+        while (j < cnt) { /* stored entries before this key are no longer in the group */
+            if (!have && nv->read(nv->ctx, base + 2u + REC * j, st, REC) != 0) {
                 return -1;
             }
-            have = j < cnt;
-            if (!have || rec_key(st) > fw.key) {
+            have = 1;
+            key = rec_key(st);
+            if (key > fw.key) {
                 break; /* not stored: the default */
             }
-            if (rec_key(st) < fw.key) {
-                b->dropped++;
+            if (key < fw.key) {
+                n[DROPPED]++;
             } else if ((r = restore(d, nv, fw.pos - 1u, s, st, vo)) == FAILED) {
                 return -1;
             }
             vo += value_size(st);
             j++;
             have = 0;
-            if (rec_key(st) == fw.key) {
+            if (key == fw.key) {
                 break;
             }
         }
-        b->kept = (uint16_t)(b->kept + (r == KEPT));
-        b->converted = (uint16_t)(b->converted + (r == CONVERTED));
-        b->defaulted = (uint16_t)(b->defaulted + (r == DEFAULTED));
+        n[r]++;
     }
-    b->dropped = (uint16_t)(b->dropped + (cnt - j));
+    n[DROPPED] = (uint16_t)(n[DROPPED] + (cnt - j));
     return 0;
 }
 
@@ -771,11 +768,12 @@ static odg_boot_status_t boot2(const odg_dict_t *d, const odg_nv_driver_t *nv, u
                                odg_boot_t *b)
 {
     const odg_group_t *gr = &d->groups[g];
-    uint8_t h[HDR2], t[HDR2];
+    uint8_t h[HDR2];
+    uint16_t n[4] = {0, 0, 0, 0}; /* entries KEPT, CONVERTED, DEFAULTED, DROPPED */
     uint32_t at = 0;
     odg_boot_status_t st;
-    odg_abort_t ac;
-    int k = newest2(nv, gr, &at, h);
+    odg_abort_t ac = ODG_OK;
+    int k = newest2(nv, gr, &at, h), changed;
     if (k < 0) {
         st = ODG_BOOT_NV_ERROR;
     } else if (k == 0) {
@@ -783,19 +781,21 @@ static odg_boot_status_t boot2(const odg_dict_t *d, const odg_nv_driver_t *nv, u
     } else {
         defaults(d, g);
         st = ODG_BOOT_NV_ERROR; /* unless the image reads the same a second time */
-        if (migrate(d, nv, g, at, b) == 0 && slot2_read(nv, gr, at, t, 1) == 1 &&
-            !differ(t, h, HDR2)) {
-            if (!b->converted && !b->defaulted && !b->dropped) {
-                return ODG_BOOT_LOADED;
+        if (migrate(d, nv, g, at, n) == 0 && reads_back(nv, gr, at, h)) {
+            /* a migrated image is stored, with the A/B commit; the old one stays until it
+             * lands (DATA_STORE: no slot beside the old image, which is then migrated again) */
+            changed = n[CONVERTED] || n[DEFAULTED] || n[DROPPED];
+            if (changed) {
+                ac = store2(d, nv, g);
             }
-            /* the migrated image, with the A/B commit; the old one stays until it lands
-             * (DATA_STORE: no slot beside the old image, which is then migrated again) */
-            ac = store2(d, nv, g);
             if (ac == ODG_OK || ac == ODG_ABORT_DATA_STORE) {
-                return ODG_BOOT_MIGRATED;
+                b->kept = n[KEPT];
+                b->converted = n[CONVERTED];
+                b->defaulted = n[DEFAULTED];
+                b->dropped = n[DROPPED];
+                return changed ? ODG_BOOT_MIGRATED : ODG_BOOT_LOADED;
             }
         }
-        b->kept = b->converted = b->defaulted = b->dropped = 0;
     }
     defaults(d, g);
     if (st != ODG_BOOT_NV_ERROR && store2(d, nv, g) != ODG_OK) {
