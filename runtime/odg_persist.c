@@ -116,7 +116,8 @@ static int newer(uint32_t a, uint32_t b)
 
 /* Read the `n`-byte header of the slot at `addr` into `h`: 1 when it starts with `magic`, 0 when
  * not, -1 when the driver failed. Both formats have it so. */
-static int hdr_read(const odg_nv_driver_t *nv, uint32_t addr, uint8_t *h, uint32_t n, uint32_t magic)
+static int hdr_read(const odg_nv_driver_t *nv, uint32_t addr, uint8_t *h, uint32_t n,
+                    uint32_t magic)
 {
     if (nv->read(nv->ctx, addr, h, n) != 0) {
         return -1;
@@ -202,6 +203,12 @@ static odg_boot_status_t no_image(const odg_nv_driver_t *nv, const odg_group_t *
     return v < 0 ? ODG_BOOT_NV_ERROR : (v ? ODG_BOOT_DEFAULTS : ODG_BOOT_DAMAGED);
 }
 
+/* total + n, at most 255 */
+static uint8_t add_sat(uint8_t total, uint16_t n)
+{
+    return (uint8_t)(total + n > 255u ? 255u : total + n);
+}
+
 /* Defaults into the mirror of group `g`, with the node-id added to $NODEID values (what the
  * generated reset does for the whole dictionary). */
 static void defaults(const odg_dict_t *d, uint8_t g)
@@ -277,6 +284,7 @@ typedef struct recs {
     uint16_t pos;         /* position in dict->subs after its descriptor */
     uint16_t left;        /* records still to come */
     uint8_t storage;      /* ODG_S_PERSIST | group << 2 */
+    uint8_t packed;       /* the descriptor is that of the elements of a packed ARRAY or RECORD */
     odg_sub_t elem;       /* the descriptor made for an element of a packed ARRAY */
 } recs_t;
 
@@ -287,7 +295,7 @@ static void recs_start(recs_t *r, const odg_dict_t *d, uint8_t g)
     r->pos = 0;
     r->left = d->groups[g].n_layout;
     r->storage = (uint8_t)(ODG_S_PERSIST | (unsigned)g << 2);
-    r->elem.sub = 0;
+    r->packed = 0;
 }
 
 /* The next persisted sub-entry (its descriptor at position r->pos - 1), or NULL after the last. */
@@ -296,7 +304,7 @@ static const odg_sub_t *recs_next(recs_t *r)
     const odg_dict_t *d = r->d;
     const odg_sub_t *s = &r->elem;
     while (r->left > 0u) {
-        if (ODG_CFG_PACKED && r->elem.sub != 0u && r->elem.sub < d->subs[r->pos - 1u].sub) {
+        if (ODG_CFG_PACKED && r->packed && r->elem.sub < d->subs[r->pos - 1u].sub) {
             odg_element_(&d->subs[r->pos - 1u], (uint8_t)(r->elem.sub + 1u), &r->elem);
             s = &r->elem;
         } else if (r->pos < d->n_subs) {
@@ -305,12 +313,11 @@ static const odg_sub_t *recs_next(recs_t *r)
             while ((uint32_t)r->e->first + r->e->count < r->pos) {
                 r->e++;
             }
-            if (s->storage != r->storage) {
+            /* the elements of a packed ARRAY or RECORD come from the next calls */
+            r->packed = ODG_CFG_PACKED && s->storage == r->storage &&
+                        (r->e->code & ODG_E_PACKED) && s->sub > 0u;
+            if (s->storage != r->storage || r->packed) {
                 continue;
-            }
-            if (ODG_CFG_PACKED && (r->e->code & ODG_E_PACKED) && s->sub > 0u) {
-                odg_element_(s, 1u, &r->elem);
-                s = &r->elem;
             }
         } else {
             break;
@@ -467,23 +474,21 @@ static void emit(out_t *o, odg_num_t v, uint32_t n)
 }
 
 /* One value in wire format: strings padded with zeros after their terminator, a domain as its
- * used length and then `size` bytes of its buffer. */
+ * used length and then `size` bytes of its buffer, zeros after the used ones. */
 static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
 {
-    uint32_t i, n = s->size, zero = 0;
+    uint32_t i, n = s->size, keep = n, zero = 0;
     const uint8_t *p;
     if (IS(s->type, ODG_T_DOMAIN)) {
         const odg_domain_t *dm = &d->domains[s->offset];
-        uint32_t used = *dm->length;
-        used = used < n ? used : n;
-        used = used < dm->capacity ? used : dm->capacity;
-        emit(o, used, 4);
-        for (i = 0; i < n; i++) {
-            emit(o, i < used ? dm->data[i] : 0u, 1);
-        }
-        return;
+        keep = *dm->length;
+        keep = keep < n ? keep : n;
+        keep = keep < dm->capacity ? keep : dm->capacity;
+        emit(o, keep, 4);
+        p = dm->data;
+    } else {
+        p = odg_value_(d, s);
     }
-    p = odg_value_(d, s);
     if (!(type_bit(s->type) & STREAMS)) {
         emit(o, odg_load_(p, n), n);
     } else if (IS(s->type, ODG_T_UNICODE_STRING)) {
@@ -495,7 +500,7 @@ static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
         }
     } else {
         for (i = 0; i < n; i++) {
-            zero |= s->type == ODG_T_VISIBLE_STRING && p[i] == 0u;
+            zero |= i >= keep || (s->type == ODG_T_VISIBLE_STRING && p[i] == 0u);
             emit(o, zero ? 0u : p[i], 1);
         }
     }
@@ -556,6 +561,12 @@ static odg_abort_t store2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_
     return ODG_OK;
 }
 
+/* Erase the bytes from `from` up to `to` (none when to <= from): whether the driver failed. */
+static int wipe(const odg_nv_driver_t *nv, uint32_t from, uint32_t to)
+{
+    return from < to && nv->erase(nv->ctx, from, to - from) != 0;
+}
+
 /* Make the next boot of group `g` use the defaults: erase its images outside the region (of
  * a region that shrank) and the region, all but the newest image first and then the newest, so
  * a power cut in between leaves the newest (as if nothing happened), never an older one. */
@@ -564,29 +575,28 @@ static odg_abort_t erase2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_
     const odg_group_t *gr = &d->groups[g];
     uint8_t h[HDR2], t[HDR2];
     uint32_t at = 0, start = gr->nv_addr, end = gr->nv_addr + gr->region, e = 0, b;
+    uint32_t lo = end, hi = end; /* the newest image's bytes in the region */
     int found = newest2(nv, gr, &at, h), fail = found < 0;
     /* an older image in the slot B slot A names, past the region (a region that shrank) */
     if (!fail && nv->read(nv->ctx, start, t, HDR2) == 0 && (b = named_b(gr, t)) >= end && b != at &&
         slot2_read(nv, gr, b, t, 1) == 1) {
-        fail = nv->erase(nv->ctx, b, extent(t)) != 0;
+        fail = wipe(nv, b, b + extent(t));
     }
     if (found > 0) {
         e = at + extent(h);
-        e = at < end && e > end ? end : e; /* the header is what counts */
+        if (at < end) { /* the header is what counts */
+            lo = at;
+            hi = e = e > end ? end : e;
+        }
     }
-    if (found <= 0 || at >= end) {
-        fail = fail || nv->erase(nv->ctx, start, gr->region) != 0;
-    } else {
-        fail = fail || (at > start && nv->erase(nv->ctx, start, at - start) != 0) ||
-               (e < end && nv->erase(nv->ctx, e, end - e) != 0);
-    }
-    fail = fail || (found > 0 && nv->erase(nv->ctx, at, e - at) != 0);
+    fail = fail || wipe(nv, start, lo) || wipe(nv, hi, end) || wipe(nv, at, e);
     return fail ? ODG_ABORT_HARDWARE : ODG_OK;
 }
 
 /* ---- boot migration: docs/persistence.md section 3, odgen/persist/migration.py ----------- */
 
-enum { KEPT = 0, CONVERTED = 1, DEFAULTED = 2, DROPPED = 3, FAILED = -1 };
+/* What became of a stored entry; n[DEFAULTED .. CONVERTED] go to odg_state_t.boot_counts */
+enum { KEPT = 0, DEFAULTED = 1, DROPPED = 2, CONVERTED = 3, FAILED = -1 };
 
 /* UNSIGNEDn -> UNSIGNEDm, INTEGERn -> INTEGERm, UNSIGNEDn -> INTEGERm with m > n. */
 static int widens(uint8_t from, uint8_t to)
@@ -769,11 +779,12 @@ static odg_boot_status_t boot2(const odg_dict_t *d, const odg_nv_driver_t *nv, u
 {
     const odg_group_t *gr = &d->groups[g];
     uint8_t h[HDR2];
-    uint16_t n[4] = {0, 0, 0, 0}; /* entries KEPT, CONVERTED, DEFAULTED, DROPPED */
+    uint16_t n[4] = {0, 0, 0, 0}; /* entries KEPT, DEFAULTED, DROPPED, CONVERTED */
     uint32_t at = 0;
     odg_boot_status_t st;
     odg_abort_t ac = ODG_OK;
-    int k = newest2(nv, gr, &at, h), changed;
+    odg_state_t *s = d->state;
+    int k = newest2(nv, gr, &at, h), changed, i;
     if (k < 0) {
         st = ODG_BOOT_NV_ERROR;
     } else if (k == 0) {
@@ -784,7 +795,7 @@ static odg_boot_status_t boot2(const odg_dict_t *d, const odg_nv_driver_t *nv, u
         if (migrate(d, nv, g, at, n) == 0 && reads_back(nv, gr, at, h)) {
             /* a migrated image is stored, with the A/B commit; the old one stays until it
              * lands (DATA_STORE: no slot beside the old image, which is then migrated again) */
-            changed = n[CONVERTED] || n[DEFAULTED] || n[DROPPED];
+            changed = n[DEFAULTED] || n[DROPPED] || n[CONVERTED];
             if (changed) {
                 ac = store2(d, nv, g);
             }
@@ -793,6 +804,12 @@ static odg_boot_status_t boot2(const odg_dict_t *d, const odg_nv_driver_t *nv, u
                 b->converted = n[CONVERTED];
                 b->defaulted = n[DEFAULTED];
                 b->dropped = n[DROPPED];
+                for (i = 0; i < 3; i++) { /* entries defaulted, dropped, converted */
+                    s->boot_counts[i] = add_sat(s->boot_counts[i], n[i + 1]);
+                }
+                if (n[DEFAULTED] || n[DROPPED]) {
+                    s->boot_seen = (uint8_t)(s->boot_seen | ODG_BOOT_ENTRIES_LOST);
+                }
                 return changed ? ODG_BOOT_MIGRATED : ODG_BOOT_LOADED;
             }
         }
@@ -966,11 +983,6 @@ static odg_boot_status_t boot_group(const odg_dict_t *d, const odg_nv_driver_t *
     return st;
 }
 
-static uint8_t add_sat(uint8_t total, uint16_t n)
-{
-    return (uint8_t)(total + n > 255u ? 255u : total + n);
-}
-
 /* The boot status object: sub g + 1 = status | converted << 8 | defaulted << 16 | dropped << 24 */
 static void report(const odg_dict_t *d, uint8_t g, const odg_boot_t *b)
 {
@@ -1005,12 +1017,6 @@ static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_
             b.status = (uint8_t)boot_group(dict, nv, g, &b);
         }
         s->boot_seen = (uint8_t)(s->boot_seen | 1u << b.status);
-#ifndef ODG_NO_MIGRATION
-        s->boot_seen = (uint8_t)(s->boot_seen | (b.defaulted || b.dropped ? ODG_BOOT_ENTRIES_LOST : 0u));
-        s->boot_counts[0] = add_sat(s->boot_counts[0], b.defaulted);
-        s->boot_counts[1] = add_sat(s->boot_counts[1], b.dropped);
-        s->boot_counts[2] = add_sat(s->boot_counts[2], b.converted);
-#endif
         if (b.status == ODG_BOOT_NV_ERROR && ac == ODG_OK) {
             ac = ODG_ABORT_HARDWARE;
         }
