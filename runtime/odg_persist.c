@@ -408,28 +408,29 @@ static uint32_t named_b(const odg_group_t *gr, const uint8_t *h)
     return gr->nv_addr + r / 2u;
 }
 
-/* The newest valid slot of group `gr` (address in *at, header in h): slot A, slot B of the
- * region, and the slot B slot A's header names. 1 found, 0 none, -1 the driver failed (a
- * failing read past the region means no NV there). */
-static int newest2(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t *at, uint8_t *h)
+/* The newest valid slot of group `gr` (address in at[0], header in h): slot A, slot B of the
+ * region, and the slot B slot A's header names (at[1], 0 when none). 1 found, 0 none, -1 the
+ * driver failed (a failing read past the region means no NV there). */
+static int newest2(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t at[2], uint8_t *h)
 {
     uint8_t t[HDR2];
-    uint32_t cand[3], k, n = 2;
+    uint32_t cand[3], k;
     int v, found = 0;
     cand[0] = gr->nv_addr;
     cand[1] = gr->nv_addr + gr->region / 2u;
-    for (k = 0; k < n; k++) {
+    at[0] = at[1] = 0;
+    for (k = 0; k < 2u + (at[1] != 0u); k++) {
         v = slot2_read(nv, gr, cand[k], t, 1);
         if (v < 0 && cand[k] - gr->nv_addr < gr->region) {
             return -1;
         }
         if (v > 0 && (!found || newer(get32(t + 4), get32(h + 4)))) {
             found = 1;
-            *at = cand[k];
+            at[0] = cand[k];
             odg_copy(h, t, HDR2);
         }
-        if (k == 0u && v >= 0 && (cand[2] = named_b(gr, t)) != 0u) {
-            n = 3;
+        if (k == 0u) {
+            at[1] = cand[2] = named_b(gr, t);
         }
     }
     return found;
@@ -515,18 +516,18 @@ static odg_abort_t store2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_
 {
     const odg_group_t *gr = &d->groups[g];
     uint8_t h[HDR2], t[HDR2];
-    uint32_t at = 0, seq = 1, half = gr->region / 2u, addr = gr->nv_addr, size = image_size(d, g);
+    uint32_t at[2], seq = 1, half = gr->region / 2u, addr = gr->nv_addr, size = image_size(d, g);
     const odg_sub_t *s;
     recs_t r;
     out_t o;
-    int k = newest2(nv, gr, &at, t);
+    int k = newest2(nv, gr, at, t);
     if (k < 0) {
         return ODG_ABORT_HARDWARE;
     }
     if (k) {
         seq = get32(t + 4) + 1u;
-        addr = at == gr->nv_addr + half ? gr->nv_addr : gr->nv_addr + half;
-        if (addr < at + HDR2 + get32(t + 16) && at < addr + half) {
+        addr = at[0] == gr->nv_addr + half ? gr->nv_addr : gr->nv_addr + half;
+        if (addr < at[0] + HDR2 + get32(t + 16) && at[0] < addr + half) {
             return ODG_ABORT_DATA_STORE;
         }
     }
@@ -574,22 +575,21 @@ static odg_abort_t erase2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_
 {
     const odg_group_t *gr = &d->groups[g];
     uint8_t h[HDR2], t[HDR2];
-    uint32_t at = 0, start = gr->nv_addr, end = gr->nv_addr + gr->region, e = 0, b;
+    uint32_t at[2], start = gr->nv_addr, end = gr->nv_addr + gr->region, e = 0;
     uint32_t lo = end, hi = end; /* the newest image's bytes in the region */
-    int found = newest2(nv, gr, &at, h), fail = found < 0;
+    int found = newest2(nv, gr, at, h), fail = found < 0;
     /* an older image in the slot B slot A names, past the region (a region that shrank) */
-    if (!fail && nv->read(nv->ctx, start, t, HDR2) == 0 && (b = named_b(gr, t)) >= end && b != at &&
-        slot2_read(nv, gr, b, t, 1) == 1) {
-        fail = wipe(nv, b, b + extent(t));
+    if (!fail && at[1] >= end && at[1] != at[0] && slot2_read(nv, gr, at[1], t, 1) == 1) {
+        fail = wipe(nv, at[1], at[1] + extent(t));
     }
     if (found > 0) {
-        e = at + extent(h);
-        if (at < end) { /* the header is what counts */
-            lo = at;
+        e = at[0] + extent(h);
+        if (at[0] < end) { /* the header is what counts */
+            lo = at[0];
             hi = e = e > end ? end : e;
         }
     }
-    fail = fail || wipe(nv, start, lo) || wipe(nv, hi, end) || wipe(nv, at, e);
+    fail = fail || wipe(nv, start, lo) || wipe(nv, hi, end) || wipe(nv, at[0], e);
     return fail ? ODG_ABORT_HARDWARE : ODG_OK;
 }
 
@@ -641,34 +641,37 @@ static int resize_string(const odg_nv_driver_t *nv, const odg_sub_t *s, uint8_t 
     return c[0] != 0u || c[1] != 0u ? CONVERTED : KEPT;
 }
 
-/* A string or domain of the same type: keep what fits (resize). */
+/* A string or domain of the same type: keep what fits (resize). An OCTET_STRING and a domain
+ * keep their first bytes (a domain's used ones, after its used length). */
 static int resize(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_sub_t *s, uint32_t sl,
                   uint32_t addr)
 {
-    const odg_domain_t *dm;
-    uint8_t c[4];
-    uint32_t used, n;
-    if (s->type != ODG_T_DOMAIN) {
-        uint8_t *p = odg_value_(d, s);
-        if (s->type == ODG_T_OCTET_STRING) {
-            n = sl < s->size ? sl : s->size;
-            memset(p, 0, s->size);
-            return nv->read(nv->ctx, addr, p, n) != 0 ? FAILED : (sl > s->size ? CONVERTED : KEPT);
+    const odg_domain_t *dm = NULL;
+    uint8_t c[4], *p;
+    uint32_t used = sl, cap = s->size, n;
+    if (IS(s->type, ODG_T_DOMAIN)) {
+        dm = &d->domains[s->offset];
+        if (nv->read(nv->ctx, addr, c, 4) != 0) {
+            return FAILED;
         }
-        return resize_string(nv, s, p, sl, addr);
+        used = get32(c) < sl ? get32(c) : sl;
+        cap = cap < dm->capacity ? cap : dm->capacity;
+        p = dm->data;
+        addr += 4u;
+    } else {
+        p = odg_value_(d, s);
+        if (s->type != ODG_T_OCTET_STRING) {
+            return resize_string(nv, s, p, sl, addr);
+        }
+        memset(p, 0, cap);
     }
-    dm = &d->domains[s->offset];
-    if (nv->read(nv->ctx, addr, c, 4) != 0) {
+    n = used < cap ? used : cap;
+    if ((n > 0u || dm == NULL) && nv->read(nv->ctx, addr, p, n) != 0) {
         return FAILED;
     }
-    used = get32(c);
-    used = used < sl ? used : sl;
-    n = used < s->size ? used : s->size;
-    n = n < dm->capacity ? n : dm->capacity;
-    if (n > 0u && nv->read(nv->ctx, addr + 4u, dm->data, n) != 0) {
-        return FAILED;
+    if (dm != NULL) {
+        *dm->length = n;
     }
-    *dm->length = n;
     return n < used ? CONVERTED : KEPT;
 }
 
@@ -780,11 +783,11 @@ static odg_boot_status_t boot2(const odg_dict_t *d, const odg_nv_driver_t *nv, u
     const odg_group_t *gr = &d->groups[g];
     uint8_t h[HDR2];
     uint16_t n[4] = {0, 0, 0, 0}; /* entries KEPT, DEFAULTED, DROPPED, CONVERTED */
-    uint32_t at = 0;
+    uint32_t at[2];
     odg_boot_status_t st;
     odg_abort_t ac = ODG_OK;
     odg_state_t *s = d->state;
-    int k = newest2(nv, gr, &at, h), changed, i;
+    int k = newest2(nv, gr, at, h), changed, i;
     if (k < 0) {
         st = ODG_BOOT_NV_ERROR;
     } else if (k == 0) {
@@ -792,7 +795,7 @@ static odg_boot_status_t boot2(const odg_dict_t *d, const odg_nv_driver_t *nv, u
     } else {
         defaults(d, g);
         st = ODG_BOOT_NV_ERROR; /* unless the image reads the same a second time */
-        if (migrate(d, nv, g, at, n) == 0 && reads_back(nv, gr, at, h)) {
+        if (migrate(d, nv, g, at[0], n) == 0 && reads_back(nv, gr, at[0], h)) {
             /* a migrated image is stored, with the A/B commit; the old one stays until it
              * lands (DATA_STORE: no slot beside the old image, which is then migrated again) */
             changed = n[DEFAULTED] || n[DROPPED] || n[CONVERTED];
