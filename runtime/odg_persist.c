@@ -688,7 +688,7 @@ static int restore(const odg_dict_t *d, const odg_nv_driver_t *nv, uint32_t pos,
     }
     /* a number of a type this build serves: no wider than odg_num_t (ODG_CFG_INT64) */
     if ((s->type != st[3] && !widens(st[3], s->type)) || type_bit(st[3]) == 0u ||
-        num_size[st[3]] == 0u || sl != num_size[st[3]]) {
+        sl == 0u || sl != num_size[st[3]]) {
         return DEFAULTED; /* narrowed, retyped, or a length that does not fit its type */
     }
     if (nv->read(nv->ctx, addr, c, sl) != 0) {
