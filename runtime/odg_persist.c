@@ -284,7 +284,7 @@ typedef struct recs {
     uint16_t pos;         /* position in dict->subs after its descriptor */
     uint16_t left;        /* records still to come */
     uint8_t storage;      /* ODG_S_PERSIST | group << 2 */
-    uint8_t packed;       /* the descriptor is that of the elements of a packed ARRAY or RECORD */
+    const odg_sub_t *of;  /* the descriptor of the packed elements being walked, or NULL */
     odg_sub_t elem;       /* the descriptor made for an element of a packed ARRAY */
 } recs_t;
 
@@ -295,7 +295,7 @@ static void recs_start(recs_t *r, const odg_dict_t *d, uint8_t g)
     r->pos = 0;
     r->left = d->groups[g].n_layout;
     r->storage = (uint8_t)(ODG_S_PERSIST | (unsigned)g << 2);
-    r->packed = 0;
+    r->of = NULL;
 }
 
 /* The next persisted sub-entry (its descriptor at position r->pos - 1), or NULL after the last. */
@@ -304,19 +304,21 @@ static const odg_sub_t *recs_next(recs_t *r)
     const odg_dict_t *d = r->d;
     const odg_sub_t *s = &r->elem;
     while (r->left > 0u) {
-        if (ODG_CFG_PACKED && r->packed && r->elem.sub < d->subs[r->pos - 1u].sub) {
-            odg_element_(&d->subs[r->pos - 1u], (uint8_t)(r->elem.sub + 1u), &r->elem);
+        if (ODG_CFG_PACKED && r->of != NULL && r->elem.sub < r->of->sub) {
+            odg_element_(r->of, (uint8_t)(r->elem.sub + 1u), &r->elem);
             s = &r->elem;
         } else if (r->pos < d->n_subs) {
             s = &d->subs[r->pos++];
-            r->elem.sub = 0;
             while ((uint32_t)r->e->first + r->e->count < r->pos) {
                 r->e++;
             }
-            /* the elements of a packed ARRAY or RECORD come from the next calls */
-            r->packed = ODG_CFG_PACKED && s->storage == r->storage &&
-                        (r->e->code & ODG_E_PACKED) && s->sub > 0u;
-            if (s->storage != r->storage || r->packed) {
+            r->of = NULL;
+            if (s->storage != r->storage) {
+                continue;
+            }
+            if (ODG_CFG_PACKED && (r->e->code & ODG_E_PACKED) && s->sub > 0u) {
+                r->of = s; /* its elements come from the next turns */
+                r->elem.sub = 0;
                 continue;
             }
         } else {
