@@ -70,12 +70,13 @@ What was tried, and the measured reason where a FLASH goal is not met (DS301 bse
   groups (`ODG_CFG_PERSIST_STREAMS`, `ODG_CFG_PERSIST_ODG1`, `ODG_CFG_PERSIST_STATUS`; numbers as
   32 bits without 64-bit types), the layout descriptors read from the tables instead of const
   tables (demoDevice: 1128 B), CRC-32 bit by bit (no 64-byte table), no libc memcmp. Then
-  5632 -> 5448 B (demoDevice 7764 -> 7504 B), behaviour and NV format unchanged: both image
+  5632 -> 5408 B (demoDevice 7764 -> 7464 B), behaviour and NV format unchanged: both image
   formats share the header read and the CRC loop, the read-back of a store and the boot's second
   read compare the CRC instead of the header bytes, the slot B that slot A names is found once
-  for the restore too, a packed array's elements come from one path of the record walk, the
-  erasures of a restore are ranges, a domain is written by the string loop and resized by the
-  OCTET_STRING path, and the migration counts go from the boot of a group straight to the totals.
+  for the restore too, the record walk keeps the descriptor of the packed elements it walks and
+  makes them on one path, the erasures of a restore are ranges, a domain is written by the
+  string loop and resized by the OCTET_STRING path, and the migration counts go from the boot
+  of a group straight to the totals.
 - Persistence without migration (`[persist] migration = false`), 3700 -> 3504 B (demoDevice 5536
   -> 5048 B, 316 B of it the reset's copies above): the generated configuration leaves the
   migration out (`ODG_CFG_PERSIST_MIGRATION 0`, which before took `-DODG_NO_MIGRATION` by
