@@ -114,33 +114,49 @@ static int newer(uint32_t a, uint32_t b)
     return a - b - 1u < 0x7FFFFFFFu;
 }
 
+/* Read the `n`-byte header of the slot at `addr` into `h`: 1 when it starts with `magic`, 0 when
+ * not, -1 when the driver failed. Both formats have it so. */
+static int hdr_read(const odg_nv_driver_t *nv, uint32_t addr, uint8_t *h, uint32_t n,
+                    uint32_t magic)
+{
+    if (nv->read(nv->ctx, addr, h, n) != 0) {
+        return -1;
+    }
+    return get32(h) == magic;
+}
+
+/* Whether the CRC-32 that ends the `n`-byte header `h` of the slot at `addr` matches the header
+ * before it and the `len` image bytes after it (read into `dst` when not NULL, which must hold
+ * them): 1 yes, 0 no, -1 the driver failed. Both formats have it so. */
+static int crc_ok(const odg_nv_driver_t *nv, uint32_t addr, const uint8_t *h, uint32_t n,
+                  uint32_t len, uint8_t *dst)
+{
+    uint8_t chunk[CHUNK];
+    uint32_t crc = odg_crc32(0, h, n - 4u), off, k;
+    for (off = 0; off < len; off += k) {
+        uint8_t *p = dst ? dst + off : chunk;
+        k = len - off;
+        if (dst == NULL && k > CHUNK) {
+            k = CHUNK;
+        }
+        if (nv->read(nv->ctx, addr + n + off, p, k) != 0) {
+            return -1;
+        }
+        crc = odg_crc32(crc, p, k);
+    }
+    return crc == get32(h + n - 4u);
+}
+
 /* Read and check the slot at `addr` (header into `hdr`; the image into `dst` when not NULL,
  * which must hold `max` bytes). 1: valid, 0: not, -1: the driver failed. */
 static int slot_read(const odg_nv_driver_t *nv, uint32_t addr, uint32_t max, uint8_t *hdr,
                      uint8_t *dst)
 {
-    uint8_t chunk[CHUNK];
-    uint32_t crc, len, off, n;
-    if (nv->read(nv->ctx, addr, hdr, HDR) != 0) {
-        return -1;
+    int v = hdr_read(nv, addr, hdr, HDR, MAGIC);
+    if (v != 1 || get32(hdr + 12) > max) {
+        return v < 0 ? -1 : 0;
     }
-    len = get32(hdr + 12);
-    if (get32(hdr) != MAGIC || len > max) {
-        return 0;
-    }
-    crc = odg_crc32(0, hdr, 16);
-    for (off = 0; off < len; off += n) {
-        uint8_t *p = dst ? dst + off : chunk;
-        n = len - off;
-        if (dst == NULL && n > CHUNK) {
-            n = CHUNK;
-        }
-        if (nv->read(nv->ctx, addr + HDR + off, p, n) != 0) {
-            return -1;
-        }
-        crc = odg_crc32(crc, p, n);
-    }
-    return crc == get32(hdr + 16);
+    return crc_ok(nv, addr, hdr, HDR, get32(hdr + 12), dst);
 }
 
 /* Check both slots of group `g`: -2 on a driver error, -1 when neither is valid, else the
@@ -187,6 +203,12 @@ static odg_boot_status_t no_image(const odg_nv_driver_t *nv, const odg_group_t *
     return v < 0 ? ODG_BOOT_NV_ERROR : (v ? ODG_BOOT_DEFAULTS : ODG_BOOT_DAMAGED);
 }
 
+/* total + n, at most 255 */
+static uint8_t add_sat(uint8_t total, uint16_t n)
+{
+    return (uint8_t)(total + n > 255u ? 255u : total + n);
+}
+
 /* Defaults into the mirror of group `g`, with the node-id added to $NODEID values (what the
  * generated reset does for the whole dictionary). */
 static void defaults(const odg_dict_t *d, uint8_t g)
@@ -204,17 +226,6 @@ static void defaults(const odg_dict_t *d, uint8_t g)
 }
 
 #ifndef ODG_NO_MIGRATION
-/* Whether `n` bytes differ (headers read back; a loop costs less FLASH than libc's memcmp). */
-static int differ(const uint8_t *a, const uint8_t *b, uint32_t n)
-{
-    while (n-- > 0u) {
-        if (a[n] != b[n]) {
-            return 1;
-        }
-    }
-    return 0;
-}
-
 /* ---- "ODG2": self-describing images, migrated at boot (docs/persistence.md) -------------- */
 
 #define HDR2 ODG_PERSIST_HEADER2_SIZE
@@ -273,6 +284,7 @@ typedef struct recs {
     uint16_t pos;         /* position in dict->subs after its descriptor */
     uint16_t left;        /* records still to come */
     uint8_t storage;      /* ODG_S_PERSIST | group << 2 */
+    const odg_sub_t *of;  /* the descriptor of the packed elements being walked, or NULL */
     odg_sub_t elem;       /* the descriptor made for an element of a packed ARRAY */
 } recs_t;
 
@@ -283,7 +295,7 @@ static void recs_start(recs_t *r, const odg_dict_t *d, uint8_t g)
     r->pos = 0;
     r->left = d->groups[g].n_layout;
     r->storage = (uint8_t)(ODG_S_PERSIST | (unsigned)g << 2);
-    r->elem.sub = 0;
+    r->of = NULL;
 }
 
 /* The next persisted sub-entry (its descriptor at position r->pos - 1), or NULL after the last. */
@@ -292,21 +304,22 @@ static const odg_sub_t *recs_next(recs_t *r)
     const odg_dict_t *d = r->d;
     const odg_sub_t *s = &r->elem;
     while (r->left > 0u) {
-        if (ODG_CFG_PACKED && r->elem.sub != 0u && r->elem.sub < d->subs[r->pos - 1u].sub) {
-            odg_element_(&d->subs[r->pos - 1u], (uint8_t)(r->elem.sub + 1u), &r->elem);
+        if (ODG_CFG_PACKED && r->of != NULL && r->elem.sub < r->of->sub) {
+            odg_element_(r->of, (uint8_t)(r->elem.sub + 1u), &r->elem);
             s = &r->elem;
         } else if (r->pos < d->n_subs) {
             s = &d->subs[r->pos++];
-            r->elem.sub = 0;
             while ((uint32_t)r->e->first + r->e->count < r->pos) {
                 r->e++;
             }
+            r->of = NULL;
             if (s->storage != r->storage) {
                 continue;
             }
             if (ODG_CFG_PACKED && (r->e->code & ODG_E_PACKED) && s->sub > 0u) {
-                odg_element_(s, 1u, &r->elem);
-                s = &r->elem;
+                r->of = s; /* its elements come from the next turns */
+                r->elem.sub = 0;
+                continue;
             }
         } else {
             break;
@@ -343,29 +356,20 @@ static uint32_t image_size(const odg_dict_t *d, uint8_t g)
 static int slot2_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t addr, uint8_t *h,
                       int ours)
 {
-    uint8_t c[CHUNK];
-    uint32_t crc, len, region, off, n, cnt, sum, prev = 0, i;
-    if (nv->read(nv->ctx, addr, h, HDR2) != 0) {
-        return -1;
-    }
+    uint8_t c[REC];
+    uint32_t len, region, cnt, sum, prev = 0, i;
+    int v = hdr_read(nv, addr, h, HDR2, MAGIC2);
     region = get32(h + 12);
     len = get32(h + 16);
-    if (get32(h) != MAGIC2 || region > 0x01000000u || region / 2u < HDR2 + 2u || len < 2u ||
+    if (v != 1 || region > 0x01000000u || region / 2u < HDR2 + 2u || len < 2u ||
         len > region / 2u - HDR2 ||
         (ours && (get32(h + 8) != gr->id ||
                   (addr != gr->nv_addr && addr - gr->nv_addr != region / 2u)))) {
-        return 0;
+        return v < 0 ? -1 : 0;
     }
-    crc = odg_crc32(0, h, 20);
-    for (off = 0; off < len; off += n) {
-        n = len - off < CHUNK ? len - off : CHUNK;
-        if (nv->read(nv->ctx, addr + HDR2 + off, c, n) != 0) {
-            return -1;
-        }
-        crc = odg_crc32(crc, c, n);
-    }
-    if (crc != get32(h + 20) || nv->read(nv->ctx, addr + HDR2, c, 2) != 0) {
-        return crc != get32(h + 20) ? 0 : -1;
+    v = crc_ok(nv, addr, h, HDR2, len, NULL);
+    if (v != 1 || nv->read(nv->ctx, addr + HDR2, c, 2) != 0) {
+        return v == 0 ? 0 : -1;
     }
     cnt = get16(c);
     for (i = 0, sum = 2u + REC * cnt; i < cnt && sum <= len; i++) {
@@ -379,6 +383,15 @@ static int slot2_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t
         sum += value_size(c);
     }
     return sum == len;
+}
+
+/* Whether the slot at `addr` reads back as the valid image whose header is `h`: the CRC, which
+ * covers the rest of the header and the image, is the same (the ODG1 store checks the same). */
+static int reads_back(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t addr,
+                      const uint8_t *h)
+{
+    uint8_t t[HDR2];
+    return slot2_read(nv, gr, addr, t, 1) == 1 && get32(t + 20) == get32(h + 20);
 }
 
 /* The slot B named by the header of slot A (`h`, read but not checked): the middle of the
@@ -397,28 +410,29 @@ static uint32_t named_b(const odg_group_t *gr, const uint8_t *h)
     return gr->nv_addr + r / 2u;
 }
 
-/* The newest valid slot of group `gr` (address in *at, header in h): slot A, slot B of the
- * region, and the slot B slot A's header names. 1 found, 0 none, -1 the driver failed (a
- * failing read past the region means no NV there). */
-static int newest2(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t *at, uint8_t *h)
+/* The newest valid slot of group `gr` (address in at[0], header in h): slot A, slot B of the
+ * region, and the slot B slot A's header names (at[1], 0 when none). 1 found, 0 none, -1 the
+ * driver failed (a failing read past the region means no NV there). */
+static int newest2(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t at[2], uint8_t *h)
 {
     uint8_t t[HDR2];
-    uint32_t cand[3], k, n = 2;
+    uint32_t cand[3], k;
     int v, found = 0;
     cand[0] = gr->nv_addr;
     cand[1] = gr->nv_addr + gr->region / 2u;
-    for (k = 0; k < n; k++) {
+    at[0] = at[1] = 0;
+    for (k = 0; k < 2u + (at[1] != 0u); k++) {
         v = slot2_read(nv, gr, cand[k], t, 1);
         if (v < 0 && cand[k] - gr->nv_addr < gr->region) {
             return -1;
         }
         if (v > 0 && (!found || newer(get32(t + 4), get32(h + 4)))) {
             found = 1;
-            *at = cand[k];
+            at[0] = cand[k];
             odg_copy(h, t, HDR2);
         }
-        if (k == 0u && v >= 0 && (cand[2] = named_b(gr, t)) != 0u) {
-            n = 3;
+        if (k == 0u) {
+            at[1] = cand[2] = named_b(gr, t);
         }
     }
     return found;
@@ -463,23 +477,21 @@ static void emit(out_t *o, odg_num_t v, uint32_t n)
 }
 
 /* One value in wire format: strings padded with zeros after their terminator, a domain as its
- * used length and then `size` bytes of its buffer. */
+ * used length and then `size` bytes of its buffer, zeros after the used ones. */
 static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
 {
-    uint32_t i, n = s->size, zero = 0;
+    uint32_t i, n = s->size, keep = n, zero = 0;
     const uint8_t *p;
     if (IS(s->type, ODG_T_DOMAIN)) {
         const odg_domain_t *dm = &d->domains[s->offset];
-        uint32_t used = *dm->length;
-        used = used < n ? used : n;
-        used = used < dm->capacity ? used : dm->capacity;
-        emit(o, used, 4);
-        for (i = 0; i < n; i++) {
-            emit(o, i < used ? dm->data[i] : 0u, 1);
-        }
-        return;
+        keep = *dm->length;
+        keep = keep < n ? keep : n;
+        keep = keep < dm->capacity ? keep : dm->capacity;
+        emit(o, keep, 4);
+        p = dm->data;
+    } else {
+        p = odg_value_(d, s);
     }
-    p = odg_value_(d, s);
     if (!(type_bit(s->type) & STREAMS)) {
         emit(o, odg_load_(p, n), n);
     } else if (IS(s->type, ODG_T_UNICODE_STRING)) {
@@ -491,7 +503,7 @@ static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
         }
     } else {
         for (i = 0; i < n; i++) {
-            zero |= s->type == ODG_T_VISIBLE_STRING && p[i] == 0u;
+            zero |= i >= keep || (s->type == ODG_T_VISIBLE_STRING && p[i] == 0u);
             emit(o, zero ? 0u : p[i], 1);
         }
     }
@@ -506,18 +518,18 @@ static odg_abort_t store2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_
 {
     const odg_group_t *gr = &d->groups[g];
     uint8_t h[HDR2], t[HDR2];
-    uint32_t at = 0, seq = 1, half = gr->region / 2u, addr = gr->nv_addr, size = image_size(d, g);
+    uint32_t at[2], seq = 1, half = gr->region / 2u, addr = gr->nv_addr, size = image_size(d, g);
     const odg_sub_t *s;
     recs_t r;
     out_t o;
-    int k = newest2(nv, gr, &at, t);
+    int k = newest2(nv, gr, at, t);
     if (k < 0) {
         return ODG_ABORT_HARDWARE;
     }
     if (k) {
         seq = get32(t + 4) + 1u;
-        addr = at == gr->nv_addr + half ? gr->nv_addr : gr->nv_addr + half;
-        if (addr < at + HDR2 + get32(t + 16) && at < addr + half) {
+        addr = at[0] == gr->nv_addr + half ? gr->nv_addr : gr->nv_addr + half;
+        if (addr < at[0] + HDR2 + get32(t + 16) && at[0] < addr + half) {
             return ODG_ABORT_DATA_STORE;
         }
     }
@@ -536,9 +548,7 @@ static odg_abort_t store2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_
     o.fail = nv->erase(nv->ctx, addr, half) != 0;
     emit(&o, gr->n_layout, 2);
     for (recs_start(&r, d, g); (s = recs_next(&r)) != NULL;) { /* the layout descriptor */
-        emit(&o, r.key >> 8, 2);
-        emit(&o, s->sub, 1);
-        emit(&o, s->type, 1);
+        emit(&o, r.key >> 8 | (uint32_t)s->sub << 16 | (uint32_t)s->type << 24, 4);
         emit(&o, s->size, 2);
     }
     for (recs_start(&r, d, g); (s = recs_next(&r)) != NULL;) {
@@ -548,11 +558,16 @@ static odg_abort_t store2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_
     /* the CRC covers the bytes written; the read-back below checks that they landed */
     put32(h + 20, o.crc);
     if (o.fail || nv->write(nv->ctx, addr + 4u, h + 4, HDR2 - 4u) != 0 ||
-        nv->write(nv->ctx, addr, h, 4u) != 0 || slot2_read(nv, gr, addr, t, 1) != 1 ||
-        differ(t, h, HDR2)) {
+        nv->write(nv->ctx, addr, h, 4u) != 0 || !reads_back(nv, gr, addr, h)) {
         return ODG_ABORT_HARDWARE;
     }
     return ODG_OK;
+}
+
+/* Erase the bytes from `from` up to `to` (none when to <= from): whether the driver failed. */
+static int wipe(const odg_nv_driver_t *nv, uint32_t from, uint32_t to)
+{
+    return from < to && nv->erase(nv->ctx, from, to - from) != 0;
 }
 
 /* Make the next boot of group `g` use the defaults: erase its images outside the region (of
@@ -562,30 +577,28 @@ static odg_abort_t erase2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_
 {
     const odg_group_t *gr = &d->groups[g];
     uint8_t h[HDR2], t[HDR2];
-    uint32_t at = 0, start = gr->nv_addr, end = gr->nv_addr + gr->region, e = 0, b;
-    int found = newest2(nv, gr, &at, h), fail = found < 0;
+    uint32_t at[2], start = gr->nv_addr, end = gr->nv_addr + gr->region, e = 0;
+    uint32_t lo = end, hi = end; /* the newest image's bytes in the region */
+    int found = newest2(nv, gr, at, h), fail = found < 0;
     /* an older image in the slot B slot A names, past the region (a region that shrank) */
-    if (!fail && nv->read(nv->ctx, start, t, HDR2) == 0 && (b = named_b(gr, t)) >= end && b != at &&
-        slot2_read(nv, gr, b, t, 1) == 1) {
-        fail = nv->erase(nv->ctx, b, extent(t)) != 0;
+    if (!fail && at[1] >= end && at[1] != at[0] && slot2_read(nv, gr, at[1], t, 1) == 1) {
+        fail = wipe(nv, at[1], at[1] + extent(t));
     }
     if (found > 0) {
-        e = at + extent(h);
-        e = at < end && e > end ? end : e; /* the header is what counts */
+        e = at[0] + extent(h);
+        if (at[0] < end) { /* the header is what counts */
+            lo = at[0];
+            hi = e = e > end ? end : e;
+        }
     }
-    if (found <= 0 || at >= end) {
-        fail = fail || nv->erase(nv->ctx, start, gr->region) != 0;
-    } else {
-        fail = fail || (at > start && nv->erase(nv->ctx, start, at - start) != 0) ||
-               (e < end && nv->erase(nv->ctx, e, end - e) != 0);
-    }
-    fail = fail || (found > 0 && nv->erase(nv->ctx, at, e - at) != 0);
+    fail = fail || wipe(nv, start, lo) || wipe(nv, hi, end) || wipe(nv, at[0], e);
     return fail ? ODG_ABORT_HARDWARE : ODG_OK;
 }
 
 /* ---- boot migration: docs/persistence.md section 3, odgen/persist/migration.py ----------- */
 
-enum { KEPT = 0, CONVERTED = 1, DEFAULTED = 2, FAILED = -1 };
+/* What became of a stored entry; n[DEFAULTED .. CONVERTED] go to odg_state_t.boot_counts */
+enum { KEPT = 0, DEFAULTED = 1, DROPPED = 2, CONVERTED = 3, FAILED = -1 };
 
 /* UNSIGNEDn -> UNSIGNEDm, INTEGERn -> INTEGERm, UNSIGNEDn -> INTEGERm with m > n. */
 static int widens(uint8_t from, uint8_t to)
@@ -630,34 +643,37 @@ static int resize_string(const odg_nv_driver_t *nv, const odg_sub_t *s, uint8_t 
     return c[0] != 0u || c[1] != 0u ? CONVERTED : KEPT;
 }
 
-/* A string or domain of the same type: keep what fits (resize). */
+/* A string or domain of the same type: keep what fits (resize). An OCTET_STRING and a domain
+ * keep their first bytes (a domain's used ones, after its used length). */
 static int resize(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_sub_t *s, uint32_t sl,
                   uint32_t addr)
 {
-    const odg_domain_t *dm;
-    uint8_t c[4];
-    uint32_t used, n;
-    if (s->type != ODG_T_DOMAIN) {
-        uint8_t *p = odg_value_(d, s);
-        if (s->type == ODG_T_OCTET_STRING) {
-            n = sl < s->size ? sl : s->size;
-            memset(p, 0, s->size);
-            return nv->read(nv->ctx, addr, p, n) != 0 ? FAILED : (sl > s->size ? CONVERTED : KEPT);
+    const odg_domain_t *dm = NULL;
+    uint8_t c[4], *p;
+    uint32_t used = sl, cap = s->size, n;
+    if (IS(s->type, ODG_T_DOMAIN)) {
+        dm = &d->domains[s->offset];
+        if (nv->read(nv->ctx, addr, c, 4) != 0) {
+            return FAILED;
         }
-        return resize_string(nv, s, p, sl, addr);
+        used = get32(c) < sl ? get32(c) : sl;
+        cap = cap < dm->capacity ? cap : dm->capacity;
+        p = dm->data;
+        addr += 4u;
+    } else {
+        p = odg_value_(d, s);
+        if (s->type != ODG_T_OCTET_STRING) {
+            return resize_string(nv, s, p, sl, addr);
+        }
+        memset(p, 0, cap);
     }
-    dm = &d->domains[s->offset];
-    if (nv->read(nv->ctx, addr, c, 4) != 0) {
+    n = used < cap ? used : cap;
+    if ((n > 0u || dm == NULL) && nv->read(nv->ctx, addr, p, n) != 0) {
         return FAILED;
     }
-    used = get32(c);
-    used = used < sl ? used : sl;
-    n = used < s->size ? used : s->size;
-    n = n < dm->capacity ? n : dm->capacity;
-    if (n > 0u && nv->read(nv->ctx, addr + 4u, dm->data, n) != 0) {
-        return FAILED;
+    if (dm != NULL) {
+        *dm->length = n;
     }
-    *dm->length = n;
     return n < used ? CONVERTED : KEPT;
 }
 
@@ -674,7 +690,7 @@ static int restore(const odg_dict_t *d, const odg_nv_driver_t *nv, uint32_t pos,
     }
     /* a number of a type this build serves: no wider than odg_num_t (ODG_CFG_INT64) */
     if ((s->type != st[3] && !widens(st[3], s->type)) || type_bit(st[3]) == 0u ||
-        num_size[st[3]] == 0u || sl != num_size[st[3]]) {
+        sl == 0u || sl != num_size[st[3]]) {
         return DEFAULTED; /* narrowed, retyped, or a length that does not fit its type */
     }
     if (nv->read(nv->ctx, addr, c, sl) != 0) {
@@ -692,12 +708,13 @@ static int restore(const odg_dict_t *d, const odg_nv_driver_t *nv, uint32_t pos,
 }
 
 /* Every entry of group `g` from the image at `at`, merged by key with the firmware's layout;
- * the mirror holds the defaults before. Counts into `b`; -1 when the driver failed. */
+ * the mirror holds the defaults before. Counts into n[KEPT .. DROPPED]; -1 when the driver
+ * failed. */
 static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, uint32_t at,
-                   odg_boot_t *b)
+                   uint16_t n[4])
 {
     uint8_t st[REC];
-    uint32_t base = at + HDR2, cnt, j = 0, vo;
+    uint32_t base = at + HDR2, cnt, j = 0, vo, key;
     const odg_sub_t *s;
     recs_t fw;
     int have = 0, r;
@@ -708,31 +725,30 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
     vo = base + 2u + REC * cnt;
     for (recs_start(&fw, d, g); (s = recs_next(&fw)) != NULL;) {
         r = DEFAULTED;
-        for (;;) { /* stored entries before this key are no longer in the group */
-            if (!have && j < cnt && nv->read(nv->ctx, base + 2u + REC * j, st, REC) != 0) {
+        while (j < cnt) { /* stored entries before this key are no longer in the group */
+            if (!have && nv->read(nv->ctx, base + 2u + REC * j, st, REC) != 0) {
                 return -1;
             }
-            have = j < cnt;
-            if (!have || rec_key(st) > fw.key) {
+            have = 1;
+            key = rec_key(st);
+            if (key > fw.key) {
                 break; /* not stored: the default */
             }
-            if (rec_key(st) < fw.key) {
-                b->dropped++;
+            if (key < fw.key) {
+                n[DROPPED]++;
             } else if ((r = restore(d, nv, fw.pos - 1u, s, st, vo)) == FAILED) {
                 return -1;
             }
             vo += value_size(st);
             j++;
             have = 0;
-            if (rec_key(st) == fw.key) {
+            if (key == fw.key) {
                 break;
             }
         }
-        b->kept = (uint16_t)(b->kept + (r == KEPT));
-        b->converted = (uint16_t)(b->converted + (r == CONVERTED));
-        b->defaulted = (uint16_t)(b->defaulted + (r == DEFAULTED));
+        n[r]++;
     }
-    b->dropped = (uint16_t)(b->dropped + (cnt - j));
+    n[DROPPED] = (uint16_t)(n[DROPPED] + (cnt - j));
     return 0;
 }
 
@@ -767,11 +783,13 @@ static odg_boot_status_t boot2(const odg_dict_t *d, const odg_nv_driver_t *nv, u
                                odg_boot_t *b)
 {
     const odg_group_t *gr = &d->groups[g];
-    uint8_t h[HDR2], t[HDR2];
-    uint32_t at = 0;
+    uint8_t h[HDR2];
+    uint16_t n[4] = {0, 0, 0, 0}; /* entries KEPT, DEFAULTED, DROPPED, CONVERTED */
+    uint32_t at[2];
     odg_boot_status_t st;
-    odg_abort_t ac;
-    int k = newest2(nv, gr, &at, h);
+    odg_abort_t ac = ODG_OK;
+    odg_state_t *s = d->state;
+    int k = newest2(nv, gr, at, h), changed, i;
     if (k < 0) {
         st = ODG_BOOT_NV_ERROR;
     } else if (k == 0) {
@@ -779,19 +797,27 @@ static odg_boot_status_t boot2(const odg_dict_t *d, const odg_nv_driver_t *nv, u
     } else {
         defaults(d, g);
         st = ODG_BOOT_NV_ERROR; /* unless the image reads the same a second time */
-        if (migrate(d, nv, g, at, b) == 0 && slot2_read(nv, gr, at, t, 1) == 1 &&
-            !differ(t, h, HDR2)) {
-            if (!b->converted && !b->defaulted && !b->dropped) {
-                return ODG_BOOT_LOADED;
+        if (migrate(d, nv, g, at[0], n) == 0 && reads_back(nv, gr, at[0], h)) {
+            /* a migrated image is stored, with the A/B commit; the old one stays until it
+             * lands (DATA_STORE: no slot beside the old image, which is then migrated again) */
+            changed = n[DEFAULTED] || n[DROPPED] || n[CONVERTED];
+            if (changed) {
+                ac = store2(d, nv, g);
             }
-            /* the migrated image, with the A/B commit; the old one stays until it lands
-             * (DATA_STORE: no slot beside the old image, which is then migrated again) */
-            ac = store2(d, nv, g);
             if (ac == ODG_OK || ac == ODG_ABORT_DATA_STORE) {
-                return ODG_BOOT_MIGRATED;
+                b->kept = n[KEPT];
+                b->converted = n[CONVERTED];
+                b->defaulted = n[DEFAULTED];
+                b->dropped = n[DROPPED];
+                for (i = 0; i < 3; i++) { /* entries defaulted, dropped, converted */
+                    s->boot_counts[i] = add_sat(s->boot_counts[i], n[i + 1]);
+                }
+                if (n[DEFAULTED] || n[DROPPED]) {
+                    s->boot_seen = (uint8_t)(s->boot_seen | ODG_BOOT_ENTRIES_LOST);
+                }
+                return changed ? ODG_BOOT_MIGRATED : ODG_BOOT_LOADED;
             }
         }
-        b->kept = b->converted = b->defaulted = b->dropped = 0;
     }
     defaults(d, g);
     if (st != ODG_BOOT_NV_ERROR && store2(d, nv, g) != ODG_OK) {
@@ -962,11 +988,6 @@ static odg_boot_status_t boot_group(const odg_dict_t *d, const odg_nv_driver_t *
     return st;
 }
 
-static uint8_t add_sat(uint8_t total, uint16_t n)
-{
-    return (uint8_t)(total + n > 255u ? 255u : total + n);
-}
-
 /* The boot status object: sub g + 1 = status | converted << 8 | defaulted << 16 | dropped << 24 */
 static void report(const odg_dict_t *d, uint8_t g, const odg_boot_t *b)
 {
@@ -1001,12 +1022,6 @@ static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_
             b.status = (uint8_t)boot_group(dict, nv, g, &b);
         }
         s->boot_seen = (uint8_t)(s->boot_seen | 1u << b.status);
-#ifndef ODG_NO_MIGRATION
-        s->boot_seen = (uint8_t)(s->boot_seen | (b.defaulted || b.dropped ? ODG_BOOT_ENTRIES_LOST : 0u));
-        s->boot_counts[0] = add_sat(s->boot_counts[0], b.defaulted);
-        s->boot_counts[1] = add_sat(s->boot_counts[1], b.dropped);
-        s->boot_counts[2] = add_sat(s->boot_counts[2], b.converted);
-#endif
         if (b.status == ODG_BOOT_NV_ERROR && ac == ODG_OK) {
             ac = ODG_ABORT_HARDWARE;
         }
