@@ -77,7 +77,7 @@ class StorageStruct:
     def qualifier(self) -> str:
         return "const " if self.const else ""
 
-    @property
+    @functools.cached_property  # the template asks twice; asked once the members are complete
     def copied(self) -> bool:
         """Whether the reset copies the defaults with odg_copy rather than assigning the struct.
         A persistence group's defaults are in FLASH for the persistence layer anyway; a RAM block
