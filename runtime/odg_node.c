@@ -49,7 +49,7 @@ odg_abort_t odg_node_check_(odg_node_t *n, uint16_t index, uint8_t sub, const ui
 {
     uint32_t v = 0;
     if (index == 0x1019u) {
-        return odg_sync_check_(n, index);
+        return odg_sync_check_(n, data, len);
     }
     if ((index != 0x1003u && index != 0x1016u && (index < 0x1400u || index >= 0x1C00u)) || len > 4u) {
         return ODG_OK; /* only 0x1003, 0x1016, 0x1019 and PDO parameters have rules of their own */

@@ -68,7 +68,7 @@ void odg_emcy_tick_(odg_node_t *n, uint32_t ms);
 
 /* odg_sync.c: the SYNC producer */
 void odg_sync_tick_(odg_node_t *n, uint32_t ms);
-odg_abort_t odg_sync_check_(const odg_node_t *n, uint16_t index); /* before a write to 0x1019 */
+odg_abort_t odg_sync_check_(const odg_node_t *n, const uint8_t *data, uint32_t len); /* before a write to 0x1019 */
 
 /* odg_hb.c: the heartbeat consumer, node and life guarding, 0x1029 */
 void odg_hb_load_(odg_node_t *n);

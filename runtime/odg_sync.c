@@ -7,7 +7,8 @@
  * one byte, counting 1..value and again from 1; with 0 (or no 0x1019) the frame is empty.
  * The counter starts at 1 whenever the production starts. The node's own synchronous PDOs
  * act on its SYNC as on any other. 0x1019 may only be written while 0x1006 is 0
- * (0x08000022 otherwise), as CiA 301 requires. Time runs in the ticks' milliseconds.
+ * (0x08000022 otherwise), as CiA 301 requires, and only with 0 or 2..240: CiA 301 reserves 1
+ * and 241..255 (0x06090030). Time runs in the ticks' milliseconds.
  */
 #include "odg_node_impl.h"
 
@@ -44,7 +45,10 @@ void odg_sync_tick_(odg_node_t *n, uint32_t ms)
     }
 }
 
-odg_abort_t odg_sync_check_(const odg_node_t *n, uint16_t index)
+odg_abort_t odg_sync_check_(const odg_node_t *n, const uint8_t *data, uint32_t len)
 {
-    return index == 0x1019u && odg_node_get_or_(n, 0x1006, 0, 0) != 0u ? ODG_ABORT_DATA_STATE : ODG_OK;
+    if (len == 1u && (data[0] == 1u || data[0] > 240u)) {
+        return ODG_ABORT_VALUE_RANGE; /* reserved counter overflow values */
+    }
+    return odg_node_get_or_(n, 0x1006, 0, 0) != 0u ? ODG_ABORT_DATA_STATE : ODG_OK;
 }

@@ -684,7 +684,7 @@ static void test_error_register(void)
 }
 
 /* SYNC producer: 0x1005 bit 30 and 0x1006 (µs); counter 1..0x1019; TPDO2 (every 3rd SYNC)
- * follows the node's own SYNC; 0x1019 only while 0x1006 is 0. */
+ * follows the node's own SYNC; 0x1019 only while 0x1006 is 0, and not 1 or 241..255. */
 static void test_sync_producer(void)
 {
     unsigned k;
@@ -695,6 +695,10 @@ static void test_sync_producer(void)
     CHECK_EQ(count_id(0x80), 0);
     CHECK_EQ(download_u32(0x1019, 0, 3, 1), ODG_ABORT_DATA_STATE);
     CHECK_EQ(download_u32(0x1006, 0, 0, 4), 0);
+    CHECK_EQ(download_u32(0x1019, 0, 1, 1), ODG_ABORT_VALUE_RANGE); /* CiA 301 reserves 1 and 241..255 */
+    CHECK_EQ(download_u32(0x1019, 0, 241, 1), ODG_ABORT_VALUE_RANGE);
+    CHECK_EQ(download_u32(0x1019, 0, 255, 1), ODG_ABORT_VALUE_RANGE);
+    CHECK_EQ(download_u32(0x1019, 0, 240, 1), 0);
     CHECK_EQ(download_u32(0x1019, 0, 3, 1), 0);
     CHECK_EQ(download_u32(0x1006, 0, 10000, 4), 0);
     CHECK_EQ(download_u32(0x1005, 0, 0x40000080u, 4), 0);
