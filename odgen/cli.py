@@ -224,6 +224,9 @@ def add_conformance_parser(commands: argparse._SubParsersAction[argparse.Argumen
     conf.add_argument("--iface", required=True, metavar="CAN", help="SocketCAN interface the node is on")
     conf.add_argument("--node-id", type=_node_id, required=True, help="the node's node-id (1..127)")
     conf.add_argument("--junit", type=Path, metavar="XML", help="also write the results as JUnit XML")
+    from .conformance.cli import add_conformance_arguments
+
+    add_conformance_arguments(conf)
 
 
 def add_profile_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:

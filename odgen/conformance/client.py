@@ -12,6 +12,7 @@ import statistics
 import threading
 import time
 from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import OdgenError
@@ -26,13 +27,33 @@ SDO_TIMEOUT = 2.0
 SILENCE = 0.5
 
 
+@dataclass(frozen=True)
+class Settings:
+    """What the battery may do to the node and what it knows beyond the description.
+
+    destructive: checks that erase stored parameters (0x1011 "load"), reset the node or its
+    communication, or play another node's heartbeat on the bus may run (`--allow destructive`).
+    fresh: the node runs with its described values (odgen's own node, freshly built), so writable
+    entries are compared with them. stored: the entries the options put in a stored group
+    (None: nobody said, so nothing is known to be stored).
+    """
+
+    destructive: bool = False
+    fresh: bool = False
+    stored: frozenset[tuple[int, int]] | None = None
+
+
+NO_ANSWER = -1  # what upload/download return when the node did not answer in time
+
+
 class Client:
-    def __init__(self, od: ObjectDictionary, iface: str, node_id: int, workdir: Path) -> None:
+    def __init__(self, od: ObjectDictionary, iface: str, node_id: int, workdir: Path,
+                 settings: Settings | None = None) -> None:
         import can
         import canopen
 
         logging.getLogger("canopen").setLevel(logging.CRITICAL)
-        self.canopen, self.od, self.node_id = canopen, od, node_id
+        self.canopen, self.od, self.node_id, self.settings = canopen, od, node_id, settings or Settings()
         eds = workdir / "client.eds"
         eds.write_text(client_eds(od), encoding="utf-8")
         self.network = canopen.Network()
@@ -56,7 +77,8 @@ class Client:
         self.stamps: list[tuple[float, int, float]] = []  # (time, COB-ID, the kernel's receive time)
         self.lock = threading.Condition()
         self.watched: set[int] = set()
-        self.watch(0x700 + node_id)
+        for other in range(1, 128):  # the node's heartbeat, and who else is on the bus
+            self.watch(0x700 + other)
 
     def close(self) -> None:
         self.network.disconnect()
@@ -126,22 +148,23 @@ class Client:
     # -- SDO -------------------------------------------------------------------------------
 
     def upload(self, index: int, sub: int) -> tuple[bytes | None, int]:
-        """(data, 0) or (None, abort code); -1 when the node did not answer."""
+        """(data, 0) or (None, abort code); NO_ANSWER when the node did not answer."""
         try:
             return bytes(self.node.sdo.upload(index, sub)), 0
         except self.canopen.SdoAbortedError as err:
             return None, err.code
         except self.canopen.SdoCommunicationError:
-            return None, -1
+            return None, NO_ANSWER
 
     def download(self, index: int, sub: int, data: bytes) -> int:
+        """0, the abort code, or NO_ANSWER."""
         try:
             self.node.sdo.download(index, sub, data)
             return 0
         except self.canopen.SdoAbortedError as err:
             return err.code
         except self.canopen.SdoCommunicationError:
-            return -1
+            return NO_ANSWER
 
     def number(self, index: int, sub: int = 0) -> int | None:
         """An entry uploaded as an unsigned number, or None when it cannot be read."""
@@ -152,10 +175,11 @@ class Client:
         """The EMCY COB-ID entry (0x1014, bit 31: disabled), the default one without 0x1014."""
         return self.number(EMCY_COB_ID) if self.od.find(EMCY_COB_ID) is not None else 0x80 + self.node_id
 
-    def answers(self) -> bool:
-        """Whether the SDO server answers at all, within SILENCE (for states where it must not)."""
-        self.node.sdo.RESPONSE_TIMEOUT = SILENCE
+    def answers(self, patience: bool = False) -> bool:
+        """Whether the SDO server answers at all, within SILENCE (for states where it must not),
+        or with `patience` within the usual SDO timeout (is the node still there?)."""
+        self.node.sdo.RESPONSE_TIMEOUT = SDO_TIMEOUT if patience else SILENCE
         try:
-            return self.upload(DEVICE_TYPE, 0)[1] != -1
+            return self.upload(DEVICE_TYPE, 0)[1] != NO_ANSWER
         finally:
             self.node.sdo.RESPONSE_TIMEOUT = SDO_TIMEOUT

@@ -13,10 +13,11 @@ from dataclasses import dataclass
 
 from ..codegen.selftest import expected_bytes, write_cases
 from ..model.cia301 import CAN_ID_MASK, CONSUMER_HEARTBEAT, EMCY_INHIBIT, ERROR_HISTORY, ERROR_REGISTER, HEARTBEAT, \
-    RESTORE, STORE, SYNC_COB_ID, SYNC_PERIOD, SYNC_WINDOW
+    LOAD, RESTORE, SAVE, STORE, SYNC_COB_ID, SYNC_PERIOD, SYNC_WINDOW
 from ..roundtrip.checks import ACTIVE, Check
-from .checks import EMCY_HEARTBEAT, EMCY_RPDO_LENGTH, INCOMPATIBLE, MAP_TOO_LONG, NOT_MAPPABLE, RANGE, \
-    SIGNATURE, SYNC_GENERATE, Entry, entries, is_command
+from .checks import EMCY_HEARTBEAT, EMCY_RPDO_LENGTH, INCOMPATIBLE, MAP_TOO_LONG, NOT_MAPPABLE, RANGE, SIGNATURE, \
+    SYNC_GENERATE, Entry, _hex, entries, is_command, played_node
+from .allowed import code_text
 from .client import Client
 
 INVALID = 0x80000000
@@ -122,13 +123,15 @@ def check_pdo_sequence(c: Client) -> Check:
                            and x.obj.index >= 0x2000 and not is_command(x)), None)
         if unmappable is not None:
             code = c.download(pdo.mapping, 1, _map_word(unmappable))
-            check.expect(code == NOT_MAPPABLE, f"mapping {unmappable.label} (not mappable) gave 0x{code:08X}")
+            check.expect(code == NOT_MAPPABLE, f"mapping {unmappable.label} (not mappable) gave "
+                                                f"{code_text(code)}, expected 0x{NOT_MAPPABLE:08X}")
         sub2 = c.od.find(pdo.mapping, 2)
         if e.dtype.bits == 64 and sub2 is not None and sub2.writable:
             c.download(pdo.mapping, 1, _map_word(e))
             c.download(pdo.mapping, 2, _map_word(e))
             code = c.download(pdo.mapping, 0, b"\x02")
-            check.expect(code in (MAP_TOO_LONG, INCOMPATIBLE), f"128 bits mapped gave 0x{code:08X}")
+            check.expect(code in (MAP_TOO_LONG, INCOMPATIBLE), f"128 bits mapped gave {code_text(code)}, "
+                                                                f"expected 0x{MAP_TOO_LONG:08X} or 0x{INCOMPATIBLE:08X}")
     return check
 
 
@@ -162,7 +165,7 @@ def check_tpdo_types(c: Client) -> Check:
             what, code = conf.failed
             # A node may refuse RTR transmission (CiA recommends against RTR): then with 0x06090030.
             check.expect(what.startswith("transmission type") and code == RANGE,
-                         f"type 0xFD: {what} aborted 0x{code:08X}")
+                         f"type 0xFD: {what} aborted {code_text(code)}, only 0x{RANGE:08X} (no RTR) allowed")
         else:
             c.nmt("OPERATIONAL")
             sent = time.monotonic()
@@ -255,6 +258,7 @@ def check_emcy(c: Client) -> Check:
         return check
     pdo, e, cob = found
     size = e.dtype.bits // 8 or 1
+    before = c.number(ERROR_REGISTER) or 0  # an error already active: no error reset EMCY is due
     with Configured(c, pdo, e, 0xFF) as conf:
         if not conf.ok:
             check.expect(False, conf.finding(f"RPDO 0x{pdo.comm:04X}"))
@@ -273,16 +277,32 @@ def check_emcy(c: Client) -> Check:
                          and int.from_bytes(first[:2], "little") == EMCY_RPDO_LENGTH,
                          f"0x1003: {count!r} errors, newest {first!r}")
             history = c.od.find(ERROR_HISTORY, 0)
-            if history is not None and history.writable:
+            if history is not None and history.writable and not c.settings.destructive:
+                check.notes.append("0x1003 sub 0 = 0 (clearing the error history) not tried: run with "
+                                   "--allow destructive")
+            elif history is not None and history.writable:
                 code = c.download(ERROR_HISTORY, 0, b"\x01")
-                check.expect(code == RANGE, f"0x1003sub0 = 1 gave 0x{code:08X}, want 0x{RANGE:08X}")
+                check.expect(code == RANGE, f"0x1003sub0 = 1 gave {code_text(code)}, expected 0x{RANGE:08X}")
                 check.expect(c.download(ERROR_HISTORY, 0, b"\x00") == 0 and c.upload(ERROR_HISTORY, 0)[0] == b"\x00",
                              "0x1003sub0 = 0 did not clear the history")
         sent = time.monotonic()
         c.send(pdo.cob, bytes(size))
+        if before:
+            _still_active(c, check, before)
+            return check
         frame = c.wait_frame(sent, lambda got, d: got == cob)
         check.expect(frame is not None and frame[:2] == b"\x00\x00", f"right length again: EMCY {frame!r}, want 0x0000")
     return check
+
+
+def _still_active(c: Client, check: Check, before: int) -> None:
+    """The error provoked is gone, one the node had before is not: CiA 301 requires the error reset
+    EMCY only when no error is left, so none is awaited; 0x1001 must be back to what it was."""
+    time.sleep(0.2)  # no frame to wait for: the node's own errors decide 0x1001
+    register = c.number(ERROR_REGISTER)
+    check.expect(register == before, f"right length again: 0x1001 reads {register}, 0x{before:02X} before the check")
+    check.notes.append(f"0x1001 was 0x{before:02X} before the check (an error of the node's own): no error reset "
+                       "EMCY awaited")
 
 
 def check_emcy_inhibit(c: Client) -> Check:
@@ -296,6 +316,10 @@ def check_emcy_inhibit(c: Client) -> Check:
     pdo, e = found
     cob = emcy & 0x7FF
     c.watch(cob)
+    if c.number(ERROR_REGISTER):
+        check.skipped = ("an error of the node's own is active (0x1001 is not 0), so the error reset EMCY that "
+                         "would be timed against the error's is not due (CiA 301)")
+        return check
     saved = c.upload(EMCY_INHIBIT, 0)[0]
     check.expect(c.download(EMCY_INHIBIT, 0, (1000).to_bytes(2, "little")) == 0, "0x1015 = 1000 (100 ms) refused")
     size = e.dtype.bits // 8 or 1
@@ -331,7 +355,7 @@ def _register_follows(c: Client, check: Check, frame: bytes | None, code: int, w
 def _heartbeat_error(c: Client, check: Check, cob: int) -> None:
     """A second error while the first is active: a watched heartbeat stops (EMCY 0x8130); when it
     comes back, 0x1001 still shows the first error."""
-    other = c.node_id % 127 + 1
+    other = played_node(c, 1)
     saved = c.upload(CONSUMER_HEARTBEAT, 1)[0]
     if c.download(CONSUMER_HEARTBEAT, 1, (other << 16 | 200).to_bytes(4, "little")) != 0:
         check.expect(False, "0x1016sub1 refused")
@@ -357,17 +381,24 @@ def check_error_register(c: Client) -> Check:
     pdo, e, cob = found
     size = e.dtype.bits // 8 or 1
     consumer = c.od.find(CONSUMER_HEARTBEAT, 1)
+    before = c.number(ERROR_REGISTER) or 0
     with Configured(c, pdo, e, 0xFF) as conf:
         if not conf.ok:
             check.expect(False, conf.finding(f"RPDO 0x{pdo.comm:04X}"))
             return check
         frame = _short_rpdo(c, pdo, size, lambda got, d: got == cob and d[:2] == EMCY_RPDO_LENGTH.to_bytes(2, "little"))
         _register_follows(c, check, frame, EMCY_RPDO_LENGTH, "short RPDO")
-        if consumer is not None and consumer.writable:
+        if consumer is not None and consumer.writable and c.settings.destructive:
             _heartbeat_error(c, check, cob)
             c.nmt("OPERATIONAL")  # 0x1029 may have left it
+        elif consumer is not None and consumer.writable:
+            check.notes.append("a second error (a watched heartbeat that stops) not tried: it plays another "
+                               "node's heartbeat, run with --allow destructive")
         sent = time.monotonic()
         c.send(pdo.cob, bytes(size))
+        if before:
+            _still_active(c, check, before)
+            return check
         frame = c.wait_frame(sent, lambda got, d: got == cob and d[:2] == b"\x00\x00")
         check.expect(frame is not None, "right length again, no error active: no error reset EMCY (0x0000)")
         register = c.number(ERROR_REGISTER)
@@ -384,7 +415,8 @@ def check_signatures(c: Client) -> Check:
     for index, word in ((STORE, b"save"), (RESTORE, b"load")):
         if c.od.find(index, 1) is not None:
             code = c.download(index, 1, b"nope")
-            check.expect(code == SIGNATURE, f"0x{index:04X}sub1 without '{word.decode()}' gave 0x{code:08X}")
+            check.expect(code == SIGNATURE, f"0x{index:04X}sub1 without '{word.decode()}' gave {code_text(code)}, "
+                                                f"expected 0x{SIGNATURE:08X}")
     if not check.passed and not check.failures:
         check.skipped = "no 0x1010/0x1011 sub 1"
     return check
@@ -396,22 +428,50 @@ def _reset(c: Client, check: Check) -> None:
                  "reset node: no boot-up")
 
 
+def _stored_numbers(c: Client) -> list[Entry]:
+    """Writable, readable numbers the options put in a stored group (commands and objects with
+    steps of their own left out)."""
+    stored = c.settings.stored or frozenset()
+    return [e for e in entries(c) if e.key in stored and e.sub.writable and e.sub.readable and e.dtype.is_numeric
+            and e.obj.index not in ACTIVE and not is_command(e) and write_cases(e.sub, e.dtype)]
+
+
 def check_store_restore(c: Client) -> Check:
-    check = Check("'save' keeps a value across a reset node, 'load' brings the default back")
-    target = next((e for e in entries(c) if e.sub.writable and e.sub.readable and e.obj.index >= 0x2000
-                   and e.obj.index not in ACTIVE and write_cases(e.sub, e.dtype)), None)
-    if target is None or c.od.find(STORE, 1) is None or c.od.find(RESTORE, 1) is None:
-        check.skipped = "no writable number or no 0x1010/0x1011 sub 1"
+    """'save' keeps a value across a reset node, 'load' brings the defaults back"""
+    check = Check("'save' keeps a stored value across a reset node; 'load' and a reset node bring the described "
+                  "values back")
+    if c.od.find(STORE, 1) is None or c.od.find(RESTORE, 1) is None:
+        check.skipped = "no 0x1010/0x1011 sub 1"
         return check
+    if c.settings.stored is None:
+        check.skipped = ("a description does not say which entries 0x1010 stores: name them with --options "
+                         "(a placement options file with a persist: storage)")
+        return check
+    stored = _stored_numbers(c)
+    if not stored:
+        check.skipped = "the options put no writable number (outside the communication objects) in a stored group"
+        return check
+    target = stored[0]
+    snapshot = {e.key: c.upload(*e.key)[0] for e in stored}
     default = expected_bytes(c.od, target.sub, target.dtype, c.node_id)
-    value = next(d for d, expect in write_cases(target.sub, target.dtype) if expect == "ODG_OK" and d != default)
+    value = next((d for d, expect in write_cases(target.sub, target.dtype)
+                  if expect == "ODG_OK" and d not in (default, snapshot[target.key])), None)
+    if value is None:
+        check.skipped = f"{target.label}: no valid value other than the described and the present one"
+        return check
     check.expect(c.download(*target.key, value) == 0, f"{target.label}: write refused")
-    check.expect(c.download(STORE, 1, b"save") == 0, "0x1010sub1 'save' refused")
+    check.expect(c.download(STORE, 1, SAVE) == 0, "0x1010sub1 'save' refused")
     _reset(c, check)
     back = c.upload(*target.key)[0]
-    check.expect(back == value, f"{target.label}: saved {value.hex()}, after reset node {back!r}")
-    check.expect(c.download(RESTORE, 1, b"load") == 0, "0x1011sub1 'load' refused")
+    check.expect(back == value, f"{target.label}: saved {value.hex()}, after reset node {_hex(back)}")
+    check.expect(c.download(RESTORE, 1, LOAD) == 0, "0x1011sub1 'load' refused")
     _reset(c, check)
-    back = c.upload(*target.key)[0]
-    check.expect(back == default, f"{target.label}: after 'load' and reset node {back!r}, default {default!r}")
+    for e in stored:  # after a restore the user allowed, the described values are the ones in force
+        back, want = c.upload(*e.key)[0], expected_bytes(c.od, e.sub, e.dtype, c.node_id)
+        check.expect(want is None or back == want, f"{e.label}: after 'load' and reset node {_hex(back)}, "
+                                                   f"described {_hex(want)}")
+    for key, data in snapshot.items():  # put back what was there, and store it again
+        if data is not None:
+            c.download(*key, data)
+    check.expect(c.download(STORE, 1, SAVE) == 0, "0x1010sub1 'save' of the values put back refused")
     return check

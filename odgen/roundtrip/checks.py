@@ -75,6 +75,7 @@ class Check:
     passed: int = 0
     failures: list[str] = field(default_factory=list)
     skipped: str = ""
+    notes: list[str] = field(default_factory=list)  # what the node did that CiA 301 allows, and why
 
     def expect(self, ok: bool, what: str) -> None:
         if ok:
@@ -84,7 +85,7 @@ class Check:
 
     def as_dict(self) -> dict[str, object]:
         return {"name": self.name, "passed": self.passed, "failed": len(self.failures),
-                "failures": self.failures[:50], "skipped": self.skipped}
+                "failures": self.failures[:50], "skipped": self.skipped, "notes": self.notes}
 
 
 @dataclass

@@ -4,13 +4,16 @@
  * Built into the node program as its application (-DODG_APP) with -DODG_DEFECT=N: at start it
  * puts itself between the node and the bus, and changes or drops the frames the node sends in
  * one way per check family, as a faulty node would (tests/test_conformance.py).
+ *
+ * From ALLOWED_ERROR_AT_BOOT on, the behaviours are ones CiA 301 allows though odgen's own node
+ * does not show them: the battery must pass (or skip) them, never fail.
  */
 #include <string.h>
 
 #include "odg_app.h"
 
 #ifndef ODG_DEFECT
-#error "define ODG_DEFECT (1..17)"
+#error "define ODG_DEFECT (1..20)"
 #endif
 
 enum {
@@ -30,7 +33,13 @@ enum {
     COMM_KEPT,        /* reset communication keeps the communication values written since boot */
     SDO_SERVER_COB,   /* an upload of 0x1200 says bit 31: the server it answers on is not valid */
     LSS_IDENTITY,     /* the LSS answer to "inquire serial number" is not 0x1018 sub 4 */
-    SYNC_LATE         /* TPDOs go out 20 ms late, past a SYNC window of 10 ms */
+    SYNC_LATE,        /* TPDOs go out 20 ms late, past a SYNC window of 10 ms */
+    WRONG_REFUSAL,    /* 0x06090030 ("value range exceeded") is answered as 0x08000000 instead */
+    /* allowed behaviours */
+    ALLOWED_ERROR_AT_BOOT,   /* an error history entry and a manufacturer error active from every boot;
+                                0x1003 sub-entries beyond the errors recorded answer 0x08000024 */
+    ALLOWED_PREOP_ON_ERROR   /* a communication error active from every boot keeps the node out of
+                                operational (as 0x1029 sub 1 = 0 allows) */
 };
 
 static odg_send_fn real_send;
@@ -41,6 +50,7 @@ static unsigned heartbeats;
 static odg_frame_t held; /* SYNC_LATE: a TPDO held back, for held_ms so far */
 static uint32_t held_ms;
 static int holding;
+static int booted; /* a boot-up went out: the errors "from every boot" are raised again */
 
 static uint32_t abort_code(const odg_frame_t *f)
 {
@@ -150,6 +160,18 @@ static int mangle(odg_frame_t *f)
             f->data[7] |= 0x80u;
         }
         break;
+    case WRONG_REFUSAL:
+        if (sdo && f->data[0] == 0x80u && abort_code(f) == 0x06090030u) {
+            set_code(f, 0x08000000u);
+        }
+        break;
+    case ALLOWED_ERROR_AT_BOOT:
+        if (sdo && (f->data[0] & 0xE3u) == 0x43u && index == 0x1003u && f->data[3] != 0u &&
+            abort_code(f) == 0u) { /* an empty slot: "no data available" */
+            f->data[0] = 0x80u;
+            set_code(f, 0x08000024u);
+        }
+        break;
     default:
         break;
     }
@@ -164,7 +186,22 @@ static int defect_send(void *ctx, const odg_frame_t *frame)
         odg_node_comm_keep(the_node); /* the values of now are the ones reset communication restores */
     }
     memcpy(&f, frame, sizeof f);
+    if (f.id == 0x700u + node_id && f.len == 1u && f.data[0] == 0u) {
+        booted = 1;
+    }
     return mangle(&f) ? real_send(real_ctx, &f) : 0;
+}
+
+/* The errors of the allowed behaviours, raised at every boot (a reset of the node clears them). */
+static void raise_errors(odg_node_t *node)
+{
+    if (ODG_DEFECT == ALLOWED_ERROR_AT_BOOT) {
+        (void)odg_node_error_set(node, 0x5000u, 0, NULL, 0); /* device hardware: gone again, */
+        (void)odg_node_error_clear(node, 0x5000u);          /* but in the history */
+        (void)odg_node_error_set(node, 0xFF01u, 0, NULL, 0); /* manufacturer-specific: active */
+    } else if (ODG_DEFECT == ALLOWED_PREOP_ON_ERROR) {
+        (void)odg_node_error_set(node, 0x8110u, 0, NULL, 0); /* CAN overrun: a communication error */
+    }
 }
 
 void odg_app_init(odg_node_t *node)
@@ -175,11 +212,21 @@ void odg_app_init(odg_node_t *node)
     the_node = node;
     node->cfg.send = defect_send;
     node->cfg.send_ctx = NULL;
+    raise_errors(node);
+    booted = 0;
 }
 
 void odg_app_tick(odg_node_t *node, uint32_t elapsed_ms)
 {
-    (void)node;
+    if (booted) {
+        booted = 0;
+        raise_errors(node);
+    }
+    if (ODG_DEFECT == ALLOWED_PREOP_ON_ERROR && odg_node_state(node) == ODG_NMT_OPERATIONAL) {
+        odg_frame_t preop = {0, 2, 0, {0x80u, 0u, 0u, 0u, 0u, 0u, 0u, 0u}}; /* as the NMT master would */
+        preop.data[1] = node_id;
+        odg_node_receive(node, &preop);
+    }
     if (ODG_DEFECT == SYNC_LATE && holding && (held_ms += elapsed_ms) >= 20u) {
         holding = 0;
         (void)real_send(real_ctx, &held);

@@ -2,11 +2,14 @@
 
     python tests/vcan/conformance_nodes.py PLAN.json OUT.json     (in the vcan session)
 
-PLAN is a list of {"name", "exe", "file", "junit", "cli"}: each node program is started with
-node-id 5 and a fresh --nv file, its boot-up awaited, the battery run against it (results
-also written as JUnit XML to "junit"), and the node stopped. OUT gets, per node, the ids of
+PLAN is a list of {"name", "exe", "file", "junit", "cli", "select", "settings"}: each node program
+is started with node-id 5 and a fresh --nv file, its boot-up awaited, the battery run against it
+(only the check ids or prefixes of "select" when given; "settings": odgen.conformance.client.Settings
+fields, "stored" as [index, sub] pairs; results also written as JUnit XML to "junit"), and the
+node stopped. OUT gets, per node, the ids of
 the failed checks and the text report. One CLI run (`python -m odgen conformance`) is made
-against the nodes marked "cli", to check what the command prints and its exit status.
+against the nodes whose "cli" is a list (of more arguments), to check what the command prints
+and its exit status.
 """
 
 from __future__ import annotations
@@ -21,7 +24,8 @@ from pathlib import Path
 
 import can
 
-from odgen.conformance import run, text_lines, write_junit
+from odgen.conformance import Selection, run, text_lines, write_junit
+from odgen.conformance.client import Settings
 
 IFACE = os.environ.get("ODGEN_VCAN_IFACES", "vcan0").split(",")[0]
 NODE_ID = 5
@@ -59,16 +63,23 @@ def main() -> int:
             proc = start(node["exe"], Path(tmp) / f"{i}.nv")
             try:
                 started = time.monotonic()
-                results = run(Path(node["file"]), IFACE, NODE_ID)
+                given = dict(node.get("settings") or {})
+                if given.get("stored") is not None:
+                    given["stored"] = frozenset(tuple(key) for key in given["stored"])
+                results = run(Path(node["file"]), IFACE, NODE_ID, Selection(tuple(node.get("select") or ())),
+                              Settings(**given))
                 seconds = time.monotonic() - started
                 write_junit(Path(node["junit"]), Path(node["file"]), NODE_ID, results)
                 entry: dict[str, object] = {"name": node["name"], "seconds": round(seconds, 2),
                                             "failed": [r.id for r in results if r.failed],
+                                            "skipped": {r.id: r.check.skipped for r in results if r.state == "SKIP"},
+                                            "notes": {r.id: r.check.notes for r in results if r.check.notes},
                                             "checks": len(results),
                                             "text": text_lines(Path(node["file"]), NODE_ID, results)}
-                if node.get("cli"):
+                if node.get("cli") is not None:
                     cli = subprocess.run([sys.executable, "-m", "odgen", "conformance", node["file"], "--iface", IFACE,
-                                          "--node-id", str(NODE_ID)], capture_output=True, text=True, check=False)
+                                          "--node-id", str(NODE_ID), *node["cli"]], capture_output=True, text=True,
+                                         check=False)
                     entry["cli"] = {"status": cli.returncode, "stdout": cli.stdout, "stderr": cli.stderr}
                 out.append(entry)
                 print(f"{node['name']}: {len(results)} checks, failed: {entry['failed']} ({seconds:.1f} s)", flush=True)
