@@ -269,10 +269,11 @@ def check_nmt_states(c: Client) -> Check:
     if hb is not None and hb.writable:
         c.download(PRODUCER_HEARTBEAT, 0, (100).to_bytes(2, "little"))  # a heartbeat soon after each command
     beating = _heartbeat_period(c)
+    patience = min(DEADLINE, max(1.0, 5 * beating / 1000))  # a few heartbeats: the new state is in one of them
     for command, state, sdo in (("OPERATIONAL", 0x05, True), ("STOPPED", 0x04, False),
                                 ("PRE-OPERATIONAL", 0x7F, True)):
         sent = c.nmt(command)
-        if beating and not c.heartbeat_state(sent, state):
+        if beating and not c.heartbeat_state(sent, state, patience):
             if command != "OPERATIONAL" or not _kept_by_error(c, check, sent):
                 check.expect(False, f"{command}: no heartbeat with state 0x{state:02X}")
             if check.skipped:

@@ -142,8 +142,9 @@ class Client:
         self.node.nmt.state = command
         return now
 
-    def heartbeat_state(self, since: float, state: int) -> bool:
-        return self.wait_frame(since, lambda c, d: c == 0x700 + self.node_id and d[:1] == bytes([state])) is not None
+    def heartbeat_state(self, since: float, state: int, deadline: float = DEADLINE) -> bool:
+        return self.wait_frame(since, lambda c, d: c == 0x700 + self.node_id and d[:1] == bytes([state]),
+                               deadline) is not None
 
     # -- SDO -------------------------------------------------------------------------------
 

@@ -130,8 +130,9 @@ def check_pdo_sequence(c: Client) -> Check:
             c.download(pdo.mapping, 1, _map_word(e))
             c.download(pdo.mapping, 2, _map_word(e))
             code = c.download(pdo.mapping, 0, b"\x02")
-            check.expect(code in (MAP_TOO_LONG, INCOMPATIBLE), f"128 bits mapped gave {code_text(code)}, "
-                                                                f"expected 0x{MAP_TOO_LONG:08X} or 0x{INCOMPATIBLE:08X}")
+            check.expect(code in (MAP_TOO_LONG, INCOMPATIBLE),
+                         f"128 bits mapped gave {code_text(code)}, "
+                         f"expected 0x{MAP_TOO_LONG:08X} or 0x{INCOMPATIBLE:08X}")
     return check
 
 

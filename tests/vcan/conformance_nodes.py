@@ -6,16 +6,18 @@ PLAN is a list of {"name", "exe", "file", "junit", "cli", "select", "settings"}:
 is started with node-id 5 and a fresh --nv file, its boot-up awaited, the battery run against it
 (only the check ids or prefixes of "select" when given; "settings": odgen.conformance.client.Settings
 fields, "stored" as [index, sub] pairs; results also written as JUnit XML to "junit"), and the
-node stopped. OUT gets, per node, the ids of
-the failed checks and the text report. One CLI run (`python -m odgen conformance`) is made
-against the nodes whose "cli" is a list (of more arguments), to check what the command prints
-and its exit status.
+node stopped ("stop_after": already once that check's result came). OUT gets, per node, the ids
+of the failed checks, the skips and notes, when each result came, and the text report. Where
+"cli" is a list (of more arguments) `python -m odgen conformance` runs against the node too,
+to check what the command prints, when, and its exit status ("interrupt_after": SIGINT once
+that check's line came).
 """
 
 from __future__ import annotations
 
 import json
 import os
+import signal
 import subprocess
 import sys
 import tempfile
@@ -24,7 +26,7 @@ from pathlib import Path
 
 import can
 
-from odgen.conformance import Selection, run, text_lines, write_junit
+from odgen.conformance import Result, Selection, run, text_lines, write_junit
 from odgen.conformance.client import Settings
 
 IFACE = os.environ.get("ODGEN_VCAN_IFACES", "vcan0").split(",")[0]
@@ -55,6 +57,49 @@ def stop(proc: subprocess.Popen[bytes]) -> None:
         proc.wait()
 
 
+def cli(node: dict) -> dict[str, object]:
+    """`odgen conformance` on the node, each line of its output with the time it came; SIGINT once
+    the line of check "interrupt_after" came (an interrupted run keeps what --junit wrote)."""
+    started = time.monotonic()
+    proc = subprocess.Popen([sys.executable, "-m", "odgen", "conformance", node["file"], "--iface", IFACE,
+                             "--node-id", str(NODE_ID), *node["cli"]], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    assert proc.stdout is not None and proc.stderr is not None
+    lines = []
+    for line in proc.stdout:
+        lines.append((round(time.monotonic() - started, 3), line.rstrip("\n")))
+        if node.get("interrupt_after") and line.startswith("  ") and f" {node['interrupt_after']}:" in line:
+            proc.send_signal(signal.SIGINT)
+    stderr = proc.stderr.read()
+    return {"status": proc.wait(), "stdout": "".join(text + "\n" for _, text in lines), "stderr": stderr,
+            "lines": lines}
+
+
+def check_node(node: dict, proc: subprocess.Popen[bytes]) -> dict[str, object]:
+    """The battery in-process, as "select" and "settings" say; "stop_after": the node is stopped
+    once that check's result came (the checks after it find no node)."""
+    started = time.monotonic()
+    given = dict(node.get("settings") or {})
+    if given.get("stored") is not None:
+        given["stored"] = frozenset(tuple(key) for key in given["stored"])
+    heard: list[tuple[str, float]] = []
+
+    def on_result(result: Result) -> None:
+        heard.append((result.id, round(time.monotonic() - started, 3)))
+        if result.id == node.get("stop_after"):
+            stop(proc)
+
+    results = run(Path(node["file"]), IFACE, NODE_ID, Selection(tuple(node.get("select") or ())), Settings(**given),
+                  on_result)
+    seconds = time.monotonic() - started
+    write_junit(Path(node["junit"]), Path(node["file"]), NODE_ID, results)
+    return {"name": node["name"], "seconds": round(seconds, 2), "failed": [r.id for r in results if r.failed],
+            "skipped": {r.id: r.check.skipped for r in results if r.state == "SKIP"},
+            "notes": {r.id: r.check.notes for r in results if r.check.notes}, "checks": len(results),
+            "heard": heard, "durations": [round(r.seconds, 3) for r in results],
+            "text": text_lines(Path(node["file"]), NODE_ID, results)}
+
+
 def main() -> int:
     plan = json.loads(Path(sys.argv[1]).read_text())
     out: list[dict[str, object]] = []
@@ -62,27 +107,12 @@ def main() -> int:
         for i, node in enumerate(plan):
             proc = start(node["exe"], Path(tmp) / f"{i}.nv")
             try:
-                started = time.monotonic()
-                given = dict(node.get("settings") or {})
-                if given.get("stored") is not None:
-                    given["stored"] = frozenset(tuple(key) for key in given["stored"])
-                results = run(Path(node["file"]), IFACE, NODE_ID, Selection(tuple(node.get("select") or ())),
-                              Settings(**given))
-                seconds = time.monotonic() - started
-                write_junit(Path(node["junit"]), Path(node["file"]), NODE_ID, results)
-                entry: dict[str, object] = {"name": node["name"], "seconds": round(seconds, 2),
-                                            "failed": [r.id for r in results if r.failed],
-                                            "skipped": {r.id: r.check.skipped for r in results if r.state == "SKIP"},
-                                            "notes": {r.id: r.check.notes for r in results if r.check.notes},
-                                            "checks": len(results),
-                                            "text": text_lines(Path(node["file"]), NODE_ID, results)}
+                entry = check_node(node, proc)
                 if node.get("cli") is not None:
-                    cli = subprocess.run([sys.executable, "-m", "odgen", "conformance", node["file"], "--iface", IFACE,
-                                          "--node-id", str(NODE_ID), *node["cli"]], capture_output=True, text=True,
-                                         check=False)
-                    entry["cli"] = {"status": cli.returncode, "stdout": cli.stdout, "stderr": cli.stderr}
+                    entry["cli"] = cli(node)
                 out.append(entry)
-                print(f"{node['name']}: {len(results)} checks, failed: {entry['failed']} ({seconds:.1f} s)", flush=True)
+                print(f"{node['name']}: {entry['checks']} checks, failed: {entry['failed']} ({entry['seconds']} s)",
+                      flush=True)
             finally:
                 stop(proc)
     Path(sys.argv[2]).write_text(json.dumps(out, indent=1))
