@@ -199,6 +199,9 @@ def add_roundtrip_parser(commands: argparse._SubParsersAction[argparse.ArgumentP
     rt.add_argument("--options", type=_existing_file("options file"), metavar="OPTS")
     rt.add_argument("--report", type=Path, help="write the results as JSON")
     _input_format(rt)
+    from .conformance.cli import add_arguments
+
+    add_arguments(rt)
 
 
 def add_rules_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
@@ -527,12 +530,15 @@ def cmd_roundtrip(args: argparse.Namespace) -> int:
 
     require_can_extra("roundtrip")
     require_socketcan(args.iface)
+    from .conformance.cli import selection
     from .roundtrip import FileOutcome, roundtrip_file, summary_lines, write_report
+    from .roundtrip.checks import CHECK_IDS
 
+    chosen = selection(args, CHECK_IDS)
     outcomes = []
     for path in args.files:
         try:
-            outcome = roundtrip_file(path, args.iface, args.node_id, args.options, args.input_format)
+            outcome = roundtrip_file(path, args.iface, args.node_id, args.options, args.input_format, chosen)
         except OdgenError as err:
             outcome = FileOutcome(str(path), [], str(err))
         outcomes.append(outcome)

@@ -119,6 +119,7 @@ def results(vcan_bus, tmp_path_factory: pytest.TempPathFactory, monkeypatch_modu
                                                                             str(junit / "interrupted.xml")]),
               "interrupt_after": "sdo.limits"},
              {**_node("gone-silent", EXAMPLE, select=["sdo.upload", "access"]), "stop_after": "sdo.upload"}]
+    plan += [{**_node(EXAMPLE.name, EXAMPLE), "name": f"again-{k}"} for k in (2, 3)]  # stable verdicts
     for node in plan:
         node["junit"] = str(junit / f"{node['name']}.xml")
     tmp = tmp_path_factory.mktemp("conformance")
@@ -265,11 +266,17 @@ def test_verdicts_stream(results: dict[str, dict]) -> None:
     assert suite is not None and [case.get("name") for case in suite.iter("testcase")] == shown
 
 
+def test_same_node_same_verdicts(results: dict[str, dict]) -> None:
+    """The example's node checked three times: each check gives the same verdict, passed and failed counts."""
+    runs = [results[name]["verdicts"] for name in (EXAMPLE.name, "again-2", "again-3")]
+    assert runs[0] == runs[1] == runs[2], runs
+
+
 def test_selectors_are_checked() -> None:
     from odgen.conformance import CHECK_IDS, Selection, check_selectors
 
     check_selectors(["nmt", "store.save-load", "sdo."], "--select")
-    with pytest.raises(OdgenError, match="'nmt.stats' is not a conformance check id or prefix; did you mean nmt.states"):
+    with pytest.raises(OdgenError, match="'nmt.stats' is not a conformance check id or prefix; did you mean nmt.st"):
         check_selectors(["nmt.stats"], "--select")
     kept = [i for i in CHECK_IDS if Selection(("nmt", "sdo.upload"), ("nmt.hb",)).keeps(i)]
     assert kept == ["sdo.upload", "nmt.states", "nmt.heartbeat", "nmt.guarding", "nmt.boot-up", "nmt.reset-comm"]

@@ -18,7 +18,7 @@ from odgen.formats import load_path
 from odgen.roundtrip import ROUNDTRIP_DEFAULTS
 from odgen.roundtrip.build import build_node
 from odgen.errors import OdgenError
-from odgen.roundtrip.checks import reachable_sdo_server, sdo_server_cob_ids
+from odgen.conformance.client import reachable_sdo_server, sdo_server_cob_ids
 
 from .conftest import BUILD, ROOT, corpus_files, generates
 
@@ -66,10 +66,33 @@ def test_roundtrip_examples_and_corpus_on_vcan(vcan_bus) -> None:
         os.environ.pop("ODGEN_CACHE", None)
     report = BUILD / "roundtrip.json"
     BUILD.mkdir(parents=True, exist_ok=True)
-    cmd = [sys.executable, "-m", "odgen", "roundtrip", "--report", str(report), *map(str, files)]
+    # the round trip's own checks here: the conformance battery runs against the same nodes in
+    # tests/test_conformance.py, and below against one through `odgen roundtrip`
+    cmd = [sys.executable, "-m", "odgen", "roundtrip", "--select", "roundtrip", "--report", str(report),
+           *map(str, files)]
     run = vcan_bus.run(cmd, env=env, cwd=ROOT, timeout=1200)
     assert report.is_file(), run.stdout[-3000:] + run.stderr[-3000:]
     doc = json.loads(report.read_text())
     failed = [f for f in doc["files"] if not f["ok"]]
     assert not failed, run.stdout[-6000:]
     assert run.returncode == 0 and len(doc["files"]) == len(files)
+
+
+def test_roundtrip_runs_the_battery(vcan_bus, tmp_path) -> None:
+    """`odgen roundtrip` builds the node and runs the conformance battery against it with every
+    check allowed and what the build stores known, so checks a foreign device may skip run here:
+    save/load, the resets, the heartbeat consumer; --ignore takes the battery's ids too."""
+    from .test_conformance import EXAMPLE, PDO_NODE
+
+    env = dict(os.environ, ODGEN_CACHE=str(CACHE))
+    report = tmp_path / "report.json"
+    cmd = [sys.executable, "-m", "odgen", "roundtrip", "--report", str(report), "--ignore", "roundtrip.,sdo.limits",
+           str(EXAMPLE), str(PDO_NODE)]
+    run = vcan_bus.run(cmd, env=env, cwd=ROOT, timeout=600)
+    assert report.is_file(), run.stdout[-3000:] + run.stderr[-3000:]
+    assert run.returncode == 0, run.stdout[-4000:]
+    example, pdo = ({c["id"]: c for c in f["checks"]} for f in json.loads(report.read_text())["files"])
+    assert "roundtrip.uploads" not in example and "sdo.limits" not in example and "sdo.lengths" in example
+    for checks, ran in ((example, "store.save-load"), (example, "nmt.boot-up"), (example, "nmt.reset-comm"),
+                        (example, "sdo.upload"), (pdo, "nmt.hb-consumer"), (pdo, "emcy.error-register")):
+        assert not checks[ran]["skipped"] and checks[ran]["passed"] and not checks[ran]["failed"], checks[ran]

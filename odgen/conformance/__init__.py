@@ -22,9 +22,9 @@ from ..errors import OdgenError
 from ..fileio import write_atomic
 from ..formats import load_path
 from ..model import ObjectDictionary
-from ..roundtrip.checks import Check, reachable_sdo_server
 from . import checks, pdo
-from .client import NO_ANSWER, Client, Settings
+from .client import NO_ANSWER, Client, Settings, reachable_sdo_server
+from .verdict import Check
 
 RESETS = "resets the node or its communication, losing what was configured and not saved"
 IMPERSONATES = "plays the heartbeat of another node-id on the bus"
@@ -79,11 +79,11 @@ class Selection:
         return not (self.ignore and check_id.startswith(self.ignore))
 
 
-def check_selectors(ids: Sequence[str], origin: str) -> None:
+def check_selectors(ids: Sequence[str], origin: str, known: Sequence[str] = CHECK_IDS) -> None:
     """Every id must be a check id or a prefix of one: a typo is the user's mistake (exit 2)."""
     for given in ids:
-        if not any(known.startswith(given) for known in CHECK_IDS):
-            close = difflib.get_close_matches(given, [*CHECK_IDS, *{k.split(".")[0] for k in CHECK_IDS}], n=3,
+        if not any(check_id.startswith(given) for check_id in known):
+            close = difflib.get_close_matches(given, [*known, *sorted({k.split(".")[0] for k in known})], n=3,
                                               cutoff=0.5)
             hint = f"; did you mean {', '.join(close)}?" if close else "; docs/conformance.md lists them"
             raise OdgenError(f"{origin}: '{given}' is not a conformance check id or prefix{hint}")

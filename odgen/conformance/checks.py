@@ -20,7 +20,7 @@ from ..model.cia301 import COMMUNICATION_AREA, CONSUMER_HEARTBEAT, ERROR_BEHAVIO
     SDO_RESPONSE, SDO_SERVER, SYNC_COB_ID, SYNC_OVERFLOW, SYNC_PERIOD, is_store_command
 from ..rules.common import header_field, header_int
 from ..model.datatypes import BASIC_TYPES, DataType
-from ..roundtrip.checks import ABORTS, ACTIVE, NO_OBJECT, NO_SUB, WRITE_ONLY, Check
+from .verdict import ABORTS, ACTIVE, NO_OBJECT, NO_SUB, WRITE_ONLY, Check
 from .allowed import NO_DATA, RUN_TIME_STATE, code_text, watched_elsewhere, write_refusals
 from .client import DEADLINE, SDO_TIMEOUT, SILENCE, Client
 
@@ -573,17 +573,25 @@ LSS_INQUIRE = (0x5A, 0x5B, 0x5C, 0x5D)  # vendor-ID, product code, revision, ser
 
 
 def check_lss(c: Client) -> Check:
-    check = Check("LSS: in configuration mode the node answers its identity (0x1018 sub 1-4) and node-id")
+    check = Check("LSS: selected by its 0x1018 sub 1-4, the node answers its identity and node-id in configuration "
+                  "mode")
     if header_int(header_field(c.od, "DeviceInfo", "LSS_Supported")) != 1:
         check.skipped = "the description does not say LSS_Supported=1"
         return check
     from canopen.lss import LssError  # the client's, loaded with it
 
     identity = [c.number(IDENTITY, sub) if c.od.find(IDENTITY, sub) is not None else None for sub in range(1, 5)]
+    if None in identity and not c.settings.destructive:
+        check.skipped = ("0x1018 sub 1-4 do not all answer, so only switch state global could select the node, "
+                         "which switches every LSS slave on the bus: run with --allow destructive")
+        return check
     lss = c.network.lss
     lss.RESPONSE_TIMEOUT = SDO_TIMEOUT
-    lss.send_switch_state_global(lss.CONFIGURATION_STATE)
     try:
+        if None in identity:
+            lss.send_switch_state_global(lss.CONFIGURATION_STATE)
+        else:  # the node alone, by its LSS address
+            check.expect(lss.send_switch_state_selective(*identity), "switch state selective: no answer")
         for sub, (command, want) in enumerate(zip(LSS_INQUIRE, identity, strict=True), start=1):
             got = lss.inquire_lss_address(command)
             check.expect(want is None or got == want, f"inquire 0x{command:02X}: 0x{got:08X}, 0x1018sub{sub} "

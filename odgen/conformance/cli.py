@@ -7,9 +7,14 @@ so a run against a slow device shows progress and an interrupted one keeps what 
 from __future__ import annotations
 
 import argparse
+from collections.abc import Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ..errors import OdgenError
+
+if TYPE_CHECKING:
+    from . import Selection
 
 ALLOW = ("destructive",)
 
@@ -35,11 +40,12 @@ def _ids(text: str) -> list[str]:
     return [part.strip().lower() for part in text.split(",") if part.strip()]
 
 
-def selection(args: argparse.Namespace):  # -> Selection (needs python canopen to import)
-    from . import Selection, check_selectors
+def selection(args: argparse.Namespace, known: Sequence[str] | None = None) -> Selection:
+    """--select/--ignore as given, every id checked against the known check ids (the battery's)."""
+    from . import CHECK_IDS, Selection, check_selectors
 
-    check_selectors(args.select, "--select")
-    check_selectors(args.ignore, "--ignore")
+    for ids, origin in ((args.select, "--select"), (args.ignore, "--ignore")):
+        check_selectors(ids, origin, known or CHECK_IDS)
     return Selection(tuple(args.select), tuple(args.ignore))
 
 

@@ -15,10 +15,15 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
+from copy import deepcopy
+
+from ..codegen.selftest import expected_bytes
 from ..errors import OdgenError
-from ..model import ObjectDictionary
-from ..model.cia301 import DEVICE_TYPE, EMCY_COB_ID, SDO_REQUEST, SDO_RESPONSE
-from ..roundtrip.checks import client_eds, sdo_server_cob_ids
+from ..formats.eds_writer import write_eds
+from ..model import ARRAY, RECORD, ObjectDictionary
+from ..model.cia301 import CAN_ID_MASK, COB_EXTENDED, COB_INVALID, DEVICE_TYPE, EMCY_COB_ID, SDO_REQUEST, \
+    SDO_RESPONSE, SDO_SERVER, is_pdo_mapping
+from ..model.datatypes import BASIC_TYPES
 
 # Waits end at the awaited frame; the deadlines only bound a failure, so they are generous.
 DEADLINE = 10.0
@@ -184,3 +189,77 @@ class Client:
             return self.upload(DEVICE_TYPE, 0)[1] != NO_ANSWER
         finally:
             self.node.sdo.RESPONSE_TIMEOUT = SDO_TIMEOUT
+
+
+# ---- the node's SDO server and the description as python canopen reads it --------------------
+
+
+def sdo_server_cob_ids(od: ObjectDictionary, node_id: int) -> tuple[int, int] | None:
+    """The COB-IDs (request, response) the default SDO server of a node built from `od` uses:
+    0x1200 sub 1 and 2 as described ($NODEID applied), the pre-defined 0x600/0x580 + node-id
+    without them; None when bit 31 (or 29) of either disables the server (runtime/NODE.md)."""
+    ids = []
+    for subindex, base in ((1, SDO_REQUEST), (2, SDO_RESPONSE)):
+        sub = od.find(SDO_SERVER, subindex)
+        dtype = BASIC_TYPES.get(sub.data_type or 0) if sub is not None else None
+        data = expected_bytes(od, sub, dtype, node_id) if sub is not None and dtype is not None else None
+        ids.append(int.from_bytes(data, "little") if data else base + node_id)
+    if (ids[0] | ids[1]) & (COB_INVALID | COB_EXTENDED):
+        return None
+    return ids[0] & CAN_ID_MASK, ids[1] & CAN_ID_MASK
+
+
+def reachable_sdo_server(od: ObjectDictionary, node_id: int, path: object) -> tuple[int, int]:
+    """sdo_server_cob_ids, or an OdgenError saying the description leaves nothing to talk to."""
+    cobs = sdo_server_cob_ids(od, node_id)
+    if cobs is None:
+        raise OdgenError(f"{path}: 0x1200 disables the default SDO server (COB-ID bit 31), so a node built "
+                         "from it answers no SDO request: describe 0x1200 sub 1/2 as $NODEID+0x600/$NODEID+0x580")
+    return cobs
+
+
+def client_eds(od: ObjectDictionary) -> str:
+    """The description as EDS for python canopen, which stops on header numbers it cannot read
+    (`VendorNumber=` empty, `001`) or sections it reads strictly (a sparse [DummyUsage], [Comments]
+    whose `Lines` counts a `line5` it looks up as `Line5`): those are left out, they play no part in
+    the checks."""
+    lines, section = [], ""
+    for line in write_eds(_expanded(od)).splitlines():
+        if line.startswith("["):
+            section = line.lower()
+        key, _, value = line.partition("=")
+        if section == "[deviceinfo]" and key in _CANOPEN_INT_KEYS and not _python_int(value):
+            continue
+        if section in ("[dummyusage]", "[comments]"):  # canopen needs all seven keys / every LineN
+            continue
+        lines.append(line)
+    return "\n".join(lines) + "\n"
+
+
+def _expanded(od: ObjectDictionary) -> ObjectDictionary:
+    """A copy with CompactSubObj written out as sub-sections: canopen expands only compact ARRAYs.
+    PDO mapping objects written as ARRAYs become the RECORDs CiA 301 defines: canopen sizes an ARRAY by
+    the sub0 it reads from the device, so a remap (sub0 = 0, entries, sub0 = n) would write no entry."""
+    copy = deepcopy(od)
+    for obj in copy.objects.values():
+        if is_pdo_mapping(obj.index) and obj.object_code == ARRAY:
+            obj.object_code = RECORD
+        if obj.compact_sub_obj:
+            obj.compact_sub_obj, obj.sub_number = None, len(obj.subs)
+            for sub in obj.subs.values():
+                sub.compact = False
+    return copy
+
+
+_CANOPEN_INT_KEYS = {"VendorNumber", "ProductNumber", "RevisionNumber", "NrOfRXPDO", "NrOfTXPDO", "Granularity",
+                     "BaudRate_10", "BaudRate_20", "BaudRate_50", "BaudRate_125", "BaudRate_250", "BaudRate_500",
+                     "BaudRate_800", "BaudRate_1000", "SimpleBootUpMaster", "SimpleBootUpSlave",
+                     "DynamicChannelsSupported", "GroupMessaging", "LSS_Supported"}
+
+
+def _python_int(text: str) -> bool:
+    try:
+        int(text.strip(), 0)
+        return True
+    except ValueError:
+        return False

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from ..codegen.selftest import expected_bytes, write_cases
 from ..model.cia301 import CAN_ID_MASK, CONSUMER_HEARTBEAT, EMCY_INHIBIT, ERROR_HISTORY, ERROR_REGISTER, HEARTBEAT, \
     LOAD, RESTORE, SAVE, STORE, SYNC_COB_ID, SYNC_PERIOD, SYNC_WINDOW
-from ..roundtrip.checks import ACTIVE, Check
+from .verdict import ACTIVE, Check
 from .checks import EMCY_HEARTBEAT, EMCY_RPDO_LENGTH, INCOMPATIBLE, MAP_TOO_LONG, NOT_MAPPABLE, RANGE, SIGNATURE, \
     SYNC_GENERATE, Entry, _hex, entries, is_command, played_node
 from .allowed import code_text

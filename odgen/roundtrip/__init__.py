@@ -1,4 +1,5 @@
-"""Round trips on a CAN bus: build a node from a description, check it with python canopen."""
+"""Round trips on a CAN bus: build a node from a description, check it with python canopen: the
+round trip's own checks, then the conformance battery (odgen/conformance) with every check allowed."""
 
 from __future__ import annotations
 
@@ -8,6 +9,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..codegen.generate import Request
+from ..conformance import Selection
 from ..fileio import write_atomic
 from .build import build_node
 
@@ -35,9 +37,10 @@ class FileOutcome:
         return not self.error and all(int(str(c["failed"])) == 0 for c in self.checks)
 
 
-def roundtrip_file(path: Path, iface: str, node_id: int, options: Path | None,
-                   input_format: str | None = None) -> FileOutcome:
-    from .checks import reachable_sdo_server, run_checks, session  # needs python canopen and a CAN interface
+def roundtrip_file(path: Path, iface: str, node_id: int, options: Path | None, input_format: str | None = None,
+                   selection: Selection | None = None) -> FileOutcome:
+    from ..conformance.client import reachable_sdo_server
+    from .checks import run_checks, session  # needs python canopen and a CAN interface
 
     request = Request(path, name="od", options=options, node_id=node_id, defaults=ROUNDTRIP_DEFAULTS,
                       input_format=input_format)
@@ -45,8 +48,8 @@ def roundtrip_file(path: Path, iface: str, node_id: int, options: Path | None,
     assert result.od is not None and result.placements is not None
     reachable_sdo_server(result.od, node_id, path)
     with session(result.od, result.placements, program, iface, node_id) as s:
-        checks = run_checks(s)
-    return FileOutcome(str(path), [c.as_dict() for c in checks])
+        checks = run_checks(s, selection or Selection())
+    return FileOutcome(str(path), [{"id": check_id, **check.as_dict()} for check_id, check in checks])
 
 
 def summary_lines(outcome: FileOutcome) -> list[str]:
@@ -55,7 +58,7 @@ def summary_lines(outcome: FileOutcome) -> list[str]:
         return lines + [f"  error: {outcome.error}"]
     for c in outcome.checks:
         state = f"skipped ({c['skipped']})" if c["skipped"] else f"{c['passed']} passed, {c['failed']} failed"
-        lines.append(f"  {c['name']}: {state}")
+        lines.append(f"  {c['id']}: {c['name']}: {state}")
         lines.extend(f"    FAIL {f}" for f in list(c["failures"])[:10])  # type: ignore[call-overload]
     return lines
 

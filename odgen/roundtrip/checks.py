@@ -17,75 +17,24 @@ import threading
 import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from copy import deepcopy
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 from ..codegen.placement import STORE_CLASS, Placement
-from ..errors import OdgenError
 from ..codegen.selftest import expected_bytes, write_cases
-from ..formats.eds_writer import write_eds
-from ..model import ARRAY, RECORD, Obj, ObjectDictionary, Sub
+from ..conformance import CHECK_IDS as BATTERY_IDS
+from ..conformance import Selection
+from ..conformance import run_checks as battery
+from ..conformance.client import Client, Settings
+from ..conformance.verdict import ABORTS, ACTIVE, NO_OBJECT, NO_SUB, WRITE_ONLY, Check
+from ..model import Obj, ObjectDictionary, Sub
 from ..model.cia301 import (
-    ABORT_CODES, CAN_ID_MASK, COB_EXTENDED, COB_INVALID, COMMUNICATION_AREA, EMCY_COB_ID, EMCY_INHIBIT, ERROR_HISTORY,
-    LOAD, PDO_COUNT, PRODUCER_HEARTBEAT, RESTORE, RPDO_COMM, RPDO_MAPPING, SAVE, SDO_REQUEST, SDO_RESPONSE, SDO_SERVER,
-    STORE, SYNC_COB_ID, SYNC_PERIOD, SYNC_WINDOW, TIME_COB_ID, TPDO_COMM, TPDO_MAPPING, is_pdo_mapping,
-    unused_manufacturer_index)
+    ABORT_CODES, COMMUNICATION_AREA, LOAD, PRODUCER_HEARTBEAT, RESTORE, RPDO_COMM, RPDO_MAPPING, SAVE, STORE, TPDO_COMM,
+    TPDO_MAPPING, unused_manufacturer_index)
 from ..model.datatypes import BASIC_TYPES, UNSIGNED16, DataType
 from ..model.wire import wire_bytes
 
-ABORTS = {"ODG_OK": 0, **ABORT_CODES}
-WRITE_ONLY, NO_OBJECT, NO_SUB = (ABORT_CODES["ODG_ABORT_WRITE_ONLY"], ABORT_CODES["ODG_ABORT_NO_OBJECT"],
-                                 ABORT_CODES["ODG_ABORT_NO_SUB"])
-# Objects whose writes change how the node talks (SDO/PDO/SYNC/EMCY/heartbeat) or act as
-# commands: checked by their own steps, not by the generic downloads.
-ACTIVE = frozenset({ERROR_HISTORY, SYNC_COB_ID, SYNC_PERIOD, SYNC_WINDOW, STORE, RESTORE, TIME_COB_ID, EMCY_COB_ID,
-                    EMCY_INHIBIT, PRODUCER_HEARTBEAT}) | frozenset(range(SDO_SERVER, TPDO_MAPPING + PDO_COUNT))
 BOOT_TIMEOUT = 30.0  # waits end at the boot-up: generous for a loaded machine
-SDO_TIMEOUT = 3.0  # an answer normally takes milliseconds; the deadline only bounds a failure
-
-
-def sdo_server_cob_ids(od: ObjectDictionary, node_id: int) -> tuple[int, int] | None:
-    """The COB-IDs (request, response) the default SDO server of a node built from `od` uses:
-    0x1200 sub 1 and 2 as described ($NODEID applied), the pre-defined 0x600/0x580 + node-id
-    without them; None when bit 31 (or 29) of either disables the server (runtime/NODE.md)."""
-    ids = []
-    for subindex, base in ((1, SDO_REQUEST), (2, SDO_RESPONSE)):
-        sub = od.find(SDO_SERVER, subindex)
-        dtype = BASIC_TYPES.get(sub.data_type or 0) if sub is not None else None
-        data = expected_bytes(od, sub, dtype, node_id) if sub is not None and dtype is not None else None
-        ids.append(int.from_bytes(data, "little") if data else base + node_id)
-    if (ids[0] | ids[1]) & (COB_INVALID | COB_EXTENDED):
-        return None
-    return ids[0] & CAN_ID_MASK, ids[1] & CAN_ID_MASK
-
-
-def reachable_sdo_server(od: ObjectDictionary, node_id: int, path: object) -> tuple[int, int]:
-    """sdo_server_cob_ids, or an OdgenError saying the description leaves nothing to talk to."""
-    cobs = sdo_server_cob_ids(od, node_id)
-    if cobs is None:
-        raise OdgenError(f"{path}: 0x1200 disables the default SDO server (COB-ID bit 31), so a node built "
-                         "from it answers no SDO request: describe 0x1200 sub 1/2 as $NODEID+0x600/$NODEID+0x580")
-    return cobs
-
-
-@dataclass
-class Check:
-    name: str
-    passed: int = 0
-    failures: list[str] = field(default_factory=list)
-    skipped: str = ""
-    notes: list[str] = field(default_factory=list)  # what the node did that CiA 301 allows, and why
-
-    def expect(self, ok: bool, what: str) -> None:
-        if ok:
-            self.passed += 1
-        else:
-            self.failures.append(what)
-
-    def as_dict(self) -> dict[str, object]:
-        return {"name": self.name, "passed": self.passed, "failed": len(self.failures),
-                "failures": self.failures[:50], "skipped": self.skipped, "notes": self.notes}
 
 
 @dataclass
@@ -101,32 +50,18 @@ class Entry:
 
 
 class Session:
-    """One node process and one canopen client on `iface`."""
+    """One node process, and the conformance battery's client (one bus harness) on `iface`."""
 
     def __init__(self, od: ObjectDictionary, placements: dict[tuple[int, int], Placement], program: Path,
                  iface: str, node_id: int, workdir: Path) -> None:
-        import canopen  # the independent client; imported here so lint-only use never needs it
-
-        self.canopen = canopen
         self.od, self.program, self.iface, self.node_id = od, program, iface, node_id
         self.workdir = workdir
         self.nv = workdir / "node.nv"
         self.entries = _entries(od, placements)
-        eds = workdir / "client.eds"
-        eds.write_text(client_eds(od), encoding="utf-8")
-        self.network = canopen.Network()
-        self.network.NOTIFIER_CYCLE = 0.1
-        self.network.connect(interface="socketcan", channel=iface)
-        try:
-            self.node = canopen.RemoteNode(node_id, str(eds))
-        except Exception as err:  # canopen's own import: not odgen's fault, report it per file
-            self.network.disconnect()
-            raise OdgenError(f"python canopen cannot load the description: {type(err).__name__}: {err}") from None
-        cobs = sdo_server_cob_ids(od, node_id)  # roundtrip_file refused a disabled server
-        if cobs is not None:
-            self.node.sdo.rx_cobid, self.node.sdo.tx_cobid = cobs
-        self.network.add_node(self.node)
-        self.node.sdo.RESPONSE_TIMEOUT = SDO_TIMEOUT
+        # odgen's own node, freshly built: every check may run and every value is the described one
+        stored = frozenset(key for key, placement in placements.items() if placement.group)
+        self.client = Client(od, iface, node_id, workdir, Settings(destructive=True, fresh=True, stored=stored))
+        self.canopen, self.network, self.node = self.client.canopen, self.client.network, self.client.node
         self.booted = threading.Event()
         # (monotonic time seen, NMT state, the frame's receive time stamp): a loaded machine delays
         # the callback, not the socket's time stamp, so periods are measured on the stamps
@@ -160,69 +95,16 @@ class Session:
 
     def close(self) -> None:
         self.stop()
-        self.network.disconnect()
+        self.client.close()
 
-    # -- SDO helpers ---------------------------------------------------------------------
+    # -- SDO: the conformance client's ------------------------------------------------------
 
     def upload(self, index: int, sub: int) -> tuple[bytes | None, int]:
-        try:
-            return bytes(self.node.sdo.upload(index, sub)), 0
-        except self.canopen.SdoAbortedError as err:
-            return None, err.code
+        """(data, 0) or (None, abort code); NO_ANSWER when the node did not answer."""
+        return self.client.upload(index, sub)
 
     def download(self, index: int, sub: int, data: bytes) -> int:
-        try:
-            self.node.sdo.download(index, sub, data)
-            return 0
-        except self.canopen.SdoAbortedError as err:
-            return err.code
-
-
-def client_eds(od: ObjectDictionary) -> str:
-    """The description as EDS for python canopen, which stops on header numbers it cannot read
-    (`VendorNumber=` empty, `001`) or sections it reads strictly (a sparse [DummyUsage], [Comments]
-    whose `Lines` counts a `line5` it looks up as `Line5`): those are left out, they play no part in
-    the checks."""
-    lines, section = [], ""
-    for line in write_eds(_expanded(od)).splitlines():
-        if line.startswith("["):
-            section = line.lower()
-        key, _, value = line.partition("=")
-        if section == "[deviceinfo]" and key in _CANOPEN_INT_KEYS and not _python_int(value):
-            continue
-        if section in ("[dummyusage]", "[comments]"):  # canopen needs all seven keys / every LineN
-            continue
-        lines.append(line)
-    return "\n".join(lines) + "\n"
-
-
-def _expanded(od: ObjectDictionary) -> ObjectDictionary:
-    """A copy with CompactSubObj written out as sub-sections: canopen expands only compact ARRAYs.
-    PDO mapping objects written as ARRAYs become the RECORDs CiA 301 defines: canopen sizes an ARRAY by
-    the sub0 it reads from the device, so a remap (sub0 = 0, entries, sub0 = n) would write no entry."""
-    copy = deepcopy(od)
-    for obj in copy.objects.values():
-        if is_pdo_mapping(obj.index) and obj.object_code == ARRAY:
-            obj.object_code = RECORD
-        if obj.compact_sub_obj:
-            obj.compact_sub_obj, obj.sub_number = None, len(obj.subs)
-            for sub in obj.subs.values():
-                sub.compact = False
-    return copy
-
-
-_CANOPEN_INT_KEYS = {"VendorNumber", "ProductNumber", "RevisionNumber", "NrOfRXPDO", "NrOfTXPDO", "Granularity",
-                     "BaudRate_10", "BaudRate_20", "BaudRate_50", "BaudRate_125", "BaudRate_250", "BaudRate_500",
-                     "BaudRate_800", "BaudRate_1000", "SimpleBootUpMaster", "SimpleBootUpSlave",
-                     "DynamicChannelsSupported", "GroupMessaging", "LSS_Supported"}
-
-
-def _python_int(text: str) -> bool:
-    try:
-        int(text.strip(), 0)
-        return True
-    except ValueError:
-        return False
+        return self.client.download(index, sub, data)
 
 
 def _entries(od: ObjectDictionary, placements: dict[tuple[int, int], Placement]) -> list[Entry]:
@@ -464,8 +346,12 @@ def check_persistence(s: Session) -> Check:
     return check
 
 
-CHECKS: tuple[Callable[[Session], Check], ...] = (check_uploads, check_downloads, check_unknown, check_strings,
-                                                  check_pdos, check_nmt, check_persistence)
+CHECKS: tuple[tuple[str, Callable[[Session], Check]], ...] = (
+    ("roundtrip.uploads", check_uploads), ("roundtrip.downloads", check_downloads),
+    ("roundtrip.unknown", check_unknown), ("roundtrip.strings", check_strings), ("roundtrip.pdos", check_pdos),
+    ("roundtrip.nmt", check_nmt), ("roundtrip.persistence", check_persistence))
+# A round trip's checks, then the conformance battery's against the same node
+CHECK_IDS = ("roundtrip.boot-up", *(check_id for check_id, _ in CHECKS), *BATTERY_IDS)
 
 
 def _hex(data: bytes | None) -> str:
@@ -484,15 +370,23 @@ def session(od: ObjectDictionary, placements: dict[tuple[int, int], Placement], 
             s.close()
 
 
-def run_checks(s: Session) -> list[Check]:
+def run_checks(s: Session, selection: Selection | None = None) -> list[tuple[str, Check]]:
+    """Boot the node, run the round trip's checks, then the conformance battery (all of it: the node
+    is odgen's own, freshly built), as `selection` keeps them: (check id, verdict) each."""
     if not s.start():
-        return [Check("boot-up", failures=[f"no boot-up from node {s.node_id} within {BOOT_TIMEOUT} s: "
-                                           + (s.workdir / "node.log").read_text(errors="replace")[-500:]])]
-    results = [Check("boot-up", passed=1)]
-    for step in CHECKS:
+        return [("roundtrip.boot-up", Check("boot-up", failures=[
+            f"no boot-up from node {s.node_id} within {BOOT_TIMEOUT} s: "
+            + (s.workdir / "node.log").read_text(errors="replace")[-500:]]))]
+    results = [("roundtrip.boot-up", Check("boot-up", passed=1))]
+    selection = selection or Selection()
+    for check_id, step in CHECKS:
+        if not selection.keeps(check_id):
+            continue
         try:
             s.node.nmt.state = "PRE-OPERATIONAL"
-            results.append(step(s))
+            results.append((check_id, step(s)))
         except Exception as err:  # a client-side failure is a failed check, and the others still run
-            results.append(Check(step.__name__, failures=[f"raised {type(err).__name__}: {err}"]))
+            results.append((check_id, Check(step.__name__, failures=[f"raised {type(err).__name__}: {err}"])))
+    if any(selection.keeps(check_id) for check_id in BATTERY_IDS):
+        results += [(r.id, r.check) for r in battery(s.client, selection)]
     return results

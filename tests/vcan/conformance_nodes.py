@@ -96,6 +96,7 @@ def check_node(node: dict, proc: subprocess.Popen[bytes]) -> dict[str, object]:
     return {"name": node["name"], "seconds": round(seconds, 2), "failed": [r.id for r in results if r.failed],
             "skipped": {r.id: r.check.skipped for r in results if r.state == "SKIP"},
             "notes": {r.id: r.check.notes for r in results if r.check.notes}, "checks": len(results),
+            "verdicts": {r.id: [r.state.strip(), r.check.passed, len(r.check.failures)] for r in results},
             "heard": heard, "durations": [round(r.seconds, 3) for r in results],
             "text": text_lines(Path(node["file"]), NODE_ID, results)}
 
