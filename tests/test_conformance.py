@@ -38,7 +38,7 @@ DEFECT_CHECKS = {1: "sdo.upload", 2: "sdo.limits", 3: "access.read-only", 4: "nm
                  10: "nmt.hb-consumer", 11: "emcy.inhibit", 12: "nmt.guarding", 13: "emcy.error-register",
                  14: "nmt.reset-comm", 15: "sdo.server", 16: "lss.inquire",
                  17: "sync.window", 18: "sdo.limits"}
-ALLOWED_ERROR_AT_BOOT, ALLOWED_PREOP_ON_ERROR = 19, 20
+ALLOWED_ERROR_AT_BOOT, ALLOWED_PREOP_ON_ERROR, ALLOWED_NO_SYNC_PRODUCER = 19, 20, 21
 # The description each defect's node is built from: the example, one with a SYNC producer, a
 # heartbeat consumer, an EMCY inhibit time and guarding, or one with the LSS slave.
 PDO_NODE = ROOT / "tests" / "node" / "pdo-node.eds"
@@ -113,6 +113,7 @@ def results(vcan_bus, tmp_path_factory: pytest.TempPathFactory, monkeypatch_modu
              _node("allowed-preop", PDO_NODE, ALLOWED_PREOP_ON_ERROR, ["sdo.upload", "nmt.states"]),
              _node("allowed-preop-no-1029", EXAMPLE, ALLOWED_PREOP_ON_ERROR, ["nmt.states"]),
              _node("preop-against-1029", variants["no-change.eds"], ALLOWED_PREOP_ON_ERROR, ["nmt.states"]),
+             _node("no-sync-producer", LSS_NODE, ALLOWED_NO_SYNC_PRODUCER, ["sync"]),
              _node("watch-6", variants["watch-6.eds"], select=["nmt.hb-consumer", "sdo.limits"]),
              _node("sync-period", variants["sync-period.eds"], select=["sdo.limits", "sync.producer"]),
              {**_node("not-destructive", EXAMPLE, destructive=False, cli=["--select", "node,sdo", "--junit",
@@ -213,6 +214,15 @@ def test_sync_period_refusal_is_allowed(results: dict[str, dict]) -> None:
     node = results["sync-period"]
     assert not node["failed"] and "sdo.limits" not in node["skipped"], _text(node)
     assert any("0x08000022: 0x1019 may only be written while 0x1006 is 0" in n for n in node["notes"]["sdo.limits"])
+
+
+def test_no_sync_producer_is_allowed(results: dict[str, dict]) -> None:
+    """A node that refuses 0x1005 bit 30 with 0x06090030 (it cannot produce SYNC, as CiA 301 allows):
+    the SYNC checks skip, saying so."""
+    node = results["no-sync-producer"]
+    assert not node["failed"], _text(node)
+    assert all("the node is no SYNC producer" in node["skipped"].get(check, "")
+               for check in ("sync.producer", "sync.window")), _text(node)
 
 
 def test_duplicate_consumer_avoided(results: dict[str, dict]) -> None:

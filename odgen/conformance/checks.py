@@ -459,8 +459,12 @@ def check_sync_producer(c: Client) -> Check:
         code = c.download(SYNC_OVERFLOW, 0, b"\x04")
         check.expect(code == DEVICE_STATE, f"0x1019 written while 0x1006 is not 0 gave {code_text(code)}, "
                                              f"expected 0x{DEVICE_STATE:08X}")
-    check.expect(c.download(SYNC_COB_ID, 0, (sync_id | SYNC_GENERATE).to_bytes(4, "little")) == 0,
-                 "0x1005 bit 30 refused")
+    code = c.download(SYNC_COB_ID, 0, (sync_id | SYNC_GENERATE).to_bytes(4, "little"))
+    if code == RANGE:
+        check.skipped = NO_SYNC_PRODUCER
+        _put_back_sync(c, saved)
+        return check
+    check.expect(code == 0, f"0x1005 bit 30 gave {code_text(code)}, expected 0 or 0x{RANGE:08X} (no SYNC producer)")
     start = time.monotonic()
     medians = c.period(sync_id, 0.3, lambda m: 14 <= m <= 30)
     check.expect(medians[-1] is not None and 14 <= medians[-1] <= 30, f"SYNC every {_ms(medians)} ms, want 20")
@@ -469,12 +473,20 @@ def check_sync_producer(c: Client) -> Check:
         bad = [(a, b) for a, b in zip(frames, frames[1:], strict=False)
                if len(a) != 1 or len(b) != 1 or b[0] != a[0] % 3 + 1]
         check.expect(bool(frames) and not bad, f"SYNC counters 1, 2, 3, 1, ... expected, got {frames[:8]}")
+    _put_back_sync(c, saved)
+    return check
+
+
+# CiA 301: a device that cannot produce SYNC refuses 0x1005 bit 30 with 0x06090030
+NO_SYNC_PRODUCER = "0x1005 bit 30 refused with 0x06090030: the node is no SYNC producer, as CiA 301 allows"
+
+
+def _put_back_sync(c: Client, saved: dict[int, bytes | None]) -> None:
     c.download(SYNC_COB_ID, 0, saved.get(SYNC_COB_ID) or (0x80).to_bytes(4, "little"))
-    c.download(SYNC_PERIOD, 0, bytes(4))
+    c.download(SYNC_PERIOD, 0, bytes(4))  # 0x1019 may only be written while 0x1006 is 0
     for index in (SYNC_OVERFLOW, SYNC_PERIOD):
         if saved.get(index) is not None:
             c.download(index, 0, saved[index] or b"")
-    return check
 
 
 # ---- heartbeat consumer and 0x1029 ----------------------------------------------------------------

@@ -16,7 +16,7 @@ from ..model.cia301 import CAN_ID_MASK, CONSUMER_HEARTBEAT, EMCY_INHIBIT, ERROR_
     LOAD, RESTORE, SAVE, STORE, SYNC_COB_ID, SYNC_PERIOD, SYNC_WINDOW
 from .verdict import ACTIVE, Check
 from .checks import EMCY_HEARTBEAT, EMCY_RPDO_LENGTH, INCOMPATIBLE, MAP_TOO_LONG, NOT_MAPPABLE, RANGE, SIGNATURE, \
-    SYNC_GENERATE, Entry, _hex, entries, is_command, played_node
+    NO_SYNC_PRODUCER, SYNC_GENERATE, Entry, _hex, entries, is_command, played_node
 from .allowed import code_text
 from .client import Client
 
@@ -208,15 +208,11 @@ def check_sync_window(c: Client) -> Check:
         if conf.ok:
             c.nmt("OPERATIONAL")
             c.download(SYNC_PERIOD, 0, SYNC_EVERY_US.to_bytes(4, "little"))
-            c.download(SYNC_COB_ID, 0, (sync_id | SYNC_GENERATE).to_bytes(4, "little"))
-            late: list[str] = []
-            for _ in range(3):  # a machine stalled between the two frames: measured again
-                start = time.monotonic()
-                time.sleep(0.5)  # a measuring window, not a wait for an event
-                syncs, tpdos = c.received_since(start, sync_id), c.received_since(start, pdo.cob)
-                late = _late(syncs, tpdos) if len(syncs) >= 3 else ["fewer than 3 SYNCs in 0.5 s"]
-                if not late:
-                    break
+            if c.download(SYNC_COB_ID, 0, (sync_id | SYNC_GENERATE).to_bytes(4, "little")) == RANGE:
+                check.skipped = NO_SYNC_PRODUCER
+                late = []
+            else:
+                late = _window(c, sync_id, pdo.cob)
             check.expect(not late, f"SYNCs without their TPDO within the window: {late[:5]}")
             c.download(SYNC_COB_ID, 0, saved[SYNC_COB_ID] or sync_id.to_bytes(4, "little"))
             c.download(SYNC_PERIOD, 0, bytes(4))
@@ -224,6 +220,20 @@ def check_sync_window(c: Client) -> Check:
         if saved[index] is not None:
             c.download(index, 0, saved[index] or b"")
     return check
+
+
+def _window(c: Client, sync_id: int, tpdo: int) -> list[str]:
+    """SYNCs the node produces without the TPDO within the window (measured again, up to three
+    windows, when the machine stalled)."""
+    late: list[str] = []
+    for _ in range(3):  # a machine stalled between the two frames: measured again
+        start = time.monotonic()
+        time.sleep(0.5)  # a measuring window, not a wait for an event
+        syncs, tpdos = c.received_since(start, sync_id), c.received_since(start, tpdo)
+        late = _late(syncs, tpdos) if len(syncs) >= 3 else ["fewer than 3 SYNCs in 0.5 s"]
+        if not late:
+            break
+    return late
 
 
 # ---- EMCY -----------------------------------------------------------------------------------

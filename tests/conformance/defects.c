@@ -13,7 +13,7 @@
 #include "odg_app.h"
 
 #ifndef ODG_DEFECT
-#error "define ODG_DEFECT (1..20)"
+#error "define ODG_DEFECT (1..21)"
 #endif
 
 enum {
@@ -38,8 +38,9 @@ enum {
     /* allowed behaviours */
     ALLOWED_ERROR_AT_BOOT,   /* an error history entry and a manufacturer error active from every boot;
                                 0x1003 sub-entries beyond the errors recorded answer 0x08000024 */
-    ALLOWED_PREOP_ON_ERROR   /* a communication error active from every boot keeps the node out of
+    ALLOWED_PREOP_ON_ERROR,  /* a communication error active from every boot keeps the node out of
                                 operational (as 0x1029 sub 1 = 0 allows) */
+    ALLOWED_NO_SYNC_PRODUCER /* 0x1005 bit 30 refused with 0x06090030: the node cannot produce SYNC */
 };
 
 static odg_send_fn real_send;
@@ -74,6 +75,23 @@ static void accept_instead(odg_frame_t *f, uint32_t a, uint32_t b)
         f->data[0] = 0x60u;
         set_code(f, 0);
     }
+}
+
+/* ALLOWED_NO_SYNC_PRODUCER: a write that set 0x1005 bit 30 is undone and answered 0x06090030. */
+static void refuse_sync_producer(odg_frame_t *f)
+{
+    odg_ref_t ref;
+    uint8_t b[4] = {0u, 0u, 0u, 0u};
+    uint32_t got = 0;
+    if (f->data[0] != 0x60u || f->data[1] != 0x05u || f->data[2] != 0x10u ||
+        odg_find(the_node->cfg.dict, 0x1005u, 0, &ref) != ODG_OK ||
+        odg_read(&ref, 0, b, sizeof b, &got) != ODG_OK || got != 4u || !(b[3] & 0x40u)) {
+        return;
+    }
+    b[3] &= (uint8_t)~0x40u;
+    (void)odg_write(&ref, b, sizeof b);
+    f->data[0] = 0x80u;
+    set_code(f, 0x06090030u);
 }
 
 /* Returns 0 to drop the frame. */
@@ -163,6 +181,11 @@ static int mangle(odg_frame_t *f)
     case WRONG_REFUSAL:
         if (sdo && f->data[0] == 0x80u && abort_code(f) == 0x06090030u) {
             set_code(f, 0x08000000u);
+        }
+        break;
+    case ALLOWED_NO_SYNC_PRODUCER:
+        if (sdo) {
+            refuse_sync_producer(f);
         }
         break;
     case ALLOWED_ERROR_AT_BOOT:
