@@ -75,9 +75,9 @@ def command(args: argparse.Namespace) -> int:
 
     def report(result) -> None:  # type: ignore[no-untyped-def]
         done.append(result)
-        print("\n".join(result_lines(result)), flush=True)
-        if args.junit:
+        if args.junit:  # first: once a line is shown, the file has it
             write_junit(args.junit, args.input, args.node_id, done)
+        print("\n".join(result_lines(result)), flush=True)
 
     print(header_line(args.input, args.node_id), flush=True)
     results = run(args.input, args.iface, args.node_id, chosen, settings, report)

@@ -17,7 +17,7 @@ from ..model.cia301 import CAN_ID_MASK, CONSUMER_HEARTBEAT, EMCY_INHIBIT, ERROR_
 from .verdict import ACTIVE, Check
 from .checks import EMCY_HEARTBEAT, EMCY_RPDO_LENGTH, INCOMPATIBLE, MAP_TOO_LONG, NOT_MAPPABLE, RANGE, SIGNATURE, \
     NO_SYNC_PRODUCER, SYNC_GENERATE, Entry, _hex, entries, is_command, played_node
-from .allowed import code_text
+from .allowed import code_text, write_refusals
 from .client import Client
 
 INVALID = 0x80000000
@@ -443,8 +443,9 @@ def _stored_numbers(c: Client) -> list[Entry]:
     """Writable, readable numbers the options put in a stored group (commands and objects with
     steps of their own left out)."""
     stored = c.settings.stored or frozenset()
-    return [e for e in entries(c) if e.key in stored and e.sub.writable and e.sub.readable and e.dtype.is_numeric
-            and e.obj.index not in ACTIVE and not is_command(e) and write_cases(e.sub, e.dtype)]
+    found = [e for e in entries(c) if e.key in stored and e.sub.writable and e.sub.readable and e.dtype.is_numeric
+             and e.obj.index not in ACTIVE and not is_command(e) and write_cases(e.sub, e.dtype)]
+    return sorted(found, key=lambda e: e.obj.index < 0x2000)  # the application's first: no CiA 301 rules
 
 
 def check_store_restore(c: Client) -> Check:
@@ -465,8 +466,8 @@ def check_store_restore(c: Client) -> Check:
     target = stored[0]
     snapshot = {e.key: c.upload(*e.key)[0] for e in stored}
     default = expected_bytes(c.od, target.sub, target.dtype, c.node_id)
-    value = next((d for d, expect in write_cases(target.sub, target.dtype)
-                  if expect == "ODG_OK" and d not in (default, snapshot[target.key])), None)
+    value = next((d for d, expect in write_cases(target.sub, target.dtype) if expect == "ODG_OK"
+                  and d not in (default, snapshot[target.key]) and not write_refusals(c, *target.key, d)), None)
     if value is None:
         check.skipped = f"{target.label}: no valid value other than the described and the present one"
         return check
