@@ -297,8 +297,8 @@ def _kept_by_error(c: Client, check: Check, sent: float) -> bool:
     0x1029 may keep the node where it is: judged against 0x1029 where described (True: the
     finding is made here), skipped with the reason where not."""
     register = c.number(ERROR_REGISTER) or 0
-    shown = c.wait_frame(sent, lambda cob, d: cob == HEARTBEAT + c.node_id and len(d) == 1, deadline=1.0)
-    state = shown[0] & 0x7F if shown else None
+    beats = [d for _, d in c.frames_since(sent, HEARTBEAT + c.node_id) if len(d) == 1]
+    state = beats[-1][0] & 0x7F if beats else None  # where the node stayed
     if not register:
         return False
     did = f"after \"start\" the heartbeat says {'none' if state is None else f'0x{state:02X}'} with 0x1001 = " \

@@ -57,13 +57,19 @@ def stop(proc: subprocess.Popen[bytes]) -> None:
         proc.wait()
 
 
+def _interruptible() -> None:
+    """Ctrl-C reaches the command as at a terminal: a command started in the background (as the vcan
+    session's are) inherits SIGINT ignored, and Python then never raises KeyboardInterrupt."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def cli(node: dict) -> dict[str, object]:
     """`odgen conformance` on the node, each line of its output with the time it came; SIGINT once
     the line of check "interrupt_after" came (an interrupted run keeps what --junit wrote)."""
     started = time.monotonic()
     proc = subprocess.Popen([sys.executable, "-m", "odgen", "conformance", node["file"], "--iface", IFACE,
                              "--node-id", str(NODE_ID), *node["cli"]], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True)
+                            stderr=subprocess.PIPE, text=True, preexec_fn=_interruptible)
     assert proc.stdout is not None and proc.stderr is not None
     lines = []
     for line in proc.stdout:
