@@ -428,6 +428,26 @@ def test_selectors_are_checked() -> None:
     assert kept == ["sdo.upload", "nmt.states", "nmt.heartbeat", "nmt.guarding", "nmt.boot-up", "nmt.reset-comm"]
 
 
+def test_destructive_and_stored_need_saying() -> None:
+    """Without --allow destructive a destructive check is skipped before it touches the bus; with it
+    but without --options, save/load skips: nothing says what 0x1010 stores."""
+    from types import SimpleNamespace
+
+    from odgen.conformance import CHECKS, _run_step
+    from odgen.conformance.client import Settings
+    from odgen.conformance.pdo import check_store_restore
+    from odgen.formats import load_path
+
+    od = load_path(EXAMPLE)[0]
+    quiet = SimpleNamespace(od=od, settings=Settings())  # any bus access would raise AttributeError
+    for step in CHECKS:
+        if step.destructive:
+            check = _run_step(quiet, step)  # type: ignore[arg-type]
+            assert "run with --allow destructive" in check.skipped and not check.failures, (step.id, check)
+    check = check_store_restore(SimpleNamespace(od=od, settings=Settings(destructive=True)))  # type: ignore[arg-type]
+    assert "name them with --options" in check.skipped and not check.passed
+
+
 def test_cli_status_text_and_junit(results: dict[str, dict]) -> None:
     """The example's node by the command, with --allow destructive and --options (the round trip
     defaults as an options file): the same skips as in-process; a defect: exit 1 and JUnit."""
