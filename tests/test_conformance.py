@@ -22,6 +22,9 @@ from xml.etree import ElementTree as ET
 import pytest
 
 from odgen.codegen.generate import Request
+from odgen.codegen.selftest import expected_bytes, write_cases
+from odgen.formats import load_path
+from odgen.model.datatypes import BASIC_TYPES
 from odgen.errors import OdgenError
 from odgen.roundtrip import ROUNDTRIP_DEFAULTS
 from odgen.roundtrip.build import build_node
@@ -233,6 +236,25 @@ def _variants(tmp: Path) -> dict[str, Path]:
             "no-change.eds": described_as(PDO_NODE, tmp / "no-change.eds", {"1029sub1": "1"})}
 
 
+def _configuration(path: Path, node: dict) -> list[list[object]]:
+    """Two stored numbers of the node given a valid value other than the described one: what an
+    integrator configured and saved before the battery ran."""
+    od = load_path(path)[0]
+    assert od is not None
+    out: list[list[object]] = []
+    for index, sub in node["settings"]["stored"]:
+        entry = od.find(index, sub)
+        dtype = BASIC_TYPES.get(entry.data_type or 0) if entry is not None else None
+        if entry is None or dtype is None or not (entry.writable and entry.readable and dtype.is_numeric):
+            continue
+        described = expected_bytes(od, entry, dtype, 5)
+        value = next((d for d, expect in write_cases(entry, dtype) if expect == "ODG_OK" and d != described), None)
+        if value is not None and len(out) < 2:
+            out.append([index, sub, value.hex()])
+    assert out
+    return out
+
+
 @pytest.fixture(scope="module")
 def results(vcan_bus, tmp_path_factory: pytest.TempPathFactory, monkeypatch_module) -> dict[str, dict]:
     monkeypatch_module.setenv("ODGEN_CACHE", str(CACHE))
@@ -258,6 +280,7 @@ def results(vcan_bus, tmp_path_factory: pytest.TempPathFactory, monkeypatch_modu
               "interrupt_after": "sdo.upload"},
              {**_node("gone-silent", EXAMPLE, select=["sdo.upload", "access"]), "stop_after": "sdo.upload"}]
     plan += [{**plan[0], "name": f"again-{k}", "cli": None} for k in (2, 3)]  # the example again: stable verdicts
+    plan.append({**plan[0], "name": "configured", "cli": None, "configure": _configuration(EXAMPLE, plan[0])})
     for node in plan:
         node["junit"] = str(junit / f"{node['name']}.xml")
     tmp = tmp_path_factory.mktemp("conformance")
@@ -410,6 +433,14 @@ def test_verdicts_stream(results: dict[str, dict]) -> None:
     assert shown == ["node.answers", "sdo.upload"], cli
     suite = ET.parse(BUILD / "conformance" / "interrupted.xml").getroot().find("testsuite")
     assert suite is not None and [case.get("name") for case in suite.iter("testcase")] == shown
+
+
+def test_battery_puts_back_what_it_changed(results: dict[str, dict]) -> None:
+    """Stored values configured and saved before the battery (with --allow destructive: save, load,
+    resets) are what the node has after it, even after a reset node: written back and saved again."""
+    node = results["configured"]
+    assert not node["failed"] and " ok   store.save-load:" in _text(node), _text(node)
+    assert node["changed"] == [], node["changed"]
 
 
 def test_same_node_same_verdicts(results: dict[str, dict]) -> None:

@@ -6,7 +6,8 @@ PLAN is a list of {"name", "exe", "file", "junit", "cli", "select", "settings"}:
 is started with node-id 5 and a fresh --nv file, its boot-up awaited, the battery run against it
 (only the check ids or prefixes of "select" when given; "settings": odgen.conformance.client.Settings
 fields, "stored" as [index, sub] pairs; results also written as JUnit XML to "junit"), and the
-node stopped ("stop_after": already once that check's result came). OUT gets, per node, the ids
+node stopped ("stop_after": already once that check's result came; "configure": values written
+and saved before, and read after a reset node once the battery is done). OUT gets, per node, the ids
 of the failed checks, the skips and notes, when each result came, and the text report. Where
 "cli" is a list (of more arguments) `python -m odgen conformance` runs against the node too,
 to check what the command prints, when, and its exit status ("interrupt_after": SIGINT once
@@ -81,6 +82,29 @@ def cli(node: dict) -> dict[str, object]:
             "lines": lines}
 
 
+def configured(node: dict, before: bool) -> list[str]:
+    """"configure": [index, sub, hex] values written and saved (0x1010 sub 1) before the battery, as
+    an integrator leaves a device; after it (and a reset node), what no longer reads so."""
+    import canopen
+
+    network = canopen.Network()
+    network.connect(interface="socketcan", channel=IFACE)
+    try:
+        remote = network.add_node(NODE_ID, canopen.ObjectDictionary())
+        remote.sdo.RESPONSE_TIMEOUT = 2.0
+        if before:
+            for index, sub, value in node["configure"]:
+                remote.sdo.download(index, sub, bytes.fromhex(value))
+            remote.sdo.download(0x1010, 1, b"save")
+            return []
+        remote.nmt.state = "RESET"
+        time.sleep(1.0)  # the boot-up of a node started in milliseconds
+        return [f"0x{index:04X}sub{sub}: {bytes(remote.sdo.upload(index, sub)).hex()}, configured {value}"
+                for index, sub, value in node["configure"] if bytes(remote.sdo.upload(index, sub)).hex() != value]
+    finally:
+        network.disconnect()
+
+
 def check_node(node: dict, proc: subprocess.Popen[bytes]) -> dict[str, object]:
     """The battery in-process, as "select" and "settings" say; "stop_after": the node is stopped
     once that check's result came (the checks after it find no node)."""
@@ -95,15 +119,18 @@ def check_node(node: dict, proc: subprocess.Popen[bytes]) -> dict[str, object]:
         if result.id == node.get("stop_after"):
             stop(proc)
 
+    if node.get("configure"):
+        configured(node, before=True)
     results = run(Path(node["file"]), IFACE, NODE_ID, Selection(tuple(node.get("select") or ())), Settings(**given),
                   on_result)
     seconds = time.monotonic() - started
+    changed = configured(node, before=False) if node.get("configure") else []
     write_junit(Path(node["junit"]), Path(node["file"]), NODE_ID, results)
     return {"name": node["name"], "seconds": round(seconds, 2), "failed": [r.id for r in results if r.failed],
             "skipped": {r.id: r.check.skipped for r in results if r.state == "SKIP"},
             "notes": {r.id: r.check.notes for r in results if r.check.notes}, "checks": len(results),
             "verdicts": {r.id: [r.state.strip(), r.check.passed, len(r.check.failures)] for r in results},
-            "heard": heard, "durations": [round(r.seconds, 3) for r in results],
+            "heard": heard, "durations": [round(r.seconds, 3) for r in results], "changed": changed,
             "text": text_lines(Path(node["file"]), NODE_ID, results)}
 
 
