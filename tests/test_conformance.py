@@ -502,6 +502,11 @@ def test_cli_user_errors(tmp_path: Path) -> None:
     no_bus = odgen(str(EXAMPLE), "--iface", "odg-no-such-if", "--node-id", "5")
     assert no_bus.returncode == 2 and "--iface" in no_bus.stderr and "Traceback" not in no_bus.stderr
     assert odgen(str(EXAMPLE), "--iface", "vcan0", "--node-id", "0").returncode == 2
+    typo = odgen(str(EXAMPLE), "--iface", "vcan0", "--node-id", "5", "--ignore", "nmt.stats")
+    assert typo.returncode == 2 and "'nmt.stats' is not a conformance check id or prefix" in typo.stderr, typo
+    no_options = odgen(str(EXAMPLE), "--iface", "vcan0", "--node-id", "5", "--options", str(tmp_path / "none.toml"))
+    assert no_options.returncode == 2 and "no such options file" in no_options.stderr, no_options
+    assert odgen(str(EXAMPLE), "--iface", "vcan0", "--node-id", "5", "--allow", "everything").returncode == 2
     off = odgen(str(sdo_server_at(PDO_NODE, tmp_path / "off.eds", "0x80000000", "0x80000000")), "--iface", "vcan0",
                 "--node-id", "5")
     assert off.returncode == 2 and "0x1200" in off.stderr and "Traceback" not in off.stderr, off

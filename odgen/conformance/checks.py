@@ -269,7 +269,7 @@ def check_nmt_states(c: Client) -> Check:
     if hb is not None and hb.writable:
         c.download(PRODUCER_HEARTBEAT, 0, (100).to_bytes(2, "little"))  # a heartbeat soon after each command
     beating = _heartbeat_period(c)
-    patience = min(DEADLINE, max(1.0, 5 * beating / 1000))  # a few heartbeats: the new state is in one of them
+    patience = min(DEADLINE, max(3.0, 10 * beating / 1000))  # heartbeats enough for the new state to show
     for command, state, sdo in (("OPERATIONAL", 0x05, True), ("STOPPED", 0x04, False),
                                 ("PRE-OPERATIONAL", 0x7F, True)):
         sent = c.nmt(command)
