@@ -18,8 +18,8 @@ from pathlib import Path
 from common import BUILD, ROOT
 
 REPEAT = 5
-AREAS = (("odgen/formats", "parse (odgen/formats)"), ("odgen/rules", "lint rules (odgen/rules, lint.py)"),
-         ("odgen/lint", "lint rules (odgen/rules, lint.py)"), ("odgen/model", "model (odgen/model)"),
+AREAS = (("odgen/formats", "parse (odgen/formats)"), ("odgen/lint", "lint (odgen/lint)"),
+         ("odgen/model", "model (odgen/model)"),
          ("odgen/codegen", "view-model (odgen/codegen)"), ("dict.", "templates (render)"),
          ("selftest.", "templates (render)"), ("jinja2", "jinja2 (template compile + runtime)"),
          ("importlib", "imports"), ("<frozen", "imports"))
@@ -67,7 +67,7 @@ def stages(path: Path) -> dict[str, float]:
     """One generation, timed stage by stage (the steps odgen.codegen.generate takes)."""
     marks = [time.perf_counter()]
     import importlib
-    for module in ("odgen.codegen.generate", "odgen.codegen.placement", "odgen.formats", "odgen.lint"):
+    for module in ("odgen.codegen.generate", "odgen.place.placement", "odgen.formats", "odgen.lint.driver"):
         importlib.import_module(module)  # timed as the import stage
     from odgen.gcpause import no_cyclic_gc
     marks.append(time.perf_counter())
@@ -80,11 +80,11 @@ def stages(path: Path) -> dict[str, float]:
 def _staged(path: Path, marks: list[float]) -> None:
     """parse, lint, place, view-model, template compile, render: a mark after each."""
     from odgen.codegen import generate as gen
-    from odgen.codegen.options import Options
-    from odgen.codegen.placement import place
+    from odgen.place.options import Options
+    from odgen.place.placement import place
     from odgen.formats import load_path
-    from odgen.lint import lint_model
-    from odgen.rules import LintOptions
+    from odgen.lint.driver import lint_model
+    from odgen.lint.passes import LintOptions
     od, diags = load_path(path)
     assert od is not None
     marks.append(time.perf_counter())

@@ -7,8 +7,8 @@ from pathlib import Path
 import pytest
 
 from odgen.codegen.generate import Request, generate
-from odgen.lint import FileResult, lint_path
-from odgen.rules import LintOptions
+from odgen.lint.driver import FileResult, lint_path
+from odgen.lint.passes import LintOptions
 
 ROOT = Path(__file__).resolve().parents[1]
 CORPUS = ROOT.parent / "shared" / "corpus" / "files"

@@ -111,7 +111,7 @@ def test_internal_error_is_one_line(monkeypatch: pytest.MonkeyPatch, capsys: pyt
     def boom(*args, **kwargs):
         raise RuntimeError("simulated bug")
 
-    monkeypatch.setattr("odgen.lint.lint_path", boom)
+    monkeypatch.setattr("odgen.lint.driver.lint_path", boom)
     assert main(["lint", str(EXAMPLE)]) == 3
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "--debug" in err and "Traceback" not in err

@@ -198,8 +198,8 @@ def test_convert_into_a_missing_folder_writes_nothing(tmp_path: Path, capsys: py
 
 _PROBE = """
 import json, resource, sys
-from odgen.lint import lint_path
-from odgen.rules import LintOptions
+from odgen.lint.driver import lint_path
+from odgen.lint.passes import LintOptions
 result = lint_path(sys.argv[1], LintOptions())
 rules = {}
 for d in result.diagnostics:

@@ -24,10 +24,10 @@ from odgen.codegen.check import run_check
 from odgen.codegen.generate import Request
 from odgen.codegen.memory import memory_rows
 from odgen.formats import load_path
-from odgen.htmlreport.render import render_html, render_markdown
-from odgen.htmlreport.view import build_report, row_key
+from odgen.report.render import render_html, render_markdown
+from odgen.report.view import build_report, row_key
 from odgen.model import ObjectDictionary
-from odgen.rules.common import plain_int, value_in_force
+from odgen.lint.passes.common import plain_int, value_in_force
 
 from .conftest import BUILD, FIXTURES, ROOT, corpus_files, lint
 
@@ -181,7 +181,7 @@ def test_example_and_network_in_chromium() -> None:
     """The example with its options (storage, hooks, memory) and the network part."""
     report, _ = build_report(EXAMPLE, EXAMPLE_OPTIONS)
     assert report is not None
-    from odgen.htmlreport.network import build_network
+    from odgen.report.network import build_network
     report.network = build_network(NETWORK, FIXTURES / "network" / "master.eds", False)
     OUT.mkdir(parents=True, exist_ok=True)
     page = OUT / "io-node.html"

@@ -1,4 +1,4 @@
-"""Boot migration in the C runtime against the policy in Python (odgen/persist/migration.py).
+"""Boot migration in the C runtime against the policy in Python (odgen/place/migration.py).
 
 Each case generates a v1 and a v2 dictionary (the same name `od`), stores values with v1 into an
 NV file, boots v2 on that file (tests/runtime/migrate_main.c) and compares what v2 serves, and the
@@ -17,9 +17,9 @@ from pathlib import Path
 import pytest
 
 from odgen.codegen.generate import Request, prepare
-from odgen.persist.layout import group_layouts
-from odgen.persist.migration import DOMAIN_TYPE, EntryLayout, GroupLayout, migrate, value_size
-from odgen.persist.nvmap import nv_map
+from odgen.place.layout import group_layouts
+from odgen.place.migration import DOMAIN_TYPE, EntryLayout, GroupLayout, migrate, value_size
+from odgen.place.nvmap import nv_map
 
 from .conftest import ROOT
 from .cprog import build

@@ -8,10 +8,10 @@ from pathlib import Path
 import pytest
 
 from odgen.codegen.generate import Request, generate
-from odgen.codegen.options import parse_options
+from odgen.place.options import parse_options
 from odgen.diagnostics import Diagnostics
-from odgen.persist.migration import EntryLayout, GroupLayout
-from odgen.persist.nvmap import nv_map
+from odgen.place.migration import EntryLayout, GroupLayout
+from odgen.place.nvmap import nv_map
 
 from .test_migration_runtime import BASE, eds, options
 

@@ -5,9 +5,9 @@ from __future__ import annotations
 from ..diagnostics import where
 from ..model import ObjectDictionary, Sub
 from .lookup import perfect_hash
-from .options import Pattern
+from ..place.options import Pattern
 from .packing import packable
-from .placement import Placement
+from ..place.placement import Placement
 
 
 def _value(od: ObjectDictionary, sub: Sub) -> str:

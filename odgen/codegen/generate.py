@@ -18,19 +18,17 @@ from ..catalogue.gen import GEN008
 from ..diagnostics import Diagnostic, Diagnostics, Loc, Severity, more_line
 from ..formats import load_path, read_bytes
 from ..gcpause import no_cyclic_gc
-from ..lint import RuleFilter, lint_model
+from ..lint.driver import RuleFilter, lint_model
 from ..model import ObjectDictionary
-from ..rules import LintOptions
-from ..rules.common import header_field, header_int
+from ..lint.passes import LintOptions
+from ..lint.passes.common import header_field, header_int
 from .names import comment, identifier, is_identifier, name_clash
-from .options import Options, PersistOptions, load_options, parse_options
+from ..place.options import Options, PersistOptions, load_options, parse_options
 from .persistview import add_status_object, persist_view
-from .placement import Placement, place
+from ..place.placement import Placement, place
 from .lookup import perfect_hash
 from .runtimecfg import runtime_config
 from .viewmodel import DictView, build
-
-LOOKUPS = ("switch", "bsearch", "hash")
 
 
 @dataclass

@@ -14,7 +14,7 @@ from __future__ import annotations
 from ..model import ObjectDictionary
 from ..model.datatypes import BASIC_TYPES
 from ..model.od import Obj
-from .placement import STORE_CLASS, Placement
+from ..place.placement import STORE_CLASS, Placement
 
 ARRAY, RECORD = 8, 9
 

@@ -1,5 +1,5 @@
 """Persistence groups in the generated C (docs/persistence.md): each group's NV region from
-`odgen.persist.nvmap`, its layout descriptor for boot migration, and the optional boot status object.
+`odgen.place.nvmap`, its layout descriptor for boot migration, and the optional boot status object.
 
 Kept apart from the view-model of the tables: `add_status_object` runs on the placed dictionary
 (before the view is built), `persist_view` on the placed dictionary once the view exists.
@@ -16,11 +16,11 @@ from ..model import ObjectDictionary
 from ..model.datatypes import BASIC_TYPES
 from ..model.od import RECORD, Obj, Sub
 from ..model.values import parse_value
-from ..persist.layout import group_layouts
-from ..persist.migration import GroupLayout
-from ..persist.nvmap import Region, nv_map
-from .options import PersistOptions
-from .placement import Placement
+from ..place.layout import group_layouts
+from ..place.migration import GroupLayout
+from ..place.nvmap import Region, nv_map
+from ..place.options import PersistOptions
+from ..place.placement import Placement
 
 UNSIGNED8, UNSIGNED32 = 0x05, 0x07
 

@@ -14,7 +14,7 @@ from ..model.cia301 import COMMUNICATION_AREA, RESTORE, STORE, unused_manufactur
 from ..model.datatypes import BASIC_TYPES, DataType
 from ..model.wire import wire_bytes
 from .memory import value_rows
-from .placement import Placement
+from ..place.placement import Placement
 from .viewmodel import DictView, initial_number
 
 MAX_WRITE_CASES = 3

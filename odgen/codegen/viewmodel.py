@@ -32,7 +32,7 @@ from ..model.datatypes import BASIC_TYPES, DataType
 from .names import COMMENT_WIDTH, comment, identifier, string_literal
 from .packing import packable
 from ..model.cia301 import RESTORE, STORE
-from .placement import STORE_CLASS, Placement
+from ..place.placement import STORE_CLASS, Placement
 
 MAX_C_STRING = 4095
 DEFAULT_DOMAIN_CAPACITY = 0  # a DOMAIN holds its default unless the options give a capacity

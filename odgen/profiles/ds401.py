@@ -13,6 +13,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from ..choices import DS401_MAX_ANALOG as MAX_ANALOG
+from ..choices import DS401_MAX_DIGITAL as MAX_DIGITAL
+from ..choices import DS401_NAME
+from ..choices import DS401_WIDTHS as WIDTHS
 from ..fileio import write_atomic
 from ..model import ARRAY, RECORD, VAR, BASIC_TYPES, Obj, ObjectDictionary, Sub, parse_value
 from ..model.cia301 import COB_INVALID, PDO_BASE_STEP, RPDO_BASE, RPDO_COMM, TPDO_BASE, TPDO_COMM
@@ -22,10 +26,7 @@ if TYPE_CHECKING:
 
 U8, U16, U32, BOOL = 0x0005, 0x0006, 0x0007, 0x0001
 INT_OF_WIDTH = {8: 0x0002, 16: 0x0003, 32: 0x0004}
-WIDTHS = tuple(INT_OF_WIDTH)
-MAX_GROUPS = 254  # sub-indices 1..0xFE of an ARRAY
-MAX_DIGITAL = MAX_GROUPS * 8
-MAX_ANALOG = 254
+MAX_GROUPS = 254  # sub-indices 1..0xFE of an ARRAY: MAX_DIGITAL is MAX_GROUPS * 8 bits (a test checks)
 FUNCTION_BITS = {"di": 16, "do": 17, "ai": 18, "ao": 19}  # CiA 401 device type, additional information
 
 
@@ -39,7 +40,7 @@ class Ds401:
     ao: int = 0
     ai_width: int = 16
     ao_width: int = 16
-    name: str = "DS401 I/O module"
+    name: str = DS401_NAME
     vendor_id: int = 0
     product_code: int = 0
     revision: int = 0

@@ -21,7 +21,7 @@ from copy import deepcopy
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..codegen.placement import STORE_CLASS, Placement
+from ..place.placement import STORE_CLASS, Placement
 from ..errors import OdgenError
 from ..codegen.selftest import expected_bytes, write_cases
 from ..formats.eds_writer import write_eds

@@ -1,0 +1,40 @@
+"""`odgen check`: generate, compile and run the dictionary's self-test."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from ..choices import LOOKUPS
+from .common import (add_generation_policy, add_input_format, existing_file, generate_request, node_id_type,
+                     print_findings, refusal)
+
+
+def add_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    chk = commands.add_parser("check", help="generate, compile and run a self-test of the dictionary")
+    chk.add_argument("input", type=Path, metavar="FILE")
+    chk.add_argument("--name", help="C name of the dictionary")
+    chk.add_argument("--options", type=existing_file("options file"), metavar="OPTS")
+    chk.add_argument("--node-id", type=node_id_type, help="node-id the self-test runs with (default 5)")
+    chk.add_argument("--lookup", choices=LOOKUPS, default="hash")
+    chk.add_argument("--keep", type=Path, metavar="DIR", help="build in DIR and keep the files")
+    chk.add_argument("--verbose", "-v", action="store_true", help="print the whole self-test output")
+    add_input_format(chk)
+    add_generation_policy(chk)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..codegen.check import run_check
+
+    request = generate_request(args)
+    outcome = run_check(request, workdir=args.keep)
+    print_findings(outcome.result.diags, request)
+    if not outcome.result.files:
+        print(refusal(args, outcome.result.refused, "generated"), file=sys.stderr)
+        return 1
+    lines = outcome.output.splitlines()
+    shown = lines if args.verbose or not outcome.ok else [x for x in lines if not x.startswith("FAIL")]
+    print("\n".join(shown))
+    print(f"odgen check: {args.input}: {'ok' if outcome.ok else 'FAILED'}")
+    return 0 if outcome.ok else 1

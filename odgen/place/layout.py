@@ -1,0 +1,52 @@
+"""The layout of each persistence group of a placed dictionary, as boot migration sees it."""
+
+from __future__ import annotations
+
+from .placement import Placement
+from ..codegen.viewmodel import DEFAULT_DOMAIN_CAPACITY, _limit_value, _string_init
+from ..model import ObjectDictionary, Sub
+from ..model.datatypes import DataType
+from .migration import DOMAIN_TYPE, EntryLayout, GroupLayout
+
+
+def group_layouts(od: ObjectDictionary, placements: dict[tuple[int, int], Placement]) -> dict[str, GroupLayout]:
+    """Every persistence group with its entries in (index, sub) order; entries of a type without a
+    stored form (a DEFSTRUCT type) are left out, as the generator refuses them."""
+    groups: dict[str, list[EntryLayout]] = {}
+    persisted = sorted((key, group, placement) for key, placement in placements.items()
+                       if (group := placement.group) is not None)
+    for (index, subindex), group, placement in persisted:
+        sub = od.find(index, subindex)
+        dtype = sub.dtype if sub is not None else None
+        if sub is not None and dtype is not None:
+            groups.setdefault(group, []).append(entry_layout(index, sub, dtype, placement))
+    return {name: GroupLayout(name, tuple(entries)) for name, entries in sorted(groups.items())}
+
+
+def entry_layout(index: int, sub: Sub, dtype: DataType, placement: Placement) -> EntryLayout:
+    return EntryLayout(index, sub.subindex, dtype.code, stored_length(sub, dtype, placement),
+                       *_limits(sub, dtype))
+
+
+def stored_length(sub: Sub, dtype: DataType, placement: Placement) -> int:
+    """The bytes the generated dictionary reserves for the value (capacities as the generator sizes them)."""
+    if dtype.bits:
+        return max(1, dtype.bits // 8)
+    if dtype.code == DOMAIN_TYPE:
+        capacity = placement.capacity if placement.capacity is not None else DEFAULT_DOMAIN_CAPACITY
+        return max(len(_domain_default(sub)), capacity, 1)
+    return _string_init(dtype, sub.default, placement.capacity)[2]
+
+
+def _domain_default(sub: Sub) -> bytes:
+    raw = sub.default.text.strip() if sub.default is not None else ""
+    try:
+        return bytes.fromhex(raw.removeprefix("0x"))
+    except ValueError:
+        return raw.encode("utf-8")
+
+
+def _limits(sub: Sub, dtype: DataType) -> tuple[int | float | None, int | float | None]:
+    if not dtype.is_numeric:
+        return None, None
+    return _limit_value(sub.low, None), _limit_value(sub.high, None)
