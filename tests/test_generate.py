@@ -11,8 +11,8 @@ import pytest
 from odgen.cli import main
 from odgen.codegen.check import run_check
 from odgen.codegen.generate import Request, generate
-from odgen.codegen.names import comment, identifier, name_clash, string_literal
-from odgen.codegen.selftest import expected_bytes
+from odgen.cnames import comment, identifier, name_clash, string_literal
+from odgen.model.expect import expected_bytes
 from odgen.diagnostics import RULES
 from odgen.model.datatypes import BASIC_TYPES
 

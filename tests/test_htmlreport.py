@@ -27,7 +27,7 @@ from odgen.formats import load_path
 from odgen.report.render import render_html, render_markdown
 from odgen.report.view import build_report, row_key
 from odgen.model import ObjectDictionary
-from odgen.lint.passes.common import plain_int, value_in_force
+from odgen.model.values import plain_int
 
 from .conftest import BUILD, FIXTURES, ROOT, corpus_files, lint
 
@@ -82,8 +82,8 @@ def expected_layouts(od: ObjectDictionary) -> dict[str, list[tuple[int, int]] | 
             continue
         key = f"{kind}{obj.index - (0x1A00 if kind == 'tpdo' else 0x1600) + 1}"
         sub0 = obj.subs.get(0)
-        count = plain_int(value_in_force(od, sub0)[0]) if sub0 is not None else None
-        raws = [plain_int(value_in_force(od, obj.subs[n])[0]) if n in obj.subs else None
+        count = plain_int(od.value_in_force(sub0)) if sub0 is not None else None
+        raws = [plain_int(od.value_in_force(obj.subs[n])) if n in obj.subs else None
                 for n in range(1, (count or 0) + 1)]
         if count is None or count > 64 or None in raws or sub0 is None or sub0.compact:
             layouts[key] = None

@@ -21,10 +21,10 @@ from ..gcpause import no_cyclic_gc
 from ..lint.driver import RuleFilter, lint_model
 from ..model import ObjectDictionary
 from ..lint.passes import LintOptions
-from ..lint.passes.common import header_field, header_int
-from .names import comment, identifier, is_identifier, name_clash
+from ..model.header import header_field, header_int
+from ..cnames import comment, identifier, is_identifier, name_clash
 from ..place.options import Options, PersistOptions, load_options, parse_options
-from .persistview import add_status_object, persist_view
+from ..place.persistence import add_status_object, persist_view
 from ..place.placement import Placement, place
 from .lookup import perfect_hash
 from .runtimecfg import runtime_config

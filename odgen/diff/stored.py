@@ -6,7 +6,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 from ..place.options import load_options
-from ..codegen.persistview import nv_regions
+from ..place.persistence import nv_regions
 from ..place.placement import place
 from ..catalogue.gen import GEN001
 from ..diagnostics import Diagnostics, Severity

@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-from .placement import Placement
-from ..codegen.viewmodel import DEFAULT_DOMAIN_CAPACITY, _limit_value, _string_init
 from ..model import ObjectDictionary, Sub
+from ..model.capacity import domain_capacity, limit_value, string_capacity, string_default
 from ..model.datatypes import DataType
 from .migration import DOMAIN_TYPE, EntryLayout, GroupLayout
+from .placement import Placement
 
 
 def group_layouts(od: ObjectDictionary, placements: dict[tuple[int, int], Placement]) -> dict[str, GroupLayout]:
@@ -33,20 +33,11 @@ def stored_length(sub: Sub, dtype: DataType, placement: Placement) -> int:
     if dtype.bits:
         return max(1, dtype.bits // 8)
     if dtype.code == DOMAIN_TYPE:
-        capacity = placement.capacity if placement.capacity is not None else DEFAULT_DOMAIN_CAPACITY
-        return max(len(_domain_default(sub)), capacity, 1)
-    return _string_init(dtype, sub.default, placement.capacity)[2]
-
-
-def _domain_default(sub: Sub) -> bytes:
-    raw = sub.default.text.strip() if sub.default is not None else ""
-    try:
-        return bytes.fromhex(raw.removeprefix("0x"))
-    except ValueError:
-        return raw.encode("utf-8")
+        return domain_capacity(sub.default, placement.capacity)
+    return string_capacity(dtype, string_default(dtype, sub.default), placement.capacity)
 
 
 def _limits(sub: Sub, dtype: DataType) -> tuple[int | float | None, int | float | None]:
     if not dtype.is_numeric:
         return None, None
-    return _limit_value(sub.low, None), _limit_value(sub.high, None)
+    return limit_value(sub.low, None), limit_value(sub.high, None)

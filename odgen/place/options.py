@@ -31,7 +31,7 @@ from pathlib import Path
 
 from ..catalogue.gen import GEN001
 from ..diagnostics import Diagnostics, Loc
-from ..codegen.names import is_identifier
+from ..cnames import is_identifier
 
 if sys.version_info >= (3, 11):
     import tomllib

@@ -18,7 +18,7 @@ from ..catalogue.gen import GEN002, GEN003
 from ..diagnostics import Diagnostics, Loc
 from ..model import Obj, ObjectDictionary, Sub
 from ..model.cia301 import RUNTIME_UPDATED, is_store_command
-from ..codegen.names import identifier
+from ..cnames import identifier
 from .options import OptionEntry, Options
 
 

@@ -16,13 +16,12 @@ from typing import TYPE_CHECKING
 from ..codegen.generate import Request, generate
 from ..codegen.memory import MemoryRow, memory_rows
 from ..place.placement import Placement
-from ..diagnostics import RULES, Diagnostic, Diagnostics, Severity, where
+from ..diagnostics import RULES, Diagnostic, Severity, where
 from ..model import ObjectDictionary, Obj, Sub
 from ..model.cia301 import RPDO_MAPPING, TPDO_MAPPING
 from ..model.datatypes import BASIC_TYPES
 from ..model.od import OBJECT_CODES
-from ..lint.passes.common import value_in_force
-from ..lint.passes.pdo import FD_FRAME_BITS, FRAME_BITS, MAPPINGS, mapping_entries, mapping_objects
+from ..model.pdo import FD_FRAME_BITS, FRAME_BITS, MAPPINGS, decode_mapping, mapping_objects
 
 if TYPE_CHECKING:
     from .network import NetworkView
@@ -154,7 +153,7 @@ def type_name(sub: Sub) -> str:
 
 
 def value_text(od: ObjectDictionary, sub: Sub) -> str:
-    value, _ = value_in_force(od, sub)
+    value = od.value_in_force(sub)
     return value.text.strip() if value is not None else ""
 
 
@@ -202,7 +201,7 @@ def _identity(od: ObjectDictionary) -> list[tuple[str, str]]:
         if sub is not None:
             facts.append((label, value_text(od, sub)))
     device = od.find(0x1000, 0)
-    value = value_in_force(od, device)[0] if device is not None else None
+    value = od.value_in_force(device) if device is not None else None
     if value is not None and isinstance(value.parsed, int) and not value.nodeid:
         facts.append(("Device profile", f"CiA {value.parsed & 0xFFFF}"))
     relative = sum(1 for obj in od.objects.values() for s in obj.subs.values()
@@ -226,7 +225,7 @@ def _comm_params(od: ObjectDictionary, comm: int) -> list[tuple[str, str]]:
     cob = od.find(comm, 1)
     if cob is not None:
         text = value_text(od, cob)
-        value = value_in_force(od, cob)[0]
+        value = od.value_in_force(cob)
         off = value is not None and isinstance(value.parsed, int) and bool(value.parsed & 0x80000000)
         params.append(("COB-ID", text + (" (disabled)" if off else "")))
     else:
@@ -243,7 +242,7 @@ def _comm_params(od: ObjectDictionary, comm: int) -> list[tuple[str, str]]:
 def pdo_boxes(od: ObjectDictionary, obj: Obj) -> list[Box]:
     """The active mapping entries as boxes, each at the bit offset the entries before it leave."""
     boxes, bit = [], 0
-    for entry in mapping_entries(od, obj, Diagnostics()):  # the lint pass reports on them
+    for entry in decode_mapping(od, obj).entries:  # the lint pass reports what is wrong with them
         dummy = entry.index < 0x20
         target = od.find(entry.index, entry.subindex)
         owner = od.objects.get(entry.index)

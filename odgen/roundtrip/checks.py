@@ -23,7 +23,7 @@ from pathlib import Path
 
 from ..place.placement import STORE_CLASS, Placement
 from ..errors import OdgenError
-from ..codegen.selftest import expected_bytes, write_cases
+from ..model.expect import expected_bytes, write_cases
 from ..formats.eds_writer import write_eds
 from ..model import ARRAY, RECORD, Obj, ObjectDictionary, Sub
 from ..model.cia301 import (

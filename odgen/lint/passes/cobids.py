@@ -16,7 +16,7 @@ from ...model import Obj, ObjectDictionary, Sub
 from ...model.cia301 import (
     COB_EXTENDED, COB_INVALID, COB_PRODUCER, EMCY_COB_ID, ERROR_HISTORY, RESTRICTED_CAN_IDS, SDO_CLIENT, SDO_SERVER,
     SYNC_COB_ID, TIME_COB_ID, is_sdo_parameter, pdo_communication)
-from . import LintOptions, lint_pass
+from .base import LintOptions, LintPass
 from .common import addr, at, node_span, value_in_force, value_line
 
 READ_ONLY = ("ro", "const")
@@ -75,7 +75,6 @@ def _collisions(od: ObjectDictionary, node_id: int) -> dict[tuple[Use, Use], int
     return found
 
 
-@lint_pass
 def cob_id_collisions(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     """Collisions at every node-id the file must work for: a fixed COB-ID that meets a `$NODEID` one at a
     single node-id (a master receiving node 127's TPDO1 on 0x1FF) is left to `lint --network`."""
@@ -94,7 +93,6 @@ def cob_id_collisions(od: ObjectDictionary, diags: Diagnostics, options: LintOpt
                   f"{first.name} ({where(first.index, first.sub)})", use.index, use.sub)
 
 
-@lint_pass
 def default_sdo_server(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     obj = od.objects.get(SDO_SERVER)
     if obj is None or obj.is_var:
@@ -113,7 +111,6 @@ def default_sdo_server(od: ObjectDictionary, diags: Diagnostics, options: LintOp
                       f"COB-ID {value.text.strip()} is not $NODEID+0x{base:X}", SDO_SERVER, subindex)
 
 
-@lint_pass
 def error_history_count(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     obj = od.objects.get(ERROR_HISTORY)
     sub0 = obj.subs.get(0) if obj is not None and not obj.is_var else None
@@ -122,7 +119,6 @@ def error_history_count(od: ObjectDictionary, diags: Diagnostics, options: LintO
                   f"is {sub0.access}; writing 0 to it clears the error history", ERROR_HISTORY, 0)
 
 
-@lint_pass
 def time_cob_id(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     obj = od.objects.get(0x1012)
     sub = obj.var if obj is not None else None
@@ -146,3 +142,7 @@ def _time_problem(raw: int, nodeid: bool) -> str | None:
     if any(lo <= can_id <= hi for lo, hi in RESTRICTED_CAN_IDS):
         return f"gives the restricted CAN-ID 0x{can_id:03X}"
     return None
+
+
+# This family's lint passes, in the order they run.
+PASSES: tuple[LintPass, ...] = (cob_id_collisions, default_sdo_server, error_history_count, time_cob_id)

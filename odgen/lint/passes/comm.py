@@ -20,15 +20,15 @@ from ...model.cia301 import (
     PRODUCER_HEARTBEAT, READ_ONLY, RESTRICTED_CAN_IDS, RPDO_COMM, SDO_CLIENT, SDO_COUNT, SDO_SERVER, SDO_TYPES,
     TPDO_COMM, TPDO_MAPPING, U32, VAR_TYPES, is_pdo_mapping, is_sdo_parameter, pdo_communication, predefined_cob_id)
 from ...model.datatypes import BASIC_TYPES
-from . import LintOptions, lint_pass
-from .common import (addr, at, default_line, header_field, header_int, node_span, number, plain_int, value_in_force,
-                     value_line)
+from .base import LintOptions, LintPass
+from ...model.header import header_field, header_int
+from ...model.values import number, plain_int
+from .common import addr, at, default_line, node_span, value_in_force, value_line
 
 
 
 # -- mandatory objects, data types, access -----------------------------------------
 
-@lint_pass
 def mandatory_objects(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for index, name in MANDATORY.items():
         if index not in od.objects:
@@ -53,7 +53,6 @@ def _expected_type(obj: Obj, sub: Sub) -> int | None:
     return table.get(sub.subindex, table.get(0))
 
 
-@lint_pass
 def comm_data_types(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for index, obj in od.objects.items():
         if not DEVICE_TYPE <= index < TPDO_MAPPING + PDO_COUNT:
@@ -70,7 +69,6 @@ def comm_data_types(od: ObjectDictionary, diags: Diagnostics, options: LintOptio
                       f"CiA 301 defines {BASIC_TYPES[expected].name}", index, addr(obj, sub))
 
 
-@lint_pass
 def read_only_identity(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for index in READ_ONLY:
         obj = od.objects.get(index)
@@ -104,7 +102,6 @@ def _cob_entries(od: ObjectDictionary) -> Iterator[tuple[Obj, Sub, tuple[int, st
                 yield obj, sub, known
 
 
-@lint_pass
 def predefined_cob_ids(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for obj, sub, (base, name) in _cob_entries(od):
         value, keyword = value_in_force(od, sub)
@@ -128,7 +125,6 @@ def _not_predefined(od: ObjectDictionary, value: Value, raw: int, base: int, nam
     return f"is fixed; the predefined {name} COB-ID is $NODEID+0x{base:X}"
 
 
-@lint_pass
 def pdo_cob_ids(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     span = node_span(od, options)
     for index, obj in od.objects.items():
@@ -169,7 +165,6 @@ def _cob_problem(value: Value, span: tuple[int, int]) -> str | None:
 
 # -- C7: identity and error control -----------------------------------------------------
 
-@lint_pass
 def identity(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     obj = od.objects.get(IDENTITY)
     if obj is not None and (obj.is_var or 1 not in obj.subs):
@@ -192,7 +187,6 @@ def _var_int(od: ObjectDictionary, index: int) -> tuple[Sub | None, int | None]:
     return sub, (plain_int(value_in_force(od, sub)[0]) if sub is not None else None)
 
 
-@lint_pass
 def error_control(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     guard, life = od.objects.get(GUARD_TIME), od.objects.get(LIFE_TIME_FACTOR)
     if PRODUCER_HEARTBEAT not in od.objects and guard is None and life is None:
@@ -208,7 +202,6 @@ def error_control(od: ObjectDictionary, diags: Diagnostics, options: LintOptions
                   PRODUCER_HEARTBEAT)
 
 
-@lint_pass
 def heartbeat_consumers(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     obj = od.objects.get(CONSUMER_HEARTBEAT)
     if obj is None or obj.is_var:
@@ -241,7 +234,6 @@ def _consumer_problem(reserved: int, node: int, time: int, seen: dict[int, int])
     return None
 
 
-@lint_pass
 def device_profile(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     sub, device_type = _var_int(od, DEVICE_TYPE)
     if sub is None or device_type is None or device_type & 0xFFFF:
@@ -255,7 +247,6 @@ def device_profile(od: ObjectDictionary, diags: Diagnostics, options: LintOption
 
 # -- C8: PDO and SDO parameter records -------------------------------------------------
 
-@lint_pass
 def comm_records(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for index, obj in od.objects.items():
         if not SDO_SERVER <= index < TPDO_MAPPING or obj.is_var:
@@ -305,7 +296,6 @@ def _transmission_type(od: ObjectDictionary, obj: Obj, kind: str, diags: Diagnos
 
 # -- services: SYNC window, LSS -------------------------------------------------------
 
-@lint_pass
 def sync_window(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     _, period = _var_int(od, 0x1006)
     window_sub, window = _var_int(od, 0x1007)
@@ -315,7 +305,6 @@ def sync_window(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) 
                   0x1007, 0)
 
 
-@lint_pass
 def lss_identity(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     fld = header_field(od, "DeviceInfo", "LSS_Supported")
     if header_int(fld) != 1 or fld is None:
@@ -327,3 +316,9 @@ def lss_identity(od: ObjectDictionary, diags: Diagnostics, options: LintOptions)
         diags.add(COM021, Loc(od.source, fld.line),
                   f"lacks {names} while LSS_Supported=1; an LSS master addresses the device by 0x1018 sub1-4",
                   0x1018)
+
+
+# This family's lint passes, in the order they run.
+PASSES: tuple[LintPass, ...] = (mandatory_objects, comm_data_types, read_only_identity, predefined_cob_ids,
+                                pdo_cob_ids, identity, error_control, heartbeat_consumers, device_profile,
+                                comm_records, sync_window, lss_identity)

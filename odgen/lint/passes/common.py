@@ -9,8 +9,9 @@ read as integers, Granularity and [DummyUsage].
 from __future__ import annotations
 
 from ...model import Field, Obj, ObjectDictionary, Sub, Value
-from ...model.values import parse_int_literal
-from . import LintOptions
+from ...model.header import header_field, header_int
+from ...model.values import number
+from .base import LintOptions
 
 _NODE_IDS = (1, 127)
 
@@ -24,19 +25,6 @@ def node_span(od: ObjectDictionary, options: LintOptions) -> tuple[int, int]:
     if od.is_config and od.node_id is not None and 1 <= od.node_id <= 127:
         return od.node_id, od.node_id
     return _NODE_IDS
-
-
-def number(value: Value | None) -> int | float | None:
-    """A value's parsed number (the offset for `$NODEID` values), None if not a number."""
-    if value is None or value.error or isinstance(value.parsed, bool):
-        return None
-    return value.parsed if isinstance(value.parsed, (int, float)) else None
-
-
-def plain_int(value: Value | None) -> int | None:
-    """A value's integer when it is one and not relative to the node-id, else None."""
-    n = number(value)
-    return n if isinstance(n, int) and value is not None and not value.nodeid else None
 
 
 def at(value: Value, node_id: int) -> int | float | None:
@@ -88,20 +76,6 @@ def gaps(count: int, present: set[int], limit: int = 5) -> tuple[list[int], int]
 
 
 # -- header sections -------------------------------------------------------------
-
-def header_field(od: ObjectDictionary, section_name: str, key: str) -> Field | None:
-    """A key of a header section; None when the section or the key is absent."""
-    section = od.section(section_name)
-    return section.get(key) if section is not None else None
-
-
-def header_int(fld: Field | None) -> int | None:
-    """A header key's value as an integer; None when absent, empty or not a number."""
-    if fld is None:
-        return None
-    value, _ = parse_int_literal(fld.text)
-    return value
-
 
 def granularity(od: ObjectDictionary) -> tuple[int | None, Field | None]:
     """[DeviceInfo] Granularity as a number, and its field."""

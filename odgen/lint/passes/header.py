@@ -15,8 +15,10 @@ from ...catalogue.header import (
 from ...diagnostics import Diagnostics, Loc
 from ...model import Field, ObjectDictionary, Section, Sub, Value
 from ...model.cia301 import IDENTITY
-from . import LintOptions, lint_pass
-from .common import gaps, granularity, header_field, header_int, number
+from .base import LintOptions, LintPass
+from ...model.header import header_field, header_int
+from ...model.values import number
+from .common import gaps, granularity
 
 
 
@@ -63,7 +65,6 @@ def _loc(od: ObjectDictionary, fld: Field | Section | None) -> Loc:
 
 # -- H1, H2 ----------------------------------------------------------------------
 
-@lint_pass
 def required_sections(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     if od.format not in ("eds", "dcf"):
         return
@@ -75,7 +76,6 @@ def required_sections(od: ObjectDictionary, diags: Diagnostics, options: LintOpt
         diags.add(HDR001, Loc(od.source), "[MandatoryObjects] is missing")
 
 
-@lint_pass
 def header_keys(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for name, keys in KNOWN_KEYS.items():
         section = od.section(name)
@@ -89,7 +89,6 @@ def header_keys(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) 
 
 # -- H3 --------------------------------------------------------------------------
 
-@lint_pass
 def header_numbers(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for key, (section_name, valid, said) in NUMBERS.items():
         fld = header_field(od, section_name, key)
@@ -103,7 +102,6 @@ def header_numbers(od: ObjectDictionary, diags: Diagnostics, options: LintOption
             diags.add(HDR003, _loc(od, fld), f"{fld.key}={fld.text.strip()} is {what}")
 
 
-@lint_pass
 def file_info_formats(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     section = od.section("FileInfo")
     if section is None:
@@ -133,7 +131,6 @@ def _valid_time(text: str) -> bool:
 
 # -- H4 --------------------------------------------------------------------------
 
-@lint_pass
 def device_flags(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     section = od.section("DeviceInfo")
     if section is None:
@@ -168,7 +165,6 @@ def _commissioned_rate(od: ObjectDictionary, rates: set[int], diags: Diagnostics
 
 # -- H5 --------------------------------------------------------------------------
 
-@lint_pass
 def granularity_range(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     value, fld = granularity(od)
     if fld is not None and fld.text.strip() and (value is None or not 0 <= value <= 64):
@@ -177,7 +173,6 @@ def granularity_range(od: ObjectDictionary, diags: Diagnostics, options: LintOpt
 
 # -- H8 --------------------------------------------------------------------------
 
-@lint_pass
 def dynamic_channels(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     fld = header_field(od, "DeviceInfo", "DynamicChannelsSupported")
     count = header_int(fld)
@@ -192,7 +187,6 @@ def dynamic_channels(od: ObjectDictionary, diags: Diagnostics, options: LintOpti
 
 # -- H9 --------------------------------------------------------------------------
 
-@lint_pass
 def dummy_usage(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     section = od.section("DummyUsage")
     if section is None:
@@ -211,7 +205,6 @@ _IDENTITY = (("DeviceInfo", "VendorNumber", 1), ("DeviceInfo", "ProductNumber", 
              ("DeviceInfo", "RevisionNumber", 3), ("DeviceComissioning", "LSS_SerialNumber", 4))
 
 
-@lint_pass
 def identity_numbers(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     identity = od.objects.get(IDENTITY)
     if identity is None or identity.is_var:
@@ -239,7 +232,6 @@ def _identity_value(od: ObjectDictionary, sub: Sub | None) -> Value | None:
 
 # -- H11 -------------------------------------------------------------------------
 
-@lint_pass
 def comment_lines(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     section = od.section("Comments")
     if section is None:
@@ -267,3 +259,8 @@ def _line_mismatches(declared: int, numbers: set[int]) -> list[str]:
     if extra:
         parts.append(", ".join(f"Line{n}" for n in extra[:3]) + (" ..." if len(extra) > 3 else "") + " beyond it")
     return parts
+
+
+# This family's lint passes, in the order they run.
+PASSES: tuple[LintPass, ...] = (required_sections, header_keys, header_numbers, file_info_formats, device_flags,
+                                granularity_range, dynamic_channels, dummy_usage, identity_numbers, comment_lines)

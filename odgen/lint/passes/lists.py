@@ -14,7 +14,7 @@ from ...diagnostics import Diagnostics, Loc
 from ...model import Field, ObjectDictionary, ObjectList
 from ...model.cia301 import MANDATORY
 from ...model.values import bounded_int, parse_int_literal
-from . import LintOptions, lint_pass
+from .base import LintOptions, LintPass
 from .common import gaps
 
 
@@ -37,7 +37,6 @@ def _uses_lists(od: ObjectDictionary) -> bool:
 
 # -- L1 --------------------------------------------------------------------------
 
-@lint_pass
 def list_counts(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     if not _uses_lists(od):
         return
@@ -104,7 +103,6 @@ def listed_indices(od: ObjectDictionary) -> dict[int, tuple[str, Field]]:
     return seen
 
 
-@lint_pass
 def list_entries(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     if not _uses_lists(od):
         return
@@ -167,7 +165,6 @@ def _misread_decimals(od: ObjectDictionary) -> set[int]:
     return found
 
 
-@lint_pass
 def unlisted_objects(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     if not _uses_lists(od) or not od.object_lists:
         return
@@ -181,10 +178,13 @@ def unlisted_objects(od: ObjectDictionary, diags: Diagnostics, options: LintOpti
 
 # -- L4 --------------------------------------------------------------------------
 
-@lint_pass
 def index_ranges(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for index, obj in od.objects.items():
         if index == 0 or 0x0260 <= index <= 0x0FFF:
             diags.add(LST011, Loc(od.source, obj.line), "is in a range CiA 301 reserves", index)
         elif index >= 0xC000:
             diags.add(LST012, Loc(od.source, obj.line), "is in the range 0xC000-0xFFFF CiA 301 reserves", index)
+
+
+# This family's lint passes, in the order they run.
+PASSES: tuple[LintPass, ...] = (list_counts, list_entries, unlisted_objects, index_ranges)

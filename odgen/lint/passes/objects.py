@@ -16,8 +16,9 @@ from ...model import (ACCESS_TYPES, ARRAY, DEFSTRUCT, DEFTYPE, DOMAIN, RECORD, V
 from ...model.cia301 import ERROR_HISTORY, PDO_COUNT, RPDO_MAPPING, TPDO_MAPPING
 from ...model.datatypes import BASIC_TYPES, DataType
 from ...model.od import OBJECT_CODES
-from . import LintOptions, lint_pass
-from .common import addr, at, default_line, node_span, number, plain_int, value_in_force, value_line
+from .base import LintOptions, LintPass
+from ...model.values import number, plain_int
+from .common import addr, at, default_line, node_span, value_in_force, value_line
 
 
 
@@ -62,28 +63,21 @@ class Walk:
     dcf_only: dict[str, list[tuple[Obj, Sub]]]  # DCF keyword -> the EDS entries that have it
 
 
-# Each check looks at one object: its entries written as sections (`written`), and those that carry a
+# Each question looks at one object: its entries written as sections (`written`), and those that carry a
 # value (`valued`: the written ones and a CompactSubObj template). One walk serves them all, since a
-# walk per rule over thousands of objects costs more than the checks themselves.
-ObjectCheck = Callable[[Walk, Obj, list[Sub], list[Sub]], None]
-OBJECT_CHECKS: list[ObjectCheck] = []
+# walk per rule over thousands of objects costs more than the questions themselves.
+# OBJECT_QUESTIONS (at the end of this module) lists them in the order they are asked.
+ObjectQuestion = Callable[[Walk, Obj, list[Sub], list[Sub]], None]
 
 
-def object_check(fn: ObjectCheck) -> ObjectCheck:
-    OBJECT_CHECKS.append(fn)
-    return fn
-
-
-@lint_pass
 def object_entries(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     walk = Walk(od, diags, node_span(od, options), defined_types(od), {key: [] for key, _ in _DCF_ONLY})
-    checks = OBJECT_CHECKS
     for obj in od.objects.values():
         written = written_subs(obj)
         tmpl = template(obj)
         valued = written if tmpl is None else [*written, tmpl]
-        for check in checks:
-            check(walk, obj, written, valued)
+        for question in OBJECT_QUESTIONS:
+            question(walk, obj, written, valued)
     dcf_only_content(walk)
 
 
@@ -102,7 +96,6 @@ def _show(value: Value) -> str:
 
 # -- O1, O2 --------------------------------------------------------------------
 
-@object_check
 def parameter_names(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) -> None:
     od, diags = walk.od, walk.diags
     if not obj.name.strip():
@@ -120,7 +113,6 @@ def parameter_names(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub])
                   f"has no ParameterName{more}", obj.index, nameless[0].subindex)
 
 
-@object_check
 def object_types(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) -> None:
     od, diags = walk.od, walk.diags
     if obj.object_code not in VALID_OBJECT_CODES:
@@ -138,7 +130,6 @@ def object_types(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) ->
 
 # -- O3, O7, O9 ----------------------------------------------------------------
 
-@object_check
 def required_attributes(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) -> None:
     """DataType and AccessType present (O3) and valid (O7), DataType known (O9), wherever they are required:
     a VAR's entry and a CompactSubObj template (located at the object), the sub-objects of the others."""
@@ -172,7 +163,6 @@ def _attributes(walk: Walk, obj: Obj, sub: Sub, subindex: int | None, line: int)
                   obj.index, subindex)
 
 
-@object_check
 def container_keywords(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) -> None:
     if obj.object_code not in VALID_OBJECT_CODES:
         return
@@ -204,7 +194,6 @@ def _container_shape(od: ObjectDictionary, obj: Obj, has_number: bool, has_compa
 
 # -- O4, O5 --------------------------------------------------------------------
 
-@object_check
 def sub_counts(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) -> None:
     if obj.object_code not in CONTAINER_CODES or obj.compact_sub_obj or obj.sub_number is None:
         return
@@ -215,7 +204,6 @@ def sub_counts(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) -> N
                        f"{'' if present == 1 else 's'} {'is' if present == 1 else 'are'} defined", obj.index)
 
 
-@object_check
 def sub0_entries(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) -> None:
     if obj.object_code not in (ARRAY, RECORD) or not obj.subs:
         return
@@ -252,7 +240,6 @@ def _sub0_value(od: ObjectDictionary, obj: Obj, sub0: Sub, diags: Diagnostics) -
 
 # -- O10, O11 ------------------------------------------------------------------
 
-@object_check
 def limits(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) -> None:
     od, diags = walk.od, walk.diags
     for sub in valued:
@@ -338,7 +325,6 @@ def _ordered(od: ObjectDictionary, index: int, where_sub: int | None, sub: Sub, 
 
 
 
-@object_check
 def value_ranges(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) -> None:
     for sub in valued:
         bounds = _BOUNDS.get(sub.data_type) if sub.data_type is not None else None  # numeric types have bounds
@@ -385,7 +371,6 @@ def _within_limits(od: ObjectDictionary, obj: Obj, sub: Sub, keyword: str, value
 
 # -- O8 ------------------------------------------------------------------------
 
-@object_check
 def pdo_mapping_flags(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) -> None:
     od, diags = walk.od, walk.diags
     undirected = None
@@ -406,7 +391,6 @@ def pdo_mapping_flags(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub
 
 # -- O12 -----------------------------------------------------------------------
 
-@object_check
 def string_values(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) -> None:
     od, diags = walk.od, walk.diags
     for sub in valued:
@@ -431,7 +415,6 @@ def _visible(od: ObjectDictionary, obj: Obj, sub: Sub, diags: Diagnostics) -> No
                       obj.index, addr(obj, sub))
 
 
-@object_check
 def file_keywords(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) -> None:
     od, diags = walk.od, walk.diags
     for sub in written:
@@ -451,7 +434,6 @@ def file_keywords(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) -
 
 # -- O13, O15, unknown keys ----------------------------------------------------
 
-@object_check
 def obj_flags(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) -> None:
     """At most once per object: the header's ObjFlags, else the first entry's."""
     flags = obj.obj_flags
@@ -473,7 +455,6 @@ def _bad_flags(walk: Walk, obj: Obj, flags: int, subindex: int | None, line: int
 _DCF_ONLY = (("parametervalue", "ParameterValue"), ("denotation", "Denotation"), ("paramrefd", "ParamRefd"))
 
 
-@object_check
 def dcf_only_keywords(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) -> None:
     """The entries of an EDS with DCF keywords, reported by dcf_only_content once the walk is done."""
     if walk.od.format != "eds":
@@ -504,7 +485,6 @@ def dcf_only_content(walk: Walk) -> None:
                   obj.index, addr(obj, sub))
 
 
-@object_check
 def unknown_keywords(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) -> None:
     if walk.od.format not in ("eds", "dcf"):
         return  # XDD extensions are attributes, checked against the schema by the XML reader
@@ -524,7 +504,6 @@ def _unknown_keys(walk: Walk, obj: Obj, extra: dict[str, Field], subindex: int |
 
 # -- ARRAY element types -------------------------------------------------------
 
-@object_check
 def array_elements(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) -> None:
     if obj.object_code != ARRAY or obj.compact_sub_obj:
         return
@@ -543,7 +522,6 @@ def array_elements(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) 
 
 # -- strings the runtime serves as C strings -----------------------------------
 
-@object_check
 def visible_strings(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) -> None:
     od = walk.od
     for sub in obj.subs.values():
@@ -555,3 +533,27 @@ def visible_strings(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub])
             walk.diags.add(OBJ029, Loc(od.source, value_line(sub, value, keyword)),
                            f"value has a NUL at character {at_nul + 1}; the runtime would end the string there",
                            obj.index, addr(obj, sub))
+
+
+OBJECT_QUESTIONS: tuple[ObjectQuestion, ...] = (
+    parameter_names,
+    object_types,
+    required_attributes,
+    container_keywords,
+    sub_counts,
+    sub0_entries,
+    limits,
+    value_ranges,
+    pdo_mapping_flags,
+    string_values,
+    file_keywords,
+    obj_flags,
+    dcf_only_keywords,
+    unknown_keywords,
+    array_elements,
+    visible_strings,
+)
+
+
+# This family's lint passes, in the order they run.
+PASSES: tuple[LintPass, ...] = (object_entries,)

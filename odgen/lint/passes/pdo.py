@@ -7,60 +7,25 @@ a mapping entry where it has one, else with its DefaultValue.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
-from dataclasses import dataclass
-
 from ...catalogue.pdo import PDO001, PDO002, PDO003, PDO004, PDO005, PDO006, PDO007, PDO008, PDO009, PDO010, PDO011
 from ...diagnostics import Diagnostics, Loc, where
-from ...model import ARRAY, RECORD, Obj, ObjectDictionary, Sub, Value
-from ...model.cia301 import RPDO_COMM, RPDO_MAPPING, TPDO_COMM, TPDO_MAPPING
+from ...model import Obj, ObjectDictionary, Sub
+from ...model.pdo import (FD_FRAME_BITS, FRAME_BITS, MAPPINGS, MAX_ENTRIES, MappingEntry, decode_mapping,
+                         mapping_objects)
 from ...model.datatypes import BASIC_TYPES, DataType
-from . import LintOptions, lint_pass
-from .common import (disabled, dummy_enabled, granularity, header_field, header_int, number, plain_int,
-                     value_in_force, value_line)
+from .base import LintOptions, LintPass
+from ...model.header import header_field, header_int
+from .common import disabled, dummy_enabled, granularity, value_in_force, value_line
 
 
 
-MAPPINGS = {RPDO_MAPPING: ("RPDO", RPDO_COMM), TPDO_MAPPING: ("TPDO", TPDO_COMM)}
-FRAME_BITS, FD_FRAME_BITS = 64, 512
-MPDO = (0xFE, 0xFF)  # mapping sub0 of a multiplexed PDO: SAM-MPDO / DAM-MPDO (CiA 301)
-
-
-@dataclass
-class Entry:
-    """One active mapping entry, decoded."""
-
-    sub: Sub
-    value: Value
-    index: int
-    subindex: int
-    length: int
-    line: int
-
-
-def _kind(index: int) -> tuple[str, int] | None:
-    """("RPDO"|"TPDO", PDO number) for a mapping object index."""
-    for base, (kind, _comm) in MAPPINGS.items():
-        if base <= index < base + 0x200:
-            return kind, index - base
-    return None
-
-
-def mapping_objects(od: ObjectDictionary) -> Iterator[tuple[Obj, str]]:
-    for index, obj in od.objects.items():
-        kind = _kind(index)
-        if kind is not None and obj.object_code in (ARRAY, RECORD):
-            yield obj, kind[0]
-
-
-@lint_pass
 def mappings(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     gran, _ = granularity(od)
     limit = FD_FRAME_BITS if options.can_fd else FRAME_BITS
     for obj, kind in mapping_objects(od):
         offset = 0
         misaligned = False
-        contrary: list[Entry] = []
+        contrary: list[MappingEntry] = []
         for entry in mapping_entries(od, obj, diags):
             _target(od, obj, kind, entry, contrary, diags)
             if gran and gran > 0 and offset % gran and not misaligned:
@@ -85,59 +50,32 @@ def _overflow(od: ObjectDictionary, obj: Obj, kind: str, offset: int, limit: int
               f"{kind} maps {offset} bits; a {frame} carries {limit}", obj.index, 0)
 
 
-def mapping_entries(od: ObjectDictionary, obj: Obj, diags: Diagnostics) -> list[Entry]:
+def mapping_entries(od: ObjectDictionary, obj: Obj, diags: Diagnostics) -> list[MappingEntry]:
     """The entries sub0 activates, reporting counted entries that are absent or empty."""
+    mapping = decode_mapping(od, obj)
     sub0 = obj.subs.get(0)
-    value, keyword = value_in_force(od, sub0) if sub0 is not None else (None, "")
-    if number(value) in MPDO:
-        return []  # multiplexed PDO: the entries are not a fixed mapping
-    count = plain_int(value) if sub0 is not None and not sub0.compact else None
-    if sub0 is None or value is None or count is None:
-        return _decoded(od, obj, max(obj.subs, default=0))[0]  # no count: every entry present is active
-    loc, said = Loc(od.source, value_line(sub0, value, keyword)), value.text.strip()
-    if count > 64:
-        diags.add(PDO006, loc, f"sub0={said} counts more than 64 mapping entries", obj.index, 0)
+    if mapping.count is None or sub0 is None:
+        return mapping.entries
+    value, keyword = value_in_force(od, sub0)
+    loc, said = Loc(od.source, value_line(sub0, value, keyword)), value.text.strip() if value else ""
+    if mapping.too_many:
+        diags.add(PDO006, loc, f"sub0={said} counts more than {MAX_ENTRIES} mapping entries", obj.index, 0)
         return []  # the count itself is wrong: its entries say nothing more
-    _absent(obj, count, loc, said, diags)
-    entries, empty = _decoded(od, obj, count)
-    if empty:
-        # once per object: generators write sub0 = highest sub-index over all-zero entries
-        more = f" (and {len(empty) - 1} more empty entries)" if len(empty) > 1 else ""
-        diags.add(PDO011, Loc(od.source, empty[0].line),
-                  f"maps nothing (0x00000000) but sub0={said} counts it{more}", obj.index, empty[0].sub.subindex)
-    return entries
-
-
-def _absent(obj: Obj, count: int, loc: Loc, said: str, diags: Diagnostics) -> None:
-    """PDO001 at sub0 (`loc`, written `said`) for the entries 1..count it counts that are not defined."""
-    absent = [i for i in range(1, count + 1) if i not in obj.subs]
-    if absent:
+    if mapping.absent:
+        absent = mapping.absent
         names = ", ".join(f"sub{i}" for i in absent[:4]) + (" ..." if len(absent) > 4 else "")
         diags.add(PDO001, loc, f"sub0={said} counts {names}, which {'is' if len(absent) == 1 else 'are'} "
                   "not defined", obj.index, 0)
+    if mapping.empty:
+        # once per object: generators write sub0 = highest sub-index over all-zero entries
+        empty = mapping.empty
+        more = f" (and {len(empty) - 1} more empty entries)" if len(empty) > 1 else ""
+        diags.add(PDO011, Loc(od.source, empty[0].line),
+                  f"maps nothing (0x00000000) but sub0={said} counts it{more}", obj.index, empty[0].sub.subindex)
+    return mapping.entries
 
 
-def _decoded(od: ObjectDictionary, obj: Obj, last: int) -> tuple[list[Entry], list[Entry]]:
-    """The readable entries 1..last: those that map something, and the empty ones (0x00000000)."""
-    entries: list[Entry] = []
-    empty: list[Entry] = []
-    for subindex in range(1, last + 1):
-        sub = obj.subs.get(subindex)
-        entry = _decode(od, sub) if sub is not None else None
-        if entry is not None:
-            (empty if entry.value.parsed == 0 else entries).append(entry)
-    return entries, empty
-
-
-def _decode(od: ObjectDictionary, sub: Sub) -> Entry | None:
-    value, keyword = value_in_force(od, sub)
-    raw = plain_int(value)
-    if value is None or raw is None or not 0 <= raw <= 0xFFFFFFFF:
-        return None
-    return Entry(sub, value, raw >> 16, (raw >> 8) & 0xFF, raw & 0xFF, value_line(sub, value, keyword))
-
-
-def _target(od: ObjectDictionary, obj: Obj, kind: str, entry: Entry, contrary: list[Entry],
+def _target(od: ObjectDictionary, obj: Obj, kind: str, entry: MappingEntry, contrary: list[MappingEntry],
             diags: Diagnostics) -> None:
     loc = Loc(od.source, entry.line)
     name = where(entry.index, entry.subindex)
@@ -156,7 +94,7 @@ def _target(od: ObjectDictionary, obj: Obj, kind: str, entry: Entry, contrary: l
     _length(od, obj, entry, target.dtype, name, diags)
 
 
-def _dummy(od: ObjectDictionary, obj: Obj, entry: Entry, diags: Diagnostics) -> None:
+def _dummy(od: ObjectDictionary, obj: Obj, entry: MappingEntry, diags: Diagnostics) -> None:
     loc = Loc(od.source, entry.line)
     dtype = BASIC_TYPES.get(entry.index)
     if dtype is None or dtype.bits == 0:
@@ -170,7 +108,7 @@ def _dummy(od: ObjectDictionary, obj: Obj, entry: Entry, diags: Diagnostics) -> 
     _length(od, obj, entry, dtype, f"dummy 0x{entry.index:04X}", diags)
 
 
-def _direction(od: ObjectDictionary, obj: Obj, kind: str, entry: Entry, target: Sub,
+def _direction(od: ObjectDictionary, obj: Obj, kind: str, entry: MappingEntry, target: Sub,
                diags: Diagnostics) -> None:
     access = target.access
     loc = Loc(od.source, entry.line)
@@ -181,7 +119,7 @@ def _direction(od: ObjectDictionary, obj: Obj, kind: str, entry: Entry, target: 
         diags.add(PDO004, loc, f"TPDO maps {name}, which is wo", obj.index, entry.sub.subindex)
 
 
-def _report_contrary(od: ObjectDictionary, obj: Obj, kind: str, contrary: list[Entry],
+def _report_contrary(od: ObjectDictionary, obj: Obj, kind: str, contrary: list[MappingEntry],
                      diags: Diagnostics) -> None:
     """Once per mapping object: one wrong declaration is usually repeated for every entry."""
     if not contrary:
@@ -195,7 +133,7 @@ def _report_contrary(od: ObjectDictionary, obj: Obj, kind: str, contrary: list[E
               obj.index, first.sub.subindex)
 
 
-def _length(od: ObjectDictionary, obj: Obj, entry: Entry, dtype: DataType | None, name: str,
+def _length(od: ObjectDictionary, obj: Obj, entry: MappingEntry, dtype: DataType | None, name: str,
             diags: Diagnostics) -> None:
     """PDO003 when the entry's length is not the size of the data type it maps (`name` in the message)."""
     if dtype is None or dtype.bits == 0:
@@ -227,7 +165,6 @@ def _half_pdo(od: ObjectDictionary, comm_index: int, map_index: int) -> tuple[Ob
     return None
 
 
-@lint_pass
 def pairing(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     compact = _compact_pdo(od)
     for map_base, (kind, comm_base) in MAPPINGS.items():
@@ -242,7 +179,6 @@ def pairing(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> N
                       f"{kind}{n + 1} has no {what} object 0x{absent:04X}", present.index)
 
 
-@lint_pass
 def pdo_counts(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     section = od.section("DeviceInfo")
     if section is None:
@@ -259,3 +195,7 @@ def pdo_counts(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -
             diags.add(PDO009, Loc(od.source, fld.line),
                       f"{fld.key}={fld.text.strip()} but the file defines {present} {kind}"
                       f"{'' if present == 1 else 's'} (0x{comm_base:04X}-0x{comm_base + 0x1FF:04X})")
+
+
+# This family's lint passes, in the order they run.
+PASSES: tuple[LintPass, ...] = (mappings, pairing, pdo_counts)

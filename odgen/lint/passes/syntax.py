@@ -10,11 +10,10 @@ from __future__ import annotations
 from ...catalogue.syntax import SYN011
 from ...diagnostics import Diagnostics, Loc
 from ...model import ObjectDictionary, Value
-from . import LintOptions, lint_pass
+from .base import LintOptions, LintPass
 
 
 
-@lint_pass
 def value_notes(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     """Report what parsing each value noticed, and values that did not parse."""
     for obj in od.objects.values():
@@ -34,3 +33,7 @@ def _report_value(source: str, value: Value, index: int, sub: int | None, diags:
         diags.add(rule, loc, message, index, sub)
     if value.error:
         diags.add(SYN011, loc, value.error, index, sub)
+
+
+# This family's lint passes, in the order they run.
+PASSES: tuple[LintPass, ...] = (value_notes,)

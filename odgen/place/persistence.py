@@ -16,11 +16,11 @@ from ..model import ObjectDictionary
 from ..model.datatypes import BASIC_TYPES
 from ..model.od import RECORD, Obj, Sub
 from ..model.values import parse_value
-from ..place.layout import group_layouts
-from ..place.migration import GroupLayout
-from ..place.nvmap import Region, nv_map
-from ..place.options import PersistOptions
-from ..place.placement import Placement
+from .layout import group_layouts
+from .migration import GroupLayout
+from .nvmap import Region, nv_map
+from .options import PersistOptions
+from .placement import Placement
 
 UNSIGNED8, UNSIGNED32 = 0x05, 0x07
 
