@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from odgen.codegen.generate import Request, generate
+from odgen.pipeline import Request, generate
 from odgen.lint.driver import FileResult, lint_path
 from odgen.lint.passes import LintOptions
 

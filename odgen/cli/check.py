@@ -25,7 +25,7 @@ def add_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) ->
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..codegen.check import run_check
+    from ..check import run_check
 
     request = generate_request(args)
     outcome = run_check(request, workdir=args.keep)

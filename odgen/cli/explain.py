@@ -21,7 +21,7 @@ def add_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) ->
 
 def run(args: argparse.Namespace) -> int:
     from ..codegen.explain import explain_lines, lookup_lines
-    from ..codegen.generate import Request, prepare
+    from ..pipeline import Request, prepare
     from ..place.options import parse_pattern
 
     pattern = parse_pattern(args.index)

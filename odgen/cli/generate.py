@@ -28,7 +28,7 @@ def add_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) ->
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..codegen.generate import generate
+    from ..pipeline import generate
     from ..fileio import output_dir, write_files
 
     request = generate_request(args)

@@ -20,7 +20,7 @@ def add_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) ->
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..codegen.generate import Request
+    from ..pipeline import Request
     from ..hostneeds import require_can_extra, require_socketcan
     from ..roundtrip.build import build_node
 

@@ -7,7 +7,7 @@ from ..model import ObjectDictionary, Sub
 from .lookup import perfect_hash
 from ..place.options import Pattern
 from .packing import packable
-from ..place.placement import Placement
+from ..place.placement import Placements
 
 
 def _value(od: ObjectDictionary, sub: Sub) -> str:
@@ -18,7 +18,7 @@ def _value(od: ObjectDictionary, sub: Sub) -> str:
     return f"{value.text.strip()[:60]:<14} from {'ParameterValue' if value is sub.parameter_value else 'DefaultValue'}"
 
 
-def explain_lines(od: ObjectDictionary, placements: dict[tuple[int, int], Placement], pattern: Pattern) -> list[str]:
+def explain_lines(od: ObjectDictionary, placements: Placements, pattern: Pattern) -> list[str]:
     lines = []
     packed: dict[int, bool] = {}
     for (index, subindex), p in sorted(placements.items()):

@@ -14,7 +14,7 @@ from ..model.cia301 import COMMUNICATION_AREA, RESTORE, STORE, unused_manufactur
 from ..model.datatypes import BASIC_TYPES, DataType
 from ..model.wire import wire_bytes
 from .memory import value_rows
-from ..place.placement import Placement
+from ..place.placement import Placement, Placements
 from .viewmodel import DictView
 from ..model.expect import expected_bytes, write_cases
 
@@ -85,7 +85,7 @@ def _expect(od: ObjectDictionary, obj: Obj, sub: Sub, placement: Placement, node
     return exp
 
 
-def build_selftest(od: ObjectDictionary, placements: dict[tuple[int, int], Placement], view: DictView,
+def build_selftest(od: ObjectDictionary, placements: Placements, view: DictView,
                    node_id: int) -> SelfTest:
     expects = []
     for obj in od.sorted_objects():

@@ -40,6 +40,16 @@ ERROR_BEHAVIOUR = 0x1029
 COMMUNICATION_AREA = (0x1000, 0x1FFF)
 MANUFACTURER_AREA = (0x2000, 0x5FFF)
 MANDATORY = {DEVICE_TYPE: "device type", ERROR_REGISTER: "error register", IDENTITY: "identity"}
+
+
+def object_list_for(index: int) -> str:
+    """The object list an index belongs in (CiA 306), by its key: the mandatory objects, the
+    manufacturer-specific area 0x2000-0x5FFF, and everything else optional."""
+    if index in MANDATORY:
+        return "mandatoryobjects"
+    if 0x2000 <= index <= 0x5FFF:
+        return "manufacturerobjects"
+    return "optionalobjects"
 # ro by access type, yet written by the communication stack itself.
 RUNTIME_UPDATED = frozenset({ERROR_REGISTER, STATUS_REGISTER, ERROR_HISTORY})
 

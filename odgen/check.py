@@ -7,10 +7,11 @@ import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..fileio import output_dir, write_files
-from ..toolchain import CFLAGS, compiler, core_sources, include_dirs
-from .generate import Request, Result, environment, generate
-from .selftest import build_selftest
+from .fileio import output_dir, write_files
+from .toolchain import CFLAGS, compiler, core_sources, include_dirs
+from .codegen.render import environment
+from .pipeline import Request, Result, generate
+from .codegen.selftest import build_selftest
 
 DEFAULT_NODE_ID = 5
 
