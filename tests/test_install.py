@@ -10,7 +10,6 @@ import os
 import re
 import shutil
 import subprocess
-import sys
 try:
     import tomllib
 except ModuleNotFoundError:  # Python 3.10
@@ -19,6 +18,8 @@ import zipfile
 from pathlib import Path
 
 import pytest
+
+import odgen
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples"
@@ -48,14 +49,6 @@ def run(cmd: list[str], cwd: Path, env: dict[str, str] | None = None,
 
 
 @pytest.fixture(scope="module")
-def dist(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """sdist, then the wheel built from that sdist (python -m build does both)."""
-    out = tmp_path_factory.mktemp("dist")
-    run([sys.executable, "-m", "build", "--outdir", str(out), str(ROOT)], cwd=out)
-    return out
-
-
-@pytest.fixture(scope="module")
 def installed(dist: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
     """A venv of the oldest declared Python with the wheel installed (no [can] extra); its bin/."""
     env_dir = tmp_path_factory.mktemp("venv")
@@ -72,7 +65,7 @@ def test_wheel_carries_templates_schemas_runtime_and_cmake(dist: Path) -> None:
     expected |= {f"odgen/runtime/{p.relative_to(ROOT / 'runtime').as_posix()}"
                  for p in (ROOT / "runtime").rglob("*") if p.suffix in (".c", ".h")}
     expected |= {"odgen/cmake/odgen.cmake"}
-    version = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["version"]
+    version = odgen.__version__
     expected |= {f"odgen-{version}.data/data/share/odgen/cmake/{p.name}" for p in (ROOT / "cmake").glob("odgenConfig*")}
     expected |= {p.relative_to(ROOT).as_posix() for p in (ROOT / "odgen").rglob("*.py")}
     assert expected - names == set(), "missing from the wheel"
@@ -163,5 +156,5 @@ def test_find_package_finds_the_installed_odgen(installed: Path, tmp_path: Path)
     lists.write_text(lists.read_text(encoding="utf-8").replace("odgen 0.1 REQUIRED", "odgen 99 REQUIRED"),
                      encoding="utf-8")
     refused = run(["cmake", "-S", str(project), "-B", str(tmp_path / "b99")], tmp_path, env=env, ok=False)
-    version = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["version"]
+    version = odgen.__version__
     assert refused.returncode != 0 and f"odgenConfig.cmake, version: {version}" in refused.stderr, refused.stderr
