@@ -125,9 +125,15 @@ def test_ci_examples_are_valid(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) 
     assert upload["with"]["sarif_file"] == "odgen.sarif"
     assert workflow["permissions"]["security-events"] == "write"
     gitlab = next(d for d in docs if "odgen" in d and "script" in d["odgen"])
-    hooks = next(d for d in docs if "repos" in d)["repos"][0]["hooks"]
-    declared = {h["id"] for h in yaml.safe_load((ROOT / ".pre-commit-hooks.yaml").read_text())}
-    assert {h["id"] for h in hooks} == declared
+    configs = [d["repos"][0] for d in docs if "repos" in d]
+    declared = {h["id"]: h for h in yaml.safe_load((ROOT / ".pre-commit-hooks.yaml").read_text())}
+    local = next(c for c in configs if c["repo"] == "local")["hooks"]
+    for hook in local:  # the local form runs what the repository's hooks run, on the same files
+        mine = declared[hook["id"]]
+        assert (hook["entry"], hook["files"], hook.get("pass_filenames", True)) == \
+            (mine["entry"], mine["files"], mine.get("pass_filenames", True)), hook["id"]
+    hooks = next(c for c in configs if c["repo"] != "local")["hooks"]
+    assert {h["id"] for h in hooks} == {h["id"] for h in local} == set(declared)
     tomllib.loads(_blocks(text, "toml")[0])
     commands = _odgen_commands("\n".join(_blocks(text, "yaml") + _blocks(text, "sh")))
     assert len(commands) >= 7 and any("--check" in c for c in commands)
