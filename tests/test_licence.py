@@ -8,6 +8,7 @@ import email
 import hashlib
 import subprocess
 import sys
+import tarfile
 import zipfile
 from pathlib import Path
 
@@ -106,3 +107,13 @@ def test_wheel_metadata(dist: Path) -> None:
     assert metadata.get_all("Classifier") and metadata["Keywords"]
     assert metadata["Description-Content-Type"] == "text/markdown"
     assert metadata.get_payload().strip() == (ROOT / "README.md").read_text(encoding="utf-8").strip()
+
+
+def test_sdist_carries_licence_changelog_and_docs(dist: Path) -> None:
+    sdist = next(dist.glob("odgen-*.tar.gz"))
+    top = f"odgen-{odgen.__version__}"
+    with tarfile.open(sdist) as archive:
+        names = set(archive.getnames())
+    wanted = {f"{top}/{name}" for name in ("LICENSE", "README.md", "CHANGELOG.md", "mkdocs.yml")}
+    wanted |= {f"{top}/docs/{p.name}" for p in (ROOT / "docs").glob("*.md")}
+    assert wanted - names == set()
