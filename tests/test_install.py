@@ -184,11 +184,18 @@ def test_licence_readme_and_docs_from_the_installed_wheel(installed: Path, tmp_p
     assert [f"{d}/{p}" for d, p in sorted(named_pages()) if not (folders[d] / p).is_file()] == []
 
 
-def test_release_smoke_script_on_the_wheel(dist: Path, tmp_path: Path) -> None:
-    """tools/release-smoke.sh, which `make release` and the release workflow run on their wheel."""
-    env = dict(os.environ, PYTHON=_oldest_python())
-    done = run(["bash", str(ROOT / "tools" / "release-smoke.sh"), str(dist), str(tmp_path / "venv")], tmp_path, env=env)
+def test_release_smoke_script_on_the_wheel(dist: Path, installed: Path, tmp_path: Path) -> None:
+    """tools/release-smoke.sh, which `make release` and the release workflow run on their wheel, here
+    on the venv the other tests installed the same wheel into (its install steps are the fixture's)."""
+    env = dict(os.environ, ODGEN_SMOKE_INSTALLED="1")
+    done = run(["bash", str(ROOT / "tools" / "release-smoke.sh"), str(dist), str(installed.parent)], tmp_path, env=env)
     assert f"odgen {odgen.__version__} from odgen-{odgen.__version__}-py3-none-any.whl works" in done.stdout
+    (tmp_path / "two").mkdir()
+    for wheel in ("odgen-0.1.0-py3-none-any.whl", "odgen-0.2.0-py3-none-any.whl"):
+        (tmp_path / "two" / wheel).touch()
+    refused = run(["bash", str(ROOT / "tools" / "release-smoke.sh"), str(tmp_path / "two"), str(installed.parent)],
+                  tmp_path, env=env, ok=False)
+    assert refused.returncode == 2 and "want one odgen wheel" in refused.stderr
 
 
 def test_release_workflow_and_make_target_do_the_same() -> None:

@@ -2,6 +2,8 @@
 # Smoke test of a built wheel, as a user meets it: a fresh venv outside the checkout, the wheel
 # alone, then the commands of the README. Used by `make release` and the release workflow.
 #   tools/release-smoke.sh DIST_DIR VENV_DIR      (PYTHON: the interpreter, default python3)
+# ODGEN_SMOKE_INSTALLED=1 takes VENV_DIR as it is, with that wheel installed already (the tests
+# install it once for all their checks).
 set -euo pipefail
 dist=$(cd "$1" && pwd)
 venv=$(realpath -m "$2")
@@ -10,9 +12,11 @@ wheels=("$dist"/odgen-*.whl)
 [ ${#wheels[@]} -eq 1 ] && [ -f "${wheels[0]}" ] || { echo "release-smoke: want one odgen wheel in $dist" >&2; exit 2; }
 version=$(basename "${wheels[0]}" | cut -d- -f2)
 
-rm -rf "$venv"
-"${PYTHON:-python3}" -m venv "$venv"
-"$venv/bin/python" -m pip install -q "${wheels[0]}"
+if [ "${ODGEN_SMOKE_INSTALLED:-}" != 1 ]; then
+  rm -rf "$venv"
+  "${PYTHON:-python3}" -m venv "$venv"
+  "$venv/bin/python" -m pip install -q "${wheels[0]}"
+fi
 odgen=$(cd "$venv/bin" && pwd)/odgen
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
