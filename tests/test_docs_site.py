@@ -36,11 +36,17 @@ def test_site_builds_strict(tmp_path: Path) -> None:
     assert done.returncode == 0, done.stdout + done.stderr
     pages = sorted(p.stem for p in (ROOT / "docs").glob("*.md"))
     assert [p for p in pages if not (tmp_path / "site" / ("" if p == "index" else p) / "index.html").is_file()] == []
+    for page, title in (("runtime", "odg runtime"), ("runtime/node", "odg node")):  # tools/mkdocs_hooks.py
+        html = (tmp_path / "site" / page / "index.html").read_text(encoding="utf-8")
+        assert f"<title>{title}" in html and "odg_init" in html
 
 
 def test_a_broken_link_fails_the_build(tmp_path: Path) -> None:
     shutil.copytree(ROOT / "docs", tmp_path / "docs")
     shutil.copy(ROOT / "mkdocs.yml", tmp_path)
+    shutil.copytree(ROOT / "tools", tmp_path / "tools", ignore=shutil.ignore_patterns("vcan"))
+    shutil.copytree(ROOT / "runtime", tmp_path / "runtime", ignore=shutil.ignore_patterns("*.c", "*.h"))
+    assert _mkdocs(tmp_path / "mkdocs.yml", tmp_path / "site").returncode == 0  # the copy builds as it is
     (tmp_path / "docs" / "broken.md").write_text("# Broken\n\nSee [the options](generat.md).\n", encoding="utf-8")
     done = _mkdocs(tmp_path / "mkdocs.yml", tmp_path / "site")
     assert done.returncode != 0 and "generat.md" in done.stdout + done.stderr

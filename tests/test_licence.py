@@ -114,6 +114,7 @@ def test_sdist_carries_licence_changelog_and_docs(dist: Path) -> None:
     top = f"odgen-{odgen.__version__}"
     with tarfile.open(sdist) as archive:
         names = set(archive.getnames())
-    wanted = {f"{top}/{name}" for name in ("LICENSE", "README.md", "CHANGELOG.md", "mkdocs.yml")}
+    files = ("LICENSE", "README.md", "CHANGELOG.md", "mkdocs.yml", "tools/mkdocs_hooks.py")
+    wanted = {f"{top}/{name}" for name in files}
     wanted |= {f"{top}/docs/{p.name}" for p in (ROOT / "docs").glob("*.md")}
     assert wanted - names == set()
