@@ -145,3 +145,22 @@ def test_ci_examples_are_valid(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) 
     monkeypatch.chdir(tmp_path)
     for argv in commands:
         parser.parse_args([a for a in argv if "*" not in a] + (["x.eds"] if argv[0] == "lint" else []))
+
+
+def test_local_hooks_of_docs_ci(home: dict[str, str], tmp_path: Path) -> None:
+    """docs/ci.md's `repo: local` config, as written there, with the installed odgen on PATH."""
+    text = (ROOT / "docs" / "ci.md").read_text(encoding="utf-8")
+    config = next(b for b in _blocks(text, "yaml") if "repo: local" in b)
+    files = {f"devices/{name}": (EXAMPLE / name).read_bytes() for name in ("io-node.eds", "io-node.toml")}
+    repo = _user_repo(tmp_path / "user", {**files, ".pre-commit-config.yaml": config.encode()})
+    env = dict(home, PATH=f"{Path(sys.executable).parent}{os.pathsep}{home['PATH']}")
+    subprocess.run([sys.executable, "-m", "odgen", "generate", "devices/io-node.eds", "--options",
+                    "devices/io-node.toml", "-o", "firmware/od"], cwd=repo, check=True)
+    git(repo, "add", "-A")
+    cmd = [*PRE_COMMIT, "run", "--all-files"]
+    passed = subprocess.run(cmd, cwd=repo, capture_output=True, text=True, env=env, check=False)
+    assert passed.returncode == 0 and "odgen lint" in passed.stdout, passed.stdout + passed.stderr
+    (repo / "devices" / "bad.eds").write_bytes(BAD.read_bytes())
+    git(repo, "add", "-A")
+    failed = subprocess.run(cmd, cwd=repo, capture_output=True, text=True, env=env, check=False)
+    assert failed.returncode == 1 and "devices/bad.eds:4: error[SYN003]" in failed.stdout, failed.stdout
