@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: setup sysdeps demo test lint-code docs bench fuzz clean
+.PHONY: setup sysdeps demo test lint-code docs release bench fuzz clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -17,7 +17,8 @@ setup: $(STAMP)
 # The main job on the example: lint it, generate its C dictionary, compile it with the
 # runtime and run the self-test (which reports where each storage class landed and its
 # size), then write the lint findings as SARIF and convert the description back to EDS.
-demo: setup sysdeps
+# Needs Python and a C compiler only (`odgen check` names CC when there is none).
+demo: setup
 	$(BIN)/odgen lint examples/*/*.eds
 	mkdir -p build/demo
 	$(BIN)/odgen generate examples/io-node/io-node.eds --options examples/io-node/io-node.toml -o build/demo
@@ -45,6 +46,14 @@ test: setup lint-code sysdeps
 # docs/rules.md is generated from the rule catalogue (a test checks it is current).
 docs: setup
 	$(BIN)/odgen rules --markdown > docs/rules.md
+
+# What .github/workflows/release.yml does on a tag (docs/releasing.md): sdist and wheel into
+# dist/, twine check, then the wheel alone in a fresh venv outside the checkout, smoke-tested.
+release: setup
+	rm -rf dist
+	$(BIN)/python -m build --outdir dist .
+	$(BIN)/twine check --strict dist/*
+	tools/release-smoke.sh dist build/release-venv
 
 bench:
 	@set -e; t0=$$(date +%s); $(MAKE) --no-print-directory setup sysdeps; \

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg.c - core of the odgen runtime: find, read, write, hooks, PDO mapping check, self-check.
  *

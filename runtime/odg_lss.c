@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_lss.c - LSS slave (CiA 305): switch state global and selective, configure node-id and
  * bit timing, activate bit timing, store configuration, inquire identity and node-id, identify

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_persist.c - persistence groups in NV memory, safe against power loss.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_time.c - the TIME object (CiA 301 TIME_OF_DAY) of the node: consumed when 0x1012 bit 31
  * is set and handed to cfg.on_time, produced by odg_node_time_send when bit 30 is set. Both

@@ -51,6 +51,6 @@ def lookup_lines(od: ObjectDictionary, lookup: str) -> list[str]:
              "switch": "a generated switch over the indices (code, larger than the hash tables)"}
     lines = [f"dictionary: {len(indices)} entries; lookup: {lookup} ({modes[lookup]})"]
     if lookup == "hash":
-        lines.append("  the default: the fastest mode measured (benchmarks/results/latest.md); "
+        lines.append("  the default: the fastest mode measured (docs/figures.md); "
                      "--lookup bsearch saves the tables at about twice the instructions per lookup")
     return lines

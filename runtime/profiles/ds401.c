@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * ds401.c - CiA 401 (generic I/O) application glue over a dictionary made by
  * `odgen profile ds401 --generate`. The generated ds401_app.h configures it (channel counts,
