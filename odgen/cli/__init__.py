@@ -122,6 +122,9 @@ def _dispatch(args: argparse.Namespace) -> int:
         return err.exit_code
     except KeyboardInterrupt:
         return 130
+    except BrokenPipeError:  # the reader went away (`odgen explain ... | head`): nothing more to say
+        _quiet_stdout()
+        return 141  # 128 + SIGPIPE, what a shell reports for a writer a pipe ended
     except Exception as err:  # odgen's own bug: one line, traceback on request
         if args.debug:
             raise
@@ -130,3 +133,10 @@ def _dispatch(args: argparse.Namespace) -> int:
         return 3
     finally:
         signal.signal(signal.SIGTERM, previous)
+
+
+def _quiet_stdout() -> None:
+    """Point stdout at /dev/null so that the flush at exit does not fail on the closed pipe again."""
+    with contextlib.suppress(OSError):
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
