@@ -52,7 +52,7 @@ typedef odg_num_t num_t; /* odg_impl.h: 64 bits, or 32 when no type is wider */
 /* ---- abort texts ---------------------------------------------------------------- */
 
 #ifndef ODG_NO_ABORT_TEXT
-#define ODG_TEXT_(name, code, text) {code, text},
+#define ODG_TEXT_(name, text) {name, text},
 static const struct {
     uint32_t code;
     const char *text;
