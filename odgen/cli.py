@@ -177,6 +177,12 @@ def add_check_parser(commands: argparse._SubParsersAction[argparse.ArgumentParse
     chk.add_argument("--lookup", choices=LOOKUPS, default="hash")
     chk.add_argument("--keep", type=Path, metavar="DIR", help="build in DIR and keep the files")
     chk.add_argument("--verbose", "-v", action="store_true", help="print the whole self-test output")
+    chk.add_argument("--cc", metavar="COMPILER", help="build the self-test with this C compiler (default: $CC, "
+                     "else cc, gcc or clang), e.g. a cross compiler")
+    chk.add_argument("--cflags", metavar="ARGS", help="more compiler arguments, split as a shell does: target "
+                     "options, a startup file, a linker script (a single option: --cflags=-static)")
+    chk.add_argument("--run", metavar="COMMAND", help="run the self-test through this command, split as a shell "
+                     "does, e.g. an emulator: --run 'qemu-ppc -L /usr/powerpc-linux-gnu'")
     _input_format(chk)
     _add_generation_policy(chk)
 
@@ -476,10 +482,11 @@ def cmd_explain(args: argparse.Namespace) -> int:
 
 
 def cmd_check(args: argparse.Namespace) -> int:
-    from .codegen.check import run_check
+    from .codegen.check import run_check, target
 
+    where = target(args.cc, args.cflags, args.run)
     request = _generate_request(args)
-    outcome = run_check(request, workdir=args.keep)
+    outcome = run_check(request, workdir=args.keep, cc=where.cc, cflags=where.cflags, run=where.run)
     _print_findings(outcome.result.diags, request)
     if not outcome.result.files:
         print(_refusal(args, outcome.result.refused, "generated"), file=sys.stderr)
