@@ -50,7 +50,8 @@ def target(cc: str | None, cflags: str | None, run: str | None) -> Target:
         raise OdgenError(f"--cc {cc!r} is not an executable program: name a compiler on PATH or give its path")
     run_words = _words("--run", run)
     if run is not None and not run_words:
-        raise OdgenError("--run is empty: give the command that runs the self-test, e.g. --run 'qemu-ppc -L /usr/powerpc-linux-gnu'")
+        raise OdgenError("--run is empty: give the command that runs the self-test, "
+                         "e.g. --run 'qemu-ppc -L /usr/powerpc-linux-gnu'")
     if run_words and not shutil.which(run_words[0]):
         raise OdgenError(f"--run {run!r}: {run_words[0]} is not an executable program: install it or give its path")
     return Target(cc, _words("--cflags", cflags), run_words)
@@ -60,7 +61,8 @@ def _words(option: str, text: str | None) -> tuple[str, ...]:
     try:
         return tuple(shlex.split(text or ""))
     except ValueError as err:
-        raise OdgenError(f"{option} {text!r} cannot be split into words as a shell would ({err}): check its quotes") from None
+        raise OdgenError(f"{option} {text!r} cannot be split into words as a shell would ({err}): "
+                         "check its quotes") from None
 
 
 def _compile(cc: str, workdir: Path, name: str, extra: tuple[str, ...]) -> subprocess.CompletedProcess[str]:
