@@ -108,6 +108,28 @@ def test_a_dictionary_with_real64_values_refuses_to_build_where_double_has_4_byt
     assert "alltypes_assert_real_sizes" in out and "negative" in out
 
 
+def _real32_description(tmp_path: Path, limits: bool) -> Path:
+    """The plain fixture with its manufacturer entry made a REAL32, with limits or without."""
+    text = (FIXTURES / "generate" / "plain.eds").read_text(encoding="utf-8")
+    head, entry = text.split("[2000]")
+    entry = entry.replace("DataType=0x0006", "DataType=0x0008").replace("DefaultValue=10", "DefaultValue=1.5")
+    path = tmp_path / ("real32_limits.eds" if limits else "real32.eds")
+    path.write_text(f"{head}[2000]{entry.rstrip()}\n" + ("LowLimit=-2.5\nHighLimit=100\n" if limits else ""),
+                    encoding="utf-8")
+    return path
+
+
+def test_real32_values_serve_where_double_has_4_bytes_but_real_limits_need_8(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """float is IEEE single on AVR; the runtime compares limits on reals through a double."""
+    avr = _core("avr")
+    code, out = _check(avr, _real32_description(tmp_path, limits=False), None, capsys)
+    assert code == 0, out[-2000:]
+    code, out = _check(avr, _real32_description(tmp_path, limits=True), None, capsys)
+    assert code == 1
+    assert "real32_limits_assert_real_sizes" in out and "negative" in out
+
+
 def test_an_unaligned_load_in_the_runtime_traps_on_the_cortex_m0(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
                                                                capsys: pytest.CaptureFixture[str]) -> None:
     """The runtime with one wire number loaded as a uint32_t: the self-test's odd buffers make it
