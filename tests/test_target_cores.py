@@ -175,3 +175,11 @@ def test_target_option_mistakes_exit_2_in_one_sentence(args: list[str], message:
     assert code == 2
     assert message in err and err.count("\n") == 1
     assert not (tmp_path / "kept").exists()  # refused before anything was generated
+
+
+def test_a_program_for_another_core_without_run_exits_2(capsys: pytest.CaptureFixture[str]) -> None:
+    core = _core("avr")  # no binfmt_misc handler runs an AVR program
+    code = main(["check", str(IO_NODE[0]), "--cc", core.cc, f"--cflags={core.cflags}"])
+    err = capsys.readouterr().err
+    assert code == 2
+    assert "the self-test cannot run here (Exec format error): give --run the emulator" in err

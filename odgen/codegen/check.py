@@ -78,6 +78,9 @@ def _run(program: Path, prefix: tuple[str, ...]) -> tuple[bool, str]:
     try:
         ran = subprocess.run([*prefix, str(program)], capture_output=True, text=True, errors="replace",
                              check=False, timeout=RUN_TIMEOUT)
+    except OSError as err:  # built for another core, and no --run
+        raise OdgenError(f"the self-test cannot run here ({err.strerror}): "
+                         "give --run the emulator of the core --cc builds for") from None
     except subprocess.TimeoutExpired as timeout:
         partial = timeout.stdout or ""  # bytes, whatever `text` says, on some Python versions
         if isinstance(partial, bytes):
