@@ -95,13 +95,14 @@ int _write(int fd, const char *data, int len)
     return len;
 }
 
+#define STACK_SIZE 4096 /* the top of RAM the heap leaves to the stack */
+
 void *_sbrk(ptrdiff_t incr);
 void *_sbrk(ptrdiff_t incr)
 {
     static char *brk = (char *)&end;
     char *previous = brk;
-    register char *sp __asm__("sp");
-    if (brk + incr > sp - 1024) { /* keep 1 KiB between the heap and the stack */
+    if (incr > (char *)&__stack_top - STACK_SIZE - brk) {
         errno = ENOMEM;
         return (void *)-1;
     }
