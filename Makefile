@@ -31,10 +31,18 @@ lint-code: setup
 	$(BIN)/ruff check odgen tests benchmarks examples $(wildcard fuzz)
 	$(BIN)/mypy
 
-# System tools the tests compile, build and render reports with (Debian packages of the same names).
-SYSTOOLS := gcc clang cmake chromium
+# System tools the tests compile, build, emulate and render reports with, as CHECK:PACKAGE (a
+# Debian package, installed when CHECK, a command or a file it provides, is missing). The cross
+# compilers, C libraries and emulators run the self-test on other cores (tests/test_target_cores.py).
+SYSTOOLS := gcc:gcc clang:clang cmake:cmake chromium:chromium \
+	arm-none-eabi-gcc:gcc-arm-none-eabi /usr/lib/arm-none-eabi/newlib:libnewlib-arm-none-eabi \
+	qemu-system-arm:qemu-system-arm qemu-ppc:qemu-user \
+	powerpc-linux-gnu-gcc:gcc-powerpc-linux-gnu /usr/powerpc-linux-gnu/lib/libc.a:libc6-dev-powerpc-cross \
+	avr-gcc:gcc-avr /usr/lib/avr/include/avr/io.h:avr-libc simavr:simavr
 sysdeps:
-	@missing=""; for t in $(SYSTOOLS); do command -v $$t >/dev/null 2>&1 || missing="$$missing $$t"; done; \
+	@missing=""; for t in $(SYSTOOLS); do check=$${t%%:*}; \
+	  case $$check in /*) test -e $$check ;; *) command -v $$check >/dev/null 2>&1 ;; esac || missing="$$missing $${t#*:}"; \
+	done; \
 	if [ -n "$$missing" ]; then apt-get update -qq && apt-get install -y -qq $$missing; fi
 
 # The CAN tests set up tools/vcan themselves (host vcan, else a User-Mode Linux guest).

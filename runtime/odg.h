@@ -98,46 +98,77 @@ extern "C" {
 #define ODG_LITTLE_ENDIAN 0
 #endif
 
-/* ---- result codes: CiA 301 SDO abort codes, from one table ------------------ */
-
-#define ODG_ABORT_CODES(X)                                                               \
-    X(ODG_OK,                  0x00000000, "success")                                    \
-    X(ODG_ABORT_TOGGLE,        0x05030000, "toggle bit not alternated")                  \
-    X(ODG_ABORT_TIMEOUT,       0x05040000, "SDO protocol timed out")                     \
-    X(ODG_ABORT_COMMAND,       0x05040001, "command specifier not valid or unknown")     \
-    X(ODG_ABORT_BLOCK_SIZE,    0x05040002, "invalid block size")                         \
-    X(ODG_ABORT_SEQUENCE,      0x05040003, "invalid sequence number")                    \
-    X(ODG_ABORT_CRC,           0x05040004, "CRC error")                                  \
-    X(ODG_ABORT_OUT_OF_MEMORY, 0x05040005, "out of memory")                              \
-    X(ODG_ABORT_UNSUPPORTED,   0x06010000, "unsupported access to an object")            \
-    X(ODG_ABORT_WRITE_ONLY,    0x06010001, "attempt to read a write only object")        \
-    X(ODG_ABORT_READ_ONLY,     0x06010002, "attempt to write a read only object")        \
-    X(ODG_ABORT_NO_OBJECT,     0x06020000, "object does not exist")                      \
-    X(ODG_ABORT_NOT_MAPPABLE,  0x06040041, "object cannot be mapped to the PDO")         \
-    X(ODG_ABORT_PDO_LENGTH,    0x06040042, "mapped objects would exceed PDO length")     \
-    X(ODG_ABORT_INCOMPATIBLE,  0x06040043, "general parameter incompatibility")          \
-    X(ODG_ABORT_INTERNAL,      0x06040047, "general internal incompatibility")           \
-    X(ODG_ABORT_HARDWARE,      0x06060000, "access failed due to a hardware error")      \
-    X(ODG_ABORT_TYPE_LENGTH,   0x06070010, "data type or length does not match")         \
-    X(ODG_ABORT_TOO_LONG,      0x06070012, "data type does not match, length too high")  \
-    X(ODG_ABORT_TOO_SHORT,     0x06070013, "data type does not match, length too low")   \
-    X(ODG_ABORT_NO_SUB,        0x06090011, "sub-index does not exist")                   \
-    X(ODG_ABORT_VALUE_RANGE,   0x06090030, "value range of parameter exceeded")          \
-    X(ODG_ABORT_VALUE_HIGH,    0x06090031, "value of parameter written too high")        \
-    X(ODG_ABORT_VALUE_LOW,     0x06090032, "value of parameter written too low")         \
-    X(ODG_ABORT_MAX_LESS_MIN,  0x06090036, "maximum value is less than minimum value")   \
-    X(ODG_ABORT_NO_RESOURCE,   0x060A0023, "resource not available")                     \
-    X(ODG_ABORT_GENERAL,       0x08000000, "general error")                              \
-    X(ODG_ABORT_DATA_STORE,    0x08000020, "data cannot be transferred or stored")       \
-    X(ODG_ABORT_DATA_LOCAL,    0x08000021, "data cannot be stored: local control")       \
-    X(ODG_ABORT_DATA_STATE,    0x08000022, "data cannot be stored: device state")        \
-    X(ODG_ABORT_NO_DICTIONARY, 0x08000023, "no object dictionary")
+/* ---- result codes: CiA 301 SDO abort codes --------------------------------------------
+ * Macros of type odg_abort_t, not an enum: an enumerator must fit an int, and 0x06020000
+ * does not where int has 16 bits (AVR, MSP430). */
 
 typedef uint32_t odg_abort_t;
 
-#define ODG_ABORT_ENUM_(name, code, text) name = code,
-enum odg_abort_code { ODG_ABORT_CODES(ODG_ABORT_ENUM_) ODG_ABORT_LAST_ = 0 };
-#undef ODG_ABORT_ENUM_
+#define ODG_OK                  UINT32_C(0x00000000)
+#define ODG_ABORT_TOGGLE        UINT32_C(0x05030000)
+#define ODG_ABORT_TIMEOUT       UINT32_C(0x05040000)
+#define ODG_ABORT_COMMAND       UINT32_C(0x05040001)
+#define ODG_ABORT_BLOCK_SIZE    UINT32_C(0x05040002)
+#define ODG_ABORT_SEQUENCE      UINT32_C(0x05040003)
+#define ODG_ABORT_CRC           UINT32_C(0x05040004)
+#define ODG_ABORT_OUT_OF_MEMORY UINT32_C(0x05040005)
+#define ODG_ABORT_UNSUPPORTED   UINT32_C(0x06010000)
+#define ODG_ABORT_WRITE_ONLY    UINT32_C(0x06010001)
+#define ODG_ABORT_READ_ONLY     UINT32_C(0x06010002)
+#define ODG_ABORT_NO_OBJECT     UINT32_C(0x06020000)
+#define ODG_ABORT_NOT_MAPPABLE  UINT32_C(0x06040041)
+#define ODG_ABORT_PDO_LENGTH    UINT32_C(0x06040042)
+#define ODG_ABORT_INCOMPATIBLE  UINT32_C(0x06040043)
+#define ODG_ABORT_INTERNAL      UINT32_C(0x06040047)
+#define ODG_ABORT_HARDWARE      UINT32_C(0x06060000)
+#define ODG_ABORT_TYPE_LENGTH   UINT32_C(0x06070010)
+#define ODG_ABORT_TOO_LONG      UINT32_C(0x06070012)
+#define ODG_ABORT_TOO_SHORT     UINT32_C(0x06070013)
+#define ODG_ABORT_NO_SUB        UINT32_C(0x06090011)
+#define ODG_ABORT_VALUE_RANGE   UINT32_C(0x06090030)
+#define ODG_ABORT_VALUE_HIGH    UINT32_C(0x06090031)
+#define ODG_ABORT_VALUE_LOW     UINT32_C(0x06090032)
+#define ODG_ABORT_MAX_LESS_MIN  UINT32_C(0x06090036)
+#define ODG_ABORT_NO_RESOURCE   UINT32_C(0x060A0023)
+#define ODG_ABORT_GENERAL       UINT32_C(0x08000000)
+#define ODG_ABORT_DATA_STORE    UINT32_C(0x08000020)
+#define ODG_ABORT_DATA_LOCAL    UINT32_C(0x08000021)
+#define ODG_ABORT_DATA_STATE    UINT32_C(0x08000022)
+#define ODG_ABORT_NO_DICTIONARY UINT32_C(0x08000023)
+
+/* Each code by name, with its text (odg_abort_text). */
+#define ODG_ABORT_CODES(X)                                                  \
+    X(ODG_OK,                  "success")                                   \
+    X(ODG_ABORT_TOGGLE,        "toggle bit not alternated")                 \
+    X(ODG_ABORT_TIMEOUT,       "SDO protocol timed out")                    \
+    X(ODG_ABORT_COMMAND,       "command specifier not valid or unknown")    \
+    X(ODG_ABORT_BLOCK_SIZE,    "invalid block size")                        \
+    X(ODG_ABORT_SEQUENCE,      "invalid sequence number")                   \
+    X(ODG_ABORT_CRC,           "CRC error")                                 \
+    X(ODG_ABORT_OUT_OF_MEMORY, "out of memory")                             \
+    X(ODG_ABORT_UNSUPPORTED,   "unsupported access to an object")           \
+    X(ODG_ABORT_WRITE_ONLY,    "attempt to read a write only object")       \
+    X(ODG_ABORT_READ_ONLY,     "attempt to write a read only object")       \
+    X(ODG_ABORT_NO_OBJECT,     "object does not exist")                     \
+    X(ODG_ABORT_NOT_MAPPABLE,  "object cannot be mapped to the PDO")        \
+    X(ODG_ABORT_PDO_LENGTH,    "mapped objects would exceed PDO length")    \
+    X(ODG_ABORT_INCOMPATIBLE,  "general parameter incompatibility")         \
+    X(ODG_ABORT_INTERNAL,      "general internal incompatibility")          \
+    X(ODG_ABORT_HARDWARE,      "access failed due to a hardware error")     \
+    X(ODG_ABORT_TYPE_LENGTH,   "data type or length does not match")        \
+    X(ODG_ABORT_TOO_LONG,      "data type does not match, length too high") \
+    X(ODG_ABORT_TOO_SHORT,     "data type does not match, length too low")  \
+    X(ODG_ABORT_NO_SUB,        "sub-index does not exist")                  \
+    X(ODG_ABORT_VALUE_RANGE,   "value range of parameter exceeded")         \
+    X(ODG_ABORT_VALUE_HIGH,    "value of parameter written too high")       \
+    X(ODG_ABORT_VALUE_LOW,     "value of parameter written too low")        \
+    X(ODG_ABORT_MAX_LESS_MIN,  "maximum value is less than minimum value")  \
+    X(ODG_ABORT_NO_RESOURCE,   "resource not available")                    \
+    X(ODG_ABORT_GENERAL,       "general error")                             \
+    X(ODG_ABORT_DATA_STORE,    "data cannot be transferred or stored")      \
+    X(ODG_ABORT_DATA_LOCAL,    "data cannot be stored: local control")      \
+    X(ODG_ABORT_DATA_STATE,    "data cannot be stored: device state")       \
+    X(ODG_ABORT_NO_DICTIONARY, "no object dictionary")
 
 /* Text of an abort code; "unknown abort code" for others. */
 const char *odg_abort_text(odg_abort_t code);

@@ -90,7 +90,10 @@ def run() -> None:
     quick = args.command in QUICK_EXIT
     if quick:  # no cyclic collection at all: the process ends without one anyway (gcpause.py)
         gc.disable()
-    code = _dispatch(args)
+    try:
+        code = _dispatch(args)
+    except KeyboardInterrupt:  # SIGTERM just as _dispatch put the previous handler back
+        code = 130
     if quick and sys.getprofile() is None and sys.gettrace() is None:  # profilers write at exit
         for stream in (sys.stdout, sys.stderr):
             with contextlib.suppress(OSError, ValueError):  # a closed pipe: nothing more reaches the reader

@@ -20,15 +20,22 @@ def add_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     chk.add_argument("--lookup", choices=LOOKUPS, default="hash")
     chk.add_argument("--keep", type=Path, metavar="DIR", help="build in DIR and keep the files")
     chk.add_argument("--verbose", "-v", action="store_true", help="print the whole self-test output")
+    chk.add_argument("--cc", metavar="COMPILER", help="build the self-test with this C compiler (default: $CC, "
+                     "else cc, gcc or clang), e.g. a cross compiler")
+    chk.add_argument("--cflags", metavar="ARGS", help="more compiler arguments, split as a shell does: target "
+                     "options, a startup file, a linker script (a single option: --cflags=-static)")
+    chk.add_argument("--run", metavar="COMMAND", help="run the self-test through this command, split as a shell "
+                     "does, e.g. an emulator: --run 'qemu-ppc -L /usr/powerpc-linux-gnu'")
     add_input_format(chk)
     add_generation_policy(chk)
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..check import run_check
+    from ..check import run_check, target
 
+    where = target(args.cc, args.cflags, args.run)
     request = generate_request(args)
-    outcome = run_check(request, workdir=args.keep)
+    outcome = run_check(request, workdir=args.keep, cc=where.cc, cflags=where.cflags, run=where.run)
     print_findings(outcome.result.diags, request)
     if not outcome.result.files:
         print(refusal(args, outcome.result.refused, "generated"), file=sys.stderr)

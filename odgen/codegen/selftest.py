@@ -46,6 +46,7 @@ class Expect:
 @dataclass
 class SelfTest:
     name: str
+    upper: str  # the prefix of the dictionary's macros (NAME_NV_SIZE)
     node_id: int
     expects: list[Expect]
     functions: list[str]
@@ -96,6 +97,6 @@ def build_selftest(od: ObjectDictionary, placements: Placements, view: DictView,
     missing = unused_manufacturer_index(od.objects)
     structs = [(row.label, row.var, row.where) for row in value_rows(view)]
     store = od.objects.get(STORE)
-    return SelfTest(view.name, node_id, expects, view.functions, missing, len(view.groups),
+    return SelfTest(view.name, view.upper, node_id, expects, view.functions, missing, len(view.groups),
                     store is not None and 1 in store.subs and RESTORE in od.objects, structs)
 

@@ -41,7 +41,8 @@
 #error "alltypes uses lookup by perfect hash: build the runtime with ODG_CFG_HASH 1 (alltypes_config.h)"
 #endif
 
-/* REAL32/REAL64 values are IEEE 754 single and double. */
+/* REAL32 values are IEEE 754 single, REAL64 values and the runtime's limits on reals double;
+ * only what this dictionary uses is asserted (avr-gcc's double has 4 bytes). */
 typedef char alltypes_assert_real_sizes[(sizeof(float) == 4 && sizeof(double) == 8) ? 1 : -1];
 
 ODG_ATTR_ROM const alltypes_rom_t alltypes_rom = {

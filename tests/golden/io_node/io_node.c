@@ -20,9 +20,6 @@
 #error "io_node uses lookup by perfect hash: build the runtime with ODG_CFG_HASH 1 (io_node_config.h)"
 #endif
 
-/* REAL32/REAL64 values are IEEE 754 single and double. */
-typedef char io_node_assert_real_sizes[(sizeof(float) == 4 && sizeof(double) == 8) ? 1 : -1];
-
 ODG_ATTR_ROM const io_node_rom_t io_node_rom = {
     .x1000_device_type = UINT32_C(0x30191),
     .x1018_identity_s1_vendor_id = UINT32_C(0x0),

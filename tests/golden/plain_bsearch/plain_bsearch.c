@@ -11,9 +11,6 @@
 #error "plain_bsearch uses lookup by generated find or binary search: build the runtime with ODG_CFG_UNHASHED 1 (plain_bsearch_config.h)"
 #endif
 
-/* REAL32/REAL64 values are IEEE 754 single and double. */
-typedef char plain_bsearch_assert_real_sizes[(sizeof(float) == 4 && sizeof(double) == 8) ? 1 : -1];
-
 ODG_ATTR_ROM const plain_bsearch_rom_t plain_bsearch_rom = {
     .x1000_device_type = UINT32_C(0x0),
     .x1018_identity_s1_vendor_id = UINT32_C(0x0),
