@@ -12,8 +12,9 @@ from .common import add_input_format
 
 def add_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     convert = commands.add_parser("convert", help="write a description as EDS (or DCF)")
-    convert.add_argument("input", type=Path, metavar="IN")
-    convert.add_argument("output", type=Path, metavar="OUT")
+    convert.add_argument("input", type=Path, metavar="IN", help="the description to read (EDS, DCF, XDD or XDC)")
+    convert.add_argument("output", type=Path, metavar="OUT", help="the file to write: OUT.eds, or OUT.dcf for a "
+                         "configured device")
     convert.add_argument("--force", action="store_true", help="allow OUT to be IN (rewrite the input in place)")
     add_input_format(convert)
 
