@@ -25,7 +25,7 @@ def add_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) ->
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..check import run_check
+    from ..check import aligned_sizes, run_check
 
     request = generate_request(args)
     outcome = run_check(request, workdir=args.keep)
@@ -35,6 +35,6 @@ def run(args: argparse.Namespace) -> int:
         return 1
     lines = outcome.output.splitlines()
     shown = lines if args.verbose or not outcome.ok else [x for x in lines if not x.startswith("FAIL")]
-    print("\n".join(shown))
+    print("\n".join(aligned_sizes(shown)))
     print(f"odgen check: {args.input}: {'ok' if outcome.ok else 'FAILED'}")
     return 0 if outcome.ok else 1
