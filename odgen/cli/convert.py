@@ -5,8 +5,12 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ..errors import OdgenError
+
+if TYPE_CHECKING:
+    from ..model import ObjectDictionary
 from .common import add_input_format
 
 
@@ -43,5 +47,20 @@ def run(args: argparse.Namespace) -> int:
     if od is None:
         print(f"odgen: {args.input}: nothing written", file=sys.stderr)
         return 1
+    _leave_out_disabled(od)
     write_atomic(args.output, write_eds(od))
     return 0
+
+
+def _leave_out_disabled(od: ObjectDictionary) -> None:
+    """Objects an XDD marks CO_disabled are left out of the EDS, as CANopenEditor's own exports leave
+    them out: the EDS has no way to say "disabled", and kept they would be PDOs the device does not
+    have (NrOfRXPDO counts them out). Said on stderr, since the EDS holds fewer objects than the XDD."""
+    from ..lint.passes.common import disabled
+
+    gone = [index for index, obj in od.objects.items() if disabled(obj)]
+    for index in gone:
+        del od.objects[index]
+    if gone:
+        print(f"odgen convert: {', '.join(f'0x{i:04X}' for i in sorted(gone))} left out: disabled (CO_disabled) "
+              "in the XDD", file=sys.stderr)
