@@ -15,7 +15,8 @@ def add_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     chk = commands.add_parser("check", help="generate, compile and run a self-test of the dictionary")
     chk.add_argument("input", type=Path, metavar="FILE", help="the description (EDS, DCF, XDD or XDC)")
     chk.add_argument("--name", help="C name of the dictionary")
-    chk.add_argument("--options", type=existing_file("options file"), metavar="OPTS", help="options file (TOML): placement, hooks")
+    chk.add_argument("--options", type=existing_file("options file"), metavar="OPTS",
+                     help="options file (TOML): placement, hooks")
     chk.add_argument("--node-id", type=node_id_type, help="node-id the self-test runs with (default 5)")
     chk.add_argument("--lookup", choices=LOOKUPS, default="hash", help="index lookup to build (as for generate)")
     chk.add_argument("--keep", type=Path, metavar="DIR", help="build in DIR and keep the files")

@@ -15,7 +15,8 @@ def add_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     node.add_argument("--node-id", type=node_id_type,
                       help="default 5; none waits for an LSS master when the node has LSS")
     node.add_argument("--nv", type=Path, help="file that keeps stored parameters (default: none)")
-    node.add_argument("--options", type=existing_file("options file"), metavar="OPTS", help="options file (TOML): placement, hooks")
+    node.add_argument("--options", type=existing_file("options file"), metavar="OPTS",
+                      help="options file (TOML): placement, hooks")
     add_input_format(node)
 
 

@@ -34,7 +34,8 @@ def _suggestion(text: str, known: list[str]) -> str:
     import difflib
 
     key = text.strip().upper()
-    close = [r for r in known if key and r.startswith(key)][:5] or difflib.get_close_matches(key, known, n=3, cutoff=0.5)
+    family = [r for r in known if key and r.startswith(key)][:5]
+    close = family or difflib.get_close_matches(key, known, n=3, cutoff=0.5)
     return f"; did you mean {', '.join(close)}?" if close else "; `odgen rules` lists them"
 
 

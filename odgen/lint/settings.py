@@ -4,8 +4,9 @@ The file is looked for upward from each linted file's folder; in one folder odge
 and a pyproject.toml without `[tool.odgen]` is passed over (as ruff does). Keys: select,
 ignore, per-file-ignores (glob relative to the config file's folder -> rule ids), strict,
 node-id, exclude (globs relative to the config file's folder, or a file or folder name: files
-that `odgen lint FOLDER` or a glob would find are left out; a file named is still read). Command-line options override the file: --select replaces its select, --ignore adds
-to its ignore, --strict and --node-id replace. A rule id that names no rule (or no family
+that `odgen lint FOLDER` or a glob would find are left out; a file named is still read).
+Command-line options override the file: --select replaces its select, --ignore adds to its
+ignore, --strict and --node-id replace. A rule id that names no rule (or no family
 prefix) is a user mistake: exit 2 naming the closest ids, since a typo would quietly turn
 checks off.
 """

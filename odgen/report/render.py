@@ -61,7 +61,8 @@ def _pictures(report: Report) -> dict[str, str]:
 
 def render_html(report: Report) -> str:
     pictures = {name: Markup(svg) for name, svg in _pictures(report).items()}
-    return _environment(markdown=False).get_template("report.html.j2").render(r=report, svg=pictures, rules=_rules(report))
+    template = _environment(markdown=False).get_template("report.html.j2")
+    return template.render(r=report, svg=pictures, rules=_rules(report))
 
 
 def render_markdown(report: Report, output: Path) -> dict[Path, str]:
