@@ -104,7 +104,7 @@ def test_lint_expands_a_quoted_glob(tmp_path: Path, capsys: pytest.CaptureFixtur
 def test_exclude_in_the_settings_file(tmp_path: Path, capsys: pytest.CaptureFixture[str],
                                       monkeypatch: pytest.MonkeyPatch) -> None:
     _tree(tmp_path)
-    (tmp_path / "pyproject.toml").write_text('[tool.odgen]\nexclude = ["devices/vendor/", "*.xdd"]\n',
+    (tmp_path / "pyproject.toml").write_text('[tool.odgen]\nexclude = ["./devices/vendor/", "*.xdd"]\n',
                                              encoding="utf-8")
     monkeypatch.chdir(tmp_path)
     assert main(["lint", "devices"]) == 1

@@ -147,7 +147,7 @@ def load_config(path: Path) -> LintConfig:
                       _rules(table.get("ignore", []), f"{section}ignore"),
                       tuple((glob, _rules(rules, f"{section}per-file-ignores {glob!r}"))
                             for glob, rules in per_file.items()),
-                      strict, node_id, tuple(p.strip() for p in exclude))
+                      strict, node_id, tuple(p.strip().removeprefix("./") for p in exclude))
 
 
 def config_for(file: Path, explicit: Path | None = None) -> LintConfig:
