@@ -74,7 +74,7 @@ def expand_paths(paths: Sequence[Path], excluded: Callable[[Path], bool] = lambd
     for path in paths:
         if path.is_dir():
             files, where = _descriptions_below(path), "in this folder or below"
-        elif not path.exists() and glob.has_magic(str(path)):
+        elif not path.exists() and any(c in str(path) for c in "*?["):
             files, where = _glob_descriptions(str(path)), "that this pattern matches"
         else:
             found.setdefault(path)
