@@ -349,3 +349,18 @@ def test_markdown_report_writes_names_and_values_inert(tmp_path: Path) -> None:
     assert set(re.findall(r"<[^>]*>", page)) <= {"<br>"}  # the template's own line breaks only
     assert "](javascript:" not in page and "`x`" not in page
     assert page.count("&lt;script&gt;alert(1)&lt;/script&gt;") >= 2  # the name and the entry, shown as written
+
+
+def test_eds_string_padding_is_read_as_written(tmp_path: Path) -> None:
+    """A CANopenNode EDS pads a string to reserve its capacity; numbers and other keys stay stripped."""
+    from .conftest import lint
+
+    text = SIGNED.read_text(encoding="utf-8").replace("DataType=0x0003\n", "DataType=0x0009\n", 1)
+    text = text.replace("DefaultValue=0xFFFF", "DefaultValue = Trace1" + " " * 24 + "\nLowLimit=1   ")
+    path = tmp_path / "padded.eds"
+    path.write_text(text.replace("\n", "\r\n"), encoding="utf-8")
+    od = lint(path).od
+    assert od is not None
+    sub = od.objects[0x2000].subs[0]
+    assert sub.default is not None and sub.default.parsed == "Trace1" + " " * 24
+    assert sub.low is not None and sub.low.text == "1"
