@@ -8,10 +8,10 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..errors import OdgenError
+from .common import add_input_format
 
 if TYPE_CHECKING:
     from ..model import ObjectDictionary
-from .common import add_input_format
 
 
 def add_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
