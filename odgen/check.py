@@ -113,3 +113,19 @@ def run_check(request: Request, workdir: Path | None = None, cc: str | None = No
             return CheckOutcome(False, "compile failed:\n" + built.stdout + built.stderr, result)
         ok, output = _run(work / "selftest", run)
         return CheckOutcome(ok, output, result)
+
+
+_SIZE_ROW = re.compile(r"^(values|tables) +(\S.*?) +(\d+) bytes +(.*)$")
+
+
+def aligned_sizes(lines: list[str]) -> list[str]:
+    """The self-test's size rows (`values  ram  12 bytes  RAM`) in aligned columns, whatever the
+    length of a group's name or of a size; the other lines as they are. The C side prints the rows
+    with fixed widths, which a long persistence group name (or a large block) would push out of line."""
+    rows = {n: m.groups() for n, line in enumerate(lines) if (m := _SIZE_ROW.match(line))}
+    if not rows:
+        return lines
+    name_width = max(len(r[1]) for r in rows.values())
+    size_width = max(len(r[2]) for r in rows.values())
+    return [f"{r[0]}  {r[1]:<{name_width}}  {r[2]:>{size_width}} bytes  {r[3]}" if (r := rows.get(n)) else line
+            for n, line in enumerate(lines)]
