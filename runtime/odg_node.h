@@ -8,7 +8,12 @@
  * odg_node_receive; time advances by odg_node_tick.
  *
  *     static odg_node_t node;
- *     odg_node_config_t cfg = { &my_dict, 5, &nvf.driver, NULL, can_send, &can, NULL, NULL };
+ *     odg_node_config_t cfg = {0};
+ *     cfg.dict = &my_dict;
+ *     cfg.node_id = 5;
+ *     cfg.nv = &my_nv;                            (or NULL: no persistence)
+ *     cfg.send = can_send;
+ *     cfg.send_ctx = &can;
  *     odg_node_init(&node, &cfg);                 -> boot-up frame, pre-operational
  *     for (;;) {
  *         while (can_read(&frame)) odg_node_receive(&node, &frame);
@@ -19,7 +24,12 @@
  * limit checks and hooks apply to SDO and PDO alike. Only 11-bit identifiers are used;
  * frames with ODG_FRAME_EFF are ignored; ODG_FRAME_RTR ones serve node guarding and TPDOs of
  * types 252/253. odg_node.c, odg_sdo.c, odg_pdo.c, odg_err.c, odg_sync.c and odg_hb.c
- * implement it; see runtime/NODE.md.
+ * implement it; see runtime/NODE.md, and docs/porting.md for a new target.
+ *
+ * Sizes: build with -DODG_CONFIG='"NAME_config.h"' (as the dictionary): odgen generate writes
+ * there every ODG_NODE_* limit below as the dictionary needs it (docs/generate.md, "The node's
+ * limits"). Without ODG_CONFIG the defaults below apply, and PDOs, mapping entries or 0x1016
+ * entries beyond them are not served.
  */
 #ifndef ODG_NODE_H
 #define ODG_NODE_H
@@ -33,8 +43,9 @@
 extern "C" {
 #endif
 
-/* How many PDOs per direction the node serves (0x1400.., 0x1800..), and mapped objects per
- * PDO. Entries beyond these, or absent from the dictionary, are not served. */
+/* How many PDOs per direction the node serves (0x1400 + n for n below the limit, 0x1800 + n),
+ * and mapped objects per PDO (CiA 301: up to 64). NAME_config.h sets them to what the dictionary
+ * has; these defaults serve builds without ODG_CONFIG. */
 #ifndef ODG_NODE_MAX_RPDO
 #define ODG_NODE_MAX_RPDO 4u
 #endif

@@ -39,6 +39,7 @@ DICTS: dict[str, tuple[Path, Path | None]] = {
     "io_node": (ROOT / "examples" / "io-node" / "io-node.eds", ROOT / "examples" / "io-node" / "io-node.toml"),
     "pdo_node": (NODE_TESTS / "pdo-node.eds", None),
     "lss_node": (NODE_TESTS / "lss-node.eds", NODE_TESTS / "lss-node.toml"),
+    "wide_node": (NODE_TESTS / "wide-node.eds", None),
 }
 # test program -> (dictionary, extra runtime sources)
 PROGRAMS: dict[str, tuple[str, tuple[Path, ...]]] = {
@@ -49,9 +50,11 @@ PROGRAMS: dict[str, tuple[str, tuple[Path, ...]]] = {
     "test_node_lss": ("lss_node", ()),
     "test_node_time": ("lss_node", ()),
     "test_node_window": ("lss_node", ()),
+    "test_node_wide": ("wide_node", ()),
 }
 LSS = ("-DODG_NODE_LSS=1",)  # the node and the program are built with the LSS slave
-DEFINES: dict[str, tuple[str, ...]] = {"test_node_lss": LSS}
+# test_node_wide: sized by the dictionary alone (8 + 8 PDOs, 32 mapping entries), no other define
+DEFINES: dict[str, tuple[str, ...]] = {"test_node_lss": LSS, "test_node_wide": ('-DODG_CONFIG="wide_node_config.h"',)}
 
 
 

@@ -27,7 +27,7 @@ from ..place.options import Options, PersistOptions, load_options, parse_options
 from .persistview import add_status_object, persist_view
 from ..place.placement import Placement, place
 from .lookup import perfect_hash
-from .runtimecfg import runtime_config
+from .runtimecfg import node_limits, node_options, runtime_config
 from .viewmodel import DictView, build
 
 
@@ -55,6 +55,7 @@ class Result:
     persist: PersistOptions = field(default_factory=PersistOptions)
     refused: list[Diagnostic] = field(default_factory=list)  # the findings that stopped generation
     lss: bool = False  # build a node with the LSS slave: LSS_Supported=1 or the options' [node] lss
+    node_caps: dict[str, int] = field(default_factory=dict)  # the options' [node] limits (runtimecfg.node_options)
 
 
 def reported(diags: Diagnostics, request: Request) -> list[Diagnostic]:
@@ -156,6 +157,9 @@ def prepare(request: Request) -> Result:
         options.entries += user.entries
         options.persist = user.persist
         options.node_lss = options.node_lss or user.node_lss
+        options.node = {**options.node, **user.node}
+        options.source, options.text = user.source, user.text
+    result.node_caps = node_options(options.node, options.source, options.text, diags)
     result.lss = options.node_lss or header_int(header_field(od, "DeviceInfo", "LSS_Supported")) == 1
     if _refuse(result, request):
         return result
@@ -191,6 +195,7 @@ def view_model(result: Result, name: str, lookup: str, source_digest: str) -> Di
                  diags=result.diags)
     view.persist = persist_view(result.od, result.placements, result.persist, result.diags)
     view.config = runtime_config(view)
+    view.node = node_limits(view, result.od, result.lss, result.node_caps, result.diags)
     if lookup == "hash":
         view.hash = perfect_hash([e.index for e in view.entries])
     return view

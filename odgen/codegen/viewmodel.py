@@ -183,6 +183,7 @@ class DictView:
     accessors: list[tuple[str, str]] = field(default_factory=list)  # #define name expression
     persist: Any = None  # persistview.PersistView: NV regions, layouts, status object
     config: list = field(default_factory=list)  # runtimecfg.Switch: the runtime's ODG_CFG_* switches
+    node: list = field(default_factory=list)  # runtimecfg.NodeLimit: the node layer's ODG_NODE_* limits
     hash: object = None  # lookup.PerfectHash for --lookup hash
 
     def _table(self, suffix: str, present: bool) -> str:
