@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import os
 import shutil
+from collections.abc import Callable
 from pathlib import Path
 
 from . import __version__
@@ -64,3 +65,22 @@ def cmake_script() -> str:
         f"set(ODGEN_NODE_SOURCES {cmake_list([p.as_posix() for p in service_sources()])})",
         f"set(ODGEN_C_WARNINGS {cmake_list(WARNINGS)})",
         ""])
+
+
+def make_script() -> str:
+    """What `odgen --toolchain make` prints: the same lists as make variables (examples/*/Makefile
+    include it). Paths with spaces do not survive make's word lists."""
+    def words(paths: list[Path]) -> str:
+        return " ".join(p.as_posix() for p in paths)
+    return "\n".join([
+        f"ODGEN_VERSION := {__version__}",
+        f"ODGEN_RUNTIME_DIR := {runtime_dir().as_posix()}",
+        f"ODGEN_RUNTIME_SOURCES := {words(core_sources())}",
+        f"ODGEN_NODE_SOURCES := {words(service_sources())}",
+        f"ODGEN_HOST_SOURCES := {words(host_sources())}",
+        f"ODGEN_NODE_MAIN := {(runtime_dir() / NODE_MAIN).as_posix()}",
+        f"ODGEN_CFLAGS := {' '.join(CFLAGS)}",
+        ""])
+
+
+SCRIPTS: dict[str, Callable[[], str]] = {"cmake": cmake_script, "make": make_script}

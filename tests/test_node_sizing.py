@@ -14,6 +14,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+from odgen import toolchain
 from odgen.codegen.generate import Request, generate
 
 from .conftest import FIXTURES, ROOT
@@ -101,8 +102,6 @@ def test_communication_bytes_are_what_the_runtime_counts(tmp_path: Path) -> None
             for fn in result.view.functions))
         exe = out / "comm"
         build("gcc", ("-O1", '-DODG_CONFIG="od_config.h"'),
-              (main, hooks, out / "od.c", RUNTIME / "odg.c", RUNTIME / "odg_persist.c", RUNTIME / "odg_node.c",
-               RUNTIME / "odg_sdo.c", RUNTIME / "odg_pdo.c", RUNTIME / "odg_err.c", RUNTIME / "odg_sync.c",
-               RUNTIME / "odg_hb.c", RUNTIME / "odg_lss.c", RUNTIME / "odg_time.c"),
+              (main, hooks, out / "od.c", *toolchain.core_sources(), *toolchain.service_sources()),
               (out, RUNTIME, ROOT / "tests" / "runtime"), exe)
         run(exe, tmp_path)

@@ -14,13 +14,15 @@ from pathlib import Path
 
 import pytest
 
+from odgen import toolchain
+
 from .cprog import BUILDS, EXTRA, STRICT, build, compiler, run
 from .conftest import ROOT
 
 RUNTIME = ROOT / "runtime"
 CTESTS = ROOT / "tests" / "runtime"
 
-CORE = ("odg.c", "odg_persist.c")
+CORE = toolchain.CORE_SOURCES
 PROGRAMS: dict[str, tuple[Path, ...]] = {
     # the core alone: persistence is a layer above it, not linked in (0x1010/0x1011 abort)
     "test_core": (CTESTS / "test_core.c", CTESTS / "td.c", RUNTIME / "odg.c"),

@@ -43,7 +43,7 @@ class _PrintAndExit(argparse.Action):
         from .. import assets, toolchain
 
         texts = {"cmake-dir": lambda: f"{assets.cmake_dir()}\n", "runtime-dir": lambda: f"{assets.runtime_dir()}\n",
-                 "toolchain": toolchain.cmake_script}
+                 "toolchain": lambda: toolchain.SCRIPTS[str(values[0])]()}  # type: ignore[index]
         sys.stdout.write(texts[self.what]())
         parser.exit(0)
 
@@ -53,8 +53,8 @@ def _add_location_options(parser: argparse.ArgumentParser) -> None:
                         help="print the folder of odgen.cmake (include it from a CMake project)")
     parser.add_argument("--runtime-dir", action=_PrintAndExit, what="runtime-dir",
                         help="print the folder of the C runtime's sources and headers")
-    parser.add_argument("--toolchain", action=_PrintAndExit, what="toolchain", nargs=1, choices=["cmake"],
-                        help="print the runtime's sources and C flags as CMake variables")
+    parser.add_argument("--toolchain", action=_PrintAndExit, what="toolchain", nargs=1, choices=["cmake", "make"],
+                        help="print the runtime's sources and C flags as CMake (or make) variables")
 
 
 def build_parser(command: str | None = None) -> argparse.ArgumentParser:
