@@ -196,6 +196,19 @@ typedef struct odg_hb_watch {
     uint8_t lost;     /* timed out, and no heartbeat since (EMCY 0x8130 active) */
 } odg_hb_watch_t;
 
+/* The CAN controller's state, as the CAN driver reports it (odg_node_can_state). */
+typedef enum odg_can_state {
+    ODG_CAN_ERROR_ACTIVE = 0,  /* both error counters below 128: normal */
+    ODG_CAN_ERROR_PASSIVE = 1, /* an error counter above 127 */
+    ODG_CAN_BUS_OFF = 2,       /* the transmit error counter passed 255: off the bus */
+    ODG_CAN_RX_OVERRUN = 3     /* not a state, an event: received frames were lost */
+} odg_can_state_t;
+
+/* EMCY error codes of the CAN controller's states (CiA 301). */
+#define ODG_EMCY_CAN_OVERRUN 0x8110u
+#define ODG_EMCY_CAN_PASSIVE 0x8120u
+#define ODG_EMCY_BUS_OFF_RECOVERED 0x8140u
+
 /* The event odg_node_on_heartbeat reports when a watched node's heartbeat is overdue; other
  * events are the NMT state a heartbeat newly says (odg_nmt_state_t values). */
 #define ODG_HB_TIMEOUT 0xFFu
@@ -224,6 +237,7 @@ typedef struct odg_node {
     uint8_t guard_started;     /* life guarding: a remote frame came since boot or the last event */
     uint8_t guard_toggle;      /* node guarding: the toggle bit of the next answer */
     uint8_t guard_lost;        /* life guarding: an event, and no remote frame since */
+    uint8_t can_state;         /* odg_can_state_t the CAN driver reported last (odg_hb.c) */
     uint32_t emcy_inhibit_us;  /* EMCY: µs until the next may be sent (odg_err.c) */
     uint8_t emcy_queue[ODG_NODE_EMCY_QUEUE][8]; /* EMCY frames waiting for the inhibit time */
     uint8_t emcy_queued;
@@ -289,6 +303,21 @@ uint8_t odg_node_error_bits(uint16_t code);
  * ODG_ABORT_HARDWARE when `send` failed or the inhibit queue is full. */
 odg_abort_t odg_node_emcy(odg_node_t *node, uint16_t code, uint8_t error_register,
                           const uint8_t *vendor, uint8_t n_vendor);
+
+/* The CAN driver reports its controller's state (docs/porting.md), from the main loop, not from
+ * an interrupt (or with the node's other calls locked out):
+ * - ODG_CAN_ERROR_PASSIVE: the error 0x8120 becomes active (EMCY, error register communication
+ *   bit), until ODG_CAN_ERROR_ACTIVE clears it (EMCY "error reset" when it was the last).
+ * - ODG_CAN_BUS_OFF: a communication error: the node reacts as 0x1029 sub 1 says (as for a
+ *   heartbeat timeout); it sends nothing about it, as it cannot.
+ * - leaving bus-off (ODG_CAN_ERROR_ACTIVE or _PASSIVE after ODG_CAN_BUS_OFF): EMCY 0x8140
+ *   "recovered from bus-off", an event (0x1003 keeps it, no error stays active for it).
+ * - ODG_CAN_RX_OVERRUN: EMCY 0x8110 "CAN overrun", an event: the controller or the driver's
+ *   receive queue lost frames.
+ * A state reported again changes nothing. A reset of the node or of communication forgets the
+ * communication errors, then raises 0x8120 again after the boot-up when the controller is
+ * still error passive or bus-off. */
+void odg_node_can_state(odg_node_t *node, odg_can_state_t state);
 
 /* Heartbeat consumer (0x1016): `fn` learns each new state a watched node's heartbeat says,
  * and ODG_HB_TIMEOUT when one is overdue (after the EMCY 0x8130). NULL stops the reports. */

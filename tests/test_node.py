@@ -52,6 +52,7 @@ PROGRAMS: dict[str, tuple[str, tuple[Path, ...]]] = {
     "test_node_time": ("lss_node", ()),
     "test_node_window": ("lss_node", ()),
     "test_node_wide": ("wide_node", ()),
+    "test_node_can": ("pdo_node", ()),
 }
 LSS = ("-DODG_NODE_LSS=1",)  # the node and the program are built with the LSS slave
 # test_node_wide: sized by the dictionary alone (8 + 8 PDOs, 32 mapping entries), no other define
