@@ -30,10 +30,11 @@ lint-code: setup
 	$(BIN)/ruff check odgen tests benchmarks examples $(wildcard fuzz)
 	$(BIN)/mypy
 
-# System tools the tests compile, build and render reports with (Debian packages of the same names).
-SYSTOOLS := gcc clang cmake chromium
+# System tools the tests compile, build and render reports with: command[:Debian package] (the
+# package of the same name unless given; examples/bare-metal needs the cross compiler and newlib).
+SYSTOOLS := gcc clang cmake chromium arm-none-eabi-gcc:gcc-arm-none-eabi arm-none-eabi-gcc:libnewlib-arm-none-eabi
 sysdeps:
-	@missing=""; for t in $(SYSTOOLS); do command -v $$t >/dev/null 2>&1 || missing="$$missing $$t"; done; \
+	@missing=""; for t in $(SYSTOOLS); do command -v $${t%%:*} >/dev/null 2>&1 || missing="$$missing $${t#*:}"; done; \
 	if [ -n "$$missing" ]; then apt-get update -qq && apt-get install -y -qq $$missing; fi
 
 # The CAN tests set up tools/vcan themselves (host vcan, else a User-Mode Linux guest).
