@@ -204,6 +204,24 @@ void odg_node_can_state(odg_node_t *node, odg_can_state_t state)
     }
 }
 
+uint8_t odg_node_comm_errors(const odg_node_t *node)
+{
+    uint8_t bits = 0;
+    uint32_t k;
+    for (k = 0; k < ODG_NODE_MAX_HB; k++) {
+        if (node->hb_watch[k].lost) {
+            bits = ODG_COMM_HEARTBEAT;
+        }
+    }
+    if (node->guard_lost) {
+        bits |= ODG_COMM_GUARDING;
+    }
+    if (node->can_state == ODG_CAN_BUS_OFF) {
+        bits |= ODG_COMM_BUS_OFF;
+    }
+    return bits;
+}
+
 void odg_can_boot_(odg_node_t *n)
 {
     if (n->can_state == ODG_CAN_ERROR_PASSIVE || n->can_state == ODG_CAN_BUS_OFF) {

@@ -319,6 +319,14 @@ odg_abort_t odg_node_emcy(odg_node_t *node, uint16_t code, uint8_t error_registe
  * still error passive or bus-off. */
 void odg_node_can_state(odg_node_t *node, odg_can_state_t state);
 
+/* The communication errors in force (bits), for a device profile's reaction to a lost
+ * master (CiA 401 outputs, say): a watched heartbeat timed out and none came since, life
+ * guarding timed out and no remote frame came since, the CAN controller is bus-off. */
+#define ODG_COMM_HEARTBEAT 0x01u
+#define ODG_COMM_GUARDING 0x02u
+#define ODG_COMM_BUS_OFF 0x04u
+uint8_t odg_node_comm_errors(const odg_node_t *node);
+
 /* Heartbeat consumer (0x1016): `fn` learns each new state a watched node's heartbeat says,
  * and ODG_HB_TIMEOUT when one is overdue (after the EMCY 0x8130). NULL stops the reports. */
 void odg_node_on_heartbeat(odg_node_t *node, void (*fn)(void *ctx, uint8_t node_id, uint8_t event),
