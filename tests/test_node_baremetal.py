@@ -16,6 +16,8 @@ from pathlib import Path
 
 import pytest
 
+from odgen import toolchain
+
 from .conftest import ROOT
 
 EXAMPLE = ROOT / "examples" / "bare-metal"
@@ -46,8 +48,8 @@ def test_bare_metal_firmware_builds_with_werror(cpu: str, tmp_path: Path) -> Non
     assert "-Werror" in compile_line and "-pedantic" in compile_line
     defines = [word for word in compile_line.split() if word.startswith(("-D", "'-D"))]
     assert defines == ["'-DODG_CONFIG=\"io_node_config.h\"'"], defines
-    for source in ("odg.c", "odg_persist.c", "odg_node.c", "odg_sdo.c", "odg_pdo.c", "odg_lss.c"):
-        assert f"/runtime/{source}" in compile_line
+    for source in (*toolchain.core_sources(), *toolchain.service_sources()):
+        assert str(source) in compile_line.split()
 
     elf = build / "firmware.elf"
     symbols = _symbols(elf)
