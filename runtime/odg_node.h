@@ -354,6 +354,13 @@ void odg_node_comm_keep(odg_node_t *node);
 /* The bytes the communication values of `dict` take (ODG_NODE_COMM_BYTES should be as many). */
 uint32_t odg_node_comm_bytes(const odg_dict_t *dict);
 
+/* What of `dict` a node built with these limits would not serve: the PDO communication entries
+ * 0x1400 + n and 0x1800 + n at n >= ODG_NODE_MAX_RPDO / ODG_NODE_MAX_TPDO, and the mapping
+ * entries of served PDOs with sub-indices beyond ODG_NODE_MAX_MAP. Always 0 when the node is
+ * built with the dictionary's NAME_config.h (ODG_CONFIG), which sizes the limits; builds without
+ * it can check (the node program warns). */
+uint16_t odg_node_unserved(const odg_dict_t *dict);
+
 /* Re-read every communication entry (0x1005, 0x1014, 0x1200, PDOs) after the application
  * changed them behind the dictionary's back (through an odg_ptr pointer, say); writes by
  * odg_write, odg_set and the persistence layer are seen without it. */

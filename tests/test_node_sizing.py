@@ -105,3 +105,21 @@ def test_communication_bytes_are_what_the_runtime_counts(tmp_path: Path) -> None
               (main, hooks, out / "od.c", *toolchain.core_sources(), *toolchain.service_sources()),
               (out, RUNTIME, ROOT / "tests" / "runtime"), exe)
         run(exe, tmp_path)
+
+
+def test_a_build_without_the_configuration_says_what_it_leaves_out(tmp_path: Path) -> None:
+    """odg_node_unserved: 0 built with wide_node_config.h; built with odg_node.h's defaults (4 + 4
+    PDOs, 8 mapping entries), TPDOs and RPDOs 5-8 and the two 32-entry mappings are left out."""
+    result = generate(Request(WIDE, name="wide_node"))
+    for name, text in result.files.items():
+        (tmp_path / name).write_text(text)
+    main = tmp_path / "main.c"
+    main.write_text('#include "odg_node.h"\n#include "wide_node.h"\n#include "check.h"\n'
+                    "int main(void)\n{\n    CHECK_EQ(odg_node_unserved(&wide_node), EXPECTED);\n"
+                    "    return done();\n}\n")
+    for flags, expected in ((('-DODG_CONFIG="wide_node_config.h"',), 0), ((), 4 + 4 + 2)):
+        exe = tmp_path / f"unserved{expected}"
+        build("gcc", ("-O1", *flags, f"-DEXPECTED={expected}u"),
+              (main, tmp_path / "wide_node.c", *toolchain.core_sources(), *toolchain.service_sources()),
+              (tmp_path, RUNTIME, ROOT / "tests" / "runtime"), exe)
+        run(exe, tmp_path)

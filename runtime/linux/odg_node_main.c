@@ -172,6 +172,10 @@ int main(int argc, char **argv)
                         "build with the dictionary's configuration (-DODG_CONFIG), which has room for %lu "
                         "bytes\n", (unsigned long)odg_node_comm_bytes(dict));
     }
+    if (odg_node_unserved(dict) > 0u) { /* a warning: the node serves what fits */
+        fprintf(stderr, "odg-node: %u PDOs or mappings exceed this build's limits and are not served: "
+                        "build with the dictionary's configuration (-DODG_CONFIG)\n", (unsigned)odg_node_unserved(dict));
+    }
     if ((fd = odg_socketcan_open(iface)) < 0) {
         return fail(iface, strerror(errno));
     }
