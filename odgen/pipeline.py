@@ -27,6 +27,7 @@ from . import __version__
 from .catalogue.gen import GEN008
 from .cnames import comment, identifier, is_identifier, name_clash
 from .codegen.render import render_files
+from .codegen.runtimecfg import node_options
 from .codegen.viewmodel import DictView, build
 from .diagnostics import Diagnostic, Diagnostics, Loc, Severity, more_line
 from .formats import MAX_BYTES, detect_format, load_bytes, read_bytes
@@ -69,6 +70,7 @@ class Loaded:
     digest: str
     lss: bool  # build a node with the LSS slave: LSS_Supported=1 or the options' [node] lss
     diags: Diagnostics  # the findings so far; every later stage adds its own
+    node_caps: dict[str, int] = field(default_factory=dict)  # the options' [node] limits
 
 
 @dataclass(frozen=True)
@@ -105,10 +107,11 @@ def load(request: Request) -> Loaded:
         diags = Diagnostics()
     options = _options(request, diags, h)
     h.update(f"|{_name(request)}|{request.lookup}|{request.node_id}|{request.defaults}|{__version__}".encode())
+    caps = node_options(options.node, options.source, options.text, diags)
     if od is None:
-        return Loaded(None, options, h.hexdigest()[:16], False, diags)
+        return Loaded(None, options, h.hexdigest()[:16], False, diags, caps)
     lss = options.node_lss or header_int(header_field(od, "DeviceInfo", "LSS_Supported")) == 1
-    return Loaded(_with_odgen_objects(od, options, diags), options, h.hexdigest()[:16], lss, diags)
+    return Loaded(_with_odgen_objects(od, options, diags), options, h.hexdigest()[:16], lss, diags, caps)
 
 
 def lint(loaded: Loaded, request: Request, diags: Diagnostics) -> None:
@@ -126,7 +129,8 @@ def view(loaded: Loaded, where: Placed, request: Request, diags: Diagnostics) ->
     """Everything the templates print for a loaded, linted, placed description."""
     assert loaded.od is not None
     return build(loaded.od, where.placements, where.persist, _name(request), version=__version__,
-                 digest=loaded.digest, lookup=request.lookup, diags=diags)
+                 digest=loaded.digest, lookup=request.lookup, diags=diags, lss=loaded.lss,
+                 node_caps=loaded.node_caps)
 
 
 def render(dict_view: DictView, request: Request, diags: Diagnostics) -> dict[str, str]:
@@ -198,6 +202,8 @@ def _options(request: Request, diags: Diagnostics, h: hashlib._Hash) -> Options:
     options.entries += user.entries
     options.persist = user.persist
     options.node_lss = options.node_lss or user.node_lss
+    options.node = {**options.node, **user.node}
+    options.source, options.text = user.source, user.text
     return options
 
 

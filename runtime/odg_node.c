@@ -333,6 +333,7 @@ static odg_abort_t boot(odg_node_t *n, int what)
     if (what != BOOT_COMM) {
         stored_values_lost(n);
     }
+    odg_can_boot_(n);
     return ac;
 }
 

@@ -9,7 +9,12 @@
  * odg_node_receive; time advances by odg_node_tick.
  *
  *     static odg_node_t node;
- *     odg_node_config_t cfg = { &my_dict, 5, &nvf.driver, NULL, can_send, &can, NULL, NULL };
+ *     odg_node_config_t cfg = {0};
+ *     cfg.dict = &my_dict;
+ *     cfg.node_id = 5;
+ *     cfg.nv = &my_nv;                            (or NULL: no persistence)
+ *     cfg.send = can_send;
+ *     cfg.send_ctx = &can;
  *     odg_node_init(&node, &cfg);                 -> boot-up frame, pre-operational
  *     for (;;) {
  *         while (can_read(&frame)) odg_node_receive(&node, &frame);
@@ -20,7 +25,12 @@
  * limit checks and hooks apply to SDO and PDO alike. Only 11-bit identifiers are used;
  * frames with ODG_FRAME_EFF are ignored; ODG_FRAME_RTR ones serve node guarding and TPDOs of
  * types 252/253. odg_node.c, odg_sdo.c, odg_pdo.c, odg_err.c, odg_sync.c and odg_hb.c
- * implement it; see runtime/NODE.md.
+ * implement it; see runtime/NODE.md, and docs/porting.md for a new target.
+ *
+ * Sizes: build with -DODG_CONFIG='"NAME_config.h"' (as the dictionary): odgen generate writes
+ * there every ODG_NODE_* limit below as the dictionary needs it (docs/generate.md, "The node's
+ * limits"). Without ODG_CONFIG the defaults below apply, and PDOs, mapping entries or 0x1016
+ * entries beyond them are not served.
  */
 #ifndef ODG_NODE_H
 #define ODG_NODE_H
@@ -34,8 +44,9 @@
 extern "C" {
 #endif
 
-/* How many PDOs per direction the node serves (0x1400.., 0x1800..), and mapped objects per
- * PDO. Entries beyond these, or absent from the dictionary, are not served. */
+/* How many PDOs per direction the node serves (0x1400 + n for n below the limit, 0x1800 + n),
+ * and mapped objects per PDO (CiA 301: up to 64). NAME_config.h sets them to what the dictionary
+ * has; these defaults serve builds without ODG_CONFIG. */
 #ifndef ODG_NODE_MAX_RPDO
 #define ODG_NODE_MAX_RPDO 4u
 #endif
@@ -186,6 +197,19 @@ typedef struct odg_hb_watch {
     uint8_t lost;     /* timed out, and no heartbeat since (EMCY 0x8130 active) */
 } odg_hb_watch_t;
 
+/* The CAN controller's state, as the CAN driver reports it (odg_node_can_state). */
+typedef enum odg_can_state {
+    ODG_CAN_ERROR_ACTIVE = 0,  /* both error counters below 128: normal */
+    ODG_CAN_ERROR_PASSIVE = 1, /* an error counter above 127 */
+    ODG_CAN_BUS_OFF = 2,       /* the transmit error counter passed 255: off the bus */
+    ODG_CAN_RX_OVERRUN = 3     /* not a state, an event: received frames were lost */
+} odg_can_state_t;
+
+/* EMCY error codes of the CAN controller's states (CiA 301). */
+#define ODG_EMCY_CAN_OVERRUN 0x8110u
+#define ODG_EMCY_CAN_PASSIVE 0x8120u
+#define ODG_EMCY_BUS_OFF_RECOVERED 0x8140u
+
 /* The event odg_node_on_heartbeat reports when a watched node's heartbeat is overdue; other
  * events are the NMT state a heartbeat newly says (odg_nmt_state_t values). */
 #define ODG_HB_TIMEOUT 0xFFu
@@ -214,6 +238,7 @@ typedef struct odg_node {
     uint8_t guard_started;     /* life guarding: a remote frame came since boot or the last event */
     uint8_t guard_toggle;      /* node guarding: the toggle bit of the next answer */
     uint8_t guard_lost;        /* life guarding: an event, and no remote frame since */
+    uint8_t can_state;         /* odg_can_state_t the CAN driver reported last (odg_hb.c) */
     uint32_t emcy_inhibit_us;  /* EMCY: µs until the next may be sent (odg_err.c) */
     uint8_t emcy_queue[ODG_NODE_EMCY_QUEUE][8]; /* EMCY frames waiting for the inhibit time */
     uint8_t emcy_queued;
@@ -280,6 +305,29 @@ uint8_t odg_node_error_bits(uint16_t code);
 odg_abort_t odg_node_emcy(odg_node_t *node, uint16_t code, uint8_t error_register,
                           const uint8_t *vendor, uint8_t n_vendor);
 
+/* The CAN driver reports its controller's state (docs/porting.md), from the main loop, not from
+ * an interrupt (or with the node's other calls locked out):
+ * - ODG_CAN_ERROR_PASSIVE: the error 0x8120 becomes active (EMCY, error register communication
+ *   bit), until ODG_CAN_ERROR_ACTIVE clears it (EMCY "error reset" when it was the last).
+ * - ODG_CAN_BUS_OFF: a communication error: the node reacts as 0x1029 sub 1 says (as for a
+ *   heartbeat timeout); it sends nothing about it, as it cannot.
+ * - leaving bus-off (ODG_CAN_ERROR_ACTIVE or _PASSIVE after ODG_CAN_BUS_OFF): EMCY 0x8140
+ *   "recovered from bus-off", an event (0x1003 keeps it, no error stays active for it).
+ * - ODG_CAN_RX_OVERRUN: EMCY 0x8110 "CAN overrun", an event: the controller or the driver's
+ *   receive queue lost frames.
+ * A state reported again changes nothing. A reset of the node or of communication forgets the
+ * communication errors, then raises 0x8120 again after the boot-up when the controller is
+ * still error passive or bus-off. */
+void odg_node_can_state(odg_node_t *node, odg_can_state_t state);
+
+/* The communication errors in force (bits), for a device profile's reaction to a lost
+ * master (CiA 401 outputs, say): a watched heartbeat timed out and none came since, life
+ * guarding timed out and no remote frame came since, the CAN controller is bus-off. */
+#define ODG_COMM_HEARTBEAT 0x01u
+#define ODG_COMM_GUARDING 0x02u
+#define ODG_COMM_BUS_OFF 0x04u
+uint8_t odg_node_comm_errors(const odg_node_t *node);
+
 /* Heartbeat consumer (0x1016): `fn` learns each new state a watched node's heartbeat says,
  * and ODG_HB_TIMEOUT when one is overdue (after the EMCY 0x8130). NULL stops the reports. */
 void odg_node_on_heartbeat(odg_node_t *node, void (*fn)(void *ctx, uint8_t node_id, uint8_t event),
@@ -306,6 +354,13 @@ void odg_node_comm_keep(odg_node_t *node);
 
 /* The bytes the communication values of `dict` take (ODG_NODE_COMM_BYTES should be as many). */
 uint32_t odg_node_comm_bytes(const odg_dict_t *dict);
+
+/* What of `dict` a node built with these limits would not serve: the PDO communication entries
+ * 0x1400 + n and 0x1800 + n at n >= ODG_NODE_MAX_RPDO / ODG_NODE_MAX_TPDO, and the mapping
+ * entries of served PDOs with sub-indices beyond ODG_NODE_MAX_MAP. Always 0 when the node is
+ * built with the dictionary's NAME_config.h (ODG_CONFIG), which sizes the limits; builds without
+ * it can check (the node program warns). */
+uint16_t odg_node_unserved(const odg_dict_t *dict);
 
 /* Re-read every communication entry (0x1005, 0x1014, 0x1200, PDOs) after the application
  * changed them behind the dictionary's back (through an odg_ptr pointer, say); writes by

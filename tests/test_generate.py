@@ -26,14 +26,15 @@ EXAMPLE_OPTIONS = ROOT / "examples" / "io-node" / "io-node.toml"
 
 def _rendered(result) -> list[str]:
     prefix = f"{GEN}/"
-    return [d.text().replace(prefix, "") for d in result.diags.sorted()]
+    return [d.text().replace(prefix, "").replace(f"{ROOT}/", "") for d in result.diags.sorted()]
 
 
 def _fixture_cases() -> list[tuple[str, Path, Path | None]]:
     cases = []
     for path in sorted(GEN.glob("GEN*")):
-        if path.suffix == ".toml":
-            cases.append((path.stem, PLAIN, path))
+        if path.suffix == ".toml":  # applied to plain.eds, or to the description its `# eds: PATH` line names
+            named = [x[len("# eds: "):] for x in path.read_text().splitlines() if x.startswith("# eds: ")]
+            cases.append((path.stem, (GEN / named[0]).resolve() if named else PLAIN, path))
         else:
             cases.append((path.stem, path, None))
     return cases

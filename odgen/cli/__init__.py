@@ -44,7 +44,8 @@ class _PrintAndExit(argparse.Action):
         from .. import assets, toolchain
 
         texts = {"cmake-dir": lambda: f"{assets.cmake_dir()}\n", "runtime-dir": lambda: f"{assets.runtime_dir()}\n",
-                 "docs-dir": lambda: f"{assets.docs_dir()}\n", "toolchain": toolchain.cmake_script}
+                 "docs-dir": lambda: f"{assets.docs_dir()}\n",
+                 "toolchain": lambda: toolchain.SCRIPTS[str(values[0])]()}  # type: ignore[index]
         sys.stdout.write(texts[self.what]())
         parser.exit(0)
 
@@ -91,8 +92,8 @@ def _add_location_options(parser: argparse.ArgumentParser) -> None:
                         help="print the folder of the C runtime's sources and headers")
     parser.add_argument("--docs-dir", action=_PrintAndExit, what="docs-dir",
                         help="print the folder of odgen's documentation (the docs/*.md pages odgen's messages name)")
-    parser.add_argument("--toolchain", action=_PrintAndExit, what="toolchain", nargs=1, choices=["cmake"],
-                        help="print the runtime's sources and C flags as CMake variables")
+    parser.add_argument("--toolchain", action=_PrintAndExit, what="toolchain", nargs=1, choices=["cmake", "make"],
+                        help="print the runtime's sources and C flags as CMake (or make) variables")
 
 
 def build_parser(command: str | None = None) -> argparse.ArgumentParser:

@@ -20,6 +20,7 @@ import math
 import re
 import struct
 import zlib
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from operator import attrgetter
 from typing import NamedTuple
@@ -38,7 +39,7 @@ from ..place.options import PersistOptions
 from ..place.persistence import PersistView, persist_view
 from ..place.placement import Placement, Placements, STORE_CLASS
 from .lookup import PerfectHash, perfect_hash
-from .runtimecfg import Switch, runtime_config
+from .runtimecfg import NodeLimit, Switch, node_limits, runtime_config
 
 MAX_C_STRING = 4095
 
@@ -188,6 +189,7 @@ class DictView:
     accessors: list[tuple[str, str]] = field(default_factory=list)  # #define name expression
     persist: PersistView | None = None  # NV regions, layouts, status object
     config: list[Switch] = field(default_factory=list)  # the runtime's ODG_CFG_* switches
+    node: list[NodeLimit] = field(default_factory=list)  # the node layer's ODG_NODE_* limits
     hash: PerfectHash | None = None  # for --lookup hash
 
     def _table(self, suffix: str, present: bool) -> str:
@@ -330,7 +332,8 @@ class _Builder:
 
 
 def build(od: ObjectDictionary, placements: Placements, persist: PersistOptions, name: str,
-          *, version: str, digest: str, lookup: str, diags: Diagnostics) -> DictView:
+          *, version: str, digest: str, lookup: str, diags: Diagnostics, lss: bool = False,
+          node_caps: Mapping[str, int] | None = None) -> DictView:
     """The finished view of a placed dictionary: tables, values, persistence, runtime switches, lookup."""
     b = _Builder(od, placements, name, diags)
     view = DictView(name=name, upper=name.upper(), version=version, digest=digest,
@@ -351,6 +354,7 @@ def build(od: ObjectDictionary, placements: Placements, persist: PersistOptions,
         _check_block_size(b, block)
     view.persist = persist_view(od, placements, persist, diags)
     view.config = runtime_config(view)
+    view.node = node_limits(view, od, lss, dict(node_caps or {}), diags)
     if lookup == "hash":
         view.hash = perfect_hash([e.index for e in view.entries])
     return view

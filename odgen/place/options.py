@@ -18,6 +18,7 @@
 
     [node]
     lss = true      # build the node with the LSS slave even when the description has no LSS_Supported=1
+    tpdo = 4        # and lower limits of the node layer (docs/generate.md)
 
 Entries apply in file order; for each key, the last entry that sets it wins.
 """
@@ -84,6 +85,7 @@ class Options:
     entries: list[OptionEntry] = field(default_factory=list)
     persist: PersistOptions = field(default_factory=PersistOptions)
     node_lss: bool = False  # [node] lss
+    node: dict[str, object] = field(default_factory=dict)  # the other [node] keys: codegen.runtimecfg reads them
 
 
 def parse_pattern(text: str) -> Pattern | None:
@@ -133,10 +135,11 @@ def parse_options(text: str, source: str, diags: Diagnostics) -> Options:
                   f"unknown top-level key(s) {', '.join(unknown)}; only [[entry]], [persist], [[group]] and [node]")
     _persist(doc, text, source, options.persist, diags)
     node = doc.get("node", {})
-    if not isinstance(node, dict) or set(node) - {"lss"} or not isinstance(node.get("lss", False), bool):
-        diags.add(GEN001, Loc(source, 1), "[node] takes only lss = true or false")
+    if not isinstance(node, dict) or not isinstance(node.get("lss", False), bool):
+        diags.add(GEN001, Loc(source, 1), "[node] takes lss = true or false, and the node's limits")
     else:
         options.node_lss = node.get("lss", False)
+        options.node = {key: value for key, value in node.items() if key != "lss"}
     lines = [n for n, line in enumerate(text.splitlines(), start=1) if line.strip().startswith("[[entry]]")]
     raw_entries = doc.get("entry", [])
     if not isinstance(raw_entries, list):

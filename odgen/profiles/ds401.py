@@ -209,6 +209,9 @@ def _communication_objects(p: Ds401) -> list[Obj]:
             var(0x1001, "Error register", U8, "ro", "0x00"),
             container(0x1010, "Store parameters", store),
             container(0x1011, "Restore default parameters", restore),
+            # the master's heartbeat, watched: its loss sets the outputs to their error values
+            container(0x1016, "Consumer heartbeat time", [value_sub(1, "Consumer heartbeat time 1", U32, "rw",
+                                                                    "0x00000000")]),
             var(0x1017, "Producer heartbeat time", U16, "rw", "0"),
             container(0x1018, "Identity object", identity, RECORD),
             container(0x1200, "SDO server parameter", sdo, RECORD)]
@@ -249,7 +252,7 @@ def options_toml(p: Ds401) -> str:
     inputs = [PROCESS_OBJECTS[(k, p.width(k))] for k in ("di", "ai") if p.channels(k)]
     outputs = [PROCESS_OBJECTS[(k, p.width(k))] for k in ("do", "ao") if p.channels(k)]
     parameters = sorted(present - set(inputs) - set(outputs))
-    lines = ['[[entry]]', 'match = ["0x1017", "0x1400-0x1A03"]', 'storage = "persist:comm"', ""]
+    lines = ['[[entry]]', 'match = ["0x1016-0x1017", "0x1400-0x1A03"]', 'storage = "persist:comm"', ""]
     if parameters:
         lines += ["[[entry]]", f"match = {_quoted(f'0x{i:04X}' for i in parameters)}",
                   'storage = "persist:app"', ""]

@@ -15,9 +15,9 @@
  * must come from another source file on the command line. With --nv the persistence groups
  * live in that file (created when missing), so 0x1010 "save" survives a restart. Prints
  * nothing but errors (stderr), and a warning when ODG_NODE_COMM_BYTES is too small for the
- * dictionary's communication values (odgen node builds with enough); SIGTERM and SIGINT end it
- * with status 0.
- * Built with -DODG_NODE_LSS=1 (the LSS slave) --node-id may be left out: the node then waits
+ * dictionary's communication values (built with -DODG_CONFIG='"dev_config.h"', as odgen node
+ * does, it has enough); SIGTERM and SIGINT end it with status 0.
+ * With the LSS slave (ODG_NODE_LSS 1 in the configuration) --node-id may be left out: the node then waits
  * for an LSS master (or uses the node-id a master stored in --nv); bit timings a master
  * configures or activates are logged on stdout (the program cannot change the bit rate).
  * With -DODG_APP it calls the application's odg_app_init/odg_app_tick (odg_app.h).
@@ -170,7 +170,12 @@ int main(int argc, char **argv)
     }
     if (odg_node_comm_bytes(dict) > ODG_NODE_COMM_BYTES) { /* a warning: the node runs */
         fprintf(stderr, "odg-node: reset communication restores only part of the communication values: "
-                        "build with -DODG_NODE_COMM_BYTES=%lu\n", (unsigned long)odg_node_comm_bytes(dict));
+                        "build with the dictionary's configuration (-DODG_CONFIG), which has room for %lu "
+                        "bytes\n", (unsigned long)odg_node_comm_bytes(dict));
+    }
+    if (odg_node_unserved(dict) > 0u) { /* a warning: the node serves what fits */
+        fprintf(stderr, "odg-node: %u PDOs or mappings exceed this build's limits and are not served: "
+                        "build with the dictionary's configuration (-DODG_CONFIG)\n", (unsigned)odg_node_unserved(dict));
     }
     if ((fd = odg_socketcan_open(iface)) < 0) {
         return fail(iface, strerror(errno));

@@ -3,9 +3,11 @@
  * Input and options hash: e432ab8d838fe354. Do not edit; regenerate.
  * This file is yours: no licence attaches to what odgen generates.
  *
- * What the odg runtime needs to serve alltypes: build the runtime and alltypes.c with
- * -DODG_CONFIG='"alltypes_config.h"' to leave the rest out (see odg.h). One runtime build
- * serves one configuration: dictionaries sharing a runtime need the union of their switches.
+ * What the odg runtime needs to serve alltypes: build the runtime, the node layer and
+ * alltypes.c with -DODG_CONFIG='"alltypes_config.h"' (the only define they need) to leave the
+ * rest out (see odg.h) and size the node to the dictionary (see odg_node.h). One runtime build
+ * serves one configuration: dictionaries sharing a runtime need the union of their switches and
+ * the largest of their limits.
  */
 #ifndef ALLTYPES_CONFIG_H
 #define ALLTYPES_CONFIG_H
@@ -26,5 +28,15 @@
 #define ODG_CFG_PERSIST_MIGRATION 1 /* persistence groups migrated at boot: 0x1017sub0 */
 #define ODG_CFG_HASH 1 /* lookup by perfect hash: --lookup hash */
 #define ODG_CFG_UNHASHED 0 /* lookup by generated find or binary search */
+
+/* The node layer (odg_node.h): what this dictionary needs, lowered by the options' [node] keys. */
+#define ODG_NODE_MAX_RPDO 1u /* RPDOs served (0x1400 + n): no RPDO */
+#define ODG_NODE_MAX_TPDO 1u /* TPDOs served (0x1800 + n): no TPDO */
+#define ODG_NODE_MAX_MAP 1u /* mapping entries per PDO: no PDO mapping */
+#define ODG_NODE_MAX_HB 1u /* heartbeats watched (0x1016 sub 1..): no 0x1016 */
+#define ODG_NODE_COMM_BYTES 2u /* bytes of communication values reset communication restores: 0x1000-0x1FFF */
+#define ODG_NODE_MAX_ERRORS 8u /* errors active at once: default */
+#define ODG_NODE_EMCY_QUEUE 4u /* EMCY frames held back by the inhibit time 0x1015: default */
+#define ODG_NODE_LSS 0 /* the LSS slave (odg_lss.c): not supported */
 
 #endif /* ALLTYPES_CONFIG_H */

@@ -3,9 +3,11 @@
  * Input and options hash: ba4dbd89d011a1c7. Do not edit; regenerate.
  * This file is yours: no licence attaches to what odgen generates.
  *
- * What the odg runtime needs to serve plain_bsearch: build the runtime and plain_bsearch.c with
- * -DODG_CONFIG='"plain_bsearch_config.h"' to leave the rest out (see odg.h). One runtime build
- * serves one configuration: dictionaries sharing a runtime need the union of their switches.
+ * What the odg runtime needs to serve plain_bsearch: build the runtime, the node layer and
+ * plain_bsearch.c with -DODG_CONFIG='"plain_bsearch_config.h"' (the only define they need) to leave the
+ * rest out (see odg.h) and size the node to the dictionary (see odg_node.h). One runtime build
+ * serves one configuration: dictionaries sharing a runtime need the union of their switches and
+ * the largest of their limits.
  */
 #ifndef PLAIN_BSEARCH_CONFIG_H
 #define PLAIN_BSEARCH_CONFIG_H
@@ -26,5 +28,15 @@
 #define ODG_CFG_PERSIST_MIGRATION 0 /* persistence groups migrated at boot */
 #define ODG_CFG_HASH 0 /* lookup by perfect hash */
 #define ODG_CFG_UNHASHED 1 /* lookup by generated find or binary search: --lookup bsearch */
+
+/* The node layer (odg_node.h): what this dictionary needs, lowered by the options' [node] keys. */
+#define ODG_NODE_MAX_RPDO 1u /* RPDOs served (0x1400 + n): no RPDO */
+#define ODG_NODE_MAX_TPDO 1u /* TPDOs served (0x1800 + n): no TPDO */
+#define ODG_NODE_MAX_MAP 1u /* mapping entries per PDO: no PDO mapping */
+#define ODG_NODE_MAX_HB 1u /* heartbeats watched (0x1016 sub 1..): no 0x1016 */
+#define ODG_NODE_COMM_BYTES 2u /* bytes of communication values reset communication restores: 0x1000-0x1FFF */
+#define ODG_NODE_MAX_ERRORS 8u /* errors active at once: default */
+#define ODG_NODE_EMCY_QUEUE 4u /* EMCY frames held back by the inhibit time 0x1015: default */
+#define ODG_NODE_LSS 0 /* the LSS slave (odg_lss.c): not supported */
 
 #endif /* PLAIN_BSEARCH_CONFIG_H */
