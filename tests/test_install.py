@@ -96,6 +96,19 @@ def test_installed_odgen_works_outside_the_source_tree(installed: Path, tmp_path
     assert (runtime / "profiles" / "ds401.c").is_file()  # the glue ds401_app.h configures
 
 
+def test_a_new_user_lints_a_folder_and_reads_a_rule(installed: Path, tmp_path: Path) -> None:
+    """What CI users type first: a folder (descriptions found below it, of every format), and the
+    one rule a finding names."""
+    odgen = str(installed / "odgen")
+    (tmp_path / "devices" / "more").mkdir(parents=True)
+    shutil.copy(EXAMPLES / "io-node" / "io-node.eds", tmp_path / "devices")
+    shutil.copy(XDD / "valid.xdd", tmp_path / "devices" / "more")
+    (tmp_path / "devices" / "notes.txt").write_text("not a description\n", encoding="utf-8")
+    assert "2 file(s) checked" in run([odgen, "lint", "devices"], tmp_path).stdout
+    rule = run([odgen, "rule", "PDO003"], tmp_path).stdout
+    assert rule.startswith("PDO003") and "Severity:" in rule and "Example:" in rule
+
+
 def test_can_commands_name_the_extra(installed: Path, tmp_path: Path) -> None:
     eds = shutil.copy(EXAMPLES / "io-node" / "io-node.eds", tmp_path)
     for command in (["node", eds], ["roundtrip", eds]):
@@ -128,6 +141,10 @@ def test_cmake_firmware_outside_the_repository(installed: Path, tmp_path: Path) 
     assert str(installed) in (build / "CMakeCache.txt").read_text(), "the installed odgen was used"
     first = _build(build)
     assert "odgen: object dictionary io_node" in first
+    # the targets odgen adds (dictionary, runtime, node) keep the warnings but not -Werror, so a new
+    # compiler's warning does not break the firmware build (the example's own main.c opts in to it)
+    ours = [f for f in build.rglob("flags.make") if f.parent.name.startswith("io_node_od")]
+    assert len(ours) >= 3 and all("-Wall" in f.read_text() and "-Werror" not in f.read_text() for f in ours)
     assert "looped back" in run([str(build / "firmware")], tmp_path).stdout
     assert "odgen:" not in (noop := _build(build)) and "Building C object" not in noop, noop
     (project / "io-node.eds").touch()
