@@ -7,13 +7,18 @@
 #   odgen_add_object_dictionary(my_od NAME my_od EDS device.eds
 #                               [OPTIONS device.toml] [NODE_ID 5] [LOOKUP switch|bsearch]
 #                               [REPORT html|md])   # also odgen/NAME/NAME-report.html (or .md)
-#   target_link_libraries(firmware PRIVATE my_od)     # brings odgen::runtime along
+#   target_link_libraries(firmware PRIVATE my_od)     # the dictionary and odgen::runtime
+#   target_link_libraries(firmware PRIVATE odgen::node) # the CANopen node's services, if wanted
 #
-# odgen::runtime is the C runtime built from the sources packaged with odgen; the source
-# list and warning flags come from `odgen --toolchain cmake`, the definition odgen's own
-# builds use. A dictionary is regenerated when its description, its options file, its
-# arguments or the installed odgen version change. odgen writes only files whose content
-# changed, so touching the description without changing it recompiles nothing.
+# Each dictionary brings its runtime, built with its NAME_config.h (-DODG_CONFIG, the only
+# define the runtime needs: the switches and the node's limits are in it): my_od_runtime (the
+# core and persistence) and my_od_node (NMT, SDO, PDO, EMCY, SYNC, heartbeat, LSS, TIME). The
+# first dictionary of a project also names them odgen::runtime and odgen::node. The source lists
+# and warning flags come from `odgen --toolchain cmake`, the definition odgen's own builds use.
+# The targets compile with odgen's warnings on; -Werror only with -DODGEN_WERROR=ON. A
+# dictionary is regenerated when its description, its options file, its arguments or the
+# installed odgen version change. odgen writes only files whose content changed, so touching
+# the description without changing it recompiles nothing. See docs/cmake.md.
 
 cmake_minimum_required(VERSION 3.16)
 
@@ -34,21 +39,37 @@ if(NOT _odgen_status EQUAL 0)
   message(FATAL_ERROR "${ODGEN_EXECUTABLE} --toolchain cmake failed (${_odgen_status})")
 endif()
 file(WRITE "${CMAKE_BINARY_DIR}/odgen-toolchain.cmake" "${_odgen_toolchain}")
-include("${CMAKE_BINARY_DIR}/odgen-toolchain.cmake")  # ODGEN_VERSION, ODGEN_RUNTIME_DIR/_SOURCES, ODGEN_C_WARNINGS
+include("${CMAKE_BINARY_DIR}/odgen-toolchain.cmake")
+# ODGEN_VERSION, ODGEN_RUNTIME_DIR, ODGEN_RUNTIME_SOURCES, ODGEN_NODE_SOURCES, ODGEN_C_WARNINGS
+
+option(ODGEN_WERROR "compile odgen's targets with -Werror (the warnings are on either way)" OFF)
 
 function(_odgen_strict target)
   set_target_properties(${target} PROPERTIES C_STANDARD 99 C_STANDARD_REQUIRED ON C_EXTENSIONS OFF)
   if(CMAKE_C_COMPILER_ID MATCHES "GNU|Clang")
-    target_compile_options(${target} PRIVATE ${ODGEN_C_WARNINGS})
+    set(warnings ${ODGEN_C_WARNINGS})
+    if(NOT ODGEN_WERROR)
+      list(REMOVE_ITEM warnings -Werror)
+    endif()
+    target_compile_options(${target} PRIVATE ${warnings})
   endif()
 endfunction()
 
-if(NOT TARGET odgen_runtime)
-  add_library(odgen_runtime STATIC ${ODGEN_RUNTIME_SOURCES})
-  target_include_directories(odgen_runtime PUBLIC "${ODGEN_RUNTIME_DIR}")
-  _odgen_strict(odgen_runtime)
-  add_library(odgen::runtime ALIAS odgen_runtime)
-endif()
+# The runtime and the node's services of one dictionary, built with its NAME_config.h.
+function(_odgen_add_runtime target name out)
+  add_library(${target}_runtime STATIC ${ODGEN_RUNTIME_SOURCES})
+  target_include_directories(${target}_runtime PUBLIC "${ODGEN_RUNTIME_DIR}" "${out}")
+  target_compile_definitions(${target}_runtime PUBLIC "ODG_CONFIG=\"${name}_config.h\"")
+  add_dependencies(${target}_runtime ${target}_generate)
+  _odgen_strict(${target}_runtime)
+  add_library(${target}_node STATIC ${ODGEN_NODE_SOURCES})
+  target_link_libraries(${target}_node PUBLIC ${target}_runtime)
+  _odgen_strict(${target}_node)
+  if(NOT TARGET odgen::runtime)
+    add_library(odgen::runtime ALIAS ${target}_runtime)
+    add_library(odgen::node ALIAS ${target}_node)
+  endif()
+endfunction()
 
 # A file written only when its content changes (its mtime is what make and ninja compare).
 function(_odgen_write_if_changed path content)
@@ -112,7 +133,7 @@ function(odgen_add_object_dictionary target)
   endif()
   add_custom_command(
     OUTPUT "${stamp}"
-    BYPRODUCTS "${out}/${ARG_NAME}.c" "${out}/${ARG_NAME}.h" ${_odgen_report_file}
+    BYPRODUCTS "${out}/${ARG_NAME}.c" "${out}/${ARG_NAME}.h" "${out}/${ARG_NAME}_config.h" ${_odgen_report_file}
     COMMAND "${ODGEN_EXECUTABLE}" ${args}
     ${_odgen_report_command}
     COMMAND "${CMAKE_COMMAND}" -E touch "${stamp}"
@@ -120,9 +141,9 @@ function(odgen_add_object_dictionary target)
     COMMENT "odgen: object dictionary ${ARG_NAME} from ${ARG_EDS}"
     VERBATIM)
   add_custom_target(${target}_generate DEPENDS "${stamp}")
+  _odgen_add_runtime(${target} ${ARG_NAME} "${out}")
   add_library(${target} STATIC "${out}/${ARG_NAME}.c" "${out}/${ARG_NAME}.h")
   add_dependencies(${target} ${target}_generate)
-  target_include_directories(${target} PUBLIC "${out}")
-  target_link_libraries(${target} PUBLIC odgen::runtime)
+  target_link_libraries(${target} PUBLIC ${target}_runtime)
   _odgen_strict(${target})
 endfunction()

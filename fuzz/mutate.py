@@ -26,8 +26,8 @@ from pathlib import Path
 from odgen.diagnostics import Severity
 from odgen.formats import FORMATS, load_bytes
 from odgen.formats.eds_writer import write_eds
-from odgen.lint import lint_model
-from odgen.rules import LintOptions
+from odgen.lint.driver import lint_model
+from odgen.lint.passes import LintOptions
 
 ROOT = Path(__file__).resolve().parents[1]
 REPO_SEEDS = (ROOT / "tests" / "fixtures", ROOT / "examples")

@@ -250,7 +250,8 @@ def guided(executions: int, jobs: int, seed: int) -> tuple[dict, list[dict]]:
                                            "exec/s", "exit"],
             "rows": rows,
             "notes": [f"{total} executions in {jobs} libFuzzer processes over odgen's instrumented Python code "
-                      "(odgen.formats, odgen.rules, odgen.lint, odgen.model), starting from slices of every seed "
+                      "(odgen.formats, odgen.lint.passes, odgen.lint.driver, odgen.model), starting from slices of "
+                      "every seed "
                       "file; half of the mutations are libFuzzer's byte mutations, half the structural ones.",
                       f"{len(saved)} findings."]}, saved
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import os
 import shutil
+from collections.abc import Callable
 from pathlib import Path
 
 from . import __version__
@@ -17,7 +18,11 @@ from .errors import OdgenError
 STANDARD = "-std=c99"
 WARNINGS = ("-Wall", "-Wextra", "-Werror", "-pedantic")
 CFLAGS = (STANDARD, *WARNINGS)
-CORE_SOURCES = ("odg.c", "odg_persist.c")  # the dictionary runtime a firmware links
+CORE_SOURCES = ("odg.c", "odg_persist.c")  # the dictionary runtime a firmware links (CMake: odgen::runtime)
+# The node's services (CMake: odgen::node): NMT, SDO server, PDOs, EMCY, SYNC, heartbeat, LSS, TIME.
+SERVICE_SOURCES = ("odg_node.c", "odg_sdo.c", "odg_pdo.c", "odg_err.c", "odg_sync.c", "odg_hb.c", "odg_lss.c",
+                   "odg_time.c")
+HOST_SOURCES = ("odg_nv_file.c", "linux/odg_socketcan.c")  # NV in a file and SocketCAN: POSIX hosts only
 NODE_MAIN = "linux/odg_node_main.c"  # the SocketCAN node program's main(); apps bring their own
 
 
@@ -32,12 +37,17 @@ def core_sources() -> list[Path]:
     return [runtime_dir() / name for name in CORE_SOURCES]
 
 
+def service_sources() -> list[Path]:
+    return [runtime_dir() / name for name in SERVICE_SOURCES]
+
+
+def host_sources() -> list[Path]:
+    return [runtime_dir() / name for name in HOST_SOURCES]
+
+
 def node_sources() -> list[Path]:
-    """The core, the node layer (SDO, PDO, NV file) and the Linux adapter, without the node main."""
-    runtime = runtime_dir()
-    top = sorted(runtime.glob("odg*.c"))
-    linux = sorted(p for p in (runtime / "linux").glob("*.c") if p != runtime / NODE_MAIN)
-    return top + linux
+    """The core, the node's services and the POSIX host's NV file and SocketCAN, without the node main."""
+    return [*core_sources(), *service_sources(), *host_sources()]
 
 
 def include_dirs(node: bool = False) -> list[Path]:
@@ -52,5 +62,25 @@ def cmake_script() -> str:
         f'set(ODGEN_VERSION "{__version__}")',
         f'set(ODGEN_RUNTIME_DIR "{runtime_dir().as_posix()}")',
         f"set(ODGEN_RUNTIME_SOURCES {cmake_list([p.as_posix() for p in core_sources()])})",
+        f"set(ODGEN_NODE_SOURCES {cmake_list([p.as_posix() for p in service_sources()])})",
         f"set(ODGEN_C_WARNINGS {cmake_list(WARNINGS)})",
         ""])
+
+
+def make_script() -> str:
+    """What `odgen --toolchain make` prints: the same lists as make variables (examples/*/Makefile
+    include it). Paths with spaces do not survive make's word lists."""
+    def words(paths: list[Path]) -> str:
+        return " ".join(p.as_posix() for p in paths)
+    return "\n".join([
+        f"ODGEN_VERSION := {__version__}",
+        f"ODGEN_RUNTIME_DIR := {runtime_dir().as_posix()}",
+        f"ODGEN_RUNTIME_SOURCES := {words(core_sources())}",
+        f"ODGEN_NODE_SOURCES := {words(service_sources())}",
+        f"ODGEN_HOST_SOURCES := {words(host_sources())}",
+        f"ODGEN_NODE_MAIN := {(runtime_dir() / NODE_MAIN).as_posix()}",
+        f"ODGEN_CFLAGS := {' '.join(CFLAGS)}",
+        ""])
+
+
+SCRIPTS: dict[str, Callable[[], str]] = {"cmake": cmake_script, "make": make_script}

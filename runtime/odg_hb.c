@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_hb.c - NMT error control: the heartbeat consumer (CiA 301: 0x1016), node guarding and
  * life guarding (0x100C, 0x100D), and what a communication error does (0x1029 sub 1).
@@ -19,6 +20,9 @@
  * first remote frame on, no remote frame for their product is a life guarding event: error
  * 0x8130 (EMCY byte 3: the node's own id), then 0x1029 sub 1 as above; watched again from (and
  * the error gone with) the next remote frame.
+ *
+ * The CAN controller's state (odg_node_can_state, from the CAN driver): error passive is the
+ * error 0x8120, bus-off a communication error (0x1029 sub 1), leaving bus-off the EMCY 0x8140.
  */
 #include <string.h>
 
@@ -172,4 +176,56 @@ void odg_node_on_heartbeat(odg_node_t *node, void (*fn)(void *ctx, uint8_t node_
 {
     node->on_heartbeat = fn;
     node->on_heartbeat_ctx = ctx;
+}
+
+/* ---- the CAN controller's state ------------------------------------------------------------ */
+
+void odg_node_can_state(odg_node_t *node, odg_can_state_t state)
+{
+    uint8_t was = node->can_state;
+    if (state == ODG_CAN_RX_OVERRUN) {
+        (void)odg_node_emcy(node, ODG_EMCY_CAN_OVERRUN, node->error_register, NULL, 0);
+        return;
+    }
+    if ((uint8_t)state == was || state > ODG_CAN_RX_OVERRUN) {
+        return;
+    }
+    node->can_state = (uint8_t)state;
+    if (state == ODG_CAN_BUS_OFF) {
+        communication_error(node);
+        return;
+    }
+    if (was == ODG_CAN_BUS_OFF) {
+        (void)odg_node_emcy(node, ODG_EMCY_BUS_OFF_RECOVERED, node->error_register, NULL, 0);
+    }
+    if (state == ODG_CAN_ERROR_PASSIVE) {
+        (void)odg_node_error_set(node, ODG_EMCY_CAN_PASSIVE, 0, NULL, 0);
+    } else {
+        (void)odg_node_error_clear(node, ODG_EMCY_CAN_PASSIVE);
+    }
+}
+
+uint8_t odg_node_comm_errors(const odg_node_t *node)
+{
+    uint8_t bits = 0;
+    uint32_t k;
+    for (k = 0; k < ODG_NODE_MAX_HB; k++) {
+        if (node->hb_watch[k].lost) {
+            bits = ODG_COMM_HEARTBEAT;
+        }
+    }
+    if (node->guard_lost) {
+        bits |= ODG_COMM_GUARDING;
+    }
+    if (node->can_state == ODG_CAN_BUS_OFF) {
+        bits |= ODG_COMM_BUS_OFF;
+    }
+    return bits;
+}
+
+void odg_can_boot_(odg_node_t *n)
+{
+    if (n->can_state == ODG_CAN_ERROR_PASSIVE || n->can_state == ODG_CAN_BUS_OFF) {
+        (void)odg_node_error_set(n, ODG_EMCY_CAN_PASSIVE, 0, NULL, 0);
+    }
 }

@@ -1,9 +1,10 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_lss.h - the LSS slave (CiA 305) of the node: a master assigns node-id and bit timing to
  * a device, found by its identity (0x1018 sub 1-4) or by fastscan. Part of odg_node.h.
  *
- * Compiled in with -DODG_NODE_LSS=1 (`odgen node` does so when the description says
- * LSS_Supported=1 or the options file has [node] lss = true). Then odg_node_init accepts the
+ * Compiled in when ODG_NODE_LSS is 1: NAME_config.h says so when the description says
+ * LSS_Supported=1 or the options file has [node] lss = true. Then odg_node_init accepts the
  * node-id ODG_LSS_UNCONFIGURED: such a node sends no boot-up and answers only LSS and NMT
  * reset commands until a master configured a node-id and switched it back to the waiting
  * state; then it boots as CiA 301 says. A node-id (and bit timing) stored by the master with

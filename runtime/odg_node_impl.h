@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_node_impl.h - internals shared by odg_node.c, odg_sdo.c and odg_pdo.c. Not API.
  */
@@ -76,6 +77,7 @@ odg_abort_t odg_hb_check_(const odg_node_t *n, uint8_t sub, uint32_t value); /* 
 void odg_hb_receive_(odg_node_t *n, const odg_frame_t *f);
 void odg_hb_tick_(odg_node_t *n, uint32_t ms); /* also life guarding */
 void odg_guard_rtr_(odg_node_t *n, const odg_frame_t *f); /* a remote frame: node guarding */
+void odg_can_boot_(odg_node_t *n); /* after the boot-up: 0x8120 again while error passive or bus-off */
 
 /* odg_sdo.c */
 void odg_sdo_receive_(odg_node_t *n, const odg_frame_t *f);

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_pdo.c - SYNC consumer, TPDOs and RPDOs of the node, configured by the dictionary's
  * 0x1400-0x15FF / 0x1600-0x17FF (RPDO) and 0x1800-0x19FF / 0x1A00-0x1BFF (TPDO) entries.
@@ -464,4 +465,33 @@ void odg_pdo_rtr_(odg_node_t *n, const odg_frame_t *f)
             (void)odg_node_send_(n, p->cob, p->data, p->len);
         }
     }
+}
+
+/* ---- what the build's limits leave out ---------------------------------------------------- */
+
+/* The highest sub-index of entry `index`, or -1 when absent. */
+static int32_t highest_sub(const odg_dict_t *d, uint16_t index)
+{
+    odg_ref_t r;
+    if (odg_find(d, index, 0, &r) != ODG_OK) {
+        return -1;
+    }
+    return d->subs[r.entry->first + r.entry->count - 1u].sub;
+}
+
+uint16_t odg_node_unserved(const odg_dict_t *dict)
+{
+    uint16_t k, n = 0;
+    for (k = 0; k < 0x200u; k++) {
+        int rx_served = k < ODG_NODE_MAX_RPDO, tx_served = k < ODG_NODE_MAX_TPDO;
+        if (highest_sub(dict, (uint16_t)(0x1400u + k)) >= 0) {
+            n = (uint16_t)(n + (rx_served ? highest_sub(dict, (uint16_t)(0x1600u + k)) > (int32_t)ODG_NODE_MAX_MAP
+                                          : 1));
+        }
+        if (highest_sub(dict, (uint16_t)(0x1800u + k)) >= 0) {
+            n = (uint16_t)(n + (tx_served ? highest_sub(dict, (uint16_t)(0x1A00u + k)) > (int32_t)ODG_NODE_MAX_MAP
+                                          : 1));
+        }
+    }
+    return n;
 }

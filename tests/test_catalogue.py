@@ -33,7 +33,7 @@ def test_code_refers_to_rules_as_constants_not_strings() -> None:
 
 
 def test_readers_do_not_import_the_rule_checks() -> None:
-    probe = "import sys, odgen.formats; print(sorted(m for m in sys.modules if m.startswith('odgen.rules')))"
+    probe = "import sys, odgen.formats; print(sorted(m for m in sys.modules if m.startswith('odgen.lint.passes')))"
     done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True, cwd=ROOT)
     assert done.stdout.strip() == "[]"
 

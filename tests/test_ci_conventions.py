@@ -12,9 +12,10 @@ from pathlib import Path
 
 import pytest
 
-from odgen import cli, formats, report
+from odgen import choices, cli
 from odgen.cli import main
-from odgen.codegen import generate as generate_module
+from odgen.cli.lint import lint_settings
+from odgen.lint import reporters
 
 from .conftest import FIXTURES, ROOT, corpus_files
 
@@ -23,19 +24,21 @@ DUPLICATE = FIXTURES / "syntax" / "SYN003.eds"
 OCTAL = FIXTURES / "syntax" / "SYN006.eds"
 
 
-def test_cli_choices_match_their_modules() -> None:
-    assert set(cli.REPORT_FORMATS) == set(report.RENDERERS)
-    assert cli.LOOKUPS == generate_module.LOOKUPS
-    assert cli.INPUT_FORMATS == formats.INPUT_FORMATS
+def test_cli_choices_are_what_their_modules_implement() -> None:
+    """odgen.choices is the one list; each module that acts on a choice has one way per choice."""
+    assert set(choices.REPORT_FORMATS) == set(reporters.RENDERERS)
+    from odgen.diff import CLASSES
     from odgen.diff.report import RENDERERS as DIFF_RENDERERS
-    from odgen.htmlreport.render import FORMATS as PAGE_FORMATS
 
-    assert set(cli.DIFF_FORMATS) == set(DIFF_RENDERERS)
-    assert cli.PAGE_FORMATS == PAGE_FORMATS
+    assert set(choices.DIFF_FORMATS) == set(DIFF_RENDERERS)
+    assert (*CLASSES, "none") == choices.DIFF_FAIL_ON
     from odgen.profiles import ds401
 
-    assert (ds401.MAX_DIGITAL, ds401.MAX_ANALOG, ds401.WIDTHS, ds401.Ds401.name) == \
-        (cli.DS401_MAX_DIGITAL, cli.DS401_MAX_ANALOG, cli.DS401_WIDTHS, cli.DS401_NAME)
+    assert ds401.MAX_DIGITAL == ds401.MAX_GROUPS * 8 and set(ds401.WIDTHS) == set(ds401.INT_OF_WIDTH)
+    for argv in (["generate", "x.eds", "-o", "out", "--lookup", "nope"], ["lint", "--input-format", "nope"],
+                 ["report", "x.eds", "-o", "x.html", "--format", "nope"]):
+        with pytest.raises(SystemExit):
+            cli.build_parser().parse_args(argv)
 
 
 def test_github_annotations(capsys: pytest.CaptureFixture[str]) -> None:
@@ -48,7 +51,7 @@ def test_github_annotations(capsys: pytest.CaptureFixture[str]) -> None:
 
 
 def test_github_escapes_properties_and_messages() -> None:
-    from odgen.report.github import _escape
+    from odgen.lint.reporters.github import _escape
 
     assert _escape("a,b:c%d", prop=True) == "a%2Cb%3Ac%25d"
     assert _escape("one\ntwo, three: four") == "one%0Atwo, three: four"
@@ -106,7 +109,7 @@ def test_config_per_file_ignores_and_node_id(tmp_path: Path, capsys: pytest.Capt
     assert main(["lint", str(project / "devices" / "SYN006.eds"), "--strict"]) == 1
     for argv, node_id in (([], 5), (["--node-id", "9"], 9)):  # the command line overrides the file
         args = cli.build_parser().parse_args(["lint", *argv, str(project / "devices" / "SYN006.eds")])
-        assert cli._lint_settings(args, args.files[0])[1].node_id == node_id
+        assert lint_settings(args, args.files[0])[1].node_id == node_id
 
 
 @pytest.mark.parametrize("config, message", [

@@ -14,8 +14,9 @@ from pathlib import Path
 
 import pytest
 
-from odgen.codegen.check import run_check
-from odgen.codegen.generate import Request, generate
+from odgen import toolchain
+from odgen.check import run_check
+from odgen.pipeline import Request, generate
 
 from .conftest import FIXTURES, ROOT
 
@@ -84,11 +85,25 @@ def test_cmake_firmware_example_builds_and_runs(tmp_path: Path) -> None:
     cmake = _compiler("cmake")
     source = ROOT / "examples" / "cmake-firmware"
     env = dict(os.environ, PATH=f"{ROOT / '.venv' / 'bin'}{os.pathsep}{os.environ.get('PATH', '')}")
-    for cmd in ([cmake, "-S", str(source), "-B", str(tmp_path)], [cmake, "--build", str(tmp_path)]):
+    configure = [cmake, "-S", str(source), "-B", str(tmp_path), "-DODGEN_WERROR=ON"]
+    for cmd in (configure, [cmake, "--build", str(tmp_path)]):
         done = subprocess.run(cmd, capture_output=True, text=True, env=env, check=False)
         assert done.returncode == 0, done.stdout + done.stderr
     ran = subprocess.run([str(tmp_path / "firmware")], capture_output=True, text=True, check=False)
     assert ran.returncode == 0 and "looped back" in ran.stdout, ran.stdout + ran.stderr
+    assert "0x1017 = 1000 ms read by SDO, operational" in ran.stdout  # odgen::node served it
+    # odgen::runtime and odgen::node: the dictionary's NAME_config.h, the toolchain's sources
+    for target, sources in (("runtime", toolchain.core_sources()), ("node", toolchain.service_sources())):
+        flags = (tmp_path / "CMakeFiles" / f"io_node_od_{target}.dir" / "flags.make").read_text()
+        assert '-DODG_CONFIG=\\"io_node_config.h\\"' in flags and "-Werror" in flags, flags
+        built = {p.name.removesuffix(".o") for p in (tmp_path / "CMakeFiles").glob(f"io_node_od_{target}.dir/**/*.o")}
+        assert built == {p.name for p in sources}
+    # without ODGEN_WERROR the targets keep the warnings but do not stop on them
+    done = subprocess.run([cmake, "-S", str(source), "-B", str(tmp_path / "plain")], capture_output=True, text=True,
+                          env=env, check=False)
+    assert done.returncode == 0, done.stdout + done.stderr
+    flags = (tmp_path / "plain" / "CMakeFiles" / "io_node_od_node.dir" / "flags.make").read_text()
+    assert "-Wall -Wextra -pedantic" in flags and "-Werror" not in flags, flags
     report = (tmp_path / "odgen" / "io_node" / "io_node-report.html").read_text(encoding="utf-8")
     assert report.startswith("<!DOCTYPE html>") and "0x6200" in report  # REPORT html: the page of the same input
 

@@ -13,7 +13,7 @@ import pytest
 
 from odgen.cli import main
 from odgen.diagnostics import RULES, Severity
-from odgen.lint import exit_code
+from odgen.lint.driver import exit_code
 
 from .conftest import BUILD, corpus_files, corpus_params, lint
 

@@ -13,13 +13,13 @@ import pytest
 
 from odgen.cli import main
 from odgen.diff import diff_models, diff_paths
-from odgen.codegen.placement import storage_from_description
+from odgen.place.placement import storage_from_description
 from odgen.diff.changes import BREAKING, COMPATIBLE, KINDS, STORED, Change
 from odgen.diff.report import RENDERERS as DIFF_RENDERERS
 from odgen.errors import OdgenError
 from odgen.formats import load_path
 from odgen.formats.eds_writer import write_eds
-from odgen.report.sarif import artifact_location
+from odgen.lint.reporters.sarif import artifact_location
 from odgen.model import ObjectDictionary
 
 from fuzz import mutate

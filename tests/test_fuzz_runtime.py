@@ -13,14 +13,15 @@ from pathlib import Path
 
 import pytest
 
+from odgen import toolchain
+
 from .conftest import ROOT
 from .cprog import SANITIZE, build
 from .test_node import generate
 
 FUZZ = ROOT / "fuzz" / "runtime"
 RUNTIME = ROOT / "runtime"
-NODE_SOURCES = tuple(RUNTIME / s for s in ("odg.c", "odg_persist.c", "odg_node.c", "odg_sdo.c", "odg_pdo.c",
-                                           "odg_err.c", "odg_sync.c", "odg_hb.c", "odg_lss.c", "odg_time.c"))
+NODE_SOURCES = (*toolchain.core_sources(), *toolchain.service_sources())
 HARNESSES = {"sdo": "alltypes", "pdo": "pdo_node", "od": "alltypes"}
 
 

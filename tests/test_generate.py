@@ -9,10 +9,10 @@ from pathlib import Path
 import pytest
 
 from odgen.cli import main
-from odgen.codegen.check import run_check
-from odgen.codegen.generate import Request, generate
-from odgen.codegen.names import comment, identifier, name_clash, string_literal
-from odgen.codegen.selftest import expected_bytes
+from odgen.check import run_check
+from odgen.pipeline import Request, generate
+from odgen.cnames import comment, identifier, name_clash, string_literal
+from odgen.model.expect import expected_bytes
 from odgen.diagnostics import RULES
 from odgen.model.datatypes import BASIC_TYPES
 
@@ -26,14 +26,15 @@ EXAMPLE_OPTIONS = ROOT / "examples" / "io-node" / "io-node.toml"
 
 def _rendered(result) -> list[str]:
     prefix = f"{GEN}/"
-    return [d.text().replace(prefix, "") for d in result.diags.sorted()]
+    return [d.text().replace(prefix, "").replace(f"{ROOT}/", "") for d in result.diags.sorted()]
 
 
 def _fixture_cases() -> list[tuple[str, Path, Path | None]]:
     cases = []
     for path in sorted(GEN.glob("GEN*")):
-        if path.suffix == ".toml":
-            cases.append((path.stem, PLAIN, path))
+        if path.suffix == ".toml":  # applied to plain.eds, or to the description its `# eds: PATH` line names
+            named = [x[len("# eds: "):] for x in path.read_text().splitlines() if x.startswith("# eds: ")]
+            cases.append((path.stem, (GEN / named[0]).resolve() if named else PLAIN, path))
         else:
             cases.append((path.stem, path, None))
     return cases
@@ -156,7 +157,7 @@ def test_template_cache_gives_the_same_files_and_a_missing_one_only_costs_time(t
     with a fresh cache, a warm one, and none (its folder cannot be made: a file stands there)."""
     import tempfile
 
-    from odgen.codegen.generate import environment
+    from odgen.codegen.render import environment
 
     outputs = []
     blocked = tmp_path / "not-a-folder"

@@ -18,9 +18,10 @@ from pathlib import Path
 
 import pytest
 
+from odgen import toolchain
 from odgen.cli import main
-from odgen.codegen.check import run_check
-from odgen.codegen.generate import Request, generate
+from odgen.check import run_check
+from odgen.pipeline import Request, generate
 
 from .conftest import FIXTURES, ROOT
 from .cprog import build, run
@@ -111,7 +112,7 @@ def test_hostile_string_values_compile_and_read_back(tmp_path: Path, kind: int, 
     expected = {index: value.encode(encoding) for index, value in HOSTILE_STRINGS.items()}
     (tmp_path / "reader.c").write_text(_reader_program("hostile", expected), encoding="utf-8")
     exe = tmp_path / "reader"
-    sources = (tmp_path / "reader.c", tmp_path / "hostile.c", RUNTIME / "odg.c", RUNTIME / "odg_persist.c")
+    sources = (tmp_path / "reader.c", tmp_path / "hostile.c", *toolchain.core_sources())
     build("gcc", ("-O1", "-trigraphs"), sources, (RUNTIME, tmp_path), exe)
     assert f"{len(HOSTILE_STRINGS)} passed, 0 failed" in run(exe, tmp_path)
 
@@ -198,8 +199,8 @@ def test_convert_into_a_missing_folder_writes_nothing(tmp_path: Path, capsys: py
 
 _PROBE = """
 import json, resource, sys
-from odgen.lint import lint_path
-from odgen.rules import LintOptions
+from odgen.lint.driver import lint_path
+from odgen.lint.passes import LintOptions
 result = lint_path(sys.argv[1], LintOptions())
 rules = {}
 for d in result.diagnostics:

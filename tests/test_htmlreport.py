@@ -20,14 +20,14 @@ import lxml.etree
 import lxml.html
 import pytest
 
-from odgen.codegen.check import run_check
-from odgen.codegen.generate import Request
+from odgen.check import run_check
+from odgen.pipeline import Request
 from odgen.codegen.memory import memory_rows
 from odgen.formats import load_path
-from odgen.htmlreport.render import render_html, render_markdown
-from odgen.htmlreport.view import build_report, row_key
+from odgen.report.render import render_html, render_markdown
+from odgen.report.view import build_report, row_key
 from odgen.model import ObjectDictionary
-from odgen.rules.common import plain_int, value_in_force
+from odgen.model.values import plain_int
 
 from .conftest import BUILD, FIXTURES, ROOT, corpus_files, lint
 
@@ -82,8 +82,8 @@ def expected_layouts(od: ObjectDictionary) -> dict[str, list[tuple[int, int]] | 
             continue
         key = f"{kind}{obj.index - (0x1A00 if kind == 'tpdo' else 0x1600) + 1}"
         sub0 = obj.subs.get(0)
-        count = plain_int(value_in_force(od, sub0)[0]) if sub0 is not None else None
-        raws = [plain_int(value_in_force(od, obj.subs[n])[0]) if n in obj.subs else None
+        count = plain_int(od.value_in_force(sub0)) if sub0 is not None else None
+        raws = [plain_int(od.value_in_force(obj.subs[n])) if n in obj.subs else None
                 for n in range(1, (count or 0) + 1)]
         if count is None or count > 64 or None in raws or sub0 is None or sub0.compact:
             layouts[key] = None
@@ -181,7 +181,7 @@ def test_example_and_network_in_chromium() -> None:
     """The example with its options (storage, hooks, memory) and the network part."""
     report, _ = build_report(EXAMPLE, EXAMPLE_OPTIONS)
     assert report is not None
-    from odgen.htmlreport.network import build_network
+    from odgen.report.network import build_network
     report.network = build_network(NETWORK, FIXTURES / "network" / "master.eds", False)
     OUT.mkdir(parents=True, exist_ok=True)
     page = OUT / "io-node.html"

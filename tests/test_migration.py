@@ -1,4 +1,4 @@
-"""The boot-migration policy (odgen/persist/migration.py): the plan from two layouts, the values it
+"""The boot-migration policy (odgen/place/migration.py): the plan from two layouts, the values it
 restores from a stored image, and the layout descriptor an image carries."""
 
 from __future__ import annotations
@@ -7,14 +7,14 @@ import itertools
 
 import pytest
 
-from odgen.codegen.options import load_options
-from odgen.codegen.placement import place
+from odgen.place.options import load_options
+from odgen.place.placement import place
 from odgen.diagnostics import Diagnostics
 from odgen.formats import load_path
 from odgen.model.datatypes import BASIC_TYPES
-from odgen.persist.layout import group_layouts
-from odgen.persist.nvmap import nv_map, slot_bytes
-from odgen.persist.migration import (
+from odgen.place.layout import group_layouts
+from odgen.place.nvmap import nv_map, slot_bytes
+from odgen.place.migration import (
     CONVERT, DEFAULT, DESCRIPTOR_BYTES, DROP, KEEP, RESIZE, EntryLayout, GroupLayout, decode, descriptor, encode,
     entry_action, migrate, parse_descriptor, plan, value_size, widens,
 )

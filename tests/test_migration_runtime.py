@@ -1,4 +1,4 @@
-"""Boot migration in the C runtime against the policy in Python (odgen/persist/migration.py).
+"""Boot migration in the C runtime against the policy in Python (odgen/place/migration.py).
 
 Each case generates a v1 and a v2 dictionary (the same name `od`), stores values with v1 into an
 NV file, boots v2 on that file (tests/runtime/migrate_main.c) and compares what v2 serves, and the
@@ -16,10 +16,11 @@ from pathlib import Path
 
 import pytest
 
-from odgen.codegen.generate import Request, prepare
-from odgen.persist.layout import group_layouts
-from odgen.persist.migration import DOMAIN_TYPE, EntryLayout, GroupLayout, migrate, value_size
-from odgen.persist.nvmap import nv_map
+from odgen import toolchain
+from odgen.pipeline import Request, prepare
+from odgen.place.layout import group_layouts
+from odgen.place.migration import DOMAIN_TYPE, EntryLayout, GroupLayout, migrate, value_size
+from odgen.place.nvmap import nv_map
 
 from .conftest import ROOT
 from .cprog import build
@@ -262,7 +263,7 @@ def firmware(tmp: Path, tag: str, params: tuple[Param, ...], heartbeat: int, rev
     assert done.returncode == 0, done.stdout + done.stderr
     exe = src / "migrate_main"
     flags = ("-O1", '-DODG_CONFIG="od_config.h"') if configured else ("-O1",)
-    build("gcc", flags, (CTESTS / "migrate_main.c", src / "od.c", RUNTIME / "odg.c", RUNTIME / "odg_persist.c",
+    build("gcc", flags, (CTESTS / "migrate_main.c", src / "od.c", *toolchain.core_sources(),
                             RUNTIME / "odg_nv_file.c", CTESTS / "nv_fault.c"), (src, RUNTIME, CTESTS), exe)
     return exe, layouts
 

@@ -14,8 +14,8 @@ from pathlib import Path
 import pytest
 
 from odgen.formats import load_bytes
-from odgen.lint import lint_model
-from odgen.rules import LintOptions
+from odgen.lint.driver import lint_model
+from odgen.lint.passes import LintOptions
 
 from .conftest import corpus_params
 

@@ -20,6 +20,8 @@ from pathlib import Path
 
 import pytest
 
+from odgen import toolchain
+
 from .cprog import BUILDS, EXTRA, STRICT, build, compiler, run
 from .conftest import FIXTURES, ROOT
 
@@ -28,10 +30,9 @@ LINUX = RUNTIME / "linux"
 NODE_TESTS = ROOT / "tests" / "node"
 CHECK_H = ROOT / "tests" / "runtime"  # check.h
 
-CORE = tuple(RUNTIME / s for s in ("odg.c", "odg_persist.c"))
-NODE = tuple(RUNTIME / s for s in ("odg_node.c", "odg_sdo.c", "odg_pdo.c", "odg_err.c", "odg_sync.c", "odg_hb.c",
-                                    "odg_lss.c", "odg_time.c"))
-PROGRAM_SOURCES = (*CORE, *NODE, RUNTIME / "odg_nv_file.c", LINUX / "odg_socketcan.c", LINUX / "odg_node_main.c")
+CORE = tuple(toolchain.core_sources())  # the lists odgen node, CMake and the examples build from
+NODE = tuple(toolchain.service_sources())
+PROGRAM_SOURCES = (*CORE, *NODE, *toolchain.host_sources(), RUNTIME / toolchain.NODE_MAIN)
 
 # name -> (EDS, options file or None)
 DICTS: dict[str, tuple[Path, Path | None]] = {
@@ -39,6 +40,7 @@ DICTS: dict[str, tuple[Path, Path | None]] = {
     "io_node": (ROOT / "examples" / "io-node" / "io-node.eds", ROOT / "examples" / "io-node" / "io-node.toml"),
     "pdo_node": (NODE_TESTS / "pdo-node.eds", None),
     "lss_node": (NODE_TESTS / "lss-node.eds", NODE_TESTS / "lss-node.toml"),
+    "wide_node": (NODE_TESTS / "wide-node.eds", None),
 }
 # test program -> (dictionary, extra runtime sources)
 PROGRAMS: dict[str, tuple[str, tuple[Path, ...]]] = {
@@ -49,9 +51,12 @@ PROGRAMS: dict[str, tuple[str, tuple[Path, ...]]] = {
     "test_node_lss": ("lss_node", ()),
     "test_node_time": ("lss_node", ()),
     "test_node_window": ("lss_node", ()),
+    "test_node_wide": ("wide_node", ()),
+    "test_node_can": ("pdo_node", ()),
 }
 LSS = ("-DODG_NODE_LSS=1",)  # the node and the program are built with the LSS slave
-DEFINES: dict[str, tuple[str, ...]] = {"test_node_lss": LSS}
+# test_node_wide: sized by the dictionary alone (8 + 8 PDOs, 32 mapping entries), no other define
+DEFINES: dict[str, tuple[str, ...]] = {"test_node_lss": LSS, "test_node_wide": ('-DODG_CONFIG="wide_node_config.h"',)}
 
 
 
@@ -166,3 +171,15 @@ def test_node_program_on_vcan(generated: Path, tmp_path: Path, vcan_bus) -> None
     output = done.stdout + done.stderr
     assert done.returncode == 0, output[-6000:]
     assert done.stdout.rstrip().splitlines()[-1] == "vcan node: ok", output[-6000:]
+
+
+def test_toolchain_lists_every_runtime_source() -> None:
+    """odgen/toolchain.py is the one list of the runtime's C files (CMake, make, odgen node, the tests):
+    every file under runtime/ is in it, once, and is either the core, a service, a host file or
+    the node program's main (the profiles' glue is the application's)."""
+    listed = [*toolchain.core_sources(), *toolchain.service_sources(), *toolchain.host_sources(),
+              RUNTIME / toolchain.NODE_MAIN]
+    present = {p for p in RUNTIME.rglob("*.c") if "profiles" not in p.parts}
+    assert len(listed) == len(set(listed)) and set(listed) == present
+    make = dict(line.split(" := ", 1) for line in toolchain.make_script().splitlines())
+    assert make["ODGEN_NODE_SOURCES"].split() == [p.as_posix() for p in toolchain.service_sources()]

@@ -13,10 +13,10 @@ import pytest
 
 from odgen.diagnostics import RULES, Diagnostics, Severity
 from odgen.formats import load_path
-from odgen.lint import FileResult
+from odgen.lint.driver import FileResult
 from odgen.model import ARRAY, Field, Obj, ObjectDictionary, Sub, parse_value
 from odgen.model.datatypes import BY_NAME
-from odgen.rules import LintOptions, run_rules
+from odgen.lint.passes import LintOptions, run_rules
 
 from .conftest import CORPUS, FIXTURES, corpus_params, expectations, lint
 

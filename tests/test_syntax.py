@@ -8,9 +8,9 @@ import pytest
 
 from odgen.diagnostics import RULES
 from odgen.formats import load_bytes, load_path
-from odgen.lint import lint_path
-from odgen.report import render_text
-from odgen.rules import LintOptions
+from odgen.lint.driver import lint_path
+from odgen.lint.reporters import render_text
+from odgen.lint.passes import LintOptions
 from odgen.model.values import parse_value, split_nodeid
 from odgen.model.datatypes import BY_NAME
 

@@ -19,7 +19,11 @@ PY=$ROOT/.venv/bin/python
 CC=${FUZZ_CC:-clang}
 FLAGS=(-std=c99 -Wall -Wextra -Werror -pedantic -O1 -g -fno-omit-frame-pointer
        -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all)
-RUNTIME=(odg.c odg_persist.c odg_node.c odg_sdo.c odg_pdo.c odg_err.c odg_sync.c odg_hb.c odg_lss.c odg_time.c)
+# The core and the node's services, as odgen defines them (odgen/toolchain.py).
+mapfile -t RUNTIME < <("$PY" -c 'from odgen import toolchain
+for p in [*toolchain.core_sources(), *toolchain.service_sources()]: print(p)')
+mapfile -t CORE < <("$PY" -c 'from odgen import toolchain
+for p in toolchain.core_sources(): print(p)')
 
 declare -A DICT=([sdo]=alltypes [pdo]=pdo_node [od]=alltypes)
 
@@ -35,7 +39,7 @@ findings_total=0
 for h in $HARNESSES; do  # every harness is built before any runs
     d=${DICT[$h]}
     "$CC" "${FLAGS[@]}" -I"$OUT/gen/$d" -I"$ROOT/runtime" -I"$HERE" "$HERE/fuzz_$h.c" "$OUT/gen/$d/$d.c" \
-        "${RUNTIME[@]/#/$ROOT/runtime/}" -o "$OUT/fuzz_$h"
+        "${RUNTIME[@]}" -o "$OUT/fuzz_$h"
 done
 for h in $HARNESSES; do
     exe=$OUT/fuzz_$h
@@ -97,7 +101,7 @@ PYEOF
 if [ -f "$ROOT/tests/runtime/test_faults.c" ]; then
     gcc -std=c99 -Wall -Wextra -Werror -pedantic -O2 -I"$ROOT/runtime" -I"$ROOT/tests/runtime" \
         "$ROOT/tests/runtime/test_faults.c" "$ROOT/tests/runtime/nv_fault.c" "$ROOT/tests/runtime/td.c" \
-        "$ROOT/runtime/odg.c" "$ROOT/runtime/odg_persist.c" -o "$OUT/test_faults"
+        "${CORE[@]}" -o "$OUT/test_faults"
     "$OUT/test_faults" --json "$RESULTS/faults.json" | tail -n 1
 fi
 

@@ -1,7 +1,7 @@
 """The rule catalogue: every finding odgen reports names one of these rules.
 
 The ground floor of the package: readers (odgen.formats), rule checks
-(odgen.rules), the generator and the reporters import it; it imports nothing
+(odgen.lint.passes), the generator and the reporters import it; it imports nothing
 of odgen. Rules are module constants (`from odgen.catalogue.pdo import PDO001`),
 so a misspelt id fails at import. `RULES` maps ids to rules for the reporters;
 `lookup` and `is_selector` serve the command line.

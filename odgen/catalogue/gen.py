@@ -80,3 +80,15 @@ GEN009 = define(
     fix="Describe the sub-objects SubNumber announces (OBJ009 counts them), and at least the mandatory "
     "objects 0x1000, 0x1001 and 0x1018 (COM001 names those missing).",
     blocks=True)
+
+GEN010 = define(
+    "GEN010", E, "the node's limits leave part of the description out", ref="odgen options",
+    why="The node layer serves as many PDOs, mapping entries and heartbeat consumers as NAME_config.h "
+    "says (ODG_NODE_MAX_TPDO, ..._MAX_RPDO, ..._MAX_MAP, ..._MAX_HB): the dictionary sets them, an "
+    "options file may lower them to a firmware's budget. A PDO, mapping entry or heartbeat entry "
+    "beyond a lowered limit would be in the dictionary, and promised to every configuration tool "
+    "that reads the description, but never sent, received or watched.",
+    example="[node]\ntpdo = 4   # the description has TPDOs 0x1800-0x1807",
+    fix="Raise the [node] key to what the description needs, or remove the objects beyond it from the "
+    "description.",
+    blocks=True)

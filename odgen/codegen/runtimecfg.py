@@ -1,4 +1,5 @@
-"""The runtime compiled to what a dictionary uses: the ODG_CFG_* switches of NAME_config.h.
+"""The runtime compiled to what a dictionary uses: the ODG_CFG_* switches of NAME_config.h, and the
+node layer sized to it: the ODG_NODE_* limits (node_limits).
 
 Each switch turns a feature of runtime/odg.c on when the dictionary has something that needs it;
 the rest is left out of the build (64-bit arithmetic on a 32-bit core, string and domain
@@ -9,9 +10,16 @@ the "ODG1" path of groups without migration, and the boot migration when no grou
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
-from .viewmodel import DictView
+from ..catalogue.gen import GEN001, GEN010
+from ..diagnostics import Diagnostics, Loc
+from ..model import ObjectDictionary
+
+if TYPE_CHECKING:  # the view-model calls runtime_config() to finish a view
+    from .viewmodel import DictView
 
 WIDE = {0x0C, 0x0D, 0x11, 0x12, 0x13, 0x14, 0x15, 0x18, 0x19, 0x1A, 0x1B}  # wider than 32 bits
 STRINGS = {0x09, 0x0A}
@@ -72,3 +80,150 @@ def runtime_config(view: DictView) -> list[Switch]:
     return switches + [Switch("ODG_CFG_HASH", "lookup by perfect hash", hashed, "--lookup hash" if hashed else ""),
                        Switch("ODG_CFG_UNHASHED", "lookup by generated find or binary search", not hashed,
                               f"--lookup {view.lookup}" if not hashed else "")]
+
+
+# ---- the node layer's limits (runtime/odg_node.h) ----------------------------------------------
+
+@dataclass(frozen=True)
+class NodeKey:
+    """One [node] key of the options file: the ODG_NODE_* limit it sets and what it may be."""
+    key: str
+    macro: str
+    what: str
+    low: int
+    high: int
+    default: int | None = None  # a limit the dictionary does not decide: the value without the key
+
+
+NODE_KEYS = (
+    NodeKey("rpdo", "ODG_NODE_MAX_RPDO", "RPDOs served (0x1400 + n)", 0, 512),
+    NodeKey("tpdo", "ODG_NODE_MAX_TPDO", "TPDOs served (0x1800 + n)", 0, 512),
+    NodeKey("mapping", "ODG_NODE_MAX_MAP", "mapping entries per PDO", 0, 64),
+    NodeKey("heartbeat_consumers", "ODG_NODE_MAX_HB", "heartbeats watched (0x1016 sub 1..)", 0, 127),
+    NodeKey("comm_bytes", "ODG_NODE_COMM_BYTES", "bytes of communication values reset communication restores",
+            0, 65535),
+    NodeKey("errors", "ODG_NODE_MAX_ERRORS", "errors active at once", 1, 255, 8),
+    NodeKey("emcy_queue", "ODG_NODE_EMCY_QUEUE", "EMCY frames held back by the inhibit time 0x1015", 1, 255, 4),
+)
+MAX_MAPPING = 64  # CiA 301: a PDO maps at most 64 objects (one bit each)
+
+
+@dataclass
+class NodeLimit:
+    macro: str
+    value: int
+    what: str
+    why: str  # what in the dictionary (or the options) decided the value
+
+
+def node_options(raw: dict[str, object], source: str, text: str, diags: Diagnostics) -> dict[str, int]:
+    """The limit keys of an options file's [node] table (lss is read with the placement options);
+    a key odgen does not know, or a value out of its range, is GEN001 at the key's line."""
+    keys = {k.key: k for k in NODE_KEYS}
+    limits: dict[str, int] = {}
+    for name, value in raw.items():
+        spec = keys.get(name)
+        loc = Loc(source, _key_line(text, name))
+        if spec is None:
+            diags.add(GEN001, loc, f"[node] has no key '{name}'; use lss or {', '.join(keys)}")
+        elif isinstance(value, bool) or not isinstance(value, int) or not spec.low <= value <= spec.high:
+            diags.add(GEN001, loc, f"[node] {name} = {value!r}: give a whole number {spec.low}..{spec.high}")
+        else:
+            limits[name] = value
+    return limits
+
+
+def _key_line(text: str, key: str) -> int:
+    """The line of `key = ...` in the [node] table (0 when not found: the file as a whole)."""
+    section = ""
+    for n, line in enumerate(text.splitlines(), start=1):
+        stripped = line.strip()
+        if stripped.startswith("["):
+            section = stripped
+        elif section == "[node]" and re.match(rf"{re.escape(key)}\s*=", stripped):
+            return n
+    return 0
+
+
+def _highest_subs(view: DictView, lo: int, hi: int) -> dict[int, int]:
+    """index -> highest sub-index, for the entries of lo..hi (a packed descriptor names its last element)."""
+    return {e.index: max(view.subs[p].sub for p in range(e.first, e.first + e.count))
+            for e in view.entries if lo <= e.index <= hi}
+
+
+def comm_bytes(view: DictView) -> int:
+    """The bytes odg_node_comm_bytes(&dict) counts: the numbers of 0x1000-0x1FFF but 0x1003 that an
+    SDO client may write, in RAM or a persistence group, each in the bytes of its C type."""
+    packed = {p.index: p.count for p in view.packed}
+    total = 0
+    for e in view.entries:
+        if not 0x1000 <= e.index <= 0x1FFF or e.index == 0x1003:
+            continue
+        for p in range(e.first, e.first + e.count):
+            s = view.subs[p]
+            kept = ("ODG_A_WRITE" in s.attr and ("ODG_S_RAM" in s.storage or "ODG_S_PERSIST" in s.storage)
+                    and s.size <= 8 and s.type not in STREAMS)
+            if kept:
+                elements = packed.get(e.index, 1) if p == e.first + 1 and e.index in packed else 1
+                total += elements * (4 if s.size == 3 else 8 if s.size > 4 else s.size)
+    return total
+
+
+def node_limits(view: DictView, od: ObjectDictionary, lss: bool, caps: dict[str, int],
+                diags: Diagnostics) -> list[NodeLimit]:
+    """The ODG_NODE_* limits the dictionary needs, lowered where the options' [node] keys say; a PDO,
+    mapping entry or heartbeat entry beyond a lowered limit is GEN010 (the node could not serve it)."""
+    rpdo = sorted(e.index - 0x1400 for e in view.entries if 0x1400 <= e.index <= 0x15FF)
+    tpdo = sorted(e.index - 0x1800 for e in view.entries if 0x1800 <= e.index <= 0x19FF)
+    mapping = {**_highest_subs(view, 0x1600, 0x17FF), **_highest_subs(view, 0x1A00, 0x1BFF)}
+    consumers = _highest_subs(view, 0x1016, 0x1016)
+    needs = {
+        "rpdo": (rpdo[-1] + 1 if rpdo else 0, f"0x{0x1400 + rpdo[-1]:04X}" if rpdo else "no RPDO"),
+        "tpdo": (tpdo[-1] + 1 if tpdo else 0, f"0x{0x1800 + tpdo[-1]:04X}" if tpdo else "no TPDO"),
+        "mapping": (min(max(mapping.values(), default=0), MAX_MAPPING),
+                    _widest(mapping) if mapping else "no PDO mapping"),
+        "heartbeat_consumers": (consumers.get(0x1016, 0), "0x1016" if consumers else "no 0x1016"),
+        "comm_bytes": (comm_bytes(view), "0x1000-0x1FFF"),
+    }
+    _refuse_beyond(od, caps, rpdo, tpdo, mapping, consumers, diags)
+    limits = []
+    for spec in NODE_KEYS:
+        need, why = needs.get(spec.key, (spec.default or 0, "default"))
+        value = need if spec.default is None else spec.default
+        if spec.key in caps:
+            value = min(value, caps[spec.key]) if spec.default is None else caps[spec.key]
+            why = f"[node] {spec.key} = {caps[spec.key]}; {why}"
+        if spec.key != "comm_bytes":  # arrays: C has no empty ones
+            value = max(value, 1)
+        limits.append(NodeLimit(spec.macro, value, spec.what, why))
+    limits.append(NodeLimit("ODG_NODE_LSS", int(lss), "the LSS slave (odg_lss.c)",
+                            "LSS_Supported=1 or [node] lss" if lss else "not supported"))
+    return limits
+
+
+def _widest(mapping: dict[int, int]) -> str:
+    index = max(mapping, key=lambda i: (mapping[i], -i))
+    return f"0x{index:04X}sub{mapping[index]}"
+
+
+def _refuse_beyond(od: ObjectDictionary, caps: dict[str, int], rpdo: list[int], tpdo: list[int],
+                   mapping: dict[int, int], consumers: dict[int, int], diags: Diagnostics) -> None:
+    """GEN010 for every object whose PDO, mapping entries or heartbeat entries a lowered limit leaves out."""
+    def refuse(index: int, sub: int | None, key: str, what: str) -> None:
+        obj = od.objects.get(index)
+        found = obj.subs.get(sub) if obj is not None and sub is not None else None
+        line = found.line if found is not None and found.line else (obj.line if obj is not None else 0)
+        diags.add(GEN010, Loc(od.source, line),
+                  f"{what}, but the options' [node] {key} = {caps[key]} leaves it out: raise {key} "
+                  "or remove it from the description", index, sub)
+
+    for key, base, ks in (("rpdo", 0x1400, rpdo), ("tpdo", 0x1800, tpdo)):
+        for k in ks if key in caps else []:
+            if k >= caps[key]:
+                refuse(base + k, None, key, f"{key.upper()} {k + 1} is described")
+    for index, highest in sorted(mapping.items()) if "mapping" in caps else []:
+        if highest > caps["mapping"]:
+            refuse(index, caps["mapping"] + 1, "mapping", f"the mapping has {min(highest, MAX_MAPPING)} entries")
+    if "heartbeat_consumers" in caps and consumers.get(0x1016, 0) > caps["heartbeat_consumers"]:
+        refuse(0x1016, caps["heartbeat_consumers"] + 1, "heartbeat_consumers",
+               f"{consumers[0x1016]} heartbeat consumer entries are described")

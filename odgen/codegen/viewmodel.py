@@ -20,22 +20,28 @@ import math
 import re
 import struct
 import zlib
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from operator import attrgetter
-from typing import Any, NamedTuple
+from typing import NamedTuple
 
 from ..catalogue.gen import GEN004, GEN005, GEN006, GEN007, GEN009
 from ..diagnostics import Diagnostics, Loc
 from ..model import Obj, ObjectDictionary, Sub, Value
+from ..model.expect import initial_value
+from ..model.capacity import domain_capacity, domain_default, limit_value, string_capacity, string_default
 from ..model.od import READABLE, WRITABLE
 from ..model.datatypes import BASIC_TYPES, DataType
-from .names import COMMENT_WIDTH, comment, identifier, string_literal
+from ..cnames import COMMENT_WIDTH, comment, identifier, string_literal
 from .packing import packable
 from ..model.cia301 import RESTORE, STORE
-from .placement import STORE_CLASS, Placement
+from ..place.options import PersistOptions
+from ..place.persistence import PersistView, persist_view
+from ..place.placement import Placement, Placements, STORE_CLASS
+from .lookup import PerfectHash, perfect_hash
+from .runtimecfg import NodeLimit, Switch, node_limits, runtime_config
 
 MAX_C_STRING = 4095
-DEFAULT_DOMAIN_CAPACITY = 0  # a DOMAIN holds its default unless the options give a capacity
 
 # type kind -> (C type by storage width)
 _INT_CTYPES = {8: "int8_t", 16: "int16_t", 24: "int32_t", 32: "int32_t", 40: "int64_t", 48: "int64_t",
@@ -181,9 +187,10 @@ class DictView:
     packed: list[PackedView] = field(default_factory=list)
     macros: list[tuple[str, str, str]] = field(default_factory=list)  # #define name value /* note */
     accessors: list[tuple[str, str]] = field(default_factory=list)  # #define name expression
-    persist: Any = None  # persistview.PersistView: NV regions, layouts, status object
-    config: list = field(default_factory=list)  # runtimecfg.Switch: the runtime's ODG_CFG_* switches
-    hash: object = None  # lookup.PerfectHash for --lookup hash
+    persist: PersistView | None = None  # NV regions, layouts, status object
+    config: list[Switch] = field(default_factory=list)  # the runtime's ODG_CFG_* switches
+    node: list[NodeLimit] = field(default_factory=list)  # the node layer's ODG_NODE_* limits
+    hash: PerfectHash | None = None  # for --lookup hash
 
     def _table(self, suffix: str, present: bool) -> str:
         return f"{self.name}_{suffix}" if present else "NULL"
@@ -290,7 +297,7 @@ def limit_bits(value: int | float, dtype: DataType) -> int:
 
 
 class _Builder:
-    def __init__(self, od: ObjectDictionary, placements: dict[tuple[int, int], Placement], name: str,
+    def __init__(self, od: ObjectDictionary, placements: Placements, name: str,
                  diags: Diagnostics) -> None:
         self.od, self.placements, self.diags = od, placements, diags
         self.name = name
@@ -324,8 +331,10 @@ class _Builder:
         return name
 
 
-def build(od: ObjectDictionary, placements: dict[tuple[int, int], Placement], name: str, *,
-          version: str, digest: str, lookup: str, diags: Diagnostics) -> DictView:
+def build(od: ObjectDictionary, placements: Placements, persist: PersistOptions, name: str,
+          *, version: str, digest: str, lookup: str, diags: Diagnostics, lss: bool = False,
+          node_caps: Mapping[str, int] | None = None) -> DictView:
+    """The finished view of a placed dictionary: tables, values, persistence, runtime switches, lookup."""
     b = _Builder(od, placements, name, diags)
     view = DictView(name=name, upper=name.upper(), version=version, digest=digest,
                     source=comment(od.source.rsplit("/", 1)[-1]), lookup=lookup)
@@ -343,6 +352,11 @@ def build(od: ObjectDictionary, placements: dict[tuple[int, int], Placement], na
     _check_functions(b, view)
     for block in view.structs:
         _check_block_size(b, block)
+    view.persist = persist_view(od, placements, persist, diags)
+    view.config = runtime_config(view)
+    view.node = node_limits(view, od, lss, dict(node_caps or {}), diags)
+    if lookup == "hash":
+        view.hash = perfect_hash([e.index for e in view.entries])
     return view
 
 
@@ -555,7 +569,7 @@ def _value_member(b: _Builder, view: DictView, target: StorageStruct, key: tuple
     elif kind == "domain":
         return _domain(b, view, target, member, value, placement, note, key)
     else:
-        number = _initial(value, sub, dtype)
+        number = initial_value(value, sub, dtype)
         init = real_literal(float(number), dtype.bits) if kind == "real" else int_literal(int(number), ctype)
         target.members.append(Member(member, ctype, "", init, note, _ALIGN[ctype], key))
         if value is not None and value.nodeid and isinstance(value.parsed, int):
@@ -565,51 +579,26 @@ def _value_member(b: _Builder, view: DictView, target: StorageStruct, key: tuple
     return f"offsetof({target.type_name}, {member})", size
 
 
-def initial_number(od: ObjectDictionary, sub: Sub, dtype: DataType) -> int | float:
-    """The value an entry starts with: its default, or without one 0 moved into its limits."""
-    return _initial(od.value_in_force(sub), sub, dtype)
-
-
-def _initial(value: Value | None, sub: Sub, dtype: DataType) -> int | float:
-    """initial_number() of the value in force."""
-    parsed = value.parsed if value is not None and value.error is None else None
-    if isinstance(parsed, (int, float)) and not isinstance(parsed, bool):
-        return float(parsed) if dtype.kind == "real" else int(parsed)
-    zero: int | float = 0.0 if dtype.kind == "real" else 0
-    for bound, pick in ((sub.low, max), (sub.high, min)):
-        if bound is not None and bound.error is None and not bound.nodeid and isinstance(bound.parsed, (int, float)):
-            zero = pick(zero, bound.parsed)
-    return zero
-
-
 def _string_init(dtype: DataType, value: Value | None, capacity: int | None) -> tuple[str, str, int]:
-    text = value.parsed if value is not None and value.error is None else None
+    """A string's C array suffix, initializer and capacity in bytes."""
+    data = string_default(dtype, value)
+    cap = string_capacity(dtype, data, capacity)
     if dtype.kind == "vstring":
-        data = (text if isinstance(text, str) else "").encode("utf-8")
-        cap = max(len(data), capacity or 0)
+        assert isinstance(data, bytes)
         if len(data) > MAX_C_STRING:  # C99 compilers need only take string literals of 4095 characters
             return f"[{cap + 1}]", "{" + ", ".join(f"0x{x:02X}" for x in data) + ", 0}", cap
         return f"[{cap + 1}]", string_literal(data), cap
     if dtype.kind == "ostring":
-        data = text if isinstance(text, bytes) else b""
-        cap = max(len(data), capacity or 0)
         body = ", ".join(f"0x{x:02X}" for x in data) or "0"
         return f"[{max(cap, 1)}]", "{" + body + "}", cap
-    encoded = (text if isinstance(text, str) else "").encode("utf-16-le")
-    units = list(struct.unpack(f"<{len(encoded) // 2}H", encoded))
-    cap_units = max(len(units), (capacity or 0) // 2)
-    body = ", ".join(f"0x{u:04X}" for u in units + [0])
-    return f"[{cap_units + 1}]", "{" + body + "}", 2 * cap_units
+    body = ", ".join(f"0x{u:04X}" for u in [*data, 0])
+    return f"[{cap // 2 + 1}]", "{" + body + "}", cap
 
 
 def _domain(b: _Builder, view: DictView, target: StorageStruct, member: str, value: Value | None,
             placement: Placement, note: str, key: tuple[int, int]) -> tuple[str, int]:
-    raw = value.text.strip() if value is not None else ""
-    try:
-        data = bytes.fromhex(raw.removeprefix("0x")) if raw else b""
-    except ValueError:
-        data = raw.encode("utf-8")
-    cap = max(len(data), placement.capacity if placement.capacity is not None else DEFAULT_DOMAIN_CAPACITY, 1)
+    data = domain_default(value)
+    cap = domain_capacity(value, placement.capacity)
     body = ", ".join(f"0x{x:02X}" for x in data) or "0"
     target.members.append(Member(member + "_buf", "uint8_t", f"[{cap}]", "{" + body + "}", note, 1, key))
     target.members.append(Member(member + "_len", "uint32_t", "", f"UINT32_C({len(data)})", note, 4, key))
@@ -620,21 +609,13 @@ def _domain(b: _Builder, view: DictView, target: StorageStruct, member: str, val
 def _limit(view: DictView, pos: int, sub: Sub, dtype: DataType) -> bool:
     if not dtype.is_numeric or (sub.low is None and sub.high is None):
         return False
-    low = _limit_value(sub.low, dtype.min)
-    high = _limit_value(sub.high, dtype.max)
+    low = limit_value(sub.low, dtype.min)
+    high = limit_value(sub.high, dtype.max)
     if low is None or high is None:
         return False
     view.limits.append(LimitView(f"UINT64_C(0x{limit_bits(low, dtype):016X})",
                                  f"UINT64_C(0x{limit_bits(high, dtype):016X})", pos, comment(f"{low} .. {high}")))
     return True
-
-
-def _limit_value(value: Value | None, fallback: int | float | None) -> int | float | None:
-    if value is None or value.empty:
-        return fallback
-    if value.error is not None or value.nodeid or not isinstance(value.parsed, (int, float)):
-        return None
-    return value.parsed
 
 
 def _groups(od: ObjectDictionary, view: DictView) -> list[GroupView]:

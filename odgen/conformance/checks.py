@@ -12,13 +12,13 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from ..codegen.selftest import expected_bytes, write_cases
+from ..model.expect import expected_bytes, write_cases
 from ..model.wire import wire_bytes, wire_number
 from ..model import Obj, Sub
 from ..model.cia301 import COMMUNICATION_AREA, CONSUMER_HEARTBEAT, ERROR_BEHAVIOUR, ERROR_HISTORY, ERROR_REGISTER, \
     GUARD_TIME, HEARTBEAT, IDENTITY, LIFE_TIME_FACTOR, MANUFACTURER_AREA, PRODUCER_HEARTBEAT, SDO_REQUEST, \
     SDO_RESPONSE, SDO_SERVER, SYNC_COB_ID, SYNC_OVERFLOW, SYNC_PERIOD, is_store_command
-from ..rules.common import header_field, header_int
+from ..model.header import header_field, header_int
 from ..model.datatypes import BASIC_TYPES, DataType
 from .verdict import ABORTS, ACTIVE, NO_OBJECT, NO_SUB, WRITE_ONLY, Check
 from .allowed import NO_DATA, RUN_TIME_STATE, code_text, watched_elsewhere, write_refusals

@@ -1,4 +1,4 @@
-"""What `odgen conformance` does with its arguments (odgen/cli.py defines them).
+"""What `odgen conformance` does with its arguments, and the ones it shares with `odgen roundtrip`.
 
 Each check's verdict is printed as soon as it is known, and `--junit` is rewritten after each,
 so a run against a slow device shows progress and an interrupted one keeps what it found.
@@ -51,9 +51,9 @@ def selection(args: argparse.Namespace, known: Sequence[str] | None = None) -> S
 
 def stored_entries(path: Path, options: Path | None, node_id: int, defaults: str = "") -> frozenset[tuple[int, int]]:
     """The entries `options` put in a stored (persist:) group of the dictionary built from `path`."""
-    from ..codegen.generate import Request, generate
+    from ..pipeline import Request, prepare
 
-    result = generate(Request(path, name="od", options=options, node_id=node_id, defaults=defaults))
+    result = prepare(Request(path, name="od", options=options, node_id=node_id, defaults=defaults))
     if result.placements is None:
         texts = "; ".join(d.text() for d in result.refused or result.diags.sorted())[:500]
         raise OdgenError(f"{options}: the placement cannot be worked out: {texts}")
@@ -61,14 +61,20 @@ def stored_entries(path: Path, options: Path | None, node_id: int, defaults: str
 
 
 def command(args: argparse.Namespace) -> int:
-    from . import header_line, result_lines, run, summary_line, write_junit  # needs python canopen
-    from .client import Settings
+    """`odgen conformance` (odgen/cli/conformance.py defines its arguments)."""
+    from . import header_line, read_description, result_lines, run, summary_line, write_junit
+    from .client import Settings, reachable_sdo_server
+
+    from ..hostneeds import require_can_extra, require_socketcan
 
     if not args.input.is_file():
         raise OdgenError(f"{args.input}: no such file; give the node's EDS/DCF/XDD/XDC description")
     if args.options is not None and not args.options.is_file():
         raise OdgenError(f"{args.options}: no such options file; give the placement options the node was built with")
     chosen = selection(args)
+    reachable_sdo_server(read_description(args.input), args.node_id, args.input)  # the description's mistakes first
+    require_can_extra("conformance")
+    require_socketcan(args.iface)
     stored = stored_entries(args.input, args.options, args.node_id) if args.options else None
     settings = Settings(destructive="destructive" in args.allow, stored=stored)
     done: list = []

@@ -17,7 +17,7 @@ from pathlib import Path
 
 from copy import deepcopy
 
-from ..codegen.selftest import expected_bytes
+from ..model.expect import expected_bytes
 from ..errors import OdgenError
 from ..formats.eds_writer import write_eds
 from ..model import ARRAY, RECORD, ObjectDictionary

@@ -11,7 +11,7 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from ..codegen.selftest import expected_bytes, write_cases
+from ..model.expect import expected_bytes, write_cases
 from ..model.cia301 import CAN_ID_MASK, CONSUMER_HEARTBEAT, EMCY_INHIBIT, ERROR_HISTORY, ERROR_REGISTER, HEARTBEAT, \
     LOAD, RESTORE, SAVE, STORE, SYNC_COB_ID, SYNC_PERIOD, SYNC_WINDOW
 from .verdict import ACTIVE, Check

@@ -2,7 +2,7 @@
 
 Both files go through the readers into the one model (EDS, DCF, XDD, XDC in any mix), then:
 compare.py finds classes (a) and (c), stored.py class (b) from the boot-migration policy
-(odgen/persist/migration.py), version.py whether revision and file version were raised.
+(odgen/place/migration.py), version.py whether revision and file version were raised.
 """
 
 from __future__ import annotations

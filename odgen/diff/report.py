@@ -6,8 +6,8 @@ import json
 from collections.abc import Callable
 
 from .. import __version__
-from ..persist.migration import KEEP, Step
-from ..report.sarif import SCHEMA_URI, artifact_location, uri_base_ids
+from ..place.migration import KEEP, Step
+from ..lint.reporters.sarif import SCHEMA_URI, artifact_location, uri_base_ids
 from . import DiffResult
 from .changes import BREAKING, CLASS_TITLES, CLASSES, COMPATIBLE, KINDS, STORED, Change, Kind
 

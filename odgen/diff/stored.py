@@ -5,16 +5,16 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from pathlib import Path
 
-from ..codegen.options import load_options
-from ..codegen.persistview import nv_regions
-from ..codegen.placement import place
+from ..place.options import load_options
+from ..place.persistence import nv_regions
+from ..place.placement import place
 from ..catalogue.gen import GEN001
 from ..diagnostics import Diagnostics, Severity
 from ..errors import OdgenError
 from ..model import ObjectDictionary
-from ..persist.layout import group_layouts
-from ..persist.migration import CONVERT, DEFAULT, DROP, KEEP, RESIZE, GroupLayout, Step, plan
-from ..persist.nvmap import Region
+from ..place.layout import group_layouts
+from ..place.migration import CONVERT, DEFAULT, DROP, KEEP, RESIZE, GroupLayout, Step, plan
+from ..place.nvmap import Region
 from .changes import Change
 
 KINDS = {CONVERT: "DIF201", RESIZE: "DIF202", DROP: "DIF203", DEFAULT: "DIF204", KEEP: "DIF205"}

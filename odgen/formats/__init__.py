@@ -12,13 +12,13 @@ from pathlib import Path
 
 from ..catalogue.syntax import SYN018
 from ..diagnostics import Diagnostics, Loc
+from ..choices import INPUT_FORMATS
 from ..errors import OdgenError
 from ..gcpause import no_cyclic_gc
 from ..model import ObjectDictionary
 
 MAX_BYTES = 16 * 1024 * 1024  # larger files are refused unread (SYN018): memory stays bounded
 FORMATS = {".eds": "eds", ".dcf": "dcf", ".xdd": "xdd", ".xpd": "xdd", ".xdc": "xdc"}
-INPUT_FORMATS = ("eds", "dcf", "xdd", "xdc")
 
 
 def detect_format(path: Path, fmt: str | None = None) -> str:

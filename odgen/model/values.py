@@ -251,3 +251,16 @@ _READERS = {
     "ustring": _read_text,
     "domain": _read_text,
 }
+
+
+def number(value: Value | None) -> int | float | None:
+    """A value's parsed number (the offset for `$NODEID` values), None if not a number."""
+    if value is None or value.error or isinstance(value.parsed, bool):
+        return None
+    return value.parsed if isinstance(value.parsed, (int, float)) else None
+
+
+def plain_int(value: Value | None) -> int | None:
+    """A value's integer when it is one and not relative to the node-id, else None."""
+    n = number(value)
+    return n if isinstance(n, int) and value is not None and not value.nodeid else None

@@ -13,19 +13,20 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from ..choices import DS401_MAX_ANALOG as MAX_ANALOG
+from ..choices import DS401_MAX_DIGITAL as MAX_DIGITAL
+from ..choices import DS401_NAME
+from ..choices import DS401_WIDTHS as WIDTHS
 from ..fileio import write_atomic
 from ..model import ARRAY, RECORD, VAR, BASIC_TYPES, Obj, ObjectDictionary, Sub, parse_value
 from ..model.cia301 import COB_INVALID, PDO_BASE_STEP, RPDO_BASE, RPDO_COMM, TPDO_BASE, TPDO_COMM
 
 if TYPE_CHECKING:
-    from ..codegen.generate import Result
+    from ..pipeline import Result
 
 U8, U16, U32, BOOL = 0x0005, 0x0006, 0x0007, 0x0001
 INT_OF_WIDTH = {8: 0x0002, 16: 0x0003, 32: 0x0004}
-WIDTHS = tuple(INT_OF_WIDTH)
-MAX_GROUPS = 254  # sub-indices 1..0xFE of an ARRAY
-MAX_DIGITAL = MAX_GROUPS * 8
-MAX_ANALOG = 254
+MAX_GROUPS = 254  # sub-indices 1..0xFE of an ARRAY: MAX_DIGITAL is MAX_GROUPS * 8 bits (a test checks)
 FUNCTION_BITS = {"di": 16, "do": 17, "ai": 18, "ao": 19}  # CiA 401 device type, additional information
 
 
@@ -39,7 +40,7 @@ class Ds401:
     ao: int = 0
     ai_width: int = 16
     ao_width: int = 16
-    name: str = "DS401 I/O module"
+    name: str = DS401_NAME
     vendor_id: int = 0
     product_code: int = 0
     revision: int = 0
@@ -208,6 +209,9 @@ def _communication_objects(p: Ds401) -> list[Obj]:
             var(0x1001, "Error register", U8, "ro", "0x00"),
             container(0x1010, "Store parameters", store),
             container(0x1011, "Restore default parameters", restore),
+            # the master's heartbeat, watched: its loss sets the outputs to their error values
+            container(0x1016, "Consumer heartbeat time", [value_sub(1, "Consumer heartbeat time 1", U32, "rw",
+                                                                    "0x00000000")]),
             var(0x1017, "Producer heartbeat time", U16, "rw", "0"),
             container(0x1018, "Identity object", identity, RECORD),
             container(0x1200, "SDO server parameter", sdo, RECORD)]
@@ -248,7 +252,7 @@ def options_toml(p: Ds401) -> str:
     inputs = [PROCESS_OBJECTS[(k, p.width(k))] for k in ("di", "ai") if p.channels(k)]
     outputs = [PROCESS_OBJECTS[(k, p.width(k))] for k in ("do", "ao") if p.channels(k)]
     parameters = sorted(present - set(inputs) - set(outputs))
-    lines = ['[[entry]]', 'match = ["0x1017", "0x1400-0x1A03"]', 'storage = "persist:comm"', ""]
+    lines = ['[[entry]]', 'match = ["0x1016-0x1017", "0x1400-0x1A03"]', 'storage = "persist:comm"', ""]
     if parameters:
         lines += ["[[entry]]", f"match = {_quoted(f'0x{i:04X}' for i in parameters)}",
                   'storage = "persist:app"', ""]
@@ -269,7 +273,7 @@ GLUE = ("ds401_app.h",)
 def glue_files(p: Ds401) -> dict[str, str]:
     """The header that configures the application glue, runtime/profiles/ds401.c (hooks, polarity,
     change-of-state TPDOs): channel counts, the analog objects and their C types."""
-    from ..codegen.generate import environment  # jinja2: only when C is generated
+    from ..codegen.render import environment  # jinja2: only when C is generated
 
     env = environment()
     values = {"arguments": _arguments(p), "di": p.channels("di"), "do": p.channels("do"), "ai": p.ai, "ao": p.ao,
@@ -281,7 +285,7 @@ def glue_files(p: Ds401) -> dict[str, str]:
 
 def generate_c(p: Ds401, eds: Path, name: str | None = None, node_id: int | None = None) -> Result:
     """`--generate`: the dictionary C of the written EDS with the profile's options, plus the glue."""
-    from ..codegen.generate import Request, generate
+    from ..pipeline import Request, generate
 
     result = generate(Request(eds, name=name, node_id=node_id, defaults=options_toml(p)))
     if result.files:

@@ -13,12 +13,9 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 from ..assets import runtime_dir
-from ..codegen.generate import Request, Result, generate
+from ..pipeline import Request, Result, generate
 from ..errors import OdgenError
 from ..fileio import output_dir, write_files
-from ..model import ObjectDictionary
-from ..model.cia301 import COMMUNICATION_AREA
-from ..model.datatypes import BASIC_TYPES
 from ..toolchain import CFLAGS, NODE_MAIN, compiler, include_dirs, node_sources
 
 
@@ -38,15 +35,6 @@ def _stubs(functions: list[str]) -> str:
                      "uint32_t len, void *ctx)\n{\n    (void)ref; (void)kind; (void)data; (void)len; (void)ctx;\n"
                      "    return ODG_OK;\n}")
     return "\n".join(lines) + "\n"
-
-
-def comm_bytes(od: ObjectDictionary | None) -> int:
-    """At least what the node keeps of the communication values for reset communication
-    (odg_node_comm_bytes, runtime/NODE.md): every number of 0x1000-0x1FFF, at 8 bytes each."""
-    first, last = COMMUNICATION_AREA
-    numbers = [sub for obj in (od.sorted_objects() if od is not None else []) if first <= obj.index <= last
-               for sub in obj.sorted_subs() if (t := BASIC_TYPES.get(sub.data_type or 0)) is not None and t.is_numeric]
-    return max(8 * len(numbers), 1)
 
 
 def _digest(result: Result, sources: list[Path], cc: str, extra: Mapping[str, str] = {},
@@ -69,14 +57,14 @@ def build_node(request: Request, extra: Mapping[str, str] | None = None, sources
     `extra`: more generated files (name -> text) written beside the dictionary, its .c files
     compiled in; `sources`: application sources (e.g. odg_app_init/odg_app_tick, built with
     "ODG_APP" among `defines`); `defines`: NAME or NAME=VALUE for every file. The LSS slave is
-    built in when the description supports LSS or the options ask for it (result.lss).
+    built in when the description supports LSS or the options ask for it (NAME_config.h says so).
     """
     extra = dict(extra or {})
     result = generate(request)
     if not result.files or result.view is None:
         raise OdgenError(f"{request.input}: errors found, no dictionary to build")
-    # room for every communication value: the host has it, so reset communication restores all
-    defines = [*defines, f"ODG_NODE_COMM_BYTES={comm_bytes(result.od)}u", *(["ODG_NODE_LSS=1"] if result.lss else [])]
+    # NAME_config.h sizes the node (PDOs, mapping, communication values, LSS: docs/generate.md)
+    defines = [*defines, f'ODG_CONFIG="{result.view.name}_config.h"']
     node_main = runtime_dir() / NODE_MAIN
     if not node_main.is_file():
         raise OdgenError(f"the node program source {node_main} is missing")

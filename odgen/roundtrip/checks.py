@@ -20,8 +20,8 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..codegen.placement import STORE_CLASS, Placement
-from ..codegen.selftest import expected_bytes, write_cases
+from ..place.placement import STORE_CLASS, Placement, Placements
+from ..model.expect import expected_bytes, write_cases
 from ..conformance import CHECK_IDS as BATTERY_IDS
 from ..conformance import Selection
 from ..conformance import run_checks as battery
@@ -53,7 +53,7 @@ class Entry:
 class Session:
     """One node process, and the conformance battery's client (one bus harness) on `iface`."""
 
-    def __init__(self, od: ObjectDictionary, placements: dict[tuple[int, int], Placement], program: Path,
+    def __init__(self, od: ObjectDictionary, placements: Placements, program: Path,
                  iface: str, node_id: int, workdir: Path) -> None:
         self.od, self.program, self.iface, self.node_id = od, program, iface, node_id
         self.workdir = workdir
@@ -108,7 +108,7 @@ class Session:
         return self.client.download(index, sub, data)
 
 
-def _entries(od: ObjectDictionary, placements: dict[tuple[int, int], Placement]) -> list[Entry]:
+def _entries(od: ObjectDictionary, placements: Placements) -> list[Entry]:
     out = []
     for obj in od.sorted_objects():
         for sub in obj.sorted_subs():
@@ -365,7 +365,7 @@ def _hex(data: bytes | None) -> str:
 
 
 @contextmanager
-def session(od: ObjectDictionary, placements: dict[tuple[int, int], Placement], program: Path, iface: str,
+def session(od: ObjectDictionary, placements: Placements, program: Path, iface: str,
             node_id: int) -> Iterator[Session]:
     logging.getLogger("canopen").setLevel(logging.CRITICAL)
     with tempfile.TemporaryDirectory(prefix="odgen-roundtrip-") as tmp:

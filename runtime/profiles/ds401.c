@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * ds401.c - CiA 401 (generic I/O) application glue over a dictionary made by
  * `odgen profile ds401 --generate`. The generated ds401_app.h configures it (channel counts,
@@ -6,6 +7,15 @@
  *
  * Values go through the typed access of odg.h (odg_get / odg_set): the inputs can be stored
  * although they are read-only on the bus, and no hook runs from inside another.
+ *
+ * Outputs on communication loss (CiA 401: error mode and error value): when ds401_poll sees the
+ * node lose its master (a heartbeat consumer or life guarding timeout, bus-off:
+ * odg_node_comm_errors) or enter NMT stopped, each digital line whose bit is set in 0x6206 takes
+ * its bit of 0x6207, and each analog output whose 0x6443 is non-zero takes 0x6444 (saturated to
+ * the output's width); the other lines keep their values. The error values stay until the master
+ * writes the outputs again (0x6200 for the digital ones, the analog output object for those, by
+ * RPDO or SDO): a node that comes back to operational does not drive its old outputs again by
+ * itself. Polarity (0x6202) applies to error values as to 0x6200.
  */
 #include <string.h>
 
@@ -19,6 +29,14 @@ static uint8_t get_u8(const odg_dict_t *d, uint16_t index, uint8_t sub, uint8_t 
     return odg_get_u8(d, index, sub, &v) == ODG_OK ? v : absent;
 }
 
+
+#if DS401_AI_CHANNELS > 0 || DS401_AO_CHANNELS > 0
+static int32_t get_i32(const odg_dict_t *d, uint16_t index, uint8_t sub)
+{
+    int32_t v;
+    return odg_get_i32(d, index, sub, &v) == ODG_OK ? v : 0;
+}
+#endif
 
 #if DS401_DI_GROUPS > 0 || DS401_AI_CHANNELS > 0
 
@@ -37,7 +55,7 @@ static uint32_t tpdos_mapping(const odg_dict_t *d, uint16_t index, uint8_t sub)
         uint32_t count = get_u8(d, map, 0, 0);
         for (i = 1; i <= count; i++) {
             if (get_u32(d, map, (uint8_t)i) >> 8 == want) {
-                mask |= 1u << k;
+                mask |= (uint32_t)1u << k; /* up to 32 TPDOs: 1u has 16 bits on AVR */
                 break;
             }
         }
@@ -90,14 +108,21 @@ static uint32_t digital_events(const odg_dict_t *d)
 /* ---- digital outputs ------------------------------------------------------------------ */
 
 static uint8_t do_pins[DS401_DO_GROUPS];
+static uint8_t do_in_error; /* the error values of 0x6207 apply (communication lost) */
 
-/* 0x6200 with the polarity of 0x6202 (1 inverts the line) to the pins. */
+/* 0x6200, or in error the error values of the lines 0x6206 selects, with the polarity of 0x6202
+ * (1 inverts the line) to the pins. */
 static void apply_outputs(const odg_dict_t *d)
 {
     uint16_t g;
     for (g = 0; g < DS401_DO_GROUPS; g++) {
         uint8_t sub = (uint8_t)(g + 1u);
-        do_pins[g] = (uint8_t)(get_u8(d, 0x6200, sub, 0) ^ get_u8(d, 0x6202, sub, 0));
+        unsigned value = get_u8(d, 0x6200, sub, 0);
+        if (do_in_error) {
+            unsigned mode = get_u8(d, 0x6206, sub, 0);
+            value = (value & ~mode) | (get_u8(d, 0x6207, sub, 0) & mode);
+        }
+        do_pins[g] = (uint8_t)(value ^ get_u8(d, 0x6202, sub, 0));
     }
     ds401_write_outputs(do_pins, (uint16_t)DS401_DO_GROUPS);
 }
@@ -108,12 +133,6 @@ static void apply_outputs(const odg_dict_t *d)
 
 static ds401_ai_t ai_now[DS401_AI_CHANNELS], ai_base[DS401_AI_CHANNELS];
 static uint8_t ai_above[DS401_AI_CHANNELS], ai_below[DS401_AI_CHANNELS];
-
-static int32_t get_i32(const odg_dict_t *d, uint16_t index, uint8_t sub)
-{
-    int32_t v;
-    return odg_get_i32(d, index, sub, &v) == ODG_OK ? v : 0;
-}
 
 static void refresh_analog(const odg_dict_t *d)
 {
@@ -163,13 +182,25 @@ static uint32_t analog_events(const odg_dict_t *d)
 /* ---- analog outputs ------------------------------------------------------------------- */
 
 static ds401_ao_t ao_values[DS401_AO_CHANNELS];
+static uint8_t ao_in_error; /* the error values of 0x6444 apply (communication lost) */
 
+/* An error value (INTEGER32) within the output's type. */
+static ds401_ao_t ao_saturated(int32_t v)
+{
+    int32_t top = (int32_t)(((uint32_t)1u << (8u * sizeof(ds401_ao_t) - 1u)) - 1u);
+    return (ds401_ao_t)(v > top ? top : (v < -top - 1 ? -top - 1 : v));
+}
+
+/* The analog outputs, or in error the error value of each channel 0x6443 selects. */
 static void apply_analog(const odg_dict_t *d)
 {
     uint16_t c;
     for (c = 0; c < DS401_AO_CHANNELS; c++) {
-        (void)odg_get(d, DS401_AO_INDEX, (uint8_t)(c + 1u), &ao_values[c],
-                      (uint32_t)sizeof ao_values[c]);
+        uint8_t sub = (uint8_t)(c + 1u);
+        (void)odg_get(d, DS401_AO_INDEX, sub, &ao_values[c], (uint32_t)sizeof ao_values[c]);
+        if (ao_in_error && get_u8(d, 0x6443, sub, 0) != 0u) {
+            ao_values[c] = ao_saturated(get_i32(d, 0x6444, sub));
+        }
     }
     ds401_write_analog(ao_values, (uint16_t)DS401_AO_CHANNELS);
 }
@@ -192,6 +223,7 @@ static odg_abort_t io_hook(const odg_ref_t *ref, odg_hook_kind_t kind, const voi
 #endif
 #if DS401_DO_GROUPS > 0
     if (index == 0x6200u || index == 0x6202u) {
+        do_in_error = (uint8_t)(do_in_error && index != 0x6200u); /* the master wrote them again */
         apply_outputs(ref->dict);
     }
 #endif
@@ -202,6 +234,7 @@ static odg_abort_t io_hook(const odg_ref_t *ref, odg_hook_kind_t kind, const voi
 #endif
 #if DS401_AO_CHANNELS > 0
     if (index == DS401_AO_INDEX) {
+        ao_in_error = 0;
         apply_analog(ref->dict);
     }
 #endif
@@ -219,6 +252,22 @@ static odg_abort_t hook_range(const odg_dict_t *d, uint16_t index, uint32_t n)
     return ac;
 }
 
+static uint8_t comm_lost; /* at the last ds401_poll: the master lost, or NMT stopped */
+
+/* Communication lost (CiA 401): the outputs take their error values. */
+static void outputs_to_error_values(const odg_dict_t *d)
+{
+#if DS401_DO_GROUPS > 0
+    do_in_error = 1;
+    apply_outputs(d);
+#endif
+#if DS401_AO_CHANNELS > 0
+    ao_in_error = 1;
+    apply_analog(d);
+#endif
+    (void)d;
+}
+
 odg_abort_t ds401_init(odg_node_t *node)
 {
     const odg_dict_t *d = node->cfg.dict;
@@ -228,7 +277,9 @@ odg_abort_t ds401_init(odg_node_t *node)
     refresh_inputs(d);
     memcpy(di_last, di_now, sizeof di_last);
 #endif
+    comm_lost = 0;
 #if DS401_DO_GROUPS > 0
+    do_in_error = 0;
     if (ac == ODG_OK) {
         ac = hook_range(d, 0x6200, DS401_DO_GROUPS);
     }
@@ -245,6 +296,7 @@ odg_abort_t ds401_init(odg_node_t *node)
     memcpy(ai_base, ai_now, sizeof ai_base);
 #endif
 #if DS401_AO_CHANNELS > 0
+    ao_in_error = 0;
     if (ac == ODG_OK) {
         ac = hook_range(d, DS401_AO_INDEX, DS401_AO_CHANNELS);
     }
@@ -257,6 +309,11 @@ odg_abort_t ds401_init(odg_node_t *node)
 void ds401_poll(odg_node_t *node)
 {
     uint32_t want = 0, k;
+    uint8_t lost = (uint8_t)(odg_node_comm_errors(node) != 0u || odg_node_state(node) == ODG_NMT_STOPPED);
+    if (lost && !comm_lost) {
+        outputs_to_error_values(node->cfg.dict);
+    }
+    comm_lost = lost;
 #if DS401_DI_GROUPS > 0
     want |= digital_events(node->cfg.dict);
 #endif

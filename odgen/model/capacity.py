@@ -1,0 +1,58 @@
+"""The bytes a value of variable length takes in the generated dictionary and in a stored image:
+its default, widened to the capacity the options give.
+
+Defined once here because two floors ask: the generator sizes the C arrays with it, and the
+persistence layout (what boot migration compares between firmware versions) must agree byte for byte.
+"""
+
+from __future__ import annotations
+
+import struct
+
+from .datatypes import DataType
+from .values import Value
+
+DEFAULT_DOMAIN_CAPACITY = 0  # a DOMAIN holds its default unless the options give a capacity
+
+
+def string_default(dtype: DataType, value: Value | None) -> bytes | list[int]:
+    """A string's default as stored: UTF-8 bytes (VISIBLE_STRING), bytes (OCTET_STRING) or
+    UTF-16 code units (UNICODE_STRING); empty when the value is missing or unreadable."""
+    text = value.parsed if value is not None and value.error is None else None
+    if dtype.kind == "vstring":
+        return (text if isinstance(text, str) else "").encode("utf-8")
+    if dtype.kind == "ostring":
+        return text if isinstance(text, bytes) else b""
+    encoded = (text if isinstance(text, str) else "").encode("utf-16-le")
+    return list(struct.unpack(f"<{len(encoded) // 2}H", encoded))
+
+
+def string_capacity(dtype: DataType, default: bytes | list[int], capacity: int | None) -> int:
+    """Bytes reserved for a string's value (without a VISIBLE_STRING's terminating zero)."""
+    if dtype.kind in ("vstring", "ostring"):
+        return max(len(default), capacity or 0)
+    return 2 * max(len(default), (capacity or 0) // 2)
+
+
+def domain_default(value: Value | None) -> bytes:
+    """A DOMAIN's default: hex digits as bytes, anything else as its UTF-8 text."""
+    raw = value.text.strip() if value is not None else ""
+    try:
+        return bytes.fromhex(raw.removeprefix("0x"))
+    except ValueError:
+        return raw.encode("utf-8")
+
+
+def domain_capacity(value: Value | None, capacity: int | None) -> int:
+    """Bytes reserved for a DOMAIN: its default, or the capacity the options give, at least one."""
+    return max(len(domain_default(value)), capacity if capacity is not None else DEFAULT_DOMAIN_CAPACITY, 1)
+
+
+def limit_value(value: Value | None, fallback: int | float | None) -> int | float | None:
+    """A numeric limit as a number: `fallback` when absent, None when it cannot be used
+    (unreadable, or relative to the node-id)."""
+    if value is None or value.empty:
+        return fallback
+    if value.error is not None or value.nodeid or not isinstance(value.parsed, (int, float)):
+        return None
+    return value.parsed
