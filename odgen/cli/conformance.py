@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ..conformance.cli import add_conformance_arguments
+from ..conformance.arguments import add_conformance_arguments
 from .common import node_id_type
 
 
@@ -19,6 +19,6 @@ def add_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) ->
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..conformance.cli import command
+    from ..conformance.arguments import command
 
     return command(args)

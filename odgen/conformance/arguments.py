@@ -1,4 +1,4 @@
-"""What `odgen conformance` does with its arguments, and the ones it shares with `odgen roundtrip`.
+"""The arguments `odgen conformance` and `odgen roundtrip` share, and what `odgen conformance` does with them.
 
 Each check's verdict is printed as soon as it is known, and `--junit` is rewritten after each,
 so a run against a slow device shows progress and an interrupted one keeps what it found.
