@@ -225,17 +225,17 @@ def _sub0_value(od: ObjectDictionary, obj: Obj, sub0: Sub, diags: Diagnostics) -
     if index == ERROR_HISTORY or RPDO_MAPPING <= index < RPDO_MAPPING + PDO_COUNT \
             or TPDO_MAPPING <= index < TPDO_MAPPING + PDO_COUNT:
         return  # sub0 is not "highest sub-index supported" here
-    default = sub0.default
-    declared = plain_int(default)
-    if default is None or declared is None:
+    value, keyword = value_in_force(od, sub0)  # a DCF's ParameterValue is what the device starts with
+    declared = plain_int(value)
+    if value is None or declared is None:
         return
     highest = max(obj.subs)
     if highest == 0 or declared == highest:
         return
     if declared < highest and sub0.writable:
         return  # sub0 counts the valid entries, as 0x1003 does: vendors use that pattern for other objects
-    diags.add(OBJ011, Loc(od.source, default_line(sub0)),
-              f"DefaultValue={_show(default)} but the highest sub-index is {highest}", obj.index, 0)
+    diags.add(OBJ011, Loc(od.source, value_line(sub0, value, keyword)),
+              f"{_LABEL[keyword]}={_show(value)} but the highest sub-index is {highest}", obj.index, 0)
 
 
 # -- O10, O11 ------------------------------------------------------------------
