@@ -182,7 +182,9 @@ def _container_shape(od: ObjectDictionary, obj: Obj, has_number: bool, has_compa
     kind = OBJECT_CODES[obj.object_code]
     if has_number == has_compact:
         what = "both SubNumber and CompactSubObj" if has_number else "neither SubNumber nor CompactSubObj"
-        diags.add(OBJ006, Loc(od.source, obj.line), f"{kind} has {what}", obj.index)
+        # with neither keyword the sub-object sections present are the container, as every reader takes them
+        diags.add(OBJ006, Loc(od.source, obj.line), f"{kind} has {what}", obj.index,
+                  blocks=has_number or not any(not s.compact for s in obj.subs.values()))
     if has_compact or not obj.extra:
         return
     stray = [obj.extra[k].key for k in HEADER_VALUE_KEYS if k in obj.extra]
@@ -210,7 +212,7 @@ def sub0_entries(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) ->
     od, diags = walk.od, walk.diags
     sub0 = obj.subs.get(0)
     if sub0 is None:
-        diags.add(OBJ010, Loc(od.source, obj.line), "has no sub0 (highest sub-index)", obj.index)
+        diags.add(OBJ010, Loc(od.source, obj.line), "has no sub0 (highest sub-index)", obj.index, blocks=False)
         return
     if sub0.data_type is not None and sub0.data_type != 0x0005:
         dtype = BASIC_TYPES.get(sub0.data_type)
@@ -284,8 +286,21 @@ def _type_range(od: ObjectDictionary, index: int, where_sub: int | None, sub: Su
                 f"above the {dtype.name} maximum {_num(high)}"
             node = f" (= {_num(v)} for node-id {node_id})" if value.nodeid else ""
             diags.add(rule, Loc(od.source, value_line(sub, value, keyword)),
-                      f"{_LABEL[keyword]}={_show(value)}{node} is {side}", index, where_sub)
+                      f"{_LABEL[keyword]}={_show(value)}{node} is {side}", index, where_sub,
+                      blocks=not (rule is OBJ014 and _restricts_nothing(keyword, v, dtype)))
             return
+
+
+def _restricts_nothing(keyword: str, v: int | float, dtype: DataType) -> bool:
+    """A limit beyond the end of the type it bounds (HighLimit above the maximum, LowLimit below the
+    minimum) that the runtime still compares as the number it is: odg.c compares the limits of an
+    integer type as 64-bit numbers, unsigned or signed as the type is. The C then restricts nothing
+    there, as the file means. (REAL32 limits beyond the float range odg_verify refuses.)"""
+    if not isinstance(v, int) or dtype.min is None or dtype.max is None or dtype.kind == "real":
+        return False
+    signed = dtype.min < 0
+    fits = -(1 << 63) <= v < (1 << 63) if signed else 0 <= v < (1 << 64)
+    return fits and (v > dtype.max if keyword == "highlimit" else v < dtype.min)
 
 
 _TEXT_TYPES = frozenset(t.code for t in BASIC_TYPES.values() if t.kind in ("vstring", "domain"))
@@ -365,7 +380,7 @@ def _within_limits(od: ObjectDictionary, obj: Obj, sub: Sub, keyword: str, value
         side = "below" if below else "above"
         diags.add(OBJ017, Loc(od.source, value_line(sub, value, keyword)),
                   f"{_LABEL[keyword]}={_show(value)} is {side} {name}={_show(limit)}{node}",
-                  obj.index, addr(obj, sub))
+                  obj.index, addr(obj, sub), blocks=sub.writable)  # no write of a read-only entry is checked
         return
 
 
