@@ -26,6 +26,7 @@ from ..cnames import comment, identifier, is_identifier, name_clash
 from ..place.options import Options, PersistOptions, load_options, parse_options
 from ..place.persistence import add_status_object, persist_view
 from ..place.placement import Placement, place
+from ..repair import Repair, repair_model
 from .lookup import perfect_hash
 from .runtimecfg import runtime_config
 from .viewmodel import DictView, build
@@ -43,6 +44,7 @@ class Request:
     input_format: str | None = None  # eds/dcf/xdd/xdc when the suffix does not say
     strict: bool = False  # refuse on any error or warning, not only on blocking findings
     rule_filter: RuleFilter = RuleFilter()  # --select/--ignore: the findings reported (blocking ones always are)
+    fix: str = ""  # "safe" (--fix) or "unsafe" (--unsafe-fixes): repair the description in memory first
 
 
 @dataclass
@@ -55,6 +57,7 @@ class Result:
     persist: PersistOptions = field(default_factory=PersistOptions)
     refused: list[Diagnostic] = field(default_factory=list)  # the findings that stopped generation
     lss: bool = False  # build a node with the LSS slave: LSS_Supported=1 or the options' [node] lss
+    repairs: list[Repair] = field(default_factory=list)  # made by --fix / --unsafe-fixes, listed in the header
 
 
 def reported(diags: Diagnostics, request: Request) -> list[Diagnostic]:
@@ -138,6 +141,8 @@ def digest(request: Request, name: str) -> str:
     if request.options is not None:
         h.update(read_bytes(request.options))
     h.update(f"|{name}|{request.lookup}|{request.node_id}|{request.defaults}|{__version__}".encode())
+    if request.fix:
+        h.update(f"|fix={request.fix}".encode())
     return h.hexdigest()[:16]
 
 
@@ -148,7 +153,11 @@ def prepare(request: Request) -> Result:
     if od is None:  # nothing understood: the reader's findings say why
         result.refused = refusals(diags, request)
         return result
+    read = Diagnostics(list(diags.items), dict(diags.counts))  # the reader's findings, before lint adds to them
     lint_model(od, diags, LintOptions(node_id=request.node_id, can_fd=request.can_fd))
+    if request.fix:
+        od, diags, result.repairs = repaired(od, read, diags, request)
+        result.od, result.diags = od, diags
     _check_name(request, diags)
     options = parse_options(request.defaults, "(built-in defaults)", diags) if request.defaults else Options()
     if request.options:
@@ -165,6 +174,29 @@ def prepare(request: Request) -> Result:
     return result
 
 
+# ---- repairs (--fix / --unsafe-fixes): between load and placement, on a copy of the model ----
+
+def repaired(od: ObjectDictionary, read: Diagnostics, diags: Diagnostics,
+             request: Request) -> tuple[ObjectDictionary, Diagnostics, list[Repair]]:
+    """The repaired model, its findings (the reader's that no repair answered, and the lint passes'
+    on the repaired model) and the repairs made."""
+    fixed_od, repairs = repair_model(od, diags.sorted(), unsafe=request.fix == "unsafe")
+    answered = {r.finding for r in repairs}
+    kept = [d for d in read.items if d not in answered]
+    counts = dict(read.counts)
+    for d in answered:
+        if d.rule in counts:
+            counts[d.rule] -= 1
+    fresh = Diagnostics(kept, {rule: n for rule, n in counts.items() if n > 0})
+    lint_model(fixed_od, fresh, LintOptions(node_id=request.node_id, can_fd=request.can_fd))
+    return fixed_od, fresh, repairs
+
+
+def repairs_comment(repairs: list[Repair]) -> list[str]:
+    """Lines for the header's comment of repairs: file name (not path) and what was done."""
+    return [comment(r.text().replace(r.finding.loc.file, Path(r.finding.loc.file).name, 1), 1000) for r in repairs]
+
+
 def generate(request: Request) -> Result:
     with no_cyclic_gc():
         return _generate(request)
@@ -179,7 +211,7 @@ def _generate(request: Request) -> Result:
     if _refuse(result, request):
         return result
     result.view = view
-    result.files = render(view, name, findings_comment(result.diags, request))
+    result.files = render(view, name, findings_comment(result.diags, request), repairs_comment(result.repairs))
     return result
 
 
@@ -196,9 +228,9 @@ def view_model(result: Result, name: str, lookup: str, source_digest: str) -> Di
     return view
 
 
-def render(view: DictView, name: str, findings: list[str]) -> dict[str, str]:
+def render(view: DictView, name: str, findings: list[str], repairs: list[str] | None = None) -> dict[str, str]:
     env = environment()
-    return {f"{name}.h": env.get_template("dict.h.j2").render(v=view, findings=findings),
+    return {f"{name}.h": env.get_template("dict.h.j2").render(v=view, findings=findings, repairs=repairs or []),
             f"{name}.c": env.get_template("dict.c.j2").render(v=view),
             f"{name}_config.h": env.get_template("dict_config.h.j2").render(v=view)}
 
