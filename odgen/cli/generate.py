@@ -5,10 +5,14 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ..choices import LOOKUPS
-from .common import (add_generation_policy, add_input_format, existing_file, generate_request, node_id_type,
-                     print_findings, refusal)
+from .common import (add_fix_options, add_generation_policy, add_input_format, existing_file, generate_request,
+                     node_id_type, print_findings, refusal)
+
+if TYPE_CHECKING:
+    from ..codegen.generate import Result
 
 
 def add_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
@@ -25,6 +29,7 @@ def add_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) ->
                      help="write nothing; exit 1 listing missing, changed and extra files if DIR is not up to date")
     add_input_format(gen)
     add_generation_policy(gen)
+    add_fix_options(gen)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -33,9 +38,11 @@ def run(args: argparse.Namespace) -> int:
 
     request = generate_request(args)
     result = generate(request)
+    for repair in result.repairs:
+        print(repair.text(), file=sys.stderr)
     print_findings(result.diags, request)
     if not result.files:
-        print(refusal(args, result.refused), file=sys.stderr)
+        print(refusal(args, result.refused, repairable=_repairable(result)), file=sys.stderr)
         return 1
     if args.check:
         from ..codegen.outcheck import check_outputs
@@ -45,6 +52,17 @@ def run(args: argparse.Namespace) -> int:
     write_files({out / name: text for name, text in result.files.items()}, only_changed=True)
     _remove_stale_temps(out, result.files)
     return 0
+
+
+def _repairable(result: Result) -> tuple[int, int] | None:
+    """How many of the findings that block --fix and --unsafe-fixes would repair."""
+    from ..repair import would_repair
+
+    blocking = [d for d in result.refused if d.blocks]
+    if result.od is None or not blocking:
+        return None
+    safe, unsafe = would_repair(result.od, result.diags.sorted())
+    return sum(d in safe for d in blocking), sum(d in unsafe for d in blocking)
 
 
 def _remove_stale_temps(out: Path, files: dict[str, str]) -> None:

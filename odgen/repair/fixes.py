@@ -84,8 +84,11 @@ _ATTR = {"defaultvalue": "default", "parametervalue": "parameter_value", "lowlim
 
 
 def _like(old: str, n: int) -> str:
-    """`n` written as `old` was: hex when it was hex."""
-    return f"0x{n:X}" if old.strip().lower().startswith("0x") else str(n)
+    """`n` written as `old` was: hex with as many digits when it was hex."""
+    text = old.strip()
+    if not text.lower().startswith("0x"):
+        return str(n)
+    return f"{text[:2]}{n:0{len(text) - 2}X}"
 
 
 def _edits(*edits: Edit | None) -> tuple[Edit, ...]:
@@ -114,7 +117,8 @@ def _sub0_highest(work: _Work, d: Diagnostic) -> Repair | None:
     highest = max(obj.subs)
     text = _like(value.text, highest)
     edit = _set_value(sub0, keyword, text)
-    return _repair(work, d, True, f"sub0 {value.text.strip()} -> {text}, the highest sub-index", edit)
+    label = "ParameterValue" if keyword == "parametervalue" else "DefaultValue"
+    return _repair(work, d, True, f"{label} {value.text.strip()} -> {text}, the highest sub-index", edit)
 
 
 def _sub0_missing(work: _Work, d: Diagnostic) -> Repair | None:
