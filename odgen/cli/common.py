@@ -75,11 +75,13 @@ def count_type(maximum: int) -> Callable[[str], int]:
     return parse
 
 
-def print_findings(diags: Diagnostics, request: Request | None = None) -> None:
+def print_findings(diags: Diagnostics, request: Request | None = None,
+                   marks: dict[Diagnostic, str] | None = None) -> None:
+    """Findings on stderr; `marks` (odgen.repair.blocking_marks) follow the message of those that block."""
     from ..codegen.generate import Request, reported
 
     for d in reported(diags, request or Request(Path())):
-        print(d.text(), file=sys.stderr)
+        print(d.text() + (marks or {}).get(d, ""), file=sys.stderr)
 
 
 def generate_request(args: argparse.Namespace) -> Request:

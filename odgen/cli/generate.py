@@ -34,13 +34,15 @@ def add_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) ->
 
 def run(args: argparse.Namespace) -> int:
     from ..codegen.generate import generate
+    from ..repair import blocking_marks
     from ..fileio import output_dir, write_files
 
     request = generate_request(args)
     result = generate(request)
     for repair in result.repairs:
         print(repair.text(), file=sys.stderr)
-    print_findings(result.diags, request)
+    marks = blocking_marks(result.od, result.diags.sorted()) if not result.files else {}
+    print_findings(result.diags, request, marks)
     if not result.files:
         print(refusal(args, result.refused, repairable=_repairable(result)), file=sys.stderr)
         return 1

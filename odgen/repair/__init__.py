@@ -12,6 +12,6 @@ looks at a vendor or a file name.
 from __future__ import annotations
 
 from .apply import Edit, apply_edits
-from .fixes import REPAIRABLE, Repair, repair_model, would_repair
+from .fixes import REPAIRABLE, Repair, blocking_marks, repair_model, would_repair
 
-__all__ = ["REPAIRABLE", "Edit", "Repair", "apply_edits", "repair_model", "would_repair"]
+__all__ = ["REPAIRABLE", "Edit", "Repair", "apply_edits", "blocking_marks", "repair_model", "would_repair"]

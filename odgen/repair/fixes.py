@@ -12,7 +12,11 @@ import copy
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from ..catalogue import RULES
+from ..catalogue import RULES, Rule
+from ..catalogue.comm import COM016, COM017
+from ..catalogue.objects import OBJ006, OBJ010, OBJ011, OBJ012, OBJ014, OBJ015, OBJ017
+from ..catalogue.pdo import PDO001, PDO002, PDO004
+from ..catalogue.syntax import SYN015
 from ..diagnostics import Diagnostic, where
 from ..model import ObjectDictionary, Obj, Sub, Value, parse_value
 from ..model.cia301 import PDO_COUNT, RPDO_COMM, SDO_SERVER, TPDO_COMM
@@ -380,23 +384,23 @@ def _empty_keyword(work: _Work, d: Diagnostic) -> Repair | None:
 
 
 # Rule id -> its repair, in the order they are made (sub0 before the limits, limits before values).
-_FIXES: tuple[tuple[str, Fix], ...] = (
-    ("SYN015", _empty_keyword),
-    ("OBJ006", _sub_number),
-    ("OBJ010", _sub0_missing),
-    ("OBJ011", _sub0_highest),
-    ("OBJ012", _undefined_type),
-    ("OBJ014", _limit_range),
-    ("OBJ015", _reversed_limits),
-    ("OBJ017", _value_in_limits),
-    ("PDO001", _drop_mapping_entry),
-    ("PDO004", _drop_mapping_entry),
-    ("PDO002", _mappable),
-    ("COM016", _disable_clash),
-    ("COM017", _sdo_server),
+_FIXES: tuple[tuple[Rule, Fix], ...] = (
+    (SYN015, _empty_keyword),
+    (OBJ006, _sub_number),
+    (OBJ010, _sub0_missing),
+    (OBJ011, _sub0_highest),
+    (OBJ012, _undefined_type),
+    (OBJ014, _limit_range),
+    (OBJ015, _reversed_limits),
+    (OBJ017, _value_in_limits),
+    (PDO001, _drop_mapping_entry),
+    (PDO004, _drop_mapping_entry),
+    (PDO002, _mappable),
+    (COM016, _disable_clash),
+    (COM017, _sdo_server),
 )
-REPAIRABLE = frozenset(rule for rule, _ in _FIXES)
-ORDER = {rule: n for n, (rule, _) in enumerate(_FIXES)}
+REPAIRABLE = frozenset(rule.id for rule, _ in _FIXES)
+ORDER = {rule.id: n for n, (rule, _) in enumerate(_FIXES)}
 assert all(RULES[r].repair for r in REPAIRABLE)
 
 
@@ -405,7 +409,7 @@ def repair_model(od: ObjectDictionary, findings: list[Diagnostic],
     """A repaired copy of `od` and the repairs made for `findings` (safe ones; unsafe ones as well
     with `unsafe`). `od` itself is not changed."""
     work = _Work(copy.deepcopy(od), unsafe)
-    fixes = dict(_FIXES)
+    fixes = {rule.id: fix for rule, fix in _FIXES}
     for d in sorted((d for d in findings if d.rule in fixes),
                     key=lambda d: (ORDER[d.rule], d.loc.line, d.index or 0, d.sub or 0)):
         fixes[d.rule](work, d)
@@ -421,4 +425,20 @@ def would_repair(od: ObjectDictionary, findings: list[Diagnostic]) -> tuple[set[
     return {r.finding for r in safe}, {r.finding for r in unsafe}
 
 
-__all__ = ["REPAIRABLE", "Repair", "repair_model", "would_repair"]
+
+
+def blocking_marks(od: ObjectDictionary | None, findings: list[Diagnostic]) -> dict[Diagnostic, str]:
+    """For each finding that blocks generation, the mark reporters write after its message: whether
+    `--fix` (or only `--unsafe-fixes`) repairs it. Nothing is computed for a file without such findings."""
+    blocking = [d for d in findings if d.blocks]
+    if not blocking:
+        return {}
+    safe, unsafe = would_repair(od, findings) if od is not None else (set(), set())
+    marks = {}
+    for d in blocking:
+        how = "--fix repairs it" if d in safe else "--unsafe-fixes repairs it" if d in unsafe else "no repair"
+        marks[d] = f" [blocks generate; {how}]"
+    return marks
+
+
+__all__ = ["REPAIRABLE", "Repair", "blocking_marks", "repair_model", "would_repair"]
