@@ -31,15 +31,17 @@ PDO003 = define(
     "PDO003", E, "mapping length differs from the entry's size", ref="CiA 306 table row C3",
     why="The low byte of a mapping entry is the length in bits and must equal the mapped entry's "
     "size (0x08 for UNSIGNED8, 0x20 for UNSIGNED32; BOOLEAN 1 or 8). A longer mapping makes the receiver "
-    "decode every later field at the wrong offset. A shorter one (a 64-bit object mapped as 32 bits, "
-    "`roscanopen__Elmo.dcf:827`) CANopenNode accepts, sending the low-order bytes; CiA 301 does not "
-    "define it and the odg runtime, like Lely, refuses it (abort 0x06040041), so the generated node "
-    "would leave the PDO dead at start-up. Both block generation.",
+    "decode every later field at the wrong offset. A shorter one CiA 301 does not define; CANopenNode "
+    "accepts it and sends the low-order bytes. The odg runtime does the same for a 64-bit integer "
+    "(INTEGER64, UNSIGNED64) mapped with 32 bits (`roscanopen__Elmo.dcf:827`): a TPDO carries its "
+    "low-order four bytes (the first four of its little-endian encoding), an RPDO writes them and keeps "
+    "the high-order ones. That case is a warning; other short mappings it refuses (abort 0x06040041).",
     example="[6000sub1]\nDataType=0x0005\n[1A00sub1]\nDefaultValue=0x60000110",
     fix="Write the entry's bit size in the low byte (`0x60000108`), or map an object of the intended size.",
     blocks=True,
-    blocking="A mapping longer than its entry shifts every later field; a shorter one the odg runtime refuses at "
-    "start-up (abort 0x06040041): either way the PDO would not carry what the file says.",
+    blocking="A mapping longer than its entry shifts every later field, and other short ones the odg runtime "
+    "refuses at start-up: the PDO would not carry what the file says. A 64-bit integer mapped with 32 bits "
+    "the runtime serves as CANopenNode does, so that one is a warning and does not block.",
     no_repair="Which length, the mapping's or the entry's, is right is unknown.")
 
 PDO004 = define(
