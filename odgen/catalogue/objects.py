@@ -64,9 +64,10 @@ OBJ006 = define(
     blocking="Blocks when the container's sub-objects are unknown (neither keyword and no sub-object sections, or "
     "both keywords); with neither keyword, the sub-object sections present are the container, as every "
     "reader takes them, and it does not block.",
-    repair="safe: SubNumber added, counting the sub-object sections present",
-    no_repair="With both keywords, or neither and no sub-object sections, which sub-objects the device has is "
-    "unknown.")
+    repair="safe: SubNumber added, counting the sub-object sections present; unsafe: a header without "
+    "sub-objects that carries DataType and AccessType read as the VAR it describes (ObjectType=0x7)",
+    no_repair="With both keywords, or neither and no sub-object sections nor a value's keywords, which "
+    "sub-objects the device has is unknown.")
 
 OBJ007 = define(
     "OBJ007", E, "SubNumber or CompactSubObj on a single-value object", ref="CiA 306 table row O3",
@@ -292,3 +293,14 @@ OBJ029 = define(
     blocks=True,
     blocking="The C string ends at the NUL, so the node would serve a shorter value than the file has.",
     no_repair="Whether the text after the NUL matters is unknown.")
+
+OBJ030 = define(
+    "OBJ030", W, "const entry with a $NODEID-relative value", ref="CiA 306 AccessType / CiA 301 0x1200",
+    why="`const` says the value is the same for the device's whole life, and generators (odgen, "
+    "CANopenNode) place it in FLASH. A `$NODEID+v` value is worked out at start-up from the node-id, "
+    "so it is read-only rather than constant: CiA 301 gives the default SDO server's COB-IDs "
+    "(0x1200sub1/sub2) as `ro`. odgen cannot place such a value in rom (GEN003 when the options "
+    "leave it to the automatic rule); masters see no difference between the two, both refuse a write.",
+    example="[1200sub1]\nAccessType=const\nDefaultValue=$NODEID+0x600",
+    fix="Write `AccessType=ro`.",
+    repair="safe: AccessType const -> ro (masters see the same read-only entry)")

@@ -42,7 +42,9 @@ PDO003 = define(
     blocking="A mapping longer than its entry shifts every later field, and other short ones the odg runtime "
     "refuses at start-up: the PDO would not carry what the file says. A 64-bit integer mapped with 32 bits "
     "the runtime serves as CANopenNode does, so that one is a warning and does not block.",
-    no_repair="Which length, the mapping's or the entry's, is right is unknown.")
+    repair="unsafe: a mapping longer than its entry shortened to the entry's size (later fields of the frame "
+    "move)",
+    no_repair="A mapping shorter than its entry (other than the 64-bit case): which length is right is unknown.")
 
 PDO004 = define(
     "PDO004", E, "mapped entry cannot be accessed in the PDO's direction",

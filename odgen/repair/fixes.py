@@ -14,11 +14,11 @@ from dataclasses import dataclass, field
 
 from ..catalogue import RULES, Rule
 from ..catalogue.comm import COM016, COM017
-from ..catalogue.objects import OBJ006, OBJ010, OBJ011, OBJ012, OBJ014, OBJ015, OBJ017
-from ..catalogue.pdo import PDO001, PDO002, PDO004
+from ..catalogue.objects import OBJ006, OBJ010, OBJ011, OBJ012, OBJ014, OBJ015, OBJ017, OBJ030
+from ..catalogue.pdo import PDO001, PDO002, PDO003, PDO004
 from ..catalogue.syntax import SYN015
 from ..diagnostics import Diagnostic, where
-from ..model import ObjectDictionary, Obj, Sub, Value, parse_value
+from ..model import VAR, ObjectDictionary, Obj, Sub, Value, parse_value
 from ..model.cia301 import PDO_COUNT, RPDO_COMM, SDO_SERVER, TPDO_COMM
 from ..model.datatypes import BASIC_TYPES
 from ..model.pdo import mapping_kind
@@ -178,16 +178,44 @@ def _add_sub0(work: _Work, d: Diagnostic, obj: Obj) -> Repair:
 
 
 def _sub_number(work: _Work, d: Diagnostic) -> Repair | None:
-    """OBJ006 (safe), neither SubNumber nor CompactSubObj: SubNumber := the sub-object sections present."""
+    """OBJ006 (safe), neither SubNumber nor CompactSubObj: SubNumber := the sub-object sections present.
+    Without sub-objects, a header that carries a value's keywords (DataType, AccessType) is read as the
+    VAR it describes (unsafe)."""
     obj = work.od.objects.get(d.index) if d.index is not None else None
     if obj is None or obj.sub_number is not None or obj.compact_sub_obj or "both" in d.message:
         return None
     written = [s for s in obj.subs.values() if not s.compact]
     if not written:
-        return None
+        return _as_var(work, d, obj)
     obj.sub_number = len(written)
     edit = Edit(ADD_KEY, obj.line, key="SubNumber", text=str(len(written))) if obj.line else None
     return _repair(work, d, True, f"SubNumber={len(written)} added", edit)
+
+
+_VALUE_KEYS = {"datatype": "data_type", "accesstype": "access", "defaultvalue": "default", "lowlimit": "low",
+               "highlimit": "high", "pdomapping": "pdo_mapping"}
+
+
+def _as_var(work: _Work, d: Diagnostic, obj: Obj) -> Repair | None:
+    """An ARRAY/RECORD header without sub-objects that has DataType and AccessType: the VAR it describes."""
+    extra = obj.extra
+    data_type = plain_int(parse_value(extra["datatype"].text, BASIC_TYPES[0x0006])) if "datatype" in extra else None
+    if not work.unsafe or data_type is None or data_type not in BASIC_TYPES or "accesstype" not in extra:
+        return None
+    dtype = BASIC_TYPES[data_type]
+    var = Sub(0, obj.name, line=obj.line, data_type=data_type, access=extra["accesstype"].text.strip().lower())
+    for key in ("defaultvalue", "lowlimit", "highlimit"):
+        if key in extra:
+            setattr(var, _VALUE_KEYS[key], parse_value(extra[key].text, dtype, extra[key].line))
+    var.pdo_mapping = "pdomapping" in extra and extra["pdomapping"].text.strip() not in ("", "0")
+    var.lines = {key: extra[key].line for key in _VALUE_KEYS if key in extra}
+    obj.extra = {k: f for k, f in extra.items() if k not in _VALUE_KEYS}
+    old_code = obj.object_code
+    obj.object_code, obj.subs = VAR, {0: var}
+    line = obj.lines.get("objecttype", 0)
+    edit = Edit(SET, line, text="0x7") if line else None
+    return _repair(work, d, False, f"ObjectType 0x{old_code:X} -> 0x7 (VAR), as its DataType and AccessType "
+                   "describe one value", edit)
 
 
 def _limit_keyword(d: Diagnostic) -> str | None:
@@ -272,6 +300,16 @@ def _undefined_type(work: _Work, d: Diagnostic) -> Repair | None:
     return _repair(work, d, False, f"DataType 0x{old:04X} -> 0x000F (DOMAIN)", *edits)
 
 
+def _const_to_ro(work: _Work, d: Diagnostic) -> Repair | None:
+    """OBJ030 (safe): a const entry with a $NODEID-relative value made ro."""
+    sub = _sub(work.od, d)
+    if sub is None or sub.access != "const":
+        return None
+    sub.access = "ro"
+    line = sub.lines.get("accesstype", 0)
+    return _repair(work, d, True, "AccessType const -> ro", Edit(SET, line, text="ro") if line else None)
+
+
 # -- PDOs ------------------------------------------------------------------------------
 
 def _drop_mapping_entry(work: _Work, d: Diagnostic) -> Repair | None:
@@ -313,6 +351,25 @@ def _drop_entries(work: _Work) -> None:
         _repair(work, first, False, what, *edits)
         for other in rest:
             _repair(work, other, False, f"removed with {where(first.index, first.sub)}'s repair")
+
+
+def _mapping_length(work: _Work, d: Diagnostic) -> Repair | None:
+    """PDO003 (unsafe), a mapping longer than its entry: the length set to the entry's size (later
+    fields of the frame move)."""
+    entry = _sub(work.od, d)
+    if not work.unsafe or entry is None or not d.blocking:
+        return None
+    value, keyword = _in_force(work.od, entry)
+    raw = plain_int(value)
+    if value is None or raw is None:
+        return None
+    target = work.od.find(raw >> 16, (raw >> 8) & 0xFF)
+    dtype = target.dtype if target is not None else BASIC_TYPES.get(raw >> 16)
+    if dtype is None or not dtype.bits or (raw & 0xFF) <= dtype.bits:
+        return None  # a shorter mapping: which length is right is unknown
+    text = f"0x{(raw & ~0xFF) | dtype.bits:08X}"
+    return _repair(work, d, False, f"mapping {value.text.strip()} -> {text}, the length of {dtype.name}",
+                   _set_value(entry, keyword, text))
 
 
 def _mappable(work: _Work, d: Diagnostic) -> Repair | None:
@@ -391,11 +448,13 @@ _FIXES: tuple[tuple[Rule, Fix], ...] = (
     (OBJ011, _sub0_highest),
     (OBJ012, _undefined_type),
     (OBJ014, _limit_range),
+    (OBJ030, _const_to_ro),
     (OBJ015, _reversed_limits),
     (OBJ017, _value_in_limits),
     (PDO001, _drop_mapping_entry),
     (PDO004, _drop_mapping_entry),
     (PDO002, _mappable),
+    (PDO003, _mapping_length),
     (COM016, _disable_clash),
     (COM017, _sdo_server),
 )

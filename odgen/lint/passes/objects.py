@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from ...catalogue.objects import (
     OBJ001, OBJ002, OBJ003, OBJ004, OBJ005, OBJ006, OBJ007, OBJ008, OBJ009, OBJ010, OBJ011, OBJ012, OBJ013, OBJ014,
     OBJ015, OBJ016, OBJ017, OBJ018, OBJ019, OBJ020, OBJ021, OBJ022, OBJ023, OBJ024, OBJ025, OBJ026, OBJ027, OBJ028,
-    OBJ029)
+    OBJ029, OBJ030)
 from ...catalogue.rule import Rule
 from ...diagnostics import Diagnostics, Loc
 from ...model import (ACCESS_TYPES, ARRAY, DEFSTRUCT, DEFTYPE, DOMAIN, RECORD, VAR, Field, Obj, ObjectDictionary, Sub,
@@ -537,6 +537,16 @@ def array_elements(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) 
 
 # -- strings the runtime serves as C strings -----------------------------------
 
+def const_nodeid_values(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) -> None:
+    od = walk.od
+    for sub in valued:
+        value, keyword = value_in_force(od, sub)
+        if sub.access == "const" and value is not None and value.nodeid:
+            walk.diags.add(OBJ030, Loc(od.source, sub.line_of("accesstype")),
+                           f"is const but its value {value.text.strip()} is relative to the node-id",
+                           obj.index, addr(obj, sub))
+
+
 def visible_strings(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) -> None:
     od = walk.od
     for sub in obj.subs.values():
@@ -567,6 +577,7 @@ OBJECT_QUESTIONS: tuple[ObjectQuestion, ...] = (
     unknown_keywords,
     array_elements,
     visible_strings,
+    const_nodeid_values,
 )
 
 
