@@ -186,8 +186,9 @@ OBJ017 = define(
     example="LowLimit=1\nHighLimit=10\nDefaultValue=0",
     fix="Correct the value or the limits.",
     blocks=True,
-    blocking="Blocks on a writable entry: the node would refuse to be written its own default (and the runtime "
-    "refuses a persisted one). On a read-only entry no write is ever checked and it does not block.",
+    blocking="The runtime checks every value against its limits when it checks its tables (odg_verify), "
+    "read-only entries included, so the node would not start; on a writable entry it would also refuse to "
+    "be written its own default.",
     repair="unsafe: a value outside its limits clamped to them; a $NODEID value, which cannot be clamped for every "
     "node-id, has the limit it crosses removed")
 

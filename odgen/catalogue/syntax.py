@@ -139,7 +139,7 @@ SYN016 = define(
     blocks=True,
     blocking="Blocks when values of a compact section are left out (the C would not match); a wrong NrOfEntries or "
     "a CompactSubObj above 254 (sub-index 255 is reserved by CiA 301) does not.",
-    repair="safe: NrOfEntries set to the entries present",
+    repair="safe: NrOfEntries set to the entries present; a CompactSubObj above 254 set to 254",
     no_repair="Values listed for an object without CompactSubObj, or under keys that are no sub-index, belong to "
     "nothing known.")
 

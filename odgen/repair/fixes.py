@@ -9,6 +9,7 @@ model only, which `generate --fix` uses and `odgen fix` reports it cannot write.
 from __future__ import annotations
 
 import copy
+import re
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -16,7 +17,7 @@ from ..catalogue import RULES, Rule
 from ..catalogue.comm import COM016, COM017
 from ..catalogue.objects import OBJ006, OBJ010, OBJ011, OBJ012, OBJ014, OBJ015, OBJ017, OBJ030
 from ..catalogue.pdo import PDO001, PDO002, PDO003, PDO004
-from ..catalogue.syntax import SYN015
+from ..catalogue.syntax import SYN015, SYN016
 from ..diagnostics import Diagnostic, where
 from ..model import VAR, ObjectDictionary, Obj, Sub, Value, parse_value
 from ..model.cia301 import PDO_COUNT, RPDO_COMM, SDO_SERVER, TPDO_COMM
@@ -102,7 +103,8 @@ def _edits(*edits: Edit | None) -> tuple[Edit, ...]:
 def _repair(work: _Work, d: Diagnostic, safe: bool, what: str, *edits: Edit | None,
             written: bool = True) -> Repair:
     kept = _edits(*edits)
-    repair = Repair(d, safe, what, kept, text_only=written and bool(kept))
+    # an edit that came out None is a line the entry does not have (a CompactSubObj element, XML)
+    repair = Repair(d, safe, what, kept, text_only=written and len(kept) == len(edits))
     work.done.append(repair)
     return repair
 
@@ -122,7 +124,13 @@ def _sub0_highest(work: _Work, d: Diagnostic) -> Repair | None:
     text = _like(value.text, highest)
     edit = _set_value(sub0, keyword, text)
     label = "ParameterValue" if keyword == "parametervalue" else "DefaultValue"
-    return _repair(work, d, True, f"{label} {value.text.strip()} -> {text}, the highest sub-index", edit)
+    # limits that pinned the old count would exclude the new one: they go with it
+    stale = [k for k, below in (("lowlimit", True), ("highlimit", False))
+             if (n := number(getattr(sub0, _ATTR[k]))) is not None and (highest < n if below else highest > n)]
+    dropped = [_drop_limit(sub0, k) for k in stale]
+    also = f" ({' and '.join('LowLimit' if k == 'lowlimit' else 'HighLimit' for k in stale)} removed)" if stale else ""
+    return _repair(work, d, True, f"{label} {value.text.strip()} -> {text}, the highest sub-index{also}", edit,
+                   *dropped)
 
 
 def _sub0_missing(work: _Work, d: Diagnostic) -> Repair | None:
@@ -172,8 +180,9 @@ def _add_sub0(work: _Work, d: Diagnostic, obj: Obj) -> Repair:
             "DataType=0x0005", "AccessType=ro", f"DefaultValue={highest}", "PDOMapping=0", "")))
     if obj.sub_number is not None and obj.sub_number == len(obj.subs) - 1:
         obj.sub_number += 1  # SubNumber counts the sub-object sections, the new one too
-        if obj.sub_number_line:
-            edits.append(Edit(SET, obj.sub_number_line, text=str(obj.sub_number)))
+        line = obj.sub_number_line or obj.lines.get("subnumber", 0)
+        if line:
+            edits.append(Edit(SET, line, text=str(obj.sub_number)))
     return _repair(work, d, True, f"sub0 added (UNSIGNED8, ro, DefaultValue={highest})", *edits, written=written)
 
 
@@ -440,9 +449,29 @@ def _empty_keyword(work: _Work, d: Diagnostic) -> Repair | None:
     return _repair(work, d, True, f"empty {d.message.split('=', 1)[0]}= removed", Edit(DELETE, d.loc.line))
 
 
+def _compact_counts(work: _Work, d: Diagnostic) -> Repair | None:
+    """SYN016 (safe), the findings that do not block: NrOfEntries set to the entries that follow; a
+    CompactSubObj above 254 set to 254, which is what every reader serves (sub-index 255 is reserved)."""
+    if d.blocking or not d.loc.line:
+        return None
+    match = re.search(r"NrOfEntries=(.*) but (\d+) entries follow", d.message)
+    if match:
+        count = match.group(2)
+        edit = Edit(ADD_KEY, d.loc.line, key="NrOfEntries", text=count) if match.group(1) == "(missing)" \
+            else Edit(SET, d.loc.line, text=count)
+        return _repair(work, d, True, f"NrOfEntries -> {count}, the entries that follow", edit)
+    obj = work.od.objects.get(d.index) if d.index is not None else None
+    if obj is None or not d.message.startswith("CompactSubObj="):
+        return None
+    obj.compact_sub_obj = 0xFE
+    return _repair(work, d, True, "CompactSubObj -> 254, the sub-objects every reader serves",
+                   Edit(SET, d.loc.line, text="254"))
+
+
 # Rule id -> its repair, in the order they are made (sub0 before the limits, limits before values).
 _FIXES: tuple[tuple[Rule, Fix], ...] = (
     (SYN015, _empty_keyword),
+    (SYN016, _compact_counts),
     (OBJ006, _sub_number),
     (OBJ010, _sub0_missing),
     (OBJ011, _sub0_highest),

@@ -380,7 +380,7 @@ def _within_limits(od: ObjectDictionary, obj: Obj, sub: Sub, keyword: str, value
         side = "below" if below else "above"
         diags.add(OBJ017, Loc(od.source, value_line(sub, value, keyword)),
                   f"{_LABEL[keyword]}={_show(value)} is {side} {name}={_show(limit)}{node}",
-                  obj.index, addr(obj, sub), blocks=sub.writable)  # no write of a read-only entry is checked
+                  obj.index, addr(obj, sub))
         return
 
 
