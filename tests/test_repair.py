@@ -180,3 +180,19 @@ def test_fix_keeps_encoding_and_line_ends(tmp_path: Path) -> None:
 def test_fix_refuses_xml(tmp_path: Path) -> None:
     done = odgen("fix", FIXTURES / "xdd" / "valid.xdd")
     assert done.returncode == 2 and "generate --fix" in done.stderr
+
+
+def test_a_64_bit_entry_mapped_with_32_bits_is_a_warning_that_does_not_block(tmp_path: Path) -> None:
+    """The runtime serves it as CANopenNode does (tests/node/test_node_short.c); other short mappings block."""
+    node = FIXTURES.parent / "node" / "pdo-node.eds"
+    text = node.read_text(encoding="utf-8")
+    short = tmp_path / "short.eds"
+    short.write_text(text.replace("DefaultValue=0x20000008", "DefaultValue=0x20030020", 1), encoding="utf-8")
+    found = [d for d in lint(short).diagnostics if d.rule == "PDO003"]
+    assert [(d.severity.label, d.blocks) for d in found] == [("warning", False)]
+    assert "low-order 32 bits" in found[0].message
+    assert generate(Request(short, name="short")).files
+    narrow = tmp_path / "narrow.eds"  # a 32-bit entry mapped with 16 bits still blocks
+    narrow.write_text(text.replace("DefaultValue=0x20000008", "DefaultValue=0x20020010", 1), encoding="utf-8")
+    found = [d for d in lint(narrow).diagnostics if d.rule == "PDO003"]
+    assert [(d.severity.label, d.blocks) for d in found] == [("error", True)]
