@@ -112,5 +112,6 @@ def refusal(args: argparse.Namespace, refused: list[Diagnostic], what: str = "wr
         rules[d.rule] = rules.get(d.rule, 0) + 1
     by_rule = ", ".join(f"{rule} {n}" for rule, n in sorted(rules.items()))
     safe, unsafe = repairable
-    return (f"odgen: {args.input}: {len(blocking)} finding{'s' if len(blocking) != 1 else ''} block generation "
+    verb = "finding blocks" if len(blocking) == 1 else "findings block"
+    return (f"odgen: {args.input}: {len(blocking)} {verb} generation "
             f"({by_rule}); --fix would repair {safe}, --unsafe-fixes {unsafe}; nothing {what}")
