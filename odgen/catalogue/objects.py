@@ -106,8 +106,10 @@ OBJ010 = define(
     example="[2000sub0]\nDataType=0x0007",
     fix="Add `[XXXXsub0]` with `DataType=0x0005`, `AccessType=ro` and the highest sub-index as DefaultValue.",
     blocks=True,
-    blocking="A sub0 of another type blocks: masters and the runtime's own error history (0x1003) read and write it"
-    " as UNSIGNED8. A missing sub0 does not block: the C serves the sub-objects the file has.",
+    blocking="Blocks for a sub0 that is writable in another type (a master writes the count as one byte, "
+    "which the runtime refuses as too short) or that is no unsigned number (REAL32, a string: no count). A "
+    "read-only sub0 of a wider unsigned type the C serves as written, an upload stating its size, and a "
+    "missing sub0 leaves the C serving the sub-objects the file has: neither blocks.",
     repair="safe: a missing sub0 added (UNSIGNED8, ro, the highest sub-index); unsafe: sub0 of another type made "
     "UNSIGNED8 when its value fits")
 

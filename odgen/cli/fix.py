@@ -17,7 +17,10 @@ if TYPE_CHECKING:
 
 
 def add_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    fix = commands.add_parser("fix", help="write the description with its findings repaired (EDS/DCF)")
+    fix = commands.add_parser("fix", help="write the description with its findings repaired (EDS/DCF)",
+                              description="Repair what the findings say, changing only the lines repaired "
+                              "(docs/rules.md lists the repairs). Exit 1 when findings that block generation "
+                              "remain, 2 for an XDD/XDC or an unreadable file.")
     fix.add_argument("input", type=Path, metavar="FILE")
     fix.add_argument("-o", "--output", type=Path, metavar="OUT",
                      help="write the repaired description here (default: standard output; the input only "
@@ -57,12 +60,12 @@ def fix_file(path: Path, unsafe: bool = False, node_id: int | None = None, fmt: 
         return Fixed(data, blocking=[d for d in diags.sorted() if d.blocks])
     lint_model(od, diags, LintOptions(node_id=node_id))
     _, repairs = repair_model(od, diags.sorted(), unsafe=unsafe)
-    written = [r for r in repairs if r.text_only]
+    written = [r for r in repairs if r.writable]
     fixed = apply_edits(data, [e for r in written for e in r.edits])
     new_od, new_diags = load_bytes(fixed, str(path), kind)
     if new_od is not None:
         lint_model(new_od, new_diags, LintOptions(node_id=node_id))
-    return Fixed(fixed, written, [r for r in repairs if not r.text_only],
+    return Fixed(fixed, written, [r for r in repairs if not r.writable],
                  [d for d in new_diags.sorted() if d.blocks])
 
 

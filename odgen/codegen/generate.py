@@ -153,9 +153,9 @@ def prepare(request: Request) -> Result:
     if od is None:  # nothing understood: the reader's findings say why
         result.refused = refusals(diags, request)
         return result
-    read = Diagnostics(list(diags.items), dict(diags.counts))  # the reader's findings, before lint adds to them
+    read = Diagnostics(list(diags.items), dict(diags.counts)) if request.fix else None  # the reader's findings
     lint_model(od, diags, LintOptions(node_id=request.node_id, can_fd=request.can_fd))
-    if request.fix:
+    if read is not None:
         od, diags, result.repairs = repaired(od, read, diags, request)
         result.od, result.diags = od, diags
     _check_name(request, diags)

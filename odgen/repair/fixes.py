@@ -38,7 +38,7 @@ class Repair:
     safe: bool
     what: str
     edits: tuple[Edit, ...] = ()
-    text_only: bool = True  # False: the entry has no lines of its own (odgen fix cannot write it)
+    writable: bool = True  # False: the entry has no lines of its own, so `odgen fix` cannot write the repair
 
     @property
     def rule(self) -> str:
@@ -104,7 +104,7 @@ def _repair(work: _Work, d: Diagnostic, safe: bool, what: str, *edits: Edit | No
             written: bool = True) -> Repair:
     kept = _edits(*edits)
     # an edit that came out None is a line the entry does not have (a CompactSubObj element, XML)
-    repair = Repair(d, safe, what, kept, text_only=written and len(kept) == len(edits))
+    repair = Repair(d, safe, what, kept, writable=written and len(kept) == len(edits))
     work.done.append(repair)
     return repair
 

@@ -217,8 +217,11 @@ def sub0_entries(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) ->
     if sub0.data_type is not None and sub0.data_type != 0x0005:
         dtype = BASIC_TYPES.get(sub0.data_type)
         name = f" ({dtype.name})" if dtype else ""
+        # a read-only count in a wider unsigned type the C serves as written (an upload states its size);
+        # a writable one refuses a master's one-byte write, and a count of another kind is no count
+        count = dtype is not None and dtype.kind == "uint" and not sub0.writable
         diags.add(OBJ010, Loc(od.source, sub0.line_of("datatype")),
-                  f"DataType=0x{sub0.data_type:04X}{name} is not UNSIGNED8", obj.index, 0)
+                  f"DataType=0x{sub0.data_type:04X}{name} is not UNSIGNED8", obj.index, 0, blocks=not count)
     _sub0_value(od, obj, sub0, diags)
 
 
