@@ -23,7 +23,7 @@ from .conftest import FIXTURES, expectations, lint, rendered
 
 REPAIR = FIXTURES / "repair"
 REPAIRS = REPAIR / "repairs.eds"
-SAFE = {"OBJ010", "OBJ011", "OBJ014", "OBJ030", "SYN015"}
+SAFE = {"OBJ010", "OBJ011", "OBJ014", "OBJ030", "SYN007", "SYN015"}
 UNSAFE = {"OBJ015", "OBJ017", "PDO001", "PDO002"}
 
 
@@ -134,7 +134,7 @@ def test_generate_with_unsafe_fixes_lists_every_repair(tmp_path: Path) -> None:
     assert done.returncode == 0, done.stderr
     header = (tmp_path / "rep.h").read_text()
     result = generate(Request(REPAIRS, name="rep", fix="unsafe"))
-    assert len(result.repairs) == 10
+    assert len(result.repairs) == 11
     for repair in result.repairs:
         assert repair.text() in done.stderr
         assert repair.text().replace(str(REPAIRS), REPAIRS.name) in header

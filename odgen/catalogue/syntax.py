@@ -61,7 +61,8 @@ SYN007 = define(
     why="CiA 306 writes node-id relative values as `$NODEID+<number>`. Lely and objdictgen accept only "
     "that form; `0x180+$NODEID`, lower case or spaces break them. odgen reads the value either way.",
     example="DefaultValue=0x180+$NODEID",
-    fix="Write `$NODEID+0x180`.")
+    fix="Write `$NODEID+0x180`.",
+    repair="safe: written as `$NODEID+<number>`")
 
 SYN008 = define(
     "SYN008", INFO, "signed value written as unsigned hex", ref="S3",

@@ -61,7 +61,7 @@ def fix_file(path: Path, unsafe: bool = False, node_id: int | None = None, fmt: 
     lint_model(od, diags, LintOptions(node_id=node_id))
     _, repairs = repair_model(od, diags.sorted(), unsafe=unsafe)
     written = [r for r in repairs if r.writable]
-    fixed = apply_edits(data, [e for r in written for e in r.edits])
+    fixed = apply_edits(data, [e for r in sorted(written, key=lambda r: r.order) for e in r.edits])
     new_od, new_diags = load_bytes(fixed, str(path), kind)
     if new_od is not None:
         lint_model(new_od, new_diags, LintOptions(node_id=node_id))

@@ -39,7 +39,8 @@ def _section_end(lines: list[str], header: int) -> int:
 
 
 def apply_edits(data: bytes, edits: list[Edit]) -> bytes:
-    """The file with the edits made; a `set` of a line that is no `Key=value` is skipped.
+    """The file with the edits made, in their order (a later `set` of a line wins); a `set` of a line that
+    is no `Key=value` is skipped.
 
     Lines are split at LF only (a CR stays with its line), so no other byte is taken for a line end."""
     lines = data.decode("latin-1").split("\n")

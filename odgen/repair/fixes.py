@@ -17,13 +17,13 @@ from ..catalogue import RULES, Rule
 from ..catalogue.comm import COM016, COM017
 from ..catalogue.objects import OBJ006, OBJ010, OBJ011, OBJ012, OBJ014, OBJ015, OBJ017, OBJ030
 from ..catalogue.pdo import PDO001, PDO002, PDO003, PDO004
-from ..catalogue.syntax import SYN015, SYN016
+from ..catalogue.syntax import SYN007, SYN015, SYN016
 from ..diagnostics import Diagnostic, where
 from ..model import VAR, ObjectDictionary, Obj, Sub, Value, parse_value
 from ..model.cia301 import PDO_COUNT, RPDO_COMM, SDO_SERVER, TPDO_COMM
 from ..model.datatypes import BASIC_TYPES
 from ..model.pdo import mapping_kind
-from ..model.values import number, plain_int
+from ..model.values import number, parse_int_literal, plain_int, split_nodeid
 from .apply import ADD_KEY, DELETE, INSERT_BEFORE, SET, Edit
 
 UNSIGNED8, DOMAIN_TYPE = 0x0005, 0x000F
@@ -39,6 +39,7 @@ class Repair:
     what: str
     edits: tuple[Edit, ...] = ()
     writable: bool = True  # False: the entry has no lines of its own, so `odgen fix` cannot write the repair
+    order: int = 0  # when it was made: a later repair of the same line builds on an earlier one
 
     @property
     def rule(self) -> str:
@@ -104,7 +105,7 @@ def _repair(work: _Work, d: Diagnostic, safe: bool, what: str, *edits: Edit | No
             written: bool = True) -> Repair:
     kept = _edits(*edits)
     # an edit that came out None is a line the entry does not have (a CompactSubObj element, XML)
-    repair = Repair(d, safe, what, kept, writable=written and len(kept) == len(edits))
+    repair = Repair(d, safe, what, kept, writable=written and len(kept) == len(edits), order=len(work.done))
     work.done.append(repair)
     return repair
 
@@ -449,6 +450,23 @@ def _empty_keyword(work: _Work, d: Diagnostic) -> Repair | None:
     return _repair(work, d, True, f"empty {d.message.split('=', 1)[0]}= removed", Edit(DELETE, d.loc.line))
 
 
+def _nodeid_form(work: _Work, d: Diagnostic) -> Repair | None:
+    """SYN007 (safe): a `$NODEID` value written as CiA 306 writes it, `$NODEID+<number>`."""
+    sub = _sub(work.od, d)
+    if sub is None or not d.loc.line:
+        return None
+    keys = [k for k in _ATTR if (v := getattr(sub, _ATTR[k])) is not None and v.line == d.loc.line and v.nodeid]
+    if not keys:
+        return None
+    old = getattr(sub, _ATTR[keys[0]])
+    _, rest, _ = split_nodeid(old.text)
+    if parse_int_literal(rest)[0] is None:
+        return None  # the number beside $NODEID is not one: no canonical form to write
+    text = "$NODEID" if rest == "0" else f"$NODEID{rest}" if rest.startswith("-") else f"$NODEID+{rest}"
+    edit = _set_value(sub, keys[0], text)
+    return _repair(work, d, True, f"{old.text.strip()} -> {text}", edit)
+
+
 def _compact_counts(work: _Work, d: Diagnostic) -> Repair | None:
     """SYN016 (safe), the findings that do not block: NrOfEntries set to the entries that follow; a
     CompactSubObj above 254 set to 254, which is what every reader serves (sub-index 255 is reserved)."""
@@ -470,6 +488,7 @@ def _compact_counts(work: _Work, d: Diagnostic) -> Repair | None:
 
 # Rule id -> its repair, in the order they are made (sub0 before the limits, limits before values).
 _FIXES: tuple[tuple[Rule, Fix], ...] = (
+    (SYN007, _nodeid_form),
     (SYN015, _empty_keyword),
     (SYN016, _compact_counts),
     (OBJ006, _sub_number),
