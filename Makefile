@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: setup sysdeps demo test lint-code docs bench fuzz clean
+.PHONY: setup sysdeps demo test lint-code docs release bench fuzz clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -17,7 +17,8 @@ setup: $(STAMP)
 # The main job on the example: lint it, generate its C dictionary, compile it with the
 # runtime and run the self-test (which reports where each storage class landed and its
 # size), then write the lint findings as SARIF and convert the description back to EDS.
-demo: setup sysdeps
+# Needs Python and a C compiler only (`odgen check` names CC when there is none).
+demo: setup
 	$(BIN)/odgen lint examples/*/*.eds
 	mkdir -p build/demo
 	$(BIN)/odgen generate examples/io-node/io-node.eds --options examples/io-node/io-node.toml -o build/demo
@@ -30,10 +31,18 @@ lint-code: setup
 	$(BIN)/ruff check odgen tests benchmarks examples $(wildcard fuzz)
 	$(BIN)/mypy
 
-# System tools the tests compile, build and render reports with (Debian packages of the same names).
-SYSTOOLS := gcc clang cmake chromium
+# System tools the tests compile, build, emulate and render reports with, as CHECK:PACKAGE (a
+# Debian package, installed when CHECK, a command or a file it provides, is missing). The cross
+# compilers, C libraries and emulators run the self-test on other cores (tests/test_target_cores.py).
+SYSTOOLS := gcc:gcc clang:clang cmake:cmake chromium:chromium \
+	arm-none-eabi-gcc:gcc-arm-none-eabi /usr/lib/arm-none-eabi/newlib:libnewlib-arm-none-eabi \
+	qemu-system-arm:qemu-system-arm qemu-ppc:qemu-user \
+	powerpc-linux-gnu-gcc:gcc-powerpc-linux-gnu /usr/powerpc-linux-gnu/lib/libc.a:libc6-dev-powerpc-cross \
+	avr-gcc:gcc-avr /usr/lib/avr/include/avr/io.h:avr-libc simavr:simavr
 sysdeps:
-	@missing=""; for t in $(SYSTOOLS); do command -v $$t >/dev/null 2>&1 || missing="$$missing $$t"; done; \
+	@missing=""; for t in $(SYSTOOLS); do check=$${t%%:*}; \
+	  case $$check in /*) test -e $$check ;; *) command -v $$check >/dev/null 2>&1 ;; esac || missing="$$missing $${t#*:}"; \
+	done; \
 	if [ -n "$$missing" ]; then apt-get update -qq && apt-get install -y -qq $$missing; fi
 
 # The CAN tests set up tools/vcan themselves (host vcan, else a User-Mode Linux guest).
@@ -45,6 +54,14 @@ test: setup lint-code sysdeps
 # docs/rules.md is generated from the rule catalogue (a test checks it is current).
 docs: setup
 	$(BIN)/odgen rules --markdown > docs/rules.md
+
+# What .github/workflows/release.yml does on a tag (docs/releasing.md): sdist and wheel into
+# dist/, twine check, then the wheel alone in a fresh venv outside the checkout, smoke-tested.
+release: setup
+	rm -rf dist
+	$(BIN)/python -m build --outdir dist .
+	$(BIN)/twine check --strict dist/*
+	tools/release-smoke.sh dist build/release-venv
 
 bench:
 	@set -e; t0=$$(date +%s); $(MAKE) --no-print-directory setup sysdeps; \

@@ -116,13 +116,13 @@ def measure(label: str, eds: Path, lookup: str) -> dict[str, object]:
 def ram_reasons(eds: Path) -> dict[str, int]:
     """Bytes of the dictionary's RAM values by why odgen placed each there (the placement's reason,
     as `odgen explain` prints it), from odgen's own view-model; padding between values not counted."""
-    from odgen.codegen.generate import Request, prepare, view_model
     from odgen.codegen.viewmodel import member_bytes
+    from odgen.pipeline import Request, run
 
-    result = prepare(Request(eds))
-    if result.placements is None:
+    result = run(Request(eds, name="od", lookup="bsearch"), until="view")
+    view = result.view
+    if result.placements is None or view is None:
         return {}
-    view = view_model(result, "od", "bsearch", "")
     reasons: dict[str, int] = {}
     for member in (m for struct in view.structs if struct.name == "od_ram" for m in struct.members):
         why = result.placements[member.key].storage_from

@@ -301,5 +301,5 @@ def run(modes: tuple[str, ...]) -> dict[str, object]:
 
 
 if __name__ == "__main__":
-    from odgen.codegen.generate import LOOKUPS
+    from odgen.choices import LOOKUPS
     print(run(LOOKUPS)["markdown"])

@@ -19,7 +19,7 @@ from common import BUILD as BENCH
 from common import ODGEN, synth_label
 from footprint import CFLAGS, RUNTIME, ensure_toolchain, sections, symbols
 
-from odgen.codegen.generate import Request, prepare
+from odgen.pipeline import Request, prepare
 from odgen.place.layout import group_layouts
 from odgen.place.nvmap import nv_map, slot_bytes
 

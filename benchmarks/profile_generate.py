@@ -64,42 +64,14 @@ sub-entry."""
 
 
 def stages(path: Path) -> dict[str, float]:
-    """One generation, timed stage by stage (the steps odgen.codegen.generate takes)."""
-    marks = [time.perf_counter()]
-    import importlib
-    for module in ("odgen.codegen.generate", "odgen.place.placement", "odgen.formats", "odgen.lint.driver"):
-        importlib.import_module(module)  # timed as the import stage
-    from odgen.gcpause import no_cyclic_gc
-    marks.append(time.perf_counter())
-    with no_cyclic_gc():  # as generate() and the odgen command run: no cyclic collection
-        _staged(path, marks)
-    names = ("import odgen", "parse", "lint", "place", "view-model", "template compile", "render")
-    return {name: marks[k + 1] - marks[k] for k, name in enumerate(names)}
+    """One generation, timed stage by stage by odgen's own pipeline (odgen.pipeline.run)."""
+    start = time.perf_counter()
+    from odgen.pipeline import STAGES, Request, run
 
-
-def _staged(path: Path, marks: list[float]) -> None:
-    """parse, lint, place, view-model, template compile, render: a mark after each."""
-    from odgen.codegen import generate as gen
-    from odgen.place.options import Options
-    from odgen.place.placement import place
-    from odgen.formats import load_path
-    from odgen.lint.driver import lint_model
-    from odgen.lint.passes import LintOptions
-    od, diags = load_path(path)
-    assert od is not None
-    marks.append(time.perf_counter())
-    lint_model(od, diags, LintOptions())
-    marks.append(time.perf_counter())
-    placements = place(od, Options(), diags)
-    marks.append(time.perf_counter())
-    view = gen.view_model(gen.Result(diags, {}, od, placements), "od", "hash", "bench")  # hash: the default
-    marks.append(time.perf_counter())
-    env = gen.environment()
-    header, source = env.get_template("dict.h.j2"), env.get_template("dict.c.j2")
-    marks.append(time.perf_counter())
-    header.render(v=view, findings=[])
-    source.render(v=view)
-    marks.append(time.perf_counter())
+    imported = time.perf_counter()
+    result = run(Request(path, name="od"))  # the hash lookup: the default
+    assert result.files, "the benchmark's input must generate"
+    return {"import odgen": imported - start, **{stage: result.timings[stage] for stage in STAGES}}
 
 
 def _area(filename: str) -> str:

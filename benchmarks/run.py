@@ -29,7 +29,7 @@ import migration_cost
 import profile_generate
 import speed
 import startup
-from odgen.codegen.generate import LOOKUPS
+from odgen.choices import LOOKUPS
 
 from common import PEER_PYTHON, RESULTS, SYNTH_SIZES, Target, inputs, synth_label, targets_json
 

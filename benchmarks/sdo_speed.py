@@ -23,7 +23,7 @@ HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
 sys.path.insert(0, str(ROOT))
 
-from odgen.codegen.generate import Request  # noqa: E402
+from odgen.pipeline import Request  # noqa: E402
 from odgen.roundtrip.build import build_node  # noqa: E402
 
 RESULTS = HERE / "results"

@@ -1,6 +1,6 @@
-"""Where odgen's own files are: the only module that finds templates, schemas, runtime and CMake module.
+"""Where odgen's own files are: the only module that finds templates, schemas, runtime, CMake module and docs.
 
-They ship inside the package as odgen.templates, odgen.schemas, odgen.runtime and odgen.cmake
+They ship inside the package as odgen.templates, odgen.schemas, odgen.runtime, odgen.cmake and odgen.docs
 (pyproject.toml maps the repository's top-level folders there), so an installed odgen never
 looks outside site-packages. In a source checkout (an editable install, or tests run from the
 repository) those names do not import: setuptools' editable finder does not resolve namespace
@@ -56,3 +56,8 @@ def runtime_dir() -> Path:
 
 def cmake_dir() -> Path:
     return _folder("odgen.cmake")
+
+
+def docs_dir() -> Path:
+    """The docs/*.md pages; odgen's messages and generated files name them as docs/NAME.md."""
+    return _folder("odgen.docs")

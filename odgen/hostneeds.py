@@ -1,6 +1,8 @@
-"""What `odgen node` and `odgen roundtrip` need from the host: the [can] extra and SocketCAN.
+"""What `odgen node`, `odgen roundtrip` and `odgen conformance` need from the host: the [can]
+extra and SocketCAN.
 
-Both answer a missing piece with exit 2 and what to do, before anything is built.
+Each answers a missing piece with exit 2 and what to do (install, or create the interface),
+before anything is built or sent.
 """
 
 from __future__ import annotations
@@ -19,8 +21,9 @@ def require_can_extra(command: str) -> None:
     missing = [name for name, module in (("python-can", "can"), ("canopen", "canopen"))
                if importlib.util.find_spec(module) is None]
     if missing:
-        raise OdgenError(f"`odgen {command}` needs {' and '.join(missing)}: install odgen with its CAN extra "
-                         "(pip install 'odgen[can]')")
+        raise OdgenError(f"`odgen {command}` needs {' and '.join(missing)}: install odgen with its `can` extra "
+                         "(pip install 'odgen[can]', or 'odgen-VERSION-py3-none-any.whl[can]' from a wheel, "
+                         "'.[can]' from a checkout)")
 
 
 def require_socketcan(iface: str) -> None:
@@ -34,6 +37,7 @@ def require_socketcan(iface: str) -> None:
     try:
         sock.bind((iface,))
     except OSError as err:
-        raise OdgenError(f"no CAN interface {iface} ({err.strerror or err}): {VCAN_HINT}") from None
+        raise OdgenError(f"no CAN interface {iface} ({err.strerror or err}): name an existing one with --iface, "
+                         f"or {VCAN_HINT}") from None
     finally:
         sock.close()

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg.c - core of the odgen runtime: find, read, write, hooks, PDO mapping check, self-check.
  *
@@ -52,7 +53,7 @@ typedef odg_num_t num_t; /* odg_impl.h: 64 bits, or 32 when no type is wider */
 /* ---- abort texts ---------------------------------------------------------------- */
 
 #ifndef ODG_NO_ABORT_TEXT
-#define ODG_TEXT_(name, code, text) {code, text},
+#define ODG_TEXT_(name, text) {name, text},
 static const struct {
     uint32_t code;
     const char *text;
@@ -1045,9 +1046,12 @@ static int found_alone(const odg_dict_t *d, const odg_entry_t *e)
 /* The perfect hash's shape, and every slot naming an entry (so a lookup never reads past it). */
 static int hash_ok(const odg_dict_t *d)
 {
-    uint32_t k, n = 1u << d->hash_bits;
-    if (d->hash_disp == NULL || d->hash_bits == 0u || d->hash_bits > 16u ||
-        d->hash_top_shift == 0u || d->hash_top_shift < d->hash_bits ||
+    uint32_t k, n;
+    if (d->hash_disp == NULL || d->hash_bits == 0u || d->hash_bits > 16u) {
+        return 0;
+    }
+    n = (uint32_t)1u << d->hash_bits; /* 1u has 16 bits where int has */
+    if (d->hash_top_shift == 0u || d->hash_top_shift < d->hash_bits ||
         d->hash_shift != d->hash_top_shift - d->hash_bits || d->hash_mask != n - 1u) {
         return 0;
     }

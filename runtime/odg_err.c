@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_err.c - the node's errors: those active and the error register 0x1001 that follows them,
  * the pre-defined error field (0x1003: the history of the errors its EMCY frames reported,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_hb.c - NMT error control: the heartbeat consumer (CiA 301: 0x1016), node guarding and
  * life guarding (0x100C, 0x100D), and what a communication error does (0x1029 sub 1).

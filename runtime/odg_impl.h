@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_impl.h - internal helpers shared by odg.c and odg_persist.c. Not part of the API.
  */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_lss.c - LSS slave (CiA 305): switch state global and selective, configure node-id and
  * bit timing, activate bit timing, store configuration, inquire identity and node-id, identify
@@ -166,7 +167,7 @@ static void configure(odg_node_t *n, const uint8_t *d)
         break;
     case 0x15: /* activate bit timing: no answer */
         if (n->cfg.on_bit_timing != NULL && n->lss.bit_index != ODG_LSS_NO_BIT_TIMING) {
-            (void)n->cfg.on_bit_timing(n->cfg.app_ctx, n->lss.bit_index, (uint16_t)(d[1] | d[2] << 8), 1);
+            (void)n->cfg.on_bit_timing(n->cfg.app_ctx, n->lss.bit_index, (uint16_t)(d[1] | (unsigned)d[2] << 8), 1);
         }
         return;
     case 0x17: /* store configuration: 1 no NV, 2 the NV failed */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_lss.h - the LSS slave (CiA 305) of the node: a master assigns node-id and bit timing to
  * a device, found by its identity (0x1018 sub 1-4) or by fastscan. Part of odg_node.h.

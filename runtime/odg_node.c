@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_node.c - NMT slave, heartbeat producer, EMCY producer and frame dispatch of the CANopen
  * node. The SDO server is in odg_sdo.c, SYNC and PDOs in odg_pdo.c. See odg_node.h.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_node_impl.h - internals shared by odg_node.c, odg_sdo.c and odg_pdo.c. Not API.
  */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_nv_file.c - file-backed NV driver (POSIX). See odg_nv_file.h.
  */

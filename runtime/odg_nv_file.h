@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_nv_file.h - a file-backed NV driver for Linux/POSIX: tests and host-side node programs.
  *

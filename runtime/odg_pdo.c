@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_pdo.c - SYNC consumer, TPDOs and RPDOs of the node, configured by the dictionary's
  * 0x1400-0x15FF / 0x1600-0x17FF (RPDO) and 0x1800-0x19FF / 0x1A00-0x1BFF (TPDO) entries.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_persist.c - persistence groups in NV memory, safe against power loss.
  *
@@ -260,7 +261,7 @@ static uint32_t type_bit(uint8_t t)
 
 static uint16_t get16(const uint8_t *p)
 {
-    return (uint16_t)(p[0] | p[1] << 8);
+    return (uint16_t)(p[0] | (unsigned)p[1] << 8);
 }
 
 static uint32_t rec_key(const uint8_t *rec)
@@ -624,7 +625,7 @@ static int resize_string(const odg_nv_driver_t *nv, const odg_sub_t *s, uint8_t 
         if (nv->read(nv->ctx, addr + i, c, unit) != 0) {
             return FAILED;
         }
-        u = (uint16_t)(c[0] | c[1] << 8);
+        u = (uint16_t)(c[0] | (unsigned)c[1] << 8);
         if (u == 0u) {
             return KEPT;
         }

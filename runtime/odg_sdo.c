@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_sdo.c - the node's SDO server: expedited, segmented and block
  * transfers in both directions, over odg_read / odg_write / odg_write_part.

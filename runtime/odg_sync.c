@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_sync.c - the node as SYNC producer (CiA 301: 0x1005 bit 30, 0x1006, 0x1019).
  *

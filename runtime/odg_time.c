@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_time.c - the TIME object (CiA 301 TIME_OF_DAY) of the node: consumed when 0x1012 bit 31
  * is set and handed to cfg.on_time, produced by odg_node_time_send when bit 30 is set. Both
@@ -15,7 +16,7 @@ void odg_time_receive_(odg_node_t *n, const odg_frame_t *f)
         return; /* TIME_OF_DAY is 6 bytes: a shorter frame carries no time */
     }
     ms = ((uint32_t)d[0] | (uint32_t)d[1] << 8 | (uint32_t)d[2] << 16 | (uint32_t)d[3] << 24) & ODG_TIME_MS_MASK;
-    n->cfg.on_time(n->cfg.app_ctx, ms, (uint16_t)(d[4] | d[5] << 8));
+    n->cfg.on_time(n->cfg.app_ctx, ms, (uint16_t)(d[4] | (unsigned)d[5] << 8));
 }
 
 odg_abort_t odg_node_time_send(odg_node_t *node, uint32_t ms, uint16_t days)

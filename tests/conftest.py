@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
 
-from odgen.codegen.generate import Request, generate
+from odgen.pipeline import Request, generate
 from odgen.lint.driver import FileResult, lint_path
 from odgen.lint.passes import LintOptions
 
@@ -118,3 +120,14 @@ def _write_can_report(bus) -> None:
     lines += [f"| {' '.join(map(str, c['argv'])).replace('|', '/')} | {c['where']} | {c['status']} | {c['seconds']} |"
               for c in bus.log]
     (BUILD / "can-tests.md").write_text("\n".join(lines) + "\n", encoding="utf-8")
+
+
+@pytest.fixture(scope="session")
+def dist(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """sdist, then the wheel built from that sdist (python -m build does both), once per run:
+    tests/test_install.py installs the wheel, tests/test_licence.py reads its metadata."""
+    out = tmp_path_factory.mktemp("dist")
+    done = subprocess.run([sys.executable, "-m", "build", "--outdir", str(out), str(ROOT)], cwd=out,
+                          capture_output=True, text=True, check=False, timeout=600)
+    assert done.returncode == 0, done.stdout + done.stderr
+    return out

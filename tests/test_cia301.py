@@ -38,8 +38,10 @@ def _hex(text: str) -> set[int]:
 
 
 def test_abort_codes_are_the_runtimes() -> None:
-    rows = re.findall(r"X\((ODG_ABORT_\w+),\s*(0x[0-9A-Fa-f]+),", (RUNTIME / "odg.h").read_text(encoding="utf-8"))
+    header = (RUNTIME / "odg.h").read_text(encoding="utf-8")
+    rows = re.findall(r"#define (ODG_ABORT_\w+)\s+UINT32_C\((0x[0-9A-Fa-f]+)\)", header)
     assert {name: int(code, 16) for name, code in rows} == cia301.ABORT_CODES
+    assert set(re.findall(r"X\((ODG_ABORT_\w+),", header)) == set(cia301.ABORT_CODES)  # each has a text
 
 
 def test_store_and_restore_command_words_are_the_runtimes() -> None:

@@ -122,3 +122,18 @@ def test_rules_markdown_is_current() -> None:
                           capture_output=True, text=True, check=True)
     assert (ROOT / "docs" / "rules.md").read_text(encoding="utf-8") == proc.stdout, \
         "docs/rules.md is stale: run `make docs`"
+
+
+def test_output_into_a_closed_pipe_is_no_internal_error() -> None:
+    """`odgen rules | head -1`: the reader goes away; odgen stops quietly (141, as a shell reports
+    a writer whose pipe ended), with no traceback and no "internal error"."""
+    import subprocess
+    import sys
+
+    proc = subprocess.Popen([sys.executable, "-m", "odgen", "rules", "--markdown"], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE)
+    assert proc.stdout is not None and proc.stderr is not None
+    proc.stdout.close()  # as `head` does once it has its lines; odgen has not written yet
+    err = proc.stderr.read().decode()
+    assert proc.wait(timeout=60) in (0, 141), err
+    assert "internal error" not in err and "Traceback" not in err, err

@@ -19,7 +19,7 @@ from xml.etree import ElementTree as ET
 
 import pytest
 
-from odgen.codegen.generate import Request
+from odgen.pipeline import Request
 from odgen.roundtrip import ROUNDTRIP_DEFAULTS
 from odgen.roundtrip.build import build_node
 

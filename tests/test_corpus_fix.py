@@ -10,8 +10,8 @@ from pathlib import Path
 import pytest
 
 from odgen.cli.fix import Fixed, fix_file
-from odgen.codegen.check import run_check
-from odgen.codegen.generate import Request, generate
+from odgen.check import run_check
+from odgen.pipeline import Request, generate
 from odgen.formats import load_bytes
 from odgen.lint.driver import lint_model
 from odgen.lint.passes import LintOptions

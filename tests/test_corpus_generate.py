@@ -13,8 +13,8 @@ import shutil
 
 import pytest
 
-from odgen.codegen.check import run_check
-from odgen.codegen.generate import Request, generate
+from odgen.check import run_check
+from odgen.pipeline import Request, generate
 
 from .conftest import BUILD, corpus_files
 

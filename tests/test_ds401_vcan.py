@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pytest
 
-from odgen.codegen.generate import Request
+from odgen.pipeline import Request
 from odgen.model import ObjectDictionary
 from odgen.model.cia301 import RPDO_COMM as RPDO
 from odgen.model.cia301 import TPDO_COMM as TPDO

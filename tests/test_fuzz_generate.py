@@ -14,8 +14,8 @@ from pathlib import Path
 import pytest
 
 from fuzz import mutate
-from odgen.codegen.check import run_check
-from odgen.codegen.generate import Request, generate
+from odgen.check import run_check
+from odgen.pipeline import Request, generate
 
 REGRESSIONS = sorted((mutate.REGRESSIONS / "generate").glob("*.*"))
 SEED, MUTANTS, CHECKED = 20261125, 3000, 30  # 30 distinct accepted dictionaries: about 10 s of gcc

@@ -9,8 +9,8 @@ from pathlib import Path
 import pytest
 
 from odgen.cli import main
-from odgen.codegen.check import run_check
-from odgen.codegen.generate import Request, generate
+from odgen.check import run_check
+from odgen.pipeline import Request, generate
 from odgen.cnames import comment, identifier, name_clash, string_literal
 from odgen.model.expect import expected_bytes
 from odgen.diagnostics import RULES
@@ -156,7 +156,7 @@ def test_template_cache_gives_the_same_files_and_a_missing_one_only_costs_time(t
     with a fresh cache, a warm one, and none (its folder cannot be made: a file stands there)."""
     import tempfile
 
-    from odgen.codegen.generate import environment
+    from odgen.codegen.render import environment
 
     outputs = []
     blocked = tmp_path / "not-a-folder"

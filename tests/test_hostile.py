@@ -19,8 +19,8 @@ from pathlib import Path
 import pytest
 
 from odgen.cli import main
-from odgen.codegen.check import run_check
-from odgen.codegen.generate import Request, generate
+from odgen.check import run_check
+from odgen.pipeline import Request, generate
 
 from .conftest import FIXTURES, ROOT
 from .cprog import build, run

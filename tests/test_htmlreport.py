@@ -20,8 +20,8 @@ import lxml.etree
 import lxml.html
 import pytest
 
-from odgen.codegen.check import run_check
-from odgen.codegen.generate import Request
+from odgen.check import run_check
+from odgen.pipeline import Request
 from odgen.codegen.memory import memory_rows
 from odgen.formats import load_path
 from odgen.report.render import render_html, render_markdown

@@ -1,7 +1,8 @@
 """The installed package is the product: build the sdist and the wheel from it, install the wheel
 into a fresh venv outside the source tree (under the oldest Python pyproject.toml declares, from
 $ODGEN_OLDEST_PYTHON, which `make test` sets with tools/oldest-python.sh), and use it as a user
-would from a temporary folder: lint, generate, check, profile, and a CMake firmware project.
+would from a temporary folder: lint, generate, check, profile, a CMake firmware project, the
+licence, README and docs; and the release smoke test of `make release` on the same wheel.
 """
 
 from __future__ import annotations
@@ -10,7 +11,6 @@ import os
 import re
 import shutil
 import subprocess
-import sys
 try:
     import tomllib
 except ModuleNotFoundError:  # Python 3.10
@@ -19,6 +19,11 @@ import zipfile
 from pathlib import Path
 
 import pytest
+import yaml
+
+import odgen
+
+from .test_docs_site import named_pages
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples"
@@ -48,14 +53,6 @@ def run(cmd: list[str], cwd: Path, env: dict[str, str] | None = None,
 
 
 @pytest.fixture(scope="module")
-def dist(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """sdist, then the wheel built from that sdist (python -m build does both)."""
-    out = tmp_path_factory.mktemp("dist")
-    run([sys.executable, "-m", "build", "--outdir", str(out), str(ROOT)], cwd=out)
-    return out
-
-
-@pytest.fixture(scope="module")
 def installed(dist: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
     """A venv of the oldest declared Python with the wheel installed (no [can] extra); its bin/."""
     env_dir = tmp_path_factory.mktemp("venv")
@@ -72,7 +69,7 @@ def test_wheel_carries_templates_schemas_runtime_and_cmake(dist: Path) -> None:
     expected |= {f"odgen/runtime/{p.relative_to(ROOT / 'runtime').as_posix()}"
                  for p in (ROOT / "runtime").rglob("*") if p.suffix in (".c", ".h")}
     expected |= {"odgen/cmake/odgen.cmake"}
-    version = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["version"]
+    version = odgen.__version__
     expected |= {f"odgen-{version}.data/data/share/odgen/cmake/{p.name}" for p in (ROOT / "cmake").glob("odgenConfig*")}
     expected |= {p.relative_to(ROOT).as_posix() for p in (ROOT / "odgen").rglob("*.py")}
     assert expected - names == set(), "missing from the wheel"
@@ -163,5 +160,50 @@ def test_find_package_finds_the_installed_odgen(installed: Path, tmp_path: Path)
     lists.write_text(lists.read_text(encoding="utf-8").replace("odgen 0.1 REQUIRED", "odgen 99 REQUIRED"),
                      encoding="utf-8")
     refused = run(["cmake", "-S", str(project), "-B", str(tmp_path / "b99")], tmp_path, env=env, ok=False)
-    version = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["version"]
+    version = odgen.__version__
     assert refused.returncode != 0 and f"odgenConfig.cmake, version: {version}" in refused.stderr, refused.stderr
+
+
+def test_licence_readme_and_docs_from_the_installed_wheel(installed: Path, tmp_path: Path) -> None:
+    """What a user of the wheel alone can read: the licence and README in the metadata, and every
+    docs page odgen's messages and generated files name, in `odgen --docs-dir`."""
+    probe = ("import importlib.metadata as m, pathlib, sys\n"
+             "meta = m.metadata('odgen')\n"
+             "licence = next(f for f in m.files('odgen') if f.name == 'LICENSE')\n"
+             "print(meta['License-Expression'])\n"
+             "print(pathlib.Path(licence.locate()).read_text().splitlines()[1].strip())\n"
+             "sys.stdout.write(meta.get_payload())\n")
+    shown = run([str(installed / "python"), "-c", probe], tmp_path).stdout.splitlines()
+    assert shown[:2] == ["Apache-2.0", "Apache License"]
+    assert "\n".join(shown[2:]).strip() == (ROOT / "README.md").read_text(encoding="utf-8").strip()
+    docs = Path(run([str(installed / "odgen"), "--docs-dir"], tmp_path).stdout.strip())
+    assert installed.parent in docs.parents
+    assert sorted(p.name for p in docs.glob("*.md")) == sorted(p.name for p in (ROOT / "docs").glob("*.md"))
+    runtime = Path(run([str(installed / "odgen"), "--runtime-dir"], tmp_path).stdout.strip())
+    folders = {"docs": docs, "runtime": runtime}
+    assert [f"{d}/{p}" for d, p in sorted(named_pages()) if not (folders[d] / p).is_file()] == []
+
+
+def test_release_smoke_script_on_the_wheel(dist: Path, installed: Path, tmp_path: Path) -> None:
+    """tools/release-smoke.sh, which `make release` and the release workflow run on their wheel, here
+    on the venv the other tests installed the same wheel into (its install steps are the fixture's)."""
+    env = dict(os.environ, ODGEN_SMOKE_INSTALLED="1")
+    done = run(["bash", str(ROOT / "tools" / "release-smoke.sh"), str(dist), str(installed.parent)], tmp_path, env=env)
+    assert f"odgen {odgen.__version__} from odgen-{odgen.__version__}-py3-none-any.whl works" in done.stdout
+    (tmp_path / "two").mkdir()
+    for wheel in ("odgen-0.1.0-py3-none-any.whl", "odgen-0.2.0-py3-none-any.whl"):
+        (tmp_path / "two" / wheel).touch()
+    refused = run(["bash", str(ROOT / "tools" / "release-smoke.sh"), str(tmp_path / "two"), str(installed.parent)],
+                  tmp_path, env=env, ok=False)
+    assert refused.returncode == 2 and "want one odgen wheel" in refused.stderr
+
+
+def test_release_workflow_and_make_target_do_the_same() -> None:
+    workflow = yaml.safe_load((ROOT / ".github" / "workflows" / "release.yml").read_text(encoding="utf-8"))
+    assert workflow[True]["push"]["tags"] == ["v*"]  # YAML 1.1 reads the key `on` as True
+    steps = " ".join(s.get("run", "") for s in workflow["jobs"]["release"]["steps"])
+    makefile = (ROOT / "Makefile").read_text(encoding="utf-8")
+    target = re.search(r"^release:.*?\n((?:\t.*\n)+)", makefile, re.MULTILINE)
+    assert target, "no release target"
+    for step in ("-m build --outdir dist .", "twine check --strict dist/*", "tools/release-smoke.sh dist "):
+        assert step in steps and step in target.group(1), step

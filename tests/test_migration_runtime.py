@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 
-from odgen.codegen.generate import Request, prepare
+from odgen.pipeline import Request, prepare
 from odgen.place.layout import group_layouts
 from odgen.place.migration import DOMAIN_TYPE, EntryLayout, GroupLayout, migrate, value_size
 from odgen.place.nvmap import nv_map

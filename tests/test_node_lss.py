@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 
 from odgen import cli
-from odgen.codegen.generate import Request, generate as generate_dict
+from odgen.pipeline import Request, generate as generate_dict
 
 from .cprog import build
 from .test_node import LINUX, LSS, NODE_TESTS, PROGRAM_SOURCES, ROOT, RUNTIME, generate

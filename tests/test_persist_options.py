@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from odgen.codegen.generate import Request, generate
+from odgen.pipeline import Request, generate, run
 from odgen.place.options import parse_options
 from odgen.diagnostics import Diagnostics
 from odgen.place.migration import EntryLayout, GroupLayout
@@ -96,3 +96,19 @@ def test_generation_refuses(tmp_path: Path, extra: str, words: str) -> None:
     refused, files, found = generated(tmp_path, extra)
     assert refused and files == {}
     assert any(f.startswith("GEN001:") and words in f for f in found), found
+
+
+def test_status_object_is_linted_like_the_description(tmp_path: Path) -> None:
+    """odgen's own boot status object is added when the description is loaded, before lint, and is
+    declared as the description would declare it (SubNumber, an object-list entry): lint sees it and
+    finds nothing wrong with it."""
+    (tmp_path / "od.eds").write_text(eds(BASE, 1000, False), encoding="utf-8")
+    (tmp_path / "od.toml").write_text(options(BASE, "[persist]\nstatus_object = 0x2FF0\n"), encoding="utf-8")
+    result = run(Request(tmp_path / "od.eds", name="od", options=tmp_path / "od.toml"), until="lint")
+    assert result.od is not None and 0x2FF0 in result.od.objects  # the model lint was given
+    assert not [d for d in result.diags.items if d.index == 0x2FF0], result.diags.items
+    listed = result.od.object_lists["manufacturerobjects"]
+    assert listed.entries[-1].text == "0x2FF0" and listed.supported is not None
+    assert int(listed.supported.text) == len(listed.entries)
+    reread = Path(tmp_path / "od.eds").read_text(encoding="utf-8")
+    assert "2FF0" not in reread.upper()  # the description itself is not changed

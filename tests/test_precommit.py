@@ -125,9 +125,15 @@ def test_ci_examples_are_valid(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) 
     assert upload["with"]["sarif_file"] == "odgen.sarif"
     assert workflow["permissions"]["security-events"] == "write"
     gitlab = next(d for d in docs if "odgen" in d and "script" in d["odgen"])
-    hooks = next(d for d in docs if "repos" in d)["repos"][0]["hooks"]
-    declared = {h["id"] for h in yaml.safe_load((ROOT / ".pre-commit-hooks.yaml").read_text())}
-    assert {h["id"] for h in hooks} == declared
+    configs = [d["repos"][0] for d in docs if "repos" in d]
+    declared = {h["id"]: h for h in yaml.safe_load((ROOT / ".pre-commit-hooks.yaml").read_text())}
+    local = next(c for c in configs if c["repo"] == "local")["hooks"]
+    for hook in local:  # the local form runs what the repository's hooks run, on the same files
+        mine = declared[hook["id"]]
+        assert (hook["entry"], hook["files"], hook.get("pass_filenames", True)) == \
+            (mine["entry"], mine["files"], mine.get("pass_filenames", True)), hook["id"]
+    hooks = next(c for c in configs if c["repo"] != "local")["hooks"]
+    assert {h["id"] for h in hooks} == {h["id"] for h in local} == set(declared)
     tomllib.loads(_blocks(text, "toml")[0])
     commands = _odgen_commands("\n".join(_blocks(text, "yaml") + _blocks(text, "sh")))
     assert len(commands) >= 7 and any("--check" in c for c in commands)
@@ -139,3 +145,22 @@ def test_ci_examples_are_valid(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) 
     monkeypatch.chdir(tmp_path)
     for argv in commands:
         parser.parse_args([a for a in argv if "*" not in a] + (["x.eds"] if argv[0] == "lint" else []))
+
+
+def test_local_hooks_of_docs_ci(home: dict[str, str], tmp_path: Path) -> None:
+    """docs/ci.md's `repo: local` config, as written there, with the installed odgen on PATH."""
+    text = (ROOT / "docs" / "ci.md").read_text(encoding="utf-8")
+    config = next(b for b in _blocks(text, "yaml") if "repo: local" in b)
+    files = {f"devices/{name}": (EXAMPLE / name).read_bytes() for name in ("io-node.eds", "io-node.toml")}
+    repo = _user_repo(tmp_path / "user", {**files, ".pre-commit-config.yaml": config.encode()})
+    env = dict(home, PATH=f"{Path(sys.executable).parent}{os.pathsep}{home['PATH']}")
+    subprocess.run([sys.executable, "-m", "odgen", "generate", "devices/io-node.eds", "--options",
+                    "devices/io-node.toml", "-o", "firmware/od"], cwd=repo, check=True)
+    git(repo, "add", "-A")
+    cmd = [*PRE_COMMIT, "run", "--all-files"]
+    passed = subprocess.run(cmd, cwd=repo, capture_output=True, text=True, env=env, check=False)
+    assert passed.returncode == 0 and "odgen lint" in passed.stdout, passed.stdout + passed.stderr
+    (repo / "devices" / "bad.eds").write_bytes(BAD.read_bytes())
+    git(repo, "add", "-A")
+    failed = subprocess.run(cmd, cwd=repo, capture_output=True, text=True, env=env, check=False)
+    assert failed.returncode == 1 and "devices/bad.eds:4: error[SYN003]" in failed.stdout, failed.stdout

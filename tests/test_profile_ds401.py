@@ -9,8 +9,8 @@ from pathlib import Path
 import pytest
 
 from odgen.cli import main
-from odgen.codegen.check import run_check
-from odgen.codegen.generate import Request
+from odgen.check import run_check
+from odgen.pipeline import Request
 from odgen.formats import load_path
 from odgen.model import ObjectDictionary
 from odgen.profiles.ds401 import (MAX_ANALOG, MAX_DIGITAL, Ds401, build, generate_c, mapping_layout, options_toml,

@@ -12,7 +12,7 @@ import pytest
 
 from odgen.catalogue import RULES
 from odgen.cli.fix import Fixed, fix_file
-from odgen.codegen.generate import Request, generate
+from odgen.pipeline import Request, generate
 from odgen.formats import load_path
 from odgen.lint.driver import lint_model
 from odgen.lint.passes import LintOptions

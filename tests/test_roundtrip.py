@@ -3,9 +3,10 @@
 Compared: objects (every sub-entry attribute, value texts and parsed values,
 unknown keys) and header sections. Not compared, by design: comments, key
 order, duplicates the reader already ignored, object-list entries that name
-no object (the writer derives the lists from the objects), and trailing blanks
-of string values from XML files (INI values cannot end in blanks: every EDS
-reader strips them).
+no object (the writer derives the lists from the objects), and an XML file's
+properties that are no CiA 306 keyword (CANopenEditor's CO_flagsPDO ...): the
+writer keeps them as `;Key=Value` comments. String values keep their trailing
+blanks (CANopenNode pads a string to reserve its capacity).
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ from pathlib import Path
 import pytest
 
 from odgen.formats import load_bytes, load_path
+from odgen.formats.eds import KEYWORDS
 from odgen.formats.eds_writer import list_of, write_eds
 from odgen.model import ObjectDictionary
 
@@ -27,19 +29,19 @@ def _semantic(od: ObjectDictionary) -> tuple:
     return objects, sections, od.node_id
 
 
-def _strip_string_padding(od: ObjectDictionary) -> None:
+def _drop_xml_properties(od: ObjectDictionary) -> None:
+    keywords = {k.lower() for k in KEYWORDS}
     for obj in od.objects.values():
-        for sub in obj.subs.values():
-            for value in (sub.default, sub.parameter_value):
-                if value is not None and isinstance(value.parsed, str):
-                    value.text, value.parsed = value.text.rstrip(), value.parsed.rstrip()
+        for extra in (obj.extra, *(sub.extra for sub in obj.subs.values())):
+            for key in [k for k, f in extra.items() if f.key not in KEYWORDS and k not in keywords]:
+                del extra[key]
 
 
 def _round_trip(path: Path) -> None:
     first, _ = load_path(path)
     assert first is not None
     if first.format in ("xdd", "xdc"):
-        _strip_string_padding(first)
+        _drop_xml_properties(first)
     fmt = "dcf" if first.is_config else "eds"
     text = write_eds(first)
     second, _ = load_bytes(text.encode("utf-8"), "again." + fmt, fmt)

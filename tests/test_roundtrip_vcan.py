@@ -13,7 +13,7 @@ import sys
 
 import pytest
 
-from odgen.codegen.generate import Request
+from odgen.pipeline import Request
 from odgen.formats import load_path
 from odgen.roundtrip import ROUNDTRIP_DEFAULTS
 from odgen.roundtrip.build import build_node

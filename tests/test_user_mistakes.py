@@ -15,7 +15,7 @@ import pytest
 
 from odgen import fileio
 from odgen.cli import main
-from odgen.codegen.generate import Request
+from odgen.pipeline import Request
 from odgen.roundtrip.build import build_node
 
 from .conftest import ROOT

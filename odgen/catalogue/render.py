@@ -6,9 +6,10 @@ from . import FAMILIES, RULES, family
 from .rule import Rule
 
 
-def render_table() -> str:
+def render_table(selectors: tuple[str, ...] = ()) -> str:
+    """One line per rule; with `selectors` (ids or prefixes) only the rules they name."""
     rows = [f"{r.id}  {r.severity.label:<7}  {'blocks' if r.blocks else '      '}  {_fixes(r):<13}  {r.title}"
-            for r in RULES.values()]
+            for r in RULES.values() if not selectors or r.id.startswith(selectors)]
     return "\n".join(rows) + "\n"
 
 

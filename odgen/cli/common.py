@@ -12,7 +12,7 @@ from ..choices import INPUT_FORMATS
 from ..errors import OdgenError
 
 if TYPE_CHECKING:
-    from ..codegen.generate import Request
+    from ..pipeline import Request
     from ..diagnostics import Diagnostic, Diagnostics
 
 
@@ -78,14 +78,14 @@ def count_type(maximum: int) -> Callable[[str], int]:
 def print_findings(diags: Diagnostics, request: Request | None = None,
                    marks: dict[Diagnostic, str] | None = None) -> None:
     """Findings on stderr; `marks` (odgen.repair.blocking_marks) follow the message of those that block."""
-    from ..codegen.generate import Request, reported
+    from ..pipeline import Request, reported
 
     for d in reported(diags, request or Request(Path())):
         print(d.text() + (marks or {}).get(d, ""), file=sys.stderr)
 
 
 def generate_request(args: argparse.Namespace) -> Request:
-    from ..codegen.generate import Request, valid_name
+    from ..pipeline import Request, valid_name
 
     if args.name is not None and not valid_name(args.name):
         raise OdgenError(f"--name '{args.name}' must be a C identifier of at most 32 characters")

@@ -11,12 +11,12 @@ from ..choices import DIFF_FAIL_ON, DIFF_FORMATS
 
 def add_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     diff = commands.add_parser("diff", help="what an update of a description breaks or changes (docs/diff.md)")
-    diff.add_argument("old", type=Path, metavar="OLD")
-    diff.add_argument("new", type=Path, metavar="NEW")
+    diff.add_argument("old", type=Path, metavar="OLD", help="the description as released (EDS, DCF, XDD or XDC)")
+    diff.add_argument("new", type=Path, metavar="NEW", help="the description as changed")
     diff.add_argument("--options", type=Path, metavar="OPTS", help="options file (persistence groups) of both")
     diff.add_argument("--old-options", type=Path, metavar="OPTS", help="options file of OLD")
     diff.add_argument("--new-options", type=Path, metavar="OPTS", help="options file of NEW")
-    diff.add_argument("--format", choices=DIFF_FORMATS, default="text")
+    diff.add_argument("--format", choices=DIFF_FORMATS, default="text", help="report format (default text)")
     diff.add_argument("--output", "-o", type=Path, help="write the report to a file instead of stdout")
     diff.add_argument("--fail-on", choices=DIFF_FAIL_ON, default="breaking",
                       help="exit 1 on changes of this class or a more severe one (default: breaking)")

@@ -12,16 +12,17 @@ from .common import add_input_format, existing_file, print_findings
 
 def add_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     explain = commands.add_parser("explain", help="show placement and hooks of an entry and their origin")
-    explain.add_argument("input", type=Path, metavar="FILE")
+    explain.add_argument("input", type=Path, metavar="FILE", help="the description (EDS, DCF, XDD or XDC)")
     explain.add_argument("index", metavar="INDEX", help="e.g. 0x6040 or 0x6200sub1")
-    explain.add_argument("--options", type=existing_file("options file"), metavar="OPTS")
+    explain.add_argument("--options", type=existing_file("options file"), metavar="OPTS",
+                         help="options file (TOML): placement, hooks")
     explain.add_argument("--lookup", choices=LOOKUPS, default="hash", help="the lookup to explain (as for generate)")
     add_input_format(explain)
 
 
 def run(args: argparse.Namespace) -> int:
     from ..codegen.explain import explain_lines, lookup_lines
-    from ..codegen.generate import Request, prepare
+    from ..pipeline import Request, prepare
     from ..place.options import parse_pattern
 
     pattern = parse_pattern(args.index)

@@ -12,7 +12,7 @@ from .common import (add_fix_options, add_generation_policy, add_input_format, e
                      node_id_type, print_findings, refusal)
 
 if TYPE_CHECKING:
-    from ..codegen.generate import Result
+    from ..pipeline import Result
 
 
 def add_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
@@ -33,7 +33,7 @@ def add_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) ->
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..codegen.generate import generate
+    from ..pipeline import generate
     from ..repair import blocking_marks
     from ..fileio import output_dir, write_files
 

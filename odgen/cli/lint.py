@@ -18,7 +18,9 @@ if TYPE_CHECKING:
 
 def add_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     lint = commands.add_parser("lint", help="check device descriptions against the rule catalogue")
-    lint.add_argument("files", nargs="*", type=Path, metavar="FILE")
+    lint.add_argument("files", nargs="*", type=Path, metavar="PATH",
+                      help="description files, folders (their .eds/.dcf/.xdd/.xdc/.xpd files, recursively) "
+                      "or quoted globs such as 'devices/**/*.eds'")
     lint.add_argument("--network", type=Path, metavar="NET.toml", help="lint a network's nodes and their PDOs")
     lint.add_argument("--format", choices=REPORT_FORMATS, default="text",
                       help="github: workflow annotations for GitHub Actions")
@@ -51,10 +53,11 @@ def lint_settings(args: argparse.Namespace, path: Path) -> tuple[RuleFilter, Lin
 
 def run(args: argparse.Namespace) -> int:
     from ..lint.settings import check_rule_ids
-    from ..lint.driver import exit_code, lint_path
+    from ..lint.driver import exit_code, expand_paths, lint_path
+    from ..lint.settings import config_for
 
     if not args.files and args.network is None:
-        raise OdgenError("lint needs FILE arguments or --network NET.toml")
+        raise OdgenError("lint needs PATH arguments (files, folders or globs) or --network NET.toml")
     check_rule_ids(args.select, "--select")
     check_rule_ids(args.ignore, "--ignore")
     results: list[FileResult] = []
@@ -65,7 +68,7 @@ def run(args: argparse.Namespace) -> int:
         rule_filter, options, strict = lint_settings(args, args.network)
         results, unreadable = lint_network(args.network, options, rule_filter)
         failed = exit_code(results, strict) != 0
-    for path in args.files:
+    for path in expand_paths(args.files, lambda found: config_for(found, args.config).excludes(found)):
         rule_filter, options, strict = lint_settings(args, path)
         try:
             result = lint_path(path, options, rule_filter, args.input_format)

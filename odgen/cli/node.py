@@ -10,17 +10,18 @@ from .common import add_input_format, existing_file, node_id_type, print_finding
 
 def add_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     node = commands.add_parser("node", help="build a CANopen node from a description and run it on SocketCAN")
-    node.add_argument("input", type=Path, metavar="FILE")
-    node.add_argument("--iface", default="vcan0")
+    node.add_argument("input", type=Path, metavar="FILE", help="the description (EDS, DCF, XDD or XDC)")
+    node.add_argument("--iface", default="vcan0", metavar="CAN", help="SocketCAN interface to run on (default vcan0)")
     node.add_argument("--node-id", type=node_id_type,
                       help="default 5; none waits for an LSS master when the node has LSS")
     node.add_argument("--nv", type=Path, help="file that keeps stored parameters (default: none)")
-    node.add_argument("--options", type=existing_file("options file"), metavar="OPTS")
+    node.add_argument("--options", type=existing_file("options file"), metavar="OPTS",
+                      help="options file (TOML): placement, hooks")
     add_input_format(node)
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..codegen.generate import Request
+    from ..pipeline import Request
     from ..hostneeds import require_can_extra, require_socketcan
     from ..roundtrip.build import build_node
 

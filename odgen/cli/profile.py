@@ -21,11 +21,13 @@ def add_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) ->
                                 ("ao", DS401_MAX_ANALOG, "analog outputs")):
         ds401.add_argument(f"--{kind}", type=count_type(maximum), default=0, metavar="N", help=f"{what}, 0..{maximum}")
     for kind in ("ai", "ao"):
-        ds401.add_argument(f"--{kind}-width", type=int, choices=DS401_WIDTHS, default=16)
+        ds401.add_argument(f"--{kind}-width", type=int, choices=DS401_WIDTHS, default=16,
+                           help=f"bits per analog {'input' if kind == 'ai' else 'output'} (default 16)")
     ds401.add_argument("--name", default=DS401_NAME, help="product name")
     for key in ("vendor-id", "product-code", "revision"):
-        ds401.add_argument(f"--{key}", type=count_type(0xFFFFFFFF), default=0, metavar="N")
-    ds401.add_argument("-o", "--output", type=Path, required=True, metavar="FILE.eds")
+        ds401.add_argument(f"--{key}", type=count_type(0xFFFFFFFF), default=0, metavar="N",
+                           help=f"identity object 0x1018's {key.replace('-', ' ')} (default 0)")
+    ds401.add_argument("-o", "--output", type=Path, required=True, metavar="FILE.eds", help="the EDS to write")
     ds401.add_argument("--generate", type=Path, metavar="DIR", help="also generate the C dictionary into DIR")
 
 

@@ -11,10 +11,11 @@ from .common import add_input_format, existing_file, node_id_type
 
 def add_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     rt = commands.add_parser("roundtrip", help="check a node built from FILE with python canopen on a CAN bus")
-    rt.add_argument("files", nargs="+", type=Path, metavar="FILE")
-    rt.add_argument("--iface", default="vcan0")
-    rt.add_argument("--node-id", type=node_id_type, default=5)
-    rt.add_argument("--options", type=existing_file("options file"), metavar="OPTS")
+    rt.add_argument("files", nargs="+", type=Path, metavar="FILE", help="descriptions (EDS, DCF, XDD or XDC)")
+    rt.add_argument("--iface", default="vcan0", metavar="CAN", help="SocketCAN interface to use (default vcan0)")
+    rt.add_argument("--node-id", type=node_id_type, default=5, help="node-id of the built node (default 5)")
+    rt.add_argument("--options", type=existing_file("options file"), metavar="OPTS",
+                    help="options file (TOML): placement, hooks")
     rt.add_argument("--report", type=Path, help="write the results as JSON")
     add_input_format(rt)
 

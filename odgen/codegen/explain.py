@@ -7,7 +7,7 @@ from ..model import ObjectDictionary, Sub
 from .lookup import perfect_hash
 from ..place.options import Pattern
 from .packing import packable
-from ..place.placement import Placement
+from ..place.placement import Placements
 
 
 def _value(od: ObjectDictionary, sub: Sub) -> str:
@@ -18,7 +18,7 @@ def _value(od: ObjectDictionary, sub: Sub) -> str:
     return f"{value.text.strip()[:60]:<14} from {'ParameterValue' if value is sub.parameter_value else 'DefaultValue'}"
 
 
-def explain_lines(od: ObjectDictionary, placements: dict[tuple[int, int], Placement], pattern: Pattern) -> list[str]:
+def explain_lines(od: ObjectDictionary, placements: Placements, pattern: Pattern) -> list[str]:
     lines = []
     packed: dict[int, bool] = {}
     for (index, subindex), p in sorted(placements.items()):
@@ -49,8 +49,11 @@ def lookup_lines(od: ObjectDictionary, lookup: str) -> list[str]:
               f"({found.table_bytes} B of FLASH), one multiply and two table reads per lookup")
     modes = {"hash": hashed, "bsearch": "binary search over the entry table, no tables of its own",
              "switch": "a generated switch over the indices (code, larger than the hash tables)"}
-    lines = [f"dictionary: {len(indices)} entries; lookup: {lookup} ({modes[lookup]})"]
+    # counted as `odgen report` counts: objects (indices), and entries with every sub-index of each
+    entries = sum(len(o.subs) for o in od.objects.values())
+    lines = [f"dictionary: {len(od.objects)} objects, {entries} entries counting each sub-index",
+             f"lookup: {lookup} over the {len(indices)} indices from 0x1000 ({modes[lookup]})"]
     if lookup == "hash":
-        lines.append("  the default: the fastest mode measured (benchmarks/results/latest.md); "
+        lines.append("  the default: the fastest mode measured (docs/figures.md); "
                      "--lookup bsearch saves the tables at about twice the instructions per lookup")
     return lines

@@ -14,12 +14,12 @@ from __future__ import annotations
 from ..model import ObjectDictionary
 from ..model.datatypes import BASIC_TYPES
 from ..model.od import Obj
-from ..place.placement import STORE_CLASS, Placement
+from ..place.placement import Placements, STORE_CLASS
 
 ARRAY, RECORD = 8, 9
 
 
-def packable(od: ObjectDictionary, obj: Obj, placements: dict[tuple[int, int], Placement]) -> bool:
+def packable(od: ObjectDictionary, obj: Obj, placements: Placements) -> bool:
     """Whether the elements of `obj` share one descriptor in the generated tables."""
     if obj.structure not in (ARRAY, RECORD) or sorted(obj.subs) != list(range(len(obj.subs))) or len(obj.subs) < 3:
         return False

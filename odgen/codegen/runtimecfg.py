@@ -10,8 +10,10 @@ the "ODG1" path of groups without migration, and the boot migration when no grou
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
-from .viewmodel import DictView
+if TYPE_CHECKING:  # the view-model calls runtime_config() to finish a view
+    from .viewmodel import DictView
 
 WIDE = {0x0C, 0x0D, 0x11, 0x12, 0x13, 0x14, 0x15, 0x18, 0x19, 0x1A, 0x1B}  # wider than 32 bits
 STRINGS = {0x09, 0x0A}

@@ -14,7 +14,7 @@ from ..model.cia301 import COMMUNICATION_AREA, RESTORE, STORE, unused_manufactur
 from ..model.datatypes import BASIC_TYPES, DataType
 from ..model.wire import wire_bytes
 from .memory import value_rows
-from ..place.placement import Placement
+from ..place.placement import Placement, Placements
 from .viewmodel import DictView
 from ..model.expect import expected_bytes, write_cases
 
@@ -46,6 +46,7 @@ class Expect:
 @dataclass
 class SelfTest:
     name: str
+    upper: str  # the prefix of the dictionary's macros (NAME_NV_SIZE)
     node_id: int
     expects: list[Expect]
     functions: list[str]
@@ -85,7 +86,7 @@ def _expect(od: ObjectDictionary, obj: Obj, sub: Sub, placement: Placement, node
     return exp
 
 
-def build_selftest(od: ObjectDictionary, placements: dict[tuple[int, int], Placement], view: DictView,
+def build_selftest(od: ObjectDictionary, placements: Placements, view: DictView,
                    node_id: int) -> SelfTest:
     expects = []
     for obj in od.sorted_objects():
@@ -96,6 +97,6 @@ def build_selftest(od: ObjectDictionary, placements: dict[tuple[int, int], Place
     missing = unused_manufacturer_index(od.objects)
     structs = [(row.label, row.var, row.where) for row in value_rows(view)]
     store = od.objects.get(STORE)
-    return SelfTest(view.name, node_id, expects, view.functions, missing, len(view.groups),
+    return SelfTest(view.name, view.upper, node_id, expects, view.functions, missing, len(view.groups),
                     store is not None and 1 in store.subs and RESTORE in od.objects, structs)
 

@@ -22,7 +22,7 @@ import struct
 import zlib
 from dataclasses import dataclass, field
 from operator import attrgetter
-from typing import Any, NamedTuple
+from typing import NamedTuple
 
 from ..catalogue.gen import GEN004, GEN005, GEN006, GEN007, GEN009
 from ..diagnostics import Diagnostics, Loc
@@ -34,7 +34,11 @@ from ..model.datatypes import BASIC_TYPES, DataType
 from ..cnames import COMMENT_WIDTH, comment, identifier, string_literal
 from .packing import packable
 from ..model.cia301 import RESTORE, STORE
-from ..place.placement import STORE_CLASS, Placement
+from ..place.options import PersistOptions
+from ..place.persistence import PersistView, persist_view
+from ..place.placement import Placement, Placements, STORE_CLASS
+from .lookup import PerfectHash, perfect_hash
+from .runtimecfg import Switch, runtime_config
 
 MAX_C_STRING = 4095
 
@@ -182,9 +186,9 @@ class DictView:
     packed: list[PackedView] = field(default_factory=list)
     macros: list[tuple[str, str, str]] = field(default_factory=list)  # #define name value /* note */
     accessors: list[tuple[str, str]] = field(default_factory=list)  # #define name expression
-    persist: Any = None  # persistview.PersistView: NV regions, layouts, status object
-    config: list = field(default_factory=list)  # runtimecfg.Switch: the runtime's ODG_CFG_* switches
-    hash: object = None  # lookup.PerfectHash for --lookup hash
+    persist: PersistView | None = None  # NV regions, layouts, status object
+    config: list[Switch] = field(default_factory=list)  # the runtime's ODG_CFG_* switches
+    hash: PerfectHash | None = None  # for --lookup hash
 
     def _table(self, suffix: str, present: bool) -> str:
         return f"{self.name}_{suffix}" if present else "NULL"
@@ -291,7 +295,7 @@ def limit_bits(value: int | float, dtype: DataType) -> int:
 
 
 class _Builder:
-    def __init__(self, od: ObjectDictionary, placements: dict[tuple[int, int], Placement], name: str,
+    def __init__(self, od: ObjectDictionary, placements: Placements, name: str,
                  diags: Diagnostics) -> None:
         self.od, self.placements, self.diags = od, placements, diags
         self.name = name
@@ -325,8 +329,9 @@ class _Builder:
         return name
 
 
-def build(od: ObjectDictionary, placements: dict[tuple[int, int], Placement], name: str, *,
-          version: str, digest: str, lookup: str, diags: Diagnostics) -> DictView:
+def build(od: ObjectDictionary, placements: Placements, persist: PersistOptions, name: str,
+          *, version: str, digest: str, lookup: str, diags: Diagnostics) -> DictView:
+    """The finished view of a placed dictionary: tables, values, persistence, runtime switches, lookup."""
     b = _Builder(od, placements, name, diags)
     view = DictView(name=name, upper=name.upper(), version=version, digest=digest,
                     source=comment(od.source.rsplit("/", 1)[-1]), lookup=lookup)
@@ -344,6 +349,10 @@ def build(od: ObjectDictionary, placements: dict[tuple[int, int], Placement], na
     _check_functions(b, view)
     for block in view.structs:
         _check_block_size(b, block)
+    view.persist = persist_view(od, placements, persist, diags)
+    view.config = runtime_config(view)
+    if lookup == "hash":
+        view.hash = perfect_hash([e.index for e in view.entries])
     return view
 
 

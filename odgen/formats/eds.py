@@ -48,7 +48,38 @@ HASH_COMMENT = re.compile(r"\s+#.*$")
 def load_eds(data: bytes, source: str, diags: Diagnostics, fmt: str = "eds") -> ObjectDictionary:
     text = ini.decode(data, source, diags)
     names: dict[str, int] = {}  # every section name read so far (the INI reader fills it)
-    return _Reader(source, fmt, diags).read(ini.sections(text, source, diags, COMMENT_KEYS, names), names)
+    od = _Reader(source, fmt, diags).read(ini.sections(text, source, diags, COMMENT_KEYS, names), names)
+    if _SPACE_AT_LINE_END.search(text) or text.endswith(" "):  # one scan, ~2 ms a MB
+        _keep_string_padding(od, text)
+    return od
+
+
+_SPACE_AT_LINE_END = re.compile(" [\r\n]")
+_PADDED_KEYS = (("default", "defaultvalue"), ("parameter_value", "parametervalue"))
+
+
+def _keep_string_padding(od: ObjectDictionary, text: str) -> None:
+    """A string's DefaultValue/ParameterValue keeps the spaces that end its line, as the XDD reader
+    keeps them: CANopenNode pads a string with spaces to reserve its capacity (`Trace1` and 24
+    spaces: 30 bytes), which the INI reader, stripping every line, would cut to 6. Only files
+    with a line ending in a space pay for this second look at the lines that hold string values."""
+    wanted: dict[int, tuple[Sub, str, str]] = {}
+    for obj in od.objects.values():
+        for sub in obj.subs.values():
+            if sub.dtype is not None and sub.dtype.kind in ("vstring", "ustring"):
+                for attr, key in _PADDED_KEYS:
+                    value = getattr(sub, attr)
+                    if value is not None and value.line:
+                        wanted[value.line] = (sub, attr, key)
+    pending = sorted(wanted, reverse=True)  # line numbers, the next one last
+    for first, lines in ini._parts(text):
+        while pending and pending[-1] < first + len(lines):
+            number = pending.pop()
+            sub, attr, key = wanted[number]
+            written, _, raw = lines[number - first].partition("=")
+            padded, value = raw.lstrip(), getattr(sub, attr)
+            if written.strip().lower() == key and padded != value.text and padded.rstrip() == value.text:
+                setattr(sub, attr, parse_value(padded, sub.dtype, number))
 
 
 class _Reader:

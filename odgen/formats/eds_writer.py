@@ -33,25 +33,29 @@ def write_eds(od: ObjectDictionary) -> str:
     groups: dict[str, list[Obj]] = {name: [] for name in OBJECT_LISTS}
     for obj in od.sorted_objects():
         groups[list_of(obj)].append(obj)
+    foreign = od.format in ("xdd", "xdc")
     for name in OBJECT_LISTS:
-        _object_list(out, name, groups[name])
+        _object_list(out, name, groups[name], foreign)
     for key, section in od.sections.items():
         if section.name not in _LEADING_SECTIONS:
             _header(out, od, key)
     return "\n".join(map(_one_line, out)).rstrip("\n") + "\n"
 
 
-def _extra(out: list[str], fields: Iterable[Field]) -> None:
+def _extra(out: list[str], fields: Iterable[Field], foreign: bool) -> None:
     """Keys odgen does not interpret. One the section already has (an XDD's PDOmapping="TPDO" beside
     PDOMapping=1 when the access does not say the direction), or that spells a CiA 306 keyword in
     other letters (an XDD attribute obJectType), is left out: EDS has no place for it, and readers
-    would take it for the keyword or ignore it as a repeat (SYN003)."""
+    would take it for the keyword or ignore it as a repeat (SYN003). `foreign`: the keys come from
+    an XDD/XDC (CANopenEditor's CO_flagsPDO, CO_disabled ...), where they are no EDS key; they are
+    kept as `;Key=Value` comments, as CANopenEditor writes its own, so that the EDS is one odgen's
+    lint passes (a key it does not know is OBJ025). An EDS's own unknown keys stay keys."""
     start = next(i for i in range(len(out) - 1, -1, -1) if out[i].startswith("["))
     have = {line.lstrip(";").partition("=")[0].lower() for line in out[start + 1:]}
     for f in fields:
         respelled = _KEYWORDS.get(f.key.lower(), f.key) != f.key
         if f.key.lower() not in have and not respelled and _ini_key(f.key):
-            out.append(f"{f.key}={f.text}")
+            out.append(f"{';' if foreign and f.key not in KEYWORDS else ''}{f.key}={f.text}")
             have.add(f.key.lower())
 
 
@@ -74,36 +78,36 @@ def _header(out: list[str], od: ObjectDictionary, name: str) -> None:
     out.append("")
 
 
-def _object_list(out: list[str], name: str, objects: list[Obj]) -> None:
+def _object_list(out: list[str], name: str, objects: list[Obj], foreign: bool) -> None:
     out.append(f"[{name}]")
     out.append(f"SupportedObjects={len(objects)}")
     out.extend(f"{n}=0x{obj.index:04X}" for n, obj in enumerate(objects, start=1))
     out.append("")
     for obj in objects:
-        _object(out, obj)
+        _object(out, obj, foreign)
 
 
-def _object(out: list[str], obj: Obj) -> None:
+def _object(out: list[str], obj: Obj, foreign: bool) -> None:
     out.append(f"[{obj.index:04X}]")
     out.append(f"ParameterName={obj.name}")
     if obj.object_code_written or obj.object_code != VAR:
         out.append(f"ObjectType={_hex(obj.object_code)}")
     if obj.is_var and 0 in obj.subs:
-        _value_keys(out, obj.subs[0])
+        _value_keys(out, obj.subs[0], foreign)
         if obj.count_label is not None:
             out.append(f";CountLabel={obj.count_label}")
         out.append("")
         return
-    _container_keys(out, obj)
+    _container_keys(out, obj, foreign)
     out.append("")
     for sub in obj.sorted_subs():
         if not sub.compact:
-            _sub_section(out, obj, sub)
+            _sub_section(out, obj, sub, foreign)
     if obj.compact_sub_obj:
         _compact_sections(out, obj)
 
 
-def _container_keys(out: list[str], obj: Obj) -> None:
+def _container_keys(out: list[str], obj: Obj, foreign: bool) -> None:
     if obj.sub_number is not None:
         out.append(f"SubNumber={_hex(obj.sub_number)}")
     if obj.compact_sub_obj is not None:
@@ -117,15 +121,15 @@ def _container_keys(out: list[str], obj: Obj) -> None:
         out.append(f";CountLabel={obj.count_label}")
     if obj.storage is not None:
         out.append(f";StorageLocation={obj.storage}")
-    _extra(out, obj.extra.values())
+    _extra(out, obj.extra.values(), foreign)
 
 
-def _sub_section(out: list[str], obj: Obj, sub: Sub) -> None:
+def _sub_section(out: list[str], obj: Obj, sub: Sub, foreign: bool) -> None:
     out.append(f"[{obj.index:04X}sub{sub.subindex:X}]")
     out.append(f"ParameterName={sub.name}")
     if sub.object_type is not None:
         out.append(f"ObjectType={_hex(sub.object_type)}")
-    _value_keys(out, sub)
+    _value_keys(out, sub, foreign)
     out.append("")
 
 
@@ -146,7 +150,7 @@ def _typed_keys(out: list[str], sub: Sub) -> None:
     out.append(f"PDOMapping={int(sub.pdo_mapping)}")
 
 
-def _value_keys(out: list[str], sub: Sub) -> None:
+def _value_keys(out: list[str], sub: Sub, foreign: bool) -> None:
     _typed_keys(out, sub)
     if sub.obj_flags is not None:
         out.append(f"ObjFlags={_hex(sub.obj_flags)}")
@@ -158,7 +162,7 @@ def _value_keys(out: list[str], sub: Sub) -> None:
             out.append(f"{key}={text}")
     if sub.storage is not None:
         out.append(f";StorageLocation={sub.storage}")
-    _extra(out, sub.extra.values())
+    _extra(out, sub.extra.values(), foreign)
 
 
 def _compact_sections(out: list[str], obj: Obj) -> None:

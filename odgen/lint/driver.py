@@ -2,12 +2,15 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import glob
+import os
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..diagnostics import Diagnostic, Diagnostics, Severity
-from ..formats import load_path
+from ..errors import OdgenError
+from ..formats import FORMATS, load_path
 from ..gcpause import no_cyclic_gc
 from ..model import ObjectDictionary
 from .passes import LintOptions, run_rules
@@ -56,3 +59,49 @@ def exit_code(results: Sequence[FileResult], strict: bool) -> int:
     worst = Severity.WARNING if strict else Severity.ERROR
     failed = any(d.severity >= worst for r in results for d in r.diagnostics)
     return 1 if failed else 0
+
+
+def expand_paths(paths: Sequence[Path], excluded: Callable[[Path], bool] = lambda path: False) -> list[Path]:
+    """The files `odgen lint PATH...` reads, in a fixed order.
+
+    A file is read as named (even when the config file excludes it, as ruff does). A folder stands
+    for the description files (.eds .dcf .xdd .xdc .xpd) in it and below, hidden folders passed over;
+    a glob (`'devices/**/*.eds'`, quoted so the shell leaves it, or on a shell that does not expand
+    it) for the description files it matches. Files found in a folder or by a glob that `excluded`
+    names are left out. Each argument's files are sorted; a file found twice is read once. A folder
+    or glob that yields no description is the user's mistake."""
+    found: dict[Path, None] = {}
+    for path in paths:
+        if path.is_dir():
+            files, where = _descriptions_below(path), "in this folder or below"
+        elif not path.exists() and any(c in str(path) for c in "*?["):
+            files, where = _glob_descriptions(str(path)), "that this pattern matches"
+        else:
+            found.setdefault(path)
+            continue
+        kept = [f for f in files if not excluded(f)]
+        if not files:
+            raise OdgenError(f"{path}: no description file ({' '.join(FORMATS)}) {where}; "
+                             "name the files to lint, or a folder that holds some")
+        if not kept:
+            raise OdgenError(f"{path}: every description file {where} is left out by the config file's "
+                             "exclude; name the files to lint them anyway")
+        for file in kept:
+            found.setdefault(file)
+    return list(found)
+
+
+def _descriptions_below(folder: Path) -> list[Path]:
+    files = []
+    for here, dirs, names in os.walk(folder):
+        dirs[:] = sorted(d for d in dirs if not d.startswith("."))
+        files += [Path(here, n) for n in names if Path(n).suffix.lower() in FORMATS]
+    return sorted(files, key=lambda p: p.as_posix())
+
+
+def _glob_descriptions(pattern: str) -> list[Path]:
+    matches = [Path(m) for m in glob.glob(pattern, recursive=True)]
+    files = [m for m in matches if m.is_file() and m.suffix.lower() in FORMATS]
+    for folder in (m for m in matches if m.is_dir()):
+        files += _descriptions_below(folder)
+    return sorted(set(files), key=lambda p: p.as_posix())

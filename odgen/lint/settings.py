@@ -3,8 +3,10 @@
 The file is looked for upward from each linted file's folder; in one folder odgen.toml wins,
 and a pyproject.toml without `[tool.odgen]` is passed over (as ruff does). Keys: select,
 ignore, per-file-ignores (glob relative to the config file's folder -> rule ids), strict,
-node-id. Command-line options override the file: --select replaces its select, --ignore adds
-to its ignore, --strict and --node-id replace. A rule id that names no rule (or no family
+node-id, exclude (globs relative to the config file's folder, or a file or folder name: files
+that `odgen lint FOLDER` or a glob would find are left out; a file named is still read).
+Command-line options override the file: --select replaces its select, --ignore adds to its
+ignore, --strict and --node-id replace. A rule id that names no rule (or no family
 prefix) is a user mistake: exit 2 naming the closest ids, since a typo would quietly turn
 checks off.
 """
@@ -21,7 +23,7 @@ from typing import Any
 
 from ..errors import OdgenError
 
-KEYS = ("select", "ignore", "per-file-ignores", "strict", "node-id")
+KEYS = ("select", "ignore", "per-file-ignores", "strict", "node-id", "exclude")
 
 
 @dataclass(frozen=True)
@@ -32,18 +34,33 @@ class LintConfig:
     per_file_ignores: tuple[tuple[str, tuple[str, ...]], ...] = field(default=())
     strict: bool = False
     node_id: int | None = None
+    exclude: tuple[str, ...] = ()
+
+    def excludes(self, file: Path) -> bool:
+        """Whether an `exclude` pattern names the file: its path relative to the config file's
+        folder, the folders on that path (`vendor` or `vendor/` leaves out a folder), or its name."""
+        if self.path is None or not self.exclude:
+            return False
+        rel = _relative(file, self.path.parent)
+        parts = rel.split("/")
+        candidates = [rel, file.name, *("/".join(parts[:n]) for n in range(1, len(parts))), *parts[:-1]]
+        return any(fnmatch(c, p.rstrip("/")) for p in self.exclude for c in candidates)
 
     def ignores_for(self, file: Path) -> tuple[str, ...]:
         """`ignore` plus the per-file-ignores whose glob matches the file (relative to the config's folder)."""
         if self.path is None or not self.per_file_ignores:
             return self.ignore
-        try:
-            rel = file.resolve().relative_to(self.path.parent.resolve()).as_posix()
-        except ValueError:
-            rel = file.as_posix()
+        rel = _relative(file, self.path.parent)
         extra = [rule for glob, rules in self.per_file_ignores if fnmatch(rel, glob) or fnmatch(file.name, glob)
                  for rule in rules]
         return self.ignore + tuple(extra)
+
+
+def _relative(file: Path, folder: Path) -> str:
+    try:
+        return file.resolve().relative_to(folder.resolve()).as_posix()
+    except ValueError:
+        return file.as_posix()
 
 
 def check_rule_ids(ids: Iterable[str], origin: str) -> None:
@@ -68,9 +85,17 @@ def find_config(start: Path) -> Path | None:
         if (here / "odgen.toml").is_file():
             return here / "odgen.toml"
         pyproject = here / "pyproject.toml"
-        if pyproject.is_file() and "odgen" in _read(pyproject).get("tool", {}):
+        if pyproject.is_file() and "odgen" in _tool_table(pyproject):
             return pyproject
     return None
+
+
+def _tool_table(pyproject: Path) -> dict[str, Any]:
+    tool = _read(pyproject).get("tool", {})
+    if not isinstance(tool, dict):
+        raise OdgenError(f"{pyproject}: `tool` must be a table (as in [tool.odgen]); correct the file, "
+                         "or pass the settings with --config")
+    return tool
 
 
 @cache
@@ -99,7 +124,7 @@ def _rules(value: object, where: str) -> tuple[str, ...]:
 @cache
 def load_config(path: Path) -> LintConfig:
     doc = _read(path)
-    table = doc if path.name == "odgen.toml" else doc.get("tool", {}).get("odgen", {})
+    table = doc if path.name == "odgen.toml" else _tool_table(path).get("odgen", {})
     if not isinstance(table, dict):
         raise OdgenError(f"{path}: [tool.odgen] must be a table")
     section = f"{path}: " + ("" if path.name == "odgen.toml" else "[tool.odgen] ")
@@ -115,11 +140,14 @@ def load_config(path: Path) -> LintConfig:
         raise OdgenError(f"{section}strict must be true or false")
     if node_id is not None and (not isinstance(node_id, int) or isinstance(node_id, bool) or not 1 <= node_id <= 127):
         raise OdgenError(f"{section}node-id must be a number in 1..127")
+    exclude = table.get("exclude", [])
+    if not isinstance(exclude, list) or not all(isinstance(p, str) and p.strip() for p in exclude):
+        raise OdgenError(f"{section}exclude must be a list of globs, e.g. [\"vendor/\", \"*_old.eds\"]")
     return LintConfig(path, _rules(table.get("select", []), f"{section}select"),
                       _rules(table.get("ignore", []), f"{section}ignore"),
                       tuple((glob, _rules(rules, f"{section}per-file-ignores {glob!r}"))
                             for glob, rules in per_file.items()),
-                      strict, node_id)
+                      strict, node_id, tuple(p.strip().removeprefix("./") for p in exclude))
 
 
 def config_for(file: Path, explicit: Path | None = None) -> LintConfig:

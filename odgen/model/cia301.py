@@ -3,7 +3,7 @@ connection set, the 0x1010/0x1011 command words and the SDO abort codes.
 
 Every Python user (rules, placement, self-test, round trip) takes these numbers from here.
 The runtime's C mirrors some of them, by name or as literals: the abort codes are
-`ODG_ABORT_CODES` in runtime/odg.h, the command words `CMD_SAVE`/`CMD_LOAD` in runtime/odg.c,
+the `ODG_ABORT_*` macros in runtime/odg.h, the command words `CMD_SAVE`/`CMD_LOAD` in runtime/odg.c,
 the communication indices literals in runtime/odg_node.c, odg_pdo.c and profiles/ds401.c.
 tests/test_cia301.py reads those files and fails when they and this module disagree.
 """
@@ -40,6 +40,16 @@ ERROR_BEHAVIOUR = 0x1029
 COMMUNICATION_AREA = (0x1000, 0x1FFF)
 MANUFACTURER_AREA = (0x2000, 0x5FFF)
 MANDATORY = {DEVICE_TYPE: "device type", ERROR_REGISTER: "error register", IDENTITY: "identity"}
+
+
+def object_list_for(index: int) -> str:
+    """The object list an index belongs in (CiA 306), by its key: the mandatory objects, the
+    manufacturer-specific area 0x2000-0x5FFF, and everything else optional."""
+    if index in MANDATORY:
+        return "mandatoryobjects"
+    if 0x2000 <= index <= 0x5FFF:
+        return "manufacturerobjects"
+    return "optionalobjects"
 # ro by access type, yet written by the communication stack itself.
 RUNTIME_UPDATED = frozenset({ERROR_REGISTER, STATUS_REGISTER, ERROR_HISTORY})
 
@@ -132,7 +142,7 @@ def predefined_cob_id(index: int, subindex: int) -> tuple[int, str] | None:
 # -- 0x1010 / 0x1011 command words: "save" / "load" as little-endian UNSIGNED32 ------------
 SAVE, LOAD = b"save", b"load"
 
-# -- SDO abort codes, by the runtime's names (runtime/odg.h, ODG_ABORT_CODES) -------------
+# -- SDO abort codes, by the runtime's names (runtime/odg.h, ODG_ABORT_*) ------------------
 ABORT_CODES = {
     "ODG_ABORT_TOGGLE": 0x05030000,
     "ODG_ABORT_TIMEOUT": 0x05040000,

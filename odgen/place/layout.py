@@ -6,10 +6,10 @@ from ..model import ObjectDictionary, Sub
 from ..model.capacity import domain_capacity, limit_value, string_capacity, string_default
 from ..model.datatypes import DataType
 from .migration import DOMAIN_TYPE, EntryLayout, GroupLayout
-from .placement import Placement
+from .placement import Placement, Placements
 
 
-def group_layouts(od: ObjectDictionary, placements: dict[tuple[int, int], Placement]) -> dict[str, GroupLayout]:
+def group_layouts(od: ObjectDictionary, placements: Placements) -> dict[str, GroupLayout]:
     """Every persistence group with its entries in (index, sub) order; entries of a type without a
     stored form (a DEFSTRUCT type) are left out, as the generator refuses them."""
     groups: dict[str, list[EntryLayout]] = {}

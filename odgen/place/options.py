@@ -106,12 +106,18 @@ def parse_pattern(text: str) -> Pattern | None:
 def load_options(path: Path | None, diags: Diagnostics) -> Options:
     if path is None:
         return Options()
+    return read_options(path, diags)[1]
+
+
+def read_options(path: Path, diags: Diagnostics) -> tuple[bytes, Options]:
+    """The options file's bytes (what the generated headers' digest covers) and the options they give."""
     try:
-        text = path.read_text(encoding="utf-8")
+        data = path.read_bytes()
+        text = data.decode("utf-8")
     except (OSError, UnicodeDecodeError) as err:
         diags.add(GEN001, Loc(str(path)), f"cannot read the options file: {err}")
-        return Options(str(path))
-    return parse_options(text, str(path), diags)
+        return b"", Options(str(path))
+    return data, parse_options(text.replace("\r\n", "\n").replace("\r", "\n"), str(path), diags)
 
 
 def parse_options(text: str, source: str, diags: Diagnostics) -> Options:

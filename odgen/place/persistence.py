@@ -1,8 +1,8 @@
 """Persistence groups in the generated C (docs/persistence.md): each group's NV region from
 `odgen.place.nvmap`, its layout descriptor for boot migration, and the optional boot status object.
 
-Kept apart from the view-model of the tables: `add_status_object` runs on the placed dictionary
-(before the view is built), `persist_view` on the placed dictionary once the view exists.
+Kept apart from the view-model of the tables: `status_object` is added to the model when it is
+loaded (so lint sees it), `persist_view` works on the placed dictionary.
 """
 
 from __future__ import annotations
@@ -19,8 +19,8 @@ from ..model.values import parse_value
 from .layout import group_layouts
 from .migration import GroupLayout
 from .nvmap import Region, nv_map
-from .options import PersistOptions
-from .placement import Placement
+from .options import Options, PersistOptions
+from .placement import Placements, place
 
 UNSIGNED8, UNSIGNED32 = 0x05, 0x07
 
@@ -44,28 +44,27 @@ class PersistView:
     size: int = 0  # NV bytes of all regions
 
 
-def add_status_object(od: ObjectDictionary, placements: dict[tuple[int, int], Placement],
-                      persist: PersistOptions, diags: Diagnostics) -> None:
+def status_object(od: ObjectDictionary, options: Options, diags: Diagnostics) -> Obj | None:
     """The boot status object at `[persist] status_object`: a RECORD in RAM, sub n (UNSIGNED32, ro)
     the group NAME_GROUP_* = n - 1 (status | converted << 8 | defaulted << 16 | dropped << 24),
-    set by the runtime at boot."""
-    index = persist.status_object
+    set by the runtime at boot. Its sub-entries follow the groups the placement makes (their order
+    is NAME_GROUP_*'s), so the placement is worked out here once without reporting."""
+    index = options.persist.status_object
     if index is None:
-        return
+        return None
     if index in od.objects:
         diags.add(GEN001, Loc(od.source), f"status_object 0x{index:04X} is an object of the description; "
                   "choose a free index in [persist]", index)
-        return
-    groups = sorted({p.group for p in placements.values() if p.group is not None})  # NAME_GROUP_* order
+        return None
+    placements = place(od, options, Diagnostics())
+    groups = sorted({p.group for p in placements.values() if p.group is not None})
     obj = Obj(index, "Stored parameters boot status", object_code=RECORD)
     obj.subs[0] = Sub(0, "Number of groups", data_type=UNSIGNED8, access="ro",
                       default=parse_value(str(len(groups)), BASIC_TYPES[UNSIGNED8]))
     for n, group in enumerate(groups, start=1):
         obj.subs[n] = Sub(n, f"Group {group}", data_type=UNSIGNED32, access="ro",
                           default=parse_value("0", BASIC_TYPES[UNSIGNED32]))
-    od.objects[index] = obj
-    for subindex in obj.subs:
-        placements[(index, subindex)] = Placement("ram", "[persist] status_object")
+    return obj
 
 
 def nv_regions(layouts: dict[str, GroupLayout], persist: PersistOptions) -> dict[str, Region]:
@@ -73,7 +72,7 @@ def nv_regions(layouts: dict[str, GroupLayout], persist: PersistOptions) -> dict
     return nv_map(layouts, headroom=persist.headroom, pinned=persist.regions, migration=persist.migration)
 
 
-def persist_view(od: ObjectDictionary, placements: dict[tuple[int, int], Placement],
+def persist_view(od: ObjectDictionary, placements: Placements,
                  persist: PersistOptions, diags: Diagnostics) -> PersistView:
     layouts = group_layouts(od, placements)
     regions = nv_regions(layouts, persist)

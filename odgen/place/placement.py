@@ -12,6 +12,7 @@ entry, so it is read as "no preference", not as a decision.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 from ..catalogue.gen import GEN002, GEN003
@@ -41,6 +42,10 @@ class Placement:
     @property
     def group(self) -> str | None:
         return self.storage.split(":", 1)[1] if self.storage.startswith("persist:") else None
+
+
+# Every (index, sub) of a dictionary with its placement; stages after `place` only read it.
+Placements = Mapping[tuple[int, int], Placement]
 
 
 def storage_from_description(text: str | None) -> str | None:
@@ -73,9 +78,11 @@ def place(od: ObjectDictionary, options: Options, diags: Diagnostics) -> dict[tu
     """Placement of every (index, sub) of the dictionary; GEN findings into `diags`."""
     result: dict[tuple[int, int], Placement] = {}
     entries = [(entry, loc, str(loc)) for entry in options.entries for loc in [Loc(entry.source, entry.line)]]
+    status = options.persist.status_object  # odgen's own object: the runtime sets it at boot
     for obj in od.sorted_objects():
         for sub in obj.sorted_subs():
-            result[(obj.index, sub.subindex)] = _place_one(od, obj, sub, entries)
+            result[(obj.index, sub.subindex)] = Placement("ram", "[persist] status_object") \
+                if obj.index == status else _place_one(od, obj, sub, entries)
     for entry in options.entries:
         if not entry.used:
             patterns = ", ".join(p.text for p in entry.patterns)

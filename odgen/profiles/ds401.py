@@ -22,7 +22,7 @@ from ..model import ARRAY, RECORD, VAR, BASIC_TYPES, Obj, ObjectDictionary, Sub,
 from ..model.cia301 import COB_INVALID, PDO_BASE_STEP, RPDO_BASE, RPDO_COMM, TPDO_BASE, TPDO_COMM
 
 if TYPE_CHECKING:
-    from ..codegen.generate import Result
+    from ..pipeline import Result
 
 U8, U16, U32, BOOL = 0x0005, 0x0006, 0x0007, 0x0001
 INT_OF_WIDTH = {8: 0x0002, 16: 0x0003, 32: 0x0004}
@@ -270,7 +270,7 @@ GLUE = ("ds401_app.h",)
 def glue_files(p: Ds401) -> dict[str, str]:
     """The header that configures the application glue, runtime/profiles/ds401.c (hooks, polarity,
     change-of-state TPDOs): channel counts, the analog objects and their C types."""
-    from ..codegen.generate import environment  # jinja2: only when C is generated
+    from ..codegen.render import environment  # jinja2: only when C is generated
 
     env = environment()
     values = {"arguments": _arguments(p), "di": p.channels("di"), "do": p.channels("do"), "ai": p.ai, "ao": p.ao,
@@ -282,7 +282,7 @@ def glue_files(p: Ds401) -> dict[str, str]:
 
 def generate_c(p: Ds401, eds: Path, name: str | None = None, node_id: int | None = None) -> Result:
     """`--generate`: the dictionary C of the written EDS with the profile's options, plus the glue."""
-    from ..codegen.generate import Request, generate
+    from ..pipeline import Request, generate
 
     result = generate(Request(eds, name=name, node_id=node_id, defaults=options_toml(p)))
     if result.files:

@@ -27,9 +27,22 @@ def _make_folder(folder: Path) -> None:
         raise OdgenError(f"{folder}: cannot create: {err.strerror or err}") from None
 
 
+PAGE_SUFFIXES = {".html": "html", ".htm": "html", ".md": "md", ".markdown": "md"}
+
+
+def page_format(output: Path) -> str:
+    """The page's format from OUT's suffix; another suffix (out.pdf) needs --format, as nothing else is written."""
+    fmt = PAGE_SUFFIXES.get(output.suffix.lower())
+    if fmt is None:
+        suffix = f"'{output.suffix}'" if output.suffix else "no suffix"
+        raise OdgenError(f"{output}: {suffix} is not a report's suffix: name it .html, .htm or .md "
+                         "(odgen writes HTML or Markdown), or give --format html|md")
+    return fmt
+
+
 def write_report(args: argparse.Namespace) -> int:
     """`odgen report` (its parser is in odgen.cli, which imports this module only when it runs)."""
-    fmt = args.format or ("md" if args.output.suffix.lower() == ".md" else "html")
+    fmt = args.format or page_format(args.output)
     if args.output.is_dir():
         raise OdgenError(f"{args.output} is a folder: give the report's file name with -o")
     if not args.output.parent.is_dir():
@@ -49,6 +62,8 @@ def write_report(args: argparse.Namespace) -> int:
         _make_folder(path.parent)
         write_atomic(path, text)
     errors = sum(1 for d in diags if d.severity == Severity.ERROR)
-    print(f"odgen report: {args.output}: {len(report.rows)} entries, {len(report.pdos)} PDOs, "
+    objects = len({row.index for row in report.rows})
+    print(f"odgen report: {args.output}: {objects} objects, {len(report.rows)} entries counting each sub-index, "
+          f"{len(report.pdos)} PDOs, "
           f"{errors} error(s) found", file=sys.stderr)
     return 0

@@ -13,15 +13,28 @@ from .svg import memory_svg, pdo_svg
 from .view import RULES_DOC, Pdo, Report, rule_anchor
 
 
-def _environment(autoescape: bool) -> jinja2.Environment:
+def _environment(markdown: bool) -> jinja2.Environment:
+    """HTML escapes as HTML does; Markdown with _markdown_text, since a Markdown renderer passes raw HTML on."""
     env = jinja2.Environment(loader=jinja2.FileSystemLoader(str(templates_dir())), undefined=jinja2.StrictUndefined,
                              trim_blocks=True, lstrip_blocks=True, keep_trailing_newline=True,
-                             autoescape=autoescape)
+                             autoescape=True, finalize=_markdown_text if markdown else None)
     env.filters["hex"] = lambda n, width=4: f"0x{n:0{width}X}"
     env.filters["cell"] = _cell
     env.filters["rule_link"] = lambda rule_id: f"{RULES_DOC}#{rule_anchor(rule_id)}"
+    env.filters["catalogue"] = lambda text: Markup(_cell(text))  # odgen's own rule texts keep their `code`
     env.globals["rules_doc"] = RULES_DOC
     return env
+
+
+# What a Markdown renderer would read as HTML, a code span or a link, as character references:
+# names and values come from the description, which may hold `<script>` (the renderer shows the
+# references as the characters).
+_MARKDOWN_ACTIVE = str.maketrans({"&": "&amp;", "<": "&lt;", ">": "&gt;", "`": "&#96;", "[": "&#91;", "]": "&#93;"})
+
+
+def _markdown_text(value: object) -> Markup:
+    """Every value a Markdown template writes, made inert; a macro's output (Markup) is already."""
+    return value if isinstance(value, Markup) else Markup(str(value).translate(_MARKDOWN_ACTIVE))
 
 
 def _cell(value: object) -> str:
@@ -48,7 +61,8 @@ def _pictures(report: Report) -> dict[str, str]:
 
 def render_html(report: Report) -> str:
     pictures = {name: Markup(svg) for name, svg in _pictures(report).items()}
-    return _environment(True).get_template("report.html.j2").render(r=report, svg=pictures, rules=_rules(report))
+    template = _environment(markdown=False).get_template("report.html.j2")
+    return template.render(r=report, svg=pictures, rules=_rules(report))
 
 
 def render_markdown(report: Report, output: Path) -> dict[Path, str]:
@@ -56,5 +70,5 @@ def render_markdown(report: Report, output: Path) -> dict[Path, str]:
     folder = output.with_name(output.stem + "-svg")
     pictures = _pictures(report)
     links = {name: f"{folder.name}/{name}.svg" for name in pictures}
-    text = _environment(False).get_template("report.md.j2").render(r=report, svg=links, rules=_rules(report))
+    text = _environment(markdown=True).get_template("report.md.j2").render(r=report, svg=links, rules=_rules(report))
     return {**{folder / f"{name}.svg": svg for name, svg in pictures.items()}, output: text}

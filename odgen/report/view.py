@@ -13,9 +13,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from ..codegen.generate import Request, generate
+from ..pipeline import Request, run
 from ..codegen.memory import MemoryRow, memory_rows
-from ..place.placement import Placement
+from ..place.placement import Placements
 from ..diagnostics import RULES, Diagnostic, Severity, where
 from ..model import ObjectDictionary, Obj, Sub
 from ..model.cia301 import RPDO_MAPPING, TPDO_MAPPING
@@ -161,7 +161,7 @@ def row_key(index: int, sub: int) -> str:
     return f"e-{index:04X}-{sub:02X}"
 
 
-def _rows(od: ObjectDictionary, placements: dict[tuple[int, int], Placement] | None) -> list[Row]:
+def _rows(od: ObjectDictionary, placements: Placements | None) -> list[Row]:
     rows = []
     for obj in od.sorted_objects():
         for n, sub in enumerate(obj.sorted_subs()):
@@ -272,7 +272,7 @@ def _pdos(od: ObjectDictionary, can_fd: bool) -> list[Pdo]:
 def build_report(path: Path, options: Path | None = None, node_id: int | None = None,
                  can_fd: bool = False) -> tuple[Report | None, list[Diagnostic]]:
     """The report of one description, and every finding (None when the file cannot be read)."""
-    result = generate(Request(path, options=options, node_id=node_id, can_fd=can_fd))
+    result = run(Request(path, options=options, node_id=node_id, can_fd=can_fd), until="view")  # no C printed
     diags = result.diags.sorted()
     od = result.od
     if od is None:

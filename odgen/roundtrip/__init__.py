@@ -7,7 +7,7 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..codegen.generate import Request
+from ..pipeline import Request
 from ..fileio import write_atomic
 from .build import build_node
 

@@ -13,7 +13,7 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 from ..assets import runtime_dir
-from ..codegen.generate import Request, Result, generate
+from ..pipeline import Request, Result, generate
 from ..errors import OdgenError
 from ..fileio import output_dir, write_files
 from ..model import ObjectDictionary

@@ -21,7 +21,7 @@ from copy import deepcopy
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..place.placement import STORE_CLASS, Placement
+from ..place.placement import Placement, Placements, STORE_CLASS
 from ..errors import OdgenError
 from ..model.expect import expected_bytes, write_cases
 from ..formats.eds_writer import write_eds
@@ -102,7 +102,7 @@ class Entry:
 class Session:
     """One node process and one canopen client on `iface`."""
 
-    def __init__(self, od: ObjectDictionary, placements: dict[tuple[int, int], Placement], program: Path,
+    def __init__(self, od: ObjectDictionary, placements: Placements, program: Path,
                  iface: str, node_id: int, workdir: Path) -> None:
         import canopen  # the independent client; imported here so lint-only use never needs it
 
@@ -224,7 +224,7 @@ def _python_int(text: str) -> bool:
         return False
 
 
-def _entries(od: ObjectDictionary, placements: dict[tuple[int, int], Placement]) -> list[Entry]:
+def _entries(od: ObjectDictionary, placements: Placements) -> list[Entry]:
     out = []
     for obj in od.sorted_objects():
         for sub in obj.sorted_subs():
@@ -472,7 +472,7 @@ def _hex(data: bytes | None) -> str:
 
 
 @contextmanager
-def session(od: ObjectDictionary, placements: dict[tuple[int, int], Placement], program: Path, iface: str,
+def session(od: ObjectDictionary, placements: Placements, program: Path, iface: str,
             node_id: int) -> Iterator[Session]:
     logging.getLogger("canopen").setLevel(logging.CRITICAL)
     with tempfile.TemporaryDirectory(prefix="odgen-roundtrip-") as tmp:

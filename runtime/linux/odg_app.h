@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_app.h - the application interface of the node program (odg_node_main.c).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_socketcan.c - SocketCAN transport for odg_node. See odg_socketcan.h.
  */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_socketcan.h - SocketCAN (Linux CAN_RAW) transport for odg_node.
  *

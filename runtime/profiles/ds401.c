@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * ds401.c - CiA 401 (generic I/O) application glue over a dictionary made by
  * `odgen profile ds401 --generate`. The generated ds401_app.h configures it (channel counts,
@@ -37,7 +38,7 @@ static uint32_t tpdos_mapping(const odg_dict_t *d, uint16_t index, uint8_t sub)
         uint32_t count = get_u8(d, map, 0, 0);
         for (i = 1; i <= count; i++) {
             if (get_u32(d, map, (uint8_t)i) >> 8 == want) {
-                mask |= 1u << k;
+                mask |= (uint32_t)1u << k; /* up to 32 TPDOs: 1u has 16 bits on AVR */
                 break;
             }
         }

@@ -237,7 +237,7 @@ static void hooks_clear(void)
 
 static void test_abort_text(void)
 {
-#define CODE_(name, code, text) {code, text},
+#define CODE_(name, text) {name, text},
     static const struct {
         uint32_t code;
         const char *text;

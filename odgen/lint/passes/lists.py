@@ -12,7 +12,7 @@ from ...catalogue.lists import (
     LST001, LST002, LST003, LST004, LST005, LST006, LST007, LST008, LST009, LST010, LST011, LST012)
 from ...diagnostics import Diagnostics, Loc
 from ...model import Field, ObjectDictionary, ObjectList
-from ...model.cia301 import MANDATORY
+from ...model.cia301 import object_list_for
 from ...model.values import bounded_int, parse_int_literal
 from .base import LintOptions, LintPass
 from .common import gaps
@@ -21,14 +21,6 @@ from .common import gaps
 
 LISTS = (("mandatoryobjects", "MandatoryObjects"), ("optionalobjects", "OptionalObjects"),
          ("manufacturerobjects", "ManufacturerObjects"))
-
-
-def _proper_list(index: int) -> str:
-    if index in MANDATORY:
-        return "mandatoryobjects"
-    if 0x2000 <= index <= 0x5FFF:
-        return "manufacturerobjects"
-    return "optionalobjects"
 
 
 def _uses_lists(od: ObjectDictionary) -> bool:
@@ -127,7 +119,7 @@ def _entry(od: ObjectDictionary, key: str, name: str, fld: Field, seen: dict[int
         diags.add(LST005, Loc(od.source, fld.line),
                   f"[{name}] entry {fld.key} lists 0x{index:04X}, which has no section{_decimal_hint(od, fld.text)}")
         return  # which list it belongs in matters little for an object that does not exist
-    proper = _proper_list(index)
+    proper = object_list_for(index)
     if proper == key:
         return  # data type definitions (0x0001-0x025F) count as optional objects
     loc = Loc(od.source, fld.line)
@@ -172,7 +164,7 @@ def unlisted_objects(od: ObjectDictionary, diags: Diagnostics, options: LintOpti
     listed |= _misread_decimals(od)  # already reported, with a hint, as LST005
     for index, obj in od.objects.items():
         if index not in listed and index >= 0x1000:
-            wanted = dict(LISTS)[_proper_list(index)]
+            wanted = dict(LISTS)[object_list_for(index)]
             diags.add(LST007, Loc(od.source, obj.line), f"is in no object list (belongs in [{wanted}])", index)
 
 
