@@ -186,7 +186,7 @@ def _run(request: Request, last: int) -> Result:
     loaded = timed("load", lambda: load(request))
     result = Result(loaded.diags, {}, timings=timings)
     result.od, result.lss, result.persist = loaded.od, loaded.lss, loaded.options.persist
-    if loaded.od is None or _refuse(result, request):
+    if _refuse(result, request) or loaded.od is None:  # refused says why, also when nothing was understood
         return result
     read = Diagnostics(list(result.diags.items), dict(result.diags.counts)) if request.fix else None
     timed("lint", lambda: lint(loaded, request, result.diags))
