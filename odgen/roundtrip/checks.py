@@ -29,7 +29,7 @@ from ..model import ARRAY, RECORD, Obj, ObjectDictionary, Sub
 from ..model.cia301 import (
     ABORT_CODES, CAN_ID_MASK, COB_EXTENDED, COB_INVALID, COMMUNICATION_AREA, EMCY_COB_ID, EMCY_INHIBIT, ERROR_HISTORY,
     LOAD, PDO_COUNT, PRODUCER_HEARTBEAT, RESTORE, RPDO_COMM, RPDO_MAPPING, SAVE, SDO_REQUEST, SDO_RESPONSE, SDO_SERVER,
-    STORE, SYNC_COB_ID, SYNC_PERIOD, SYNC_WINDOW, TIME_COB_ID, TPDO_COMM, TPDO_MAPPING, is_pdo_mapping,
+    STORE, SYNC_COB_ID, SYNC_OVERFLOW, SYNC_PERIOD, SYNC_WINDOW, TIME_COB_ID, TPDO_COMM, TPDO_MAPPING, is_pdo_mapping,
     unused_manufacturer_index)
 from ..model.datatypes import BASIC_TYPES, UNSIGNED16, DataType
 from ..model.wire import wire_bytes
@@ -38,9 +38,10 @@ ABORTS = {"ODG_OK": 0, **ABORT_CODES}
 WRITE_ONLY, NO_OBJECT, NO_SUB = (ABORT_CODES["ODG_ABORT_WRITE_ONLY"], ABORT_CODES["ODG_ABORT_NO_OBJECT"],
                                  ABORT_CODES["ODG_ABORT_NO_SUB"])
 # Objects whose writes change how the node talks (SDO/PDO/SYNC/EMCY/heartbeat) or act as
-# commands: checked by their own steps, not by the generic downloads.
-ACTIVE = frozenset({ERROR_HISTORY, SYNC_COB_ID, SYNC_PERIOD, SYNC_WINDOW, STORE, RESTORE, TIME_COB_ID, EMCY_COB_ID,
-                    EMCY_INHIBIT, PRODUCER_HEARTBEAT}) | frozenset(range(SDO_SERVER, TPDO_MAPPING + PDO_COUNT))
+# commands: checked by their own steps, not by the generic downloads. (0x1019 may only be
+# written while 0x1006 is 0, abort 0x08000022 otherwise: `odgen conformance` checks that.)
+ACTIVE = frozenset({ERROR_HISTORY, SYNC_COB_ID, SYNC_PERIOD, SYNC_WINDOW, SYNC_OVERFLOW, STORE, RESTORE, TIME_COB_ID,
+                    EMCY_COB_ID, EMCY_INHIBIT, PRODUCER_HEARTBEAT}) | frozenset(range(SDO_SERVER, TPDO_MAPPING + PDO_COUNT))
 BOOT_TIMEOUT = 30.0  # waits end at the boot-up: generous for a loaded machine
 SDO_TIMEOUT = 3.0  # an answer normally takes milliseconds; the deadline only bounds a failure
 
