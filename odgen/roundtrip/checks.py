@@ -41,7 +41,8 @@ WRITE_ONLY, NO_OBJECT, NO_SUB = (ABORT_CODES["ODG_ABORT_WRITE_ONLY"], ABORT_CODE
 # commands: checked by their own steps, not by the generic downloads. (0x1019 may only be
 # written while 0x1006 is 0, abort 0x08000022 otherwise: `odgen conformance` checks that.)
 ACTIVE = frozenset({ERROR_HISTORY, SYNC_COB_ID, SYNC_PERIOD, SYNC_WINDOW, SYNC_OVERFLOW, STORE, RESTORE, TIME_COB_ID,
-                    EMCY_COB_ID, EMCY_INHIBIT, PRODUCER_HEARTBEAT}) | frozenset(range(SDO_SERVER, TPDO_MAPPING + PDO_COUNT))
+                    EMCY_COB_ID, EMCY_INHIBIT, PRODUCER_HEARTBEAT}) | \
+    frozenset(range(SDO_SERVER, TPDO_MAPPING + PDO_COUNT))
 BOOT_TIMEOUT = 30.0  # waits end at the boot-up: generous for a loaded machine
 SDO_TIMEOUT = 3.0  # an answer normally takes milliseconds; the deadline only bounds a failure
 
