@@ -6,7 +6,8 @@
 #   include("${ODGEN_CMAKE_DIR}/odgen.cmake")
 #   odgen_add_object_dictionary(my_od NAME my_od EDS device.eds
 #                               [OPTIONS device.toml] [NODE_ID 5] [LOOKUP switch|bsearch]
-#                               [REPORT html|md])   # also odgen/NAME/NAME-report.html (or .md)
+#                               [REPORT html|md]    # also odgen/NAME/NAME-report.html (or .md)
+#                               [FIX safe|unsafe])  # generate --fix / --unsafe-fixes
 #   target_link_libraries(firmware PRIVATE my_od)     # the dictionary and odgen::runtime
 #   target_link_libraries(firmware PRIVATE odgen::node) # the CANopen node's services, if wanted
 #
@@ -100,7 +101,7 @@ function(_odgen_report_command format out eds name options node_id)
 endfunction()
 
 function(odgen_add_object_dictionary target)
-  cmake_parse_arguments(ARG "" "NAME;EDS;OPTIONS;NODE_ID;LOOKUP;REPORT" "" ${ARGN})
+  cmake_parse_arguments(ARG "" "NAME;EDS;OPTIONS;NODE_ID;LOOKUP;REPORT;FIX" "" ${ARGN})
   if(NOT ARG_NAME OR NOT ARG_EDS)
     message(FATAL_ERROR "odgen_add_object_dictionary(${target}): NAME and EDS are required")
   endif()
@@ -119,6 +120,14 @@ function(odgen_add_object_dictionary target)
   endif()
   if(ARG_LOOKUP)
     list(APPEND args --lookup "${ARG_LOOKUP}")
+  endif()
+  # FIX safe|unsafe: generate --fix / --unsafe-fixes (repairs listed in the generated header)
+  if(ARG_FIX STREQUAL "safe")
+    list(APPEND args --fix)
+  elseif(ARG_FIX STREQUAL "unsafe")
+    list(APPEND args --unsafe-fixes)
+  elseif(ARG_FIX)
+    message(FATAL_ERROR "odgen_add_object_dictionary(${target}): FIX is safe or unsafe, not '${ARG_FIX}'")
   endif()
   # The key of everything else the output depends on: odgen's version and the arguments.
   set(key "${out}.key")

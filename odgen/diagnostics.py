@@ -43,6 +43,7 @@ class Diagnostic:
     loc: Loc
     index: int | None = None
     sub: int | None = None
+    blocking: bool = True  # False: this finding does not block although its rule can (the rule's `blocking` says when)
 
     def text(self) -> str:
         subject = where(self.index, self.sub)
@@ -52,7 +53,7 @@ class Diagnostic:
     @property
     def blocks(self) -> bool:
         """Whether this finding makes `generate` refuse the file."""
-        return RULES[self.rule].blocks
+        return self.blocking and RULES[self.rule].blocks
 
 
 def more_line(source: str, rule_id: str, more: int) -> str:
@@ -76,14 +77,19 @@ class Diagnostics:
         message: str,
         index: int | None = None,
         sub: int | None = None,
+        blocks: bool = True,
+        severity: Severity | None = None,
     ) -> None:
+        """`blocks=False`: this finding does not block generation although its rule can; `severity`:
+        this finding is milder than its rule (the rule's `blocking` text says when)."""
         # A hostile file can repeat one mistake millions of times: list up to the cap, count the rest.
         count = self.counts[rule.id] = self.counts.get(rule.id, 0) + 1
         if count > rule.cap:
             return
         if len(message) > MAX_MESSAGE:  # a message quoting a hostile 5000-digit value
             message = message[: MAX_MESSAGE - 3] + "..."
-        self.items.append(Diagnostic(rule.id, rule.severity, message, loc, index, sub))
+        self.items.append(Diagnostic(rule.id, severity if severity is not None else rule.severity, message, loc,
+                                     index, sub, blocks))
 
     def omitted(self) -> dict[str, int]:
         """Rule id -> findings counted but not listed (past the rule's cap)."""

@@ -10,8 +10,8 @@ later stage; findings of every stage go into one `Diagnostics`. `run` stops afte
 asked for, or after the first stage that leaves a blocking finding (any reported finding under
 --strict), and records each stage's time.
 
-A repair stage (vendor-file repairs) fits between load and lint: it takes the loaded model and
-returns a new one.
+With --fix / --unsafe-fixes a repair stage follows lint (odgen.repair answers lint's findings): it
+takes the loaded model and returns a new one, which is linted again; the later stages work on it.
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from __future__ import annotations
 import hashlib
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TypeVar
 
@@ -40,6 +40,7 @@ from .model.header import header_field, header_int
 from .place.options import Options, PersistOptions, parse_options, read_options
 from .place.persistence import status_object
 from .place.placement import Placements, place
+from .repair import Repair, repair_model
 
 STAGES = ("load", "lint", "place", "view", "render")
 _T = TypeVar("_T")
@@ -58,6 +59,7 @@ class Request:
     strict: bool = False  # refuse on any error or warning, not only on blocking findings
     rule_filter: RuleFilter = RuleFilter()  # --select/--ignore: the findings reported (blocking ones always are)
     model: ObjectDictionary | None = None  # a model built in memory: `input` then only names it
+    fix: str = ""  # "safe" (--fix) or "unsafe" (--unsafe-fixes): repair the description (in memory) first
 
 
 @dataclass(frozen=True)
@@ -90,6 +92,7 @@ class Result:
     refused: list[Diagnostic] = field(default_factory=list)  # the findings that stopped generation
     lss: bool = False  # build a node with the LSS slave: LSS_Supported=1 or the options' [node] lss
     timings: dict[str, float] = field(default_factory=dict)  # stage -> seconds, for the stages that ran
+    repairs: list[Repair] = field(default_factory=list)  # made by --fix / --unsafe-fixes, listed in the header
 
 
 # -- the stages ----------------------------------------------------------------
@@ -107,6 +110,8 @@ def load(request: Request) -> Loaded:
         diags = Diagnostics()
     options = _options(request, diags, h)
     h.update(f"|{_name(request)}|{request.lookup}|{request.node_id}|{request.defaults}|{__version__}".encode())
+    if request.fix:
+        h.update(f"|fix={request.fix}".encode())
     caps = node_options(options.node, options.source, options.text, diags)
     if od is None:
         return Loaded(None, options, h.hexdigest()[:16], False, diags, caps)
@@ -133,8 +138,33 @@ def view(loaded: Loaded, where: Placed, request: Request, diags: Diagnostics) ->
                  node_caps=loaded.node_caps)
 
 
-def render(dict_view: DictView, request: Request, diags: Diagnostics) -> dict[str, str]:
-    return render_files(dict_view, dict_view.name, findings_comment(diags, request))
+def render(dict_view: DictView, request: Request, diags: Diagnostics, repairs: list[Repair] | None = None
+           ) -> dict[str, str]:
+    return render_files(dict_view, dict_view.name, findings_comment(diags, request), repairs_comment(repairs or []))
+
+
+# -- the repair stage (--fix / --unsafe-fixes): after lint, whose findings it answers --------
+
+def repaired(loaded: Loaded, read: Diagnostics, request: Request,
+             diags: Diagnostics) -> tuple[Loaded, list[Repair]]:
+    """The loaded description with a repaired model (odgen.repair makes a new one), its findings (the
+    reader's that no repair answered, then the lint passes' on the repaired model), and the repairs."""
+    assert loaded.od is not None
+    fixed_od, repairs = repair_model(loaded.od, diags.sorted(), unsafe=request.fix == "unsafe")
+    answered = {r.finding for r in repairs}
+    counts = dict(read.counts)
+    for d in answered:
+        if d.rule in counts:
+            counts[d.rule] -= 1
+    fresh = Diagnostics([d for d in read.items if d not in answered], {r: n for r, n in counts.items() if n > 0})
+    fixed = replace(loaded, od=fixed_od, diags=fresh)
+    lint(fixed, request, fresh)
+    return fixed, repairs
+
+
+def repairs_comment(repairs: list[Repair]) -> list[str]:
+    """Lines for the header's comment of repairs: file name (not path) and what was done."""
+    return [comment(r.text().replace(r.finding.loc.file, Path(r.finding.loc.file).name, 1), 1000) for r in repairs]
 
 
 # -- running them ----------------------------------------------------------------
@@ -160,9 +190,13 @@ def _run(request: Request, last: int) -> Result:
     loaded = timed("load", lambda: load(request))
     result = Result(loaded.diags, {}, timings=timings)
     result.od, result.lss, result.persist = loaded.od, loaded.lss, loaded.options.persist
-    if loaded.od is None or _refuse(result, request):
+    if _refuse(result, request) or loaded.od is None:  # refused says why, also when nothing was understood
         return result
+    read = Diagnostics(list(result.diags.items), dict(result.diags.counts)) if request.fix else None
     timed("lint", lambda: lint(loaded, request, result.diags))
+    if read is not None:
+        loaded, result.repairs = timed("repair", lambda: repaired(loaded, read, request, result.diags))
+        result.od, result.diags = loaded.od, loaded.diags
     if last < STAGES.index("place") or _refuse(result, request):
         return result
     where = timed("place", lambda: placed(loaded, result.diags))
@@ -174,7 +208,7 @@ def _run(request: Request, last: int) -> Result:
         return result
     result.view = dict_view
     if last >= STAGES.index("render"):
-        result.files = timed("render", lambda: render(dict_view, request, result.diags))
+        result.files = timed("render", lambda: render(dict_view, request, result.diags, result.repairs))
     return result
 
 

@@ -50,18 +50,39 @@ static void copy_bits(uint8_t *dst, uint32_t dpos, const uint8_t *src, uint32_t 
 
 /* ---- mapping ---------------------------------------------------------------------------- */
 
+/* A short mapping, served as CANopenNode serves it: a 64-bit integer entry mapped with 32 bits
+ * carries its low-order four bytes (the first four on the wire, which is little-endian); an
+ * RPDO writes them and keeps the entry's high-order bytes. odgen lint warns of it (PDO003).
+ * Other lengths are checked by odg_check_mapping. */
+static int short64(const odg_ref_t *r, uint32_t m)
+{
+    return (m & 0xFFu) == 32u && r->sub->size == 8u &&
+           (r->sub->type == ODG_T_INTEGER64 || r->sub->type == ODG_T_UNSIGNED64);
+}
+
+static odg_abort_t map_ref(const odg_dict_t *d, uint32_t m, uint8_t dir, odg_ref_t *r)
+{
+    odg_abort_t ac = odg_check_mapping(d, m, dir, r);
+    if (ac == ODG_ABORT_NOT_MAPPABLE && (m & 0xFFu) == 32u &&
+        odg_check_mapping(d, (m & ~0xFFu) | 64u, dir, r) == ODG_OK && short64(r, m)) {
+        return ODG_OK;
+    }
+    return ac;
+}
+
 /* One mapping entry. RPDOs may map the data type indices 0x0001-0x0007 as dummies (gaps of
  * that type's size), which need no object in the dictionary. */
 static odg_abort_t check_entry(const odg_node_t *n, int tx, uint32_t m)
 {
     static const uint8_t dummy_bits[8] = {0, 1, 8, 16, 32, 8, 16, 32};
     uint32_t index = m >> 16, bits = m & 0xFFu;
+    odg_ref_t r;
     if (!tx && index >= 1u && index <= 7u) {
         return (m & 0xFF00u) == 0u && (bits == dummy_bits[index] || (index == 1u && bits == 8u))
                    ? ODG_OK
                    : ODG_ABORT_NOT_MAPPABLE;
     }
-    return odg_check_mapping(n->cfg.dict, m, tx ? ODG_A_TPDO : ODG_A_RPDO, NULL);
+    return map_ref(n->cfg.dict, m, tx ? ODG_A_TPDO : ODG_A_RPDO, &r);
 }
 
 /* Entries 1..count of mapping entry `index` as the dictionary holds them: each mappable, and
@@ -236,7 +257,7 @@ static odg_abort_t sample(odg_node_t *n, const odg_pdo_t *p, uint8_t *out, uint8
         odg_ref_t r;
         uint8_t v[8];
         uint32_t got = 0, bits = p->map[i] & 0xFFu;
-        odg_abort_t ac = odg_check_mapping(n->cfg.dict, p->map[i], ODG_A_TPDO, &r);
+        odg_abort_t ac = map_ref(n->cfg.dict, p->map[i], ODG_A_TPDO, &r);
         if (ac == ODG_OK) {
             ac = odg_read(&r, 0, v, sizeof v, &got);
         }
@@ -356,10 +377,14 @@ static void apply(odg_node_t *n, const odg_pdo_t *p, const uint8_t *data)
         uint32_t m = p->map[i], bits = m & 0xFFu;
         odg_ref_t r;
         uint8_t v[8];
-        if ((m >> 16) > 7u && odg_check_mapping(n->cfg.dict, m, ODG_A_RPDO, &r) == ODG_OK) {
+        if ((m >> 16) > 7u && map_ref(n->cfg.dict, m, ODG_A_RPDO, &r) == ODG_OK) {
+            uint32_t got = 0;
             memset(v, 0, sizeof v);
+            if (short64(&r, m) && odg_read(&r, 0, v, sizeof v, &got) != ODG_OK) {
+                memset(v, 0, sizeof v); /* write-only: the high-order bytes become 0 */
+            }
             copy_bits(v, 0, data, pos, bits);
-            (void)odg_write(&r, v, (bits + 7u) / 8u);
+            (void)odg_write(&r, v, short64(&r, m) ? 8u : (bits + 7u) / 8u);
         }
         pos += bits;
     }

@@ -126,10 +126,10 @@ def test_ignored_findings_are_neither_printed_nor_listed(tmp_path: Path, capsys)
 
 
 def test_blocking_findings_refuse_even_when_ignored(tmp_path: Path, capsys) -> None:
-    bad = FIXTURES / "syntax" / "SYN003.eds"
-    assert main(["generate", str(bad), "-o", str(tmp_path / "out"), "--ignore", "SYN003"]) == 1
+    bad = FIXTURES / "rules" / "OBJ015.eds"
+    assert main(["generate", str(bad), "-o", str(tmp_path / "out"), "--ignore", "OBJ015"]) == 1
     err = capsys.readouterr().err
-    assert "error[SYN003]" in err and "1 blocking findings, nothing written" in err
+    assert "error[OBJ015]" in err and "1 finding blocks generation (OBJ015 1)" in err and "nothing written" in err
 
 
 def test_a_misspelt_rule_id_is_a_usage_error(tmp_path: Path, capsys) -> None:

@@ -46,6 +46,7 @@ DICTS: dict[str, tuple[Path, Path | None]] = {
 PROGRAMS: dict[str, tuple[str, tuple[Path, ...]]] = {
     "test_node_sdo": ("alltypes", ()),
     "test_node_pdo": ("pdo_node", ()),
+    "test_node_short": ("pdo_node", ()),  # a 64-bit entry mapped with 32 bits (PDO003)
     "test_node_io": ("io_node", (RUNTIME / "odg_nv_file.c",)),
     "test_node_robust": ("alltypes", ()),
     "test_node_lss": ("lss_node", ()),

@@ -443,3 +443,22 @@ def test_pycanopen_sample_differs_only_where_the_files_differ() -> None:
     assert twin_differences(xdd, eds) == expected
     assert (xdd.objects[0x3006].subs[10].name, eds.objects[0x3006].subs[10].name) == (
         "Valve 1 % Open0a", "Valve 1 % Open10")
+
+
+@pytest.mark.parametrize("spelling", ["nodeID", "NodeID"])
+def test_node_id_in_either_spelling(spelling: str) -> None:
+    """CiA 311 spells the commissioning attribute `nodeID`; some tools write `NodeID`: both give the node-id."""
+    objects = ('<CANopenObject index="1000" name="Device type" objectType="7" dataType="0007" accessType="ro" '
+               'defaultValue="0"/>')
+    network = f'<NetworkManagement><deviceCommissioning {spelling}="5" nodeName="n"/></NetworkManagement>'
+    od, diags = load(document(objects, network=network), "t.xdc")
+    assert od is not None and od.node_id == 5
+    assert rules_of(diags) == []
+    assert od.section("DeviceComissioning").text("NodeID") == "5"
+
+
+def test_node_id_missing_is_reported() -> None:
+    network = '<NetworkManagement><deviceCommissioning nodeName="n"/></NetworkManagement>'
+    od, diags = load(document("", network=network), "t.xdc")
+    assert od is not None and od.node_id is None
+    assert "XML005" in rules_of(diags)

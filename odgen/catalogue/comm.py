@@ -9,7 +9,10 @@ COM001 = define(
     why="Every CANopen device has 0x1000 (device type), 0x1001 (error register) and, since CiA 301 "
     "v4, 0x1018 (identity). Masters read them first; Lely's DCF loader refuses a file without them.",
     example="(no [1018] section)",
-    fix="Add the object with its CiA 301 definition.")
+    fix="Add the object with its CiA 301 definition.",
+    blocking="Decided: the C serves the objects the file has, and the runtime needs none of 0x1000/0x1001/0x1018 "
+    "(the node keeps its error register itself); a master finds the object missing at its first read "
+    "(abort 0x06020000), as it would on the device the file describes, so nothing is silently wrong.")
 
 COM002 = define(
     "COM002", E, "communication entry with the wrong data type",
@@ -19,7 +22,11 @@ COM002 = define(
     "different DataType breaks SDO transfers and generated code.",
     example="[1017]\nDataType=0x0007  (Producer heartbeat time is UNSIGNED16)",
     fix="Use the CiA 301 data type named in the message.",
-    blocks=True)
+    blocks=True,
+    blocking="Blocks for an entry the runtime reads (PDO, SDO, SYNC, EMCY, TIME, heartbeat, identity): it would "
+    "read it in another size than the C holds. An entry the runtime never reads (0x1008-0x100A, ...) does "
+    "not block.",
+    no_repair="Which type the device really answers in is unknown.")
 
 COM003 = define(
     "COM003", W, "identity information is writable", ref="CiA 301 communication profile objects",
@@ -48,7 +55,10 @@ COM005 = define(
     "0x701-0x7FF), and an 11-bit COB-ID (bit 29 clear) has no bits set in 11-28.",
     example="[1800sub1]\nDefaultValue=$NODEID+0x700",
     fix="Use a free CAN-ID, or set bit 31 (0x80000000) to disable the PDO.",
-    blocks=True)
+    blocks=True,
+    blocking="The node would transmit or receive a PDO on a CAN-ID reserved for another service, disturbing the "
+    "bus.",
+    no_repair="Which CAN-ID the PDO should use is the system integrator's choice.")
 
 COM006 = define(
     "COM006", W, "identity object without Vendor-ID",
@@ -89,7 +99,10 @@ COM010 = define(
     "Stacks cannot set up the channel without them.",
     example="[1800]\nObjectType=0x9\nSubNumber=2\n[1800sub0]\n[1800sub1]",
     fix="Add the missing sub-object.",
-    blocks=True)
+    blocks=True,
+    blocking="The runtime cannot set up the PDO or SDO channel without the sub-object, so the node would not talk "
+    "as the file says.",
+    no_repair="The missing COB-ID or transmission type is unknown.")
 
 COM011 = define(
     "COM011", W, "reserved PDO transmission type", ref="CiA 301 PDO communication parameter",
@@ -135,10 +148,13 @@ COM016 = define(
     why="Each enabled PDO, SDO channel, EMCY, produced SYNC or TIME needs a CAN-ID of its own (a PDO "
     "on the heartbeat's 0x700+node-id is COM005): two TPDOs on one ID collide on the bus, an RPDO on a "
     "TPDO's ID receives the device's own frames. `lint --network` finds collisions between devices "
-    "(NET004, NET007); this is the same mistake inside one file. The dictionary itself is as "
-    "written, so generation goes on.",
+    "(NET004, NET007); this is the same mistake inside one file.",
     example="[1800sub1]\nDefaultValue=$NODEID+0x180\n[1801sub1]\nDefaultValue=$NODEID+0x180",
-    fix="Give each object its own COB-ID, or disable one (bit 31).")
+    fix="Give each object its own COB-ID, or disable one (bit 31).",
+    blocks=True,
+    blocking="Decided: two objects of one node on one CAN-ID collide on the bus (two TPDOs), or the node receives "
+    "its own frames (an RPDO on a TPDO's ID), so the node would misbehave.",
+    repair="unsafe: the later PDO on a shared CAN-ID disabled (COB-ID bit 31 set)")
 
 COM017 = define(
     "COM017", E, "default SDO server COB-ID not the predefined one or writable",
@@ -148,7 +164,11 @@ COM017 = define(
     "value, or one a master can change, makes the device unreachable by tools that assume the "
     "default.",
     example="[1200sub1]\nAccessType=rw\nDefaultValue=$NODEID+0x600",
-    fix="Write `$NODEID+0x600` / `$NODEID+0x580` with AccessType=ro; use 0x1201.. for other channels.")
+    fix="Write `$NODEID+0x600` / `$NODEID+0x580` with AccessType=ro; use 0x1201.. for other channels.",
+    blocks=True,
+    blocking="Blocks when the default SDO server's COB-IDs are not the predefined ones: the runtime serves SDO "
+    "where 0x1200 says, so masters could not reach the node. A writable 0x1200 does not block.",
+    repair="safe: the COB-ID written as $NODEID+0x600 / $NODEID+0x580, which CiA 301 fixes")
 
 COM018 = define(
     "COM018", W, "pre-defined error field count not writable", ref="CiA 301 object 0x1003",
@@ -166,7 +186,9 @@ COM019 = define(
     "dropped. TIME is a broadcast to every node (default 0x100), so a `$NODEID` value gives each "
     "node another CAN-ID and no producer reaches them all.",
     example="[1012]\nDefaultValue=0x80000900  (bit 11 set, bit 29 clear)",
-    fix="Write `0x80000100` (consume on 0x100) or `0x40000100` (produce), without `$NODEID`.")
+    fix="Write `0x80000100` (consume on 0x100) or `0x40000100` (produce), without `$NODEID`.",
+    blocking="The runtime sends or accepts TIME only on a well-formed COB-ID; a malformed one leaves TIME unused, "
+    "which the file's own bits say.")
 
 COM020 = define(
     "COM020", W, "synchronous window longer than the communication cycle period",

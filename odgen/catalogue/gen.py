@@ -10,7 +10,9 @@ GEN001 = define(
     "understand would silently change the generated dictionary.",
     example='[[entry]]\nmatch = "0x2000"\nstorag = "rom"',
     fix="Use the keys match, storage, hooks, function, capacity (see docs/generate.md).",
-    blocks=True)
+    blocks=True,
+    blocking="The options file says how to build the C; an invalid one leaves that unknown.",
+    no_repair="The options file is the user's own choice, not the description's.")
 
 GEN002 = define(
     "GEN002", W, "options pattern matches nothing", ref="odgen options",
@@ -24,7 +26,9 @@ GEN003 = define(
     "(resolved at run time) or refreshed by a pre-read hook.",
     example='AccessType=rw\n# options: storage = "rom"',
     fix="Use ram or persist for the entry, or make it const/ro without hooks.",
-    blocks=True)
+    blocks=True,
+    blocking="The C cannot hold the entry in the storage class asked for.",
+    no_repair="The storage class is the user's choice in the options file.")
 
 GEN004 = define(
     "GEN004", E, "C identifier collision", ref="odgen names",
@@ -33,7 +37,9 @@ GEN004 = define(
     "with a generated symbol or the odg_ runtime prefix.",
     example='[[entry]]\nmatch = "0x6200sub1"\nhooks = ["post_write"]\nfunction = "io_node_reset"',
     fix="Name the hook function outside the dictionary's prefix and outside odg_.",
-    blocks=True)
+    blocks=True,
+    blocking="Two C identifiers would clash, so the C would not compile.",
+    no_repair="The C names come from the file's names or the options; the user chooses another.")
 
 GEN005 = define(
     "GEN005", E, "entry cannot be generated", ref="odgen generate",
@@ -41,7 +47,9 @@ GEN005 = define(
     "(DEFSTRUCT records used as a type, vendor types) have no defined memory layout.",
     example="DataType=0x0040",
     fix="Describe the entry with a basic data type, or exclude it with an options entry.",
-    blocks=True)
+    blocks=True,
+    blocking="The entry cannot be expressed in C.",
+    no_repair="What the entry should be in C is unknown.")
 
 GEN006 = define(
     "GEN006", INFO, "object not generated", ref="odgen generate",
@@ -59,7 +67,9 @@ GEN007 = define(
     fix="Spread the values over storage classes with an options file (constant entries to rom, "
     "parameters into persistence groups, each its own block), shorten string or domain "
     "capacities, or split the device.",
-    blocks=True)
+    blocks=True,
+    blocking="The C value block would exceed what the runtime can address.",
+    no_repair="Which values should move elsewhere is the user's choice.")
 
 GEN008 = define(
     "GEN008", E, "dictionary name clashes with the runtime or the C library", ref="odgen names",
@@ -69,7 +79,9 @@ GEN008 = define(
     "compile. A name taken from the file name is prefixed `od_` instead (`main.eds` gives `od_main`).",
     example="odgen generate main.eds -o gen --name main",
     fix="Choose another --name, e.g. prefixed with the product: `--name pump_od`.",
-    blocks=True)
+    blocks=True,
+    blocking="The C would clash with the runtime or the C library and not compile.",
+    no_repair="The dictionary name is the user's choice (--name).")
 
 GEN009 = define(
     "GEN009", E, "nothing to generate", ref="odgen generate",
@@ -79,7 +91,9 @@ GEN009 = define(
     example="[1018]\nParameterName=Identity\nObjectType=0x9\nSubNumber=2\n# and no [1018sub0], [1018sub1]",
     fix="Describe the sub-objects SubNumber announces (OBJ009 counts them), and at least the mandatory "
     "objects 0x1000, 0x1001 and 0x1018 (COM001 names those missing).",
-    blocks=True)
+    blocks=True,
+    blocking="There would be no dictionary to compile.",
+    no_repair="There is no dictionary to repair.")
 
 GEN010 = define(
     "GEN010", E, "the node's limits leave part of the description out", ref="odgen options",
@@ -91,4 +105,6 @@ GEN010 = define(
     example="[node]\ntpdo = 4   # the description has TPDOs 0x1800-0x1807",
     fix="Raise the [node] key to what the description needs, or remove the objects beyond it from the "
     "description.",
-    blocks=True)
+    blocks=True,
+    blocking="The node would silently leave out what the description promises on the bus.",
+    no_repair="The options file chose the limit; which of the two to change is the user's decision.")

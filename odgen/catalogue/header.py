@@ -10,7 +10,8 @@ HDR001 = define(
     "(plus Optional/ManufacturerObjects). Without them tools cannot identify the device or find "
     "its objects; objdictgen refuses the file.",
     example="(no [DeviceInfo] section)",
-    fix="Add the section with its keys.")
+    fix="Add the section with its keys.",
+    blocking="The C is built from the object sections; the header sections do not change it.")
 
 HDR002 = define(
     "HDR002", W, "unknown key in a header section", ref="CiA 306 table row H2",
@@ -70,7 +71,8 @@ HDR009 = define(
     "byte-wise, as CANopenNode needs). PDO mapping checks and generators depend on it. "
     "(Python canopen reads it as a boolean.)",
     example="Granularity=128",
-    fix="Write the bit granularity the device supports, typically `Granularity=8`.")
+    fix="Write the bit granularity the device supports, typically `Granularity=8`.",
+    blocking="The runtime does not read Granularity; the mapping checks (PDO rules) stand on their own.")
 
 HDR010 = define(
     "HDR010", W, "DynamicChannelsSupported and [DynamicChannels] disagree",
@@ -86,7 +88,8 @@ HDR011 = define(
     why="[DummyUsage] has keys Dummy0001..Dummy001B (the basic data type indices) with value 0 or 1; "
     "mapping a dummy entry depends on them. Lely refuses other keys and values.",
     example="[DummyUsage]\nDummy0005=yes",
-    fix="Write `DummyXXXX=1` for each data type usable as a dummy mapping, 0 otherwise.")
+    fix="Write `DummyXXXX=1` for each data type usable as a dummy mapping, 0 otherwise.",
+    blocking="A dummy entry that is not enabled is reported where it is mapped (PDO001), which blocks.")
 
 HDR012 = define(
     "HDR012", W, "[DeviceInfo]/[DeviceComissioning] differs from the identity object",

@@ -9,7 +9,8 @@ OBJ001 = define(
     why="Every object and sub-object section needs a `ParameterName`. Lely and CANopenEditor refuse "
     "the file without it, and generated code has nothing to name the entry after.",
     example="[2000]\nObjectType=0x7\nDataType=0x0007\nAccessType=rw",
-    fix="Add `ParameterName=<name>`.")
+    fix="Add `ParameterName=<name>`.",
+    blocking="The C names an unnamed entry after its index, so it stays correct.")
 
 OBJ002 = define(
     "OBJ002", E, "invalid ObjectType", ref="CiA 306 table row O2 / CiA 301 object codes",
@@ -17,7 +18,9 @@ OBJ002 = define(
     "0x8 ARRAY, 0x9 RECORD (absent means VAR). A sub-object is always a VAR (0x7), or a DOMAIN (0x2).",
     example="[2000]\nObjectType=0x3",
     fix="Write the object code of the entry (`0x7` for a single value, `0x8`/`0x9` for sub-objects).",
-    blocks=True)
+    blocks=True,
+    blocking="Without an object code the C cannot tell a value from a container.",
+    no_repair="Which object code was meant is unknown.")
 
 OBJ003 = define(
     "OBJ003", E, "DataType missing", ref="CiA 306 table row O3",
@@ -25,7 +28,9 @@ OBJ003 = define(
     "it the value has no size or range. Lely and CANopenEditor refuse the file.",
     example="[2000]\nParameterName=Speed\nObjectType=0x7\nAccessType=rw",
     fix="Add `DataType=0x....` (e.g. 0x0007 for UNSIGNED32).",
-    blocks=True)
+    blocks=True,
+    blocking="Without a data type the C cannot size or encode the value.",
+    no_repair="The size and encoding of the value are unknown.")
 
 OBJ004 = define(
     "OBJ004", E, "AccessType missing", ref="CiA 306 table row O3",
@@ -33,7 +38,9 @@ OBJ004 = define(
     "`AccessType`; without it nobody knows whether the entry may be read or written.",
     example="[2000]\nParameterName=Speed\nDataType=0x0007",
     fix="Add `AccessType=ro|wo|rw|rwr|rww|const`.",
-    blocks=True)
+    blocks=True,
+    blocking="Without an access type the C cannot decide whether masters may read or write the entry.",
+    no_repair="Whether masters may write the entry is the device maker's decision, not a guess.")
 
 OBJ005 = define(
     "OBJ005", E, "invalid AccessType", ref="CiA 306 table row O7",
@@ -41,7 +48,9 @@ OBJ005 = define(
     "RPDO-mappable) or const. Other values are refused by Lely, CANopenEditor and objdictgen.",
     example="AccessType=readonly",
     fix="Use one of `ro`, `wo`, `rw`, `rwr`, `rww`, `const`.",
-    blocks=True)
+    blocks=True,
+    blocking="The C cannot decide whether masters may read or write the entry.",
+    no_repair="Whether masters may write the entry is the device maker's decision, not a guess.")
 
 OBJ006 = define(
     "OBJ006", E, "ARRAY/RECORD needs exactly one of SubNumber and CompactSubObj",
@@ -51,7 +60,14 @@ OBJ006 = define(
     "or both, readers disagree on its sub-objects.",
     example="[1003]\nParameterName=Pre-defined error field\nObjectType=0x8\n(no SubNumber)",
     fix="Add `SubNumber=<count of sub-object sections>`, or keep only one of the two keywords.",
-    blocks=True)
+    blocks=True,
+    blocking="Blocks when the container's sub-objects are unknown (neither keyword and no sub-object sections, or "
+    "both keywords); with neither keyword, the sub-object sections present are the container, as every "
+    "reader takes them, and it does not block.",
+    repair="safe: SubNumber added, counting the sub-object sections present; unsafe: a header without "
+    "sub-objects that carries DataType and AccessType read as the VAR it describes (ObjectType=0x7)",
+    no_repair="With both keywords, or neither and no sub-object sections nor a value's keywords, which "
+    "sub-objects the device has is unknown.")
 
 OBJ007 = define(
     "OBJ007", E, "SubNumber or CompactSubObj on a single-value object", ref="CiA 306 table row O3",
@@ -59,7 +75,9 @@ OBJ007 = define(
     "they contradict the object type; CANopenEditor refuses the file.",
     example="[2000]\nObjectType=0x7\nSubNumber=2",
     fix="Remove the keyword, or make the object an ARRAY (0x8) or RECORD (0x9) with sub-objects.",
-    blocks=True)
+    blocks=True,
+    blocking="Whether the object is one value or a container is unclear, so the C would match one reading only.",
+    no_repair="Which of the two the device has is unknown.")
 
 OBJ008 = define(
     "OBJ008", E, "value keywords on an ARRAY/RECORD header", ref="CiA 306 table row O3",
@@ -68,14 +86,17 @@ OBJ008 = define(
     "Since every reader (odgen, CANopenNode, python canopen) ignores them, the dictionary does not "
     "change and generation goes on (`roscanopen__Schunk_0_63.dcf:1809`).",
     example="[2000]\nObjectType=0x9\nSubNumber=2\nAccessType=rw",
-    fix="Move the keywords into the sub-object sections.")
+    fix="Move the keywords into the sub-object sections.",
+    blocking="Every reader ignores these keywords, so the C is the same without them.")
 
 OBJ009 = define(
     "OBJ009", E, "SubNumber differs from the sub-objects present", ref="CiA 306 table row O4",
     why="`SubNumber` is the number of `[XXXXsubY]` sections that follow (gaps in sub-indices allowed), "
     "not the highest sub-index. Lely reports missing or extra sub-objects; other tools silently drop them.",
     example="[2000]\nObjectType=0x8\nSubNumber=4\n[2000sub0] [2000sub1] [2000sub2]",
-    fix="Set SubNumber to the number of sub-object sections, or add the missing ones.")
+    fix="Set SubNumber to the number of sub-object sections, or add the missing ones.",
+    blocking="The C holds the sub-objects present, as every reader does; SubNumber itself is not part of the "
+    "dictionary.")
 
 OBJ010 = define(
     "OBJ010", E, "sub0 of an ARRAY/RECORD missing or not UNSIGNED8",
@@ -84,7 +105,13 @@ OBJ010 = define(
     "with another type, masters cannot enumerate the object; Lely refuses the file.",
     example="[2000sub0]\nDataType=0x0007",
     fix="Add `[XXXXsub0]` with `DataType=0x0005`, `AccessType=ro` and the highest sub-index as DefaultValue.",
-    blocks=True)
+    blocks=True,
+    blocking="Blocks for a sub0 that is writable in another type (a master writes the count as one byte, "
+    "which the runtime refuses as too short) or that is no unsigned number (REAL32, a string: no count). A "
+    "read-only sub0 of a wider unsigned type the C serves as written, an upload stating its size, and a "
+    "missing sub0 leaves the C serving the sub-objects the file has: neither blocks.",
+    repair="safe: a missing sub0 added (UNSIGNED8, ro, the highest sub-index); unsafe: sub0 of another type made "
+    "UNSIGNED8 when its value fits")
 
 OBJ011 = define(
     "OBJ011", E, "sub0 differs from the highest sub-index",
@@ -97,7 +124,9 @@ OBJ011 = define(
     "and python canopen accept.)",
     example="[2000sub0]\nAccessType=ro\nDefaultValue=2\n[2000sub3]",
     fix="Set sub0's DefaultValue to the highest sub-index present.",
-    blocks=True)
+    blocking="The C serves sub0 and every sub-object as the file gives them, as the device the file describes does;"
+    " a master that trusts sub0 sees what it would see on that device.",
+    repair="safe: sub0 set to the highest sub-index where the sub-objects are written as sections")
 
 OBJ012 = define(
     "OBJ012", E, "undefined DataType", ref="CiA 306 table row O9",
@@ -106,14 +135,17 @@ OBJ012 = define(
     "unknown types into DOMAIN; generated code cannot size the value.",
     example="DataType=0x0040 (no [0040] section)",
     fix="Use a basic type, or add the DEFTYPE/DEFSTRUCT definition.",
-    blocks=True)
+    blocks=True,
+    blocking="The C cannot size or encode a value of an unknown type.",
+    repair="unsafe: an undefined data type read as DOMAIN, as python canopen reads it")
 
 OBJ013 = define(
     "OBJ013", E, "limits on a non-numeric entry", ref="CiA 306 table row O10",
     why="LowLimit/HighLimit restrict numeric values; on strings, DOMAIN or time types they mean "
     "nothing and Lely refuses them.",
     example="DataType=0x0009\nLowLimit=0",
-    fix="Remove LowLimit/HighLimit from the entry.")
+    fix="Remove LowLimit/HighLimit from the entry.",
+    blocking="The C keeps no limits for a non-numeric entry, so they change nothing.")
 
 OBJ014 = define(
     "OBJ014", E, "limit outside the data type's range", ref="CiA 306 table row O10",
@@ -121,14 +153,23 @@ OBJ014 = define(
     "it as overflow. `$NODEID+v` limits are checked for node-ids 1..127 (or the given node-id).",
     example="DataType=0x0006\nHighLimit=65536",
     fix="Use a limit within the type (UNSIGNED16: 0..65535) or a wider DataType.",
-    blocks=True)
+    blocks=True,
+    blocking="Blocks when the limit lies beyond the other end of the type (a HighLimit below the minimum, a "
+    "LowLimit above the maximum): the entry could take no value. A limit beyond the end it bounds restricts "
+    "nothing, and the C (limits compared as 64-bit numbers) restricts nothing there either: no block.",
+    repair="safe: a limit beyond the end of the type's range (HighLimit above the maximum, LowLimit below the "
+    "minimum) removed, as it restricts nothing; unsafe: a limit beyond the other end removed")
 
 OBJ015 = define(
     "OBJ015", E, "LowLimit above HighLimit", ref="CiA 306 table row O10",
     why="No value satisfies LowLimit > HighLimit, so every write is refused.",
     example="LowLimit=100\nHighLimit=10",
     fix="Swap or correct the limits.",
-    blocks=True)
+    blocks=True,
+    blocking="The runtime refuses reversed limits when it checks its tables (odg_verify), so the node would not "
+    "start.",
+    repair="unsafe: limits written as bit patterns of a signed type that read reversed removed; other reversed "
+    "limits swapped")
 
 OBJ016 = define(
     "OBJ016", E, "value outside the data type's range", ref="CiA 306 table row O11",
@@ -136,7 +177,9 @@ OBJ016 = define(
     "tool. `$NODEID+v` values are checked for node-ids 1..127 (or the node-id given to odgen).",
     example="DataType=0x0005\nDefaultValue=300",
     fix="Correct the value, or widen the DataType.",
-    blocks=True)
+    blocks=True,
+    blocking="The C holds the value in the data type, so a value outside it would be another number.",
+    no_repair="Whether the value or the data type is wrong is unknown.")
 
 OBJ017 = define(
     "OBJ017", E, "value outside LowLimit..HighLimit", ref="CiA 306 table row O11",
@@ -144,7 +187,12 @@ OBJ017 = define(
     "lie within [LowLimit, HighLimit].",
     example="LowLimit=1\nHighLimit=10\nDefaultValue=0",
     fix="Correct the value or the limits.",
-    blocks=True)
+    blocks=True,
+    blocking="The runtime checks every value against its limits when it checks its tables (odg_verify), "
+    "read-only entries included, so the node would not start; on a writable entry it would also refuse to "
+    "be written its own default.",
+    repair="unsafe: a value outside its limits clamped to them; a $NODEID value, which cannot be clamped for every "
+    "node-id, has the limit it crosses removed")
 
 OBJ018 = define(
     "OBJ018", INFO, "PDO-mappable rw entry without a direction", ref="CiA 306 table row O8",
@@ -235,7 +283,8 @@ OBJ028 = define(
     "whatever its code, so the dictionary is clear and generation goes on "
     "(`kacanopen__epos2_347717.eds:3647` writes a DOMAIN sub-object as ObjectType=0x2).",
     example="[2000sub1]\nObjectType=0x2\nDataType=0x000F",
-    fix="Write `ObjectType=0x7`, with `DataType=0x000F` for a DOMAIN value.")
+    fix="Write `ObjectType=0x7`, with `DataType=0x000F` for a DOMAIN value.",
+    blocking="Every reader takes the sub-object as a value of its DataType, so the C matches the file.")
 
 OBJ029 = define(
     "OBJ029", E, "VISIBLE_STRING value with a NUL character", ref="CiA 301 VISIBLE_STRING",
@@ -244,4 +293,17 @@ OBJ029 = define(
     "self-test fails on it), and masters disagree on the length.",
     example="[1008]\nDataType=0x0009\nDefaultValue=Pump\\0A",
     fix="Remove the NUL, or describe the value as an OCTET_STRING (0x000A).",
-    blocks=True)
+    blocks=True,
+    blocking="The C string ends at the NUL, so the node would serve a shorter value than the file has.",
+    no_repair="Whether the text after the NUL matters is unknown.")
+
+OBJ030 = define(
+    "OBJ030", W, "const entry with a $NODEID-relative value", ref="CiA 306 AccessType / CiA 301 0x1200",
+    why="`const` says the value is the same for the device's whole life, and generators (odgen, "
+    "CANopenNode) place it in FLASH. A `$NODEID+v` value is worked out at start-up from the node-id, "
+    "so it is read-only rather than constant: CiA 301 gives the default SDO server's COB-IDs "
+    "(0x1200sub1/sub2) as `ro`. odgen cannot place such a value in rom (GEN003 when the options "
+    "leave it to the automatic rule); masters see no difference between the two, both refuse a write.",
+    example="[1200sub1]\nAccessType=const\nDefaultValue=$NODEID+0x600",
+    fix="Write `AccessType=ro`.",
+    repair="safe: AccessType const -> ro (masters see the same read-only entry)")

@@ -12,7 +12,9 @@ PDO001 = define(
     "[DummyUsage]. Devices refuse such a mapping at start-up (abort 0x06020000), leaving the PDO dead.",
     example="[1A00sub1]\nDefaultValue=0x60000108\n(no [6000] section)",
     fix="Map an existing entry, add the object, or enable the dummy with `DummyXXXX=1`.",
-    blocks=True)
+    blocks=True,
+    blocking="The runtime refuses a mapping of a missing entry at start-up, so the PDO would be dead on the bus.",
+    repair="unsafe: the mapping entry removed (later entries move up, sub0 counts one less)")
 
 PDO002 = define(
     "PDO002", E, "mapped entry is not PDO-mappable", ref="CiA 306 table row C2",
@@ -20,19 +22,29 @@ PDO002 = define(
     "0x06040041 and CANopenEditor reports a \"not mappable OD entry\".",
     example="[6000sub1]\nPDOMapping=0\n[1A00sub1]\nDefaultValue=0x60000108",
     fix="Set `PDOMapping=1` on the entry, or map another one.",
-    blocks=True)
+    blocks=True,
+    blocking="The runtime refuses a mapping of a non-mappable entry at start-up, so the PDO would be dead on the "
+    "bus.",
+    repair="unsafe: the mapped entry made PDO-mappable, as the file's own mapping uses it")
 
 PDO003 = define(
     "PDO003", E, "mapping length differs from the entry's size", ref="CiA 306 table row C3",
     why="The low byte of a mapping entry is the length in bits and must equal the mapped entry's "
     "size (0x08 for UNSIGNED8, 0x20 for UNSIGNED32; BOOLEAN 1 or 8). A longer mapping makes the receiver "
-    "decode every later field at the wrong offset. A shorter one (a 64-bit object mapped as 32 bits, "
-    "`roscanopen__Elmo.dcf:827`) CANopenNode accepts, sending the low-order bytes; CiA 301 does not "
-    "define it and the odg runtime, like Lely, refuses it (abort 0x06040041), so the generated node "
-    "would leave the PDO dead at start-up. Both block generation.",
+    "decode every later field at the wrong offset. A shorter one CiA 301 does not define; CANopenNode "
+    "accepts it and sends the low-order bytes. The odg runtime does the same for a 64-bit integer "
+    "(INTEGER64, UNSIGNED64) mapped with 32 bits (`roscanopen__Elmo.dcf:827`): a TPDO carries its "
+    "low-order four bytes (the first four of its little-endian encoding), an RPDO writes them and keeps "
+    "the high-order ones. That case is a warning; other short mappings it refuses (abort 0x06040041).",
     example="[6000sub1]\nDataType=0x0005\n[1A00sub1]\nDefaultValue=0x60000110",
     fix="Write the entry's bit size in the low byte (`0x60000108`), or map an object of the intended size.",
-    blocks=True)
+    blocks=True,
+    blocking="A mapping longer than its entry shifts every later field, and other short ones the odg runtime "
+    "refuses at start-up: the PDO would not carry what the file says. A 64-bit integer mapped with 32 bits "
+    "the runtime serves as CANopenNode does, so that one is a warning and does not block.",
+    repair="unsafe: a mapping longer than its entry shortened to the entry's size (later fields of the frame "
+    "move)",
+    no_repair="A mapping shorter than its entry (other than the 64-bit case): which length is right is unknown.")
 
 PDO004 = define(
     "PDO004", E, "mapped entry cannot be accessed in the PDO's direction",
@@ -41,7 +53,10 @@ PDO004 = define(
     "they must be readable (ro, const, rw, rwr). CANopenEditor and Lely's dcfgen refuse the mapping.",
     example="[6000sub1]\nAccessType=ro\n[1600sub1]\nDefaultValue=0x60000108",
     fix="Map the entry in the other PDO direction, or correct its AccessType.",
-    blocks=True)
+    blocks=True,
+    blocking="The runtime refuses a mapping against the entry's access at start-up, so the PDO would be dead on the"
+    " bus.",
+    repair="unsafe: the mapping entry removed (later entries move up, sub0 counts one less)")
 
 PDO005 = define(
     "PDO005", E, "PDO maps more than a frame carries", ref="CiA 306 table row C4",
@@ -49,14 +64,18 @@ PDO005 = define(
     "refused by the device (abort 0x06040042); Lely's dcfgen reports \"mapping exceeds 64 bits\".",
     example="[1A00sub0]\nDefaultValue=3\n3 entries of 32 bits",
     fix="Move entries to another PDO.",
-    blocks=True)
+    blocks=True,
+    blocking="The runtime refuses a mapping longer than a frame at start-up, so the PDO would be dead on the bus.",
+    no_repair="Which entries the frame should carry is unknown.")
 
 PDO006 = define(
     "PDO006", E, "more than 64 mapping entries", ref="CiA 301 PDO mapping parameter",
     why="A mapping object has at most 64 entries (sub-index 1..0x40); sub0 cannot count more.",
     example="[1A00sub0]\nDefaultValue=65",
     fix="Map at most 64 entries.",
-    blocks=True)
+    blocks=True,
+    blocking="sub0 of a mapping cannot count more than 64 entries, so the C could not hold the mapping.",
+    no_repair="Which entries the PDO should carry is unknown.")
 
 PDO007 = define(
     "PDO007", E, "mapping offset not a multiple of Granularity", ref="CiA 306 table row H5",
@@ -64,7 +83,8 @@ PDO007 = define(
     "entry must start on a byte boundary. A BOOLEAN mapped with length 1 shifts everything "
     "after it. (Granularity=0 means the mapping is fixed and is not checked.)",
     example="Granularity=8\n[1A00sub1]\nDefaultValue=0x20000101\n[1A00sub2]\nDefaultValue=0x20010108",
-    fix="Map entries whose lengths keep later entries aligned, or pad with a dummy entry.")
+    fix="Map entries whose lengths keep later entries aligned, or pad with a dummy entry.",
+    blocking="The mapping is served as written; only the device's stated granularity is not kept.")
 
 PDO008 = define(
     "PDO008", E, "PDO communication and mapping objects not paired", ref="CiA 306 table row C5",
@@ -73,7 +93,8 @@ PDO008 = define(
     "missing objects up to NrOfRXPDO/NrOfTXPDO are implied.)",
     example="[1800]\n(no [1A00] section)",
     fix="Add the missing object, or remove the half PDO.",
-    blocks=True)
+    blocking="The runtime runs a PDO only when both halves exist and the mapping maps something (odg_pdo.c); "
+    "a lone half stays a plain entry, which is all the file describes, so the node does what the file says.")
 
 PDO009 = define(
     "PDO009", W, "NrOfRXPDO/NrOfTXPDO differs from the PDOs present", ref="CiA 306 table row H6",

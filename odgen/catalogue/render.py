@@ -8,14 +8,20 @@ from .rule import Rule
 
 def render_table(selectors: tuple[str, ...] = ()) -> str:
     """One line per rule; with `selectors` (ids or prefixes) only the rules they name."""
-    rows = [f"{r.id}  {r.severity.label:<7}  {'blocks' if r.blocks else '      '}  {r.title}" for r in RULES.values()
-            if not selectors or r.id.startswith(selectors)]
+    rows = [f"{r.id}  {r.severity.label:<7}  {'blocks' if r.blocks else '      '}  {_fixes(r):<13}  {r.title}"
+            for r in RULES.values() if not selectors or r.id.startswith(selectors)]
     return "\n".join(rows) + "\n"
 
 
+def _fixes(rule: Rule) -> str:
+    """Which repairs the rule has: safe (`--fix`), unsafe (`--unsafe-fixes`), both, or none."""
+    kinds = [k for k, has in (("safe", rule.safe_repair), ("unsafe", rule.unsafe_repair)) if has]
+    return " + ".join(kinds) or "-"
+
+
 def _summary() -> list[str]:
-    lines = ["| Rule | Severity | Generation | Title |", "|---|---|---|---|"]
-    lines += [f"| {r.id} | {r.severity.label} | {'blocks' if r.blocks else 'goes on'} | {r.title} |"
+    lines = ["| Rule | Severity | Generation | Repair | Title |", "|---|---|---|---|---|"]
+    lines += [f"| {r.id} | {r.severity.label} | {'blocks' if r.blocks else 'goes on'} | {_fixes(r)} | {r.title} |"
               for r in _ordered()]
     return lines + [""]
 
@@ -29,7 +35,11 @@ def _entry(rule: Rule) -> list[str]:
     fence = "xml" if family(rule) == "XML" else "ini"
     lines += ["", f"**Why.** {rule.why}", "", "**Example.**", "", f"```{fence}"]
     lines += rule.example.splitlines()
-    lines += ["```", "", f"**Fix.** {rule.fix}", ""]
+    lines += ["```", "", f"**Fix.** {rule.fix}", "", f"**Generation.** {rule.blocking_reason}", ""]
+    if rule.repair:
+        lines += [f"**Repair.** {rule.repair}", ""]
+    if rule.no_repair:
+        lines += [f"**No repair.** {rule.no_repair}", ""]
     return lines
 
 
@@ -45,9 +55,20 @@ def render_markdown() -> str:
         "Severities: error fails `odgen lint` (exit 1), warning fails it under `--strict`, info never does.",
         "Select or silence rules with `--select`/`--ignore` (ids or prefixes such as `PDO`).",
         "",
-        "Generation: `odgen generate` prints every finding and refuses the file only for a rule that",
-        "**blocks** (the dictionary would be wrong or ambiguous); past the others it goes on and lists",
-        "them in a comment of the generated header. `generate --strict` refuses on any error or warning.",
+        "Generation: `odgen generate` prints every finding and refuses the file only for one that",
+        "**blocks**. One rule decides which do: *a finding blocks only when the generated C would not",
+        "compile, would not match the description, or the node would misbehave on the bus.* Each rule",
+        "says below which of these it is, or why it is none of them; some rules block for some findings",
+        "only (the rule says when), and the reporters mark each finding that blocks",
+        "(`... [blocks generate; --fix repairs it]`). Past the others `generate` goes on and lists them",
+        "in a comment of the generated header. `generate --strict` refuses on any error or warning.",
+        "",
+        "Repairs: a rule that blocks has a repair or says why none can be right. A **safe** repair is one",
+        "whose meaning is certain (`odgen generate --fix`, `odgen fix`); an **unsafe** one guesses, or",
+        "lets the node accept more than the file says (`--unsafe-fixes` as well). Without a flag nothing",
+        "is repaired. `generate --fix` repairs in memory and lists every repair in the generated header",
+        "and on stderr; `odgen fix FILE [-o OUT]` writes the repaired description, changing only the",
+        "lines it repairs.",
         "",
     ]
     lines += _summary()

@@ -10,7 +10,9 @@ SYN001 = define(
     "Other tools stop or silently drop such lines, so their meaning is lost.",
     example="[1000]\nParameterName Device type\n",
     fix="Add the missing `=` or turn the line into a `;` comment.",
-    blocks=True)
+    blocks=True,
+    blocking="The reader cannot tell what the line meant, so the C may miss a value the file has.",
+    no_repair="What the line was meant to say is unknown.")
 
 SYN002 = define(
     "SYN002", E, "duplicate section", ref="S1",
@@ -18,14 +20,19 @@ SYN002 = define(
     "the other; odgen keeps the first and ignores the repeat.",
     example="[1000]\nParameterName=Device type\n...\n[1000]\nParameterName=Again\n",
     fix="Merge the two sections into one.",
-    blocks=True)
+    blocks=True,
+    blocking="Two definitions of one object: the C would follow one of them and not match the other.",
+    no_repair="Which copy the device has is unknown.")
 
 SYN003 = define(
     "SYN003", E, "duplicate key in a section", ref="S1",
     why="A key may appear once per section; readers disagree on which copy wins. odgen keeps the first.",
     example="[ManufacturerObjects]\nSupportedObjects=2\n1=0x2000\n1=0x2001\n",
     fix="Remove or renumber the repeated key.",
-    blocks=True)
+    blocks=True,
+    blocking="Blocks when the copies differ in a section the C depends on (the C would follow one and not "
+    "match the other); identical copies, and repeats in the object lists, [FileInfo] or [Comments], do not.",
+    no_repair="Which of two different values the device has is unknown.")
 
 SYN004 = define(
     "SYN004", W, "file is not UTF-8", ref="S1",
@@ -39,7 +46,8 @@ SYN005 = define(
     "SYN005", E, "key outside any section", ref="S1",
     why="A key before the first `[section]` belongs to nothing and is ignored.",
     example="FileName=dev.eds\n[FileInfo]\n",
-    fix="Move the key into the section it belongs to.")
+    fix="Move the key into the section it belongs to.",
+    blocking="The key belongs to no object, so the dictionary is the same without it.")
 
 SYN006 = define(
     "SYN006", W, "number with a leading zero", ref="S3",
@@ -53,7 +61,8 @@ SYN007 = define(
     why="CiA 306 writes node-id relative values as `$NODEID+<number>`. Lely and objdictgen accept only "
     "that form; `0x180+$NODEID`, lower case or spaces break them. odgen reads the value either way.",
     example="DefaultValue=0x180+$NODEID",
-    fix="Write `$NODEID+0x180`.")
+    fix="Write `$NODEID+0x180`.",
+    repair="safe: written as `$NODEID+<number>`")
 
 SYN008 = define(
     "SYN008", INFO, "signed value written as unsigned hex", ref="S3",
@@ -81,7 +90,9 @@ SYN011 = define(
     "checked, generated or downloaded.",
     example="DataType=0x0007\nDefaultValue=Profile-specific",
     fix="Write a number (decimal or 0x hex), a `$NODEID+<number>`, or hex bytes for OCTET_STRING.",
-    blocks=True)
+    blocks=True,
+    blocking="The C would hold no value, or another one, where the file has text it cannot read.",
+    no_repair="What the text was meant to be is unknown.")
 
 SYN012 = define(
     "SYN012", INFO, "keyword spelled with unusual letter case", ref="S2",
@@ -96,7 +107,9 @@ SYN013 = define(
     "Python canopen crashes on this; odgen ignores the sub-object.",
     example="[2000sub1]\nParameterName=Orphan\n(no [2000] section)",
     fix="Add the `[XXXX]` section with ObjectType=0x8 or 0x9, or remove the sub-object.",
-    blocks=True)
+    blocks=True,
+    blocking="The sub-object has no object to belong to: the C would leave out what the file has.",
+    no_repair="Which object the section belongs to is unknown.")
 
 SYN014 = define(
     "SYN014", W, "inline comment after a value", ref="S1",
@@ -112,7 +125,11 @@ SYN015 = define(
     "numbers; the entry cannot be understood otherwise.",
     example="ObjectType=VAR",
     fix="Write the number (`0x7`).",
-    blocks=True)
+    blocks=True,
+    blocking="An empty value is read as absent, as every reader does, and does not block; other text blocks, since "
+    "the C would miss the number the file has.",
+    repair="safe: an empty keyword is removed",
+    no_repair="Text that is not a number has no known meaning.")
 
 SYN016 = define(
     "SYN016", E, "invalid compact sub-object section", ref="O14",
@@ -120,14 +137,21 @@ SYN016 = define(
     "`NrOfEntries` must equal the number of entries and every entry must be a sub-index 1..CompactSubObj.",
     example="[1003]\nCompactSubObj=2\n[1003Name]\nNrOfEntries=1\n3=Error 3",
     fix="Correct NrOfEntries and the sub-index keys, or add CompactSubObj to the object.",
-    blocks=True)
+    blocks=True,
+    blocking="Blocks when values of a compact section are left out (the C would not match); a wrong NrOfEntries or "
+    "a CompactSubObj above 254 (sub-index 255 is reserved by CiA 301) does not.",
+    repair="safe: NrOfEntries set to the entries present; a CompactSubObj above 254 set to 254",
+    no_repair="Values listed for an object without CompactSubObj, or under keys that are no sub-index, belong to "
+    "nothing known.")
 
 SYN017 = define(
     "SYN017", E, "invalid object section name", ref="S5",
     why="Object sections are `[XXXX]` or `[XXXXsubY]` with a 4-digit hex index and hex sub-index 0..FE.",
     example="[2000sub1FF]",
     fix="Use a sub-index 0..FE written in hex without 0x.",
-    blocks=True)
+    blocks=True,
+    blocking="The section is not read, so the C would leave out an object the file has.",
+    no_repair="Which object the section names is unknown.")
 
 SYN018 = define(
     "SYN018", E, "file too large", ref="S1",
@@ -135,7 +159,9 @@ SYN018 = define(
     "above 16 MiB is refused unread, so a hostile or corrupt file cannot exhaust memory or time.",
     example="(a 100 MB file)",
     fix="Check that the file is a device description; split modules into separate files.",
-    blocks=True)
+    blocks=True,
+    blocking="The file is not read at all.",
+    no_repair="A file past the size limit is not read.")
 
 SYN019 = define(
     "SYN019", W, "object section index without leading zeros", ref="S5",
@@ -160,4 +186,6 @@ SYN021 = define(
     "keys cannot fill memory; the description is incomplete, so generation refuses it.",
     example="[FileInfo]\n0=1\n1=1\n... (70,000 keys)",
     fix="Check that the file is a device description; remove the repeated or generated keys.",
-    blocks=True)
+    blocks=True,
+    blocking="The section is not read whole, so the C would not match the file.",
+    no_repair="A section past the key limit is not read.")

@@ -11,7 +11,9 @@ XML001 = define(
     example='<CANopenObject index="1000" name="Device type"',
     fix="Correct the syntax at the reported line; save the file in the encoding its XML "
     "declaration names (normally UTF-8).",
-    blocks=True)
+    blocks=True,
+    blocking="Nothing can be read from a file that is not XML.",
+    no_repair="There is no dictionary to repair.")
 
 XML002 = define(
     "XML002", E, "not a CiA 311 device description", ref="CiA 311 (ISO 15745 container)",
@@ -21,7 +23,9 @@ XML002 = define(
     example='<ISO15745Profile xmlns="http://www.profibus.com/GSDML/2003/11/DeviceProfile">',
     fix='Write the file as CiA 311: `<ISO15745ProfileContainer xmlns="http://www.canopen.org/xml/1.1">` '
     "holding the device and communication network profiles, or convert it to an EDS.",
-    blocks=True)
+    blocks=True,
+    blocking="The file describes no CANopen device.",
+    no_repair="There is no dictionary to repair.")
 
 XML003 = define(
     "XML003", E, "document type declaration refused", ref="CiA 311; XML security",
@@ -29,7 +33,9 @@ XML003 = define(
     "expand to gigabytes (billion laughs); odgen does not expand them and does not read such files.",
     example='<!DOCTYPE x [<!ENTITY e SYSTEM "file:///etc/passwd">]>',
     fix="Remove the DOCTYPE declaration and write the text in place of each entity reference.",
-    blocks=True)
+    blocks=True,
+    blocking="The file is refused before it is read, for safety.",
+    no_repair="A document type declaration is refused for safety, never guessed around.")
 
 XML004 = define(
     "XML004", E, "does not match the CiA 311 schema", ref="CiA 311 schema; schemas/cia311-odgen.xsd",
@@ -38,7 +44,9 @@ XML004 = define(
     "or drop the part.",
     example='<CANopenSubObject subIndex="01" objectType="7" PDOmapping="no"/>  (no name)',
     fix="Add, move or correct the element or attribute as the message says.",
-    blocks=True)
+    blocking="The reader reads every value it uses itself and reports one it cannot read as XML005-XML011 (which "
+    "block); a deviation it does not read, such as a header time or element order, leaves the dictionary "
+    "as written.")
 
 XML005 = define(
     "XML005", E, "attribute value cannot be read", ref="CiA 311 CANopenObjectList",
@@ -48,21 +56,27 @@ XML005 = define(
     example='<CANopenObject index="10x0" name="Device type" objectType="7"/>',
     fix='Write index as 4 hex digits ("1000"), subIndex as 2 ("0A"), dataType as hex ("0007"), '
     'objectType and subNumber in decimal ("7") and PDOmapping as no/default/optional/TPDO/RPDO.',
-    blocks=True)
+    blocks=True,
+    blocking="The entry is skipped or left untyped, so the C would not match the file.",
+    no_repair="What the attribute was meant to say is unknown.")
 
 XML006 = define(
     "XML006", E, "duplicate object index", ref="CiA 311 CANopenObjectList",
     why="An index may be described once. Tools disagree on which copy wins; odgen keeps the first.",
     example='<CANopenObject index="2000" .../>\n<CANopenObject index="2000" .../>',
     fix="Remove or renumber one of the objects.",
-    blocks=True)
+    blocks=True,
+    blocking="Two definitions of one object: the C would follow one of them and not match the other.",
+    no_repair="Which copy the device has is unknown.")
 
 XML007 = define(
     "XML007", E, "duplicate sub-index", ref="CiA 311 CANopenObjectList",
     why="A sub-index may appear once in an object. odgen keeps the first.",
     example='<CANopenSubObject subIndex="01" .../>\n<CANopenSubObject subIndex="01" .../>',
     fix="Remove or renumber one of the sub-objects.",
-    blocks=True)
+    blocks=True,
+    blocking="Two definitions of one sub-object: the C would follow one of them and not match the other.",
+    no_repair="Which copy the device has is unknown.")
 
 XML008 = define(
     "XML008", E, "uniqueIDRef names no parameter", ref="CiA 311 uniqueIDRef",
@@ -71,7 +85,9 @@ XML008 = define(
     example='<CANopenObject index="2000" name="Speed" objectType="7" uniqueIDRef="UID_OBJ_2000"/>\n'
     "(no <parameter uniqueID=\"UID_OBJ_2000\">)",
     fix="Add the parameter to ApplicationProcess/parameterList, or correct the reference.",
-    blocks=True)
+    blocks=True,
+    blocking="The entry's value, type or access is in the parameter that cannot be found, so the C would miss it.",
+    no_repair="Which parameter was meant is unknown.")
 
 XML009 = define(
     "XML009", W, "object attribute and its parameter disagree", ref="CiA 311 uniqueIDRef",
@@ -88,7 +104,9 @@ XML010 = define(
     "checked or generated.",
     example="<ApplicationLayers>\n  <dummyUsage>...</dummyUsage>\n</ApplicationLayers>",
     fix="Add the communication network profile with ApplicationLayers/CANopenObjectList.",
-    blocks=True)
+    blocks=True,
+    blocking="There is no dictionary to generate.",
+    no_repair="There is no dictionary to repair.")
 
 XML011 = define(
     "XML011", E, "sub-objects on a single-value object", ref="CiA 311 CANopenObject",
@@ -97,7 +115,9 @@ XML011 = define(
     example='<CANopenObject index="2000" objectType="7" ...>\n'
     '  <CANopenSubObject subIndex="00" .../>\n</CANopenObject>',
     fix='Make the object an ARRAY (objectType="8") or RECORD ("9"), or remove the sub-objects.',
-    blocks=True)
+    blocks=True,
+    blocking="Whether the object is one value or a container is unclear, so the C would match one reading only.",
+    no_repair="Which of the two the device has is unknown.")
 
 XML012 = define(
     "XML012", W, "attribute value not in CiA 311 notation", ref="CiA 311 CANopenObjectList",

@@ -24,7 +24,7 @@ from ..errors import OdgenError
 # The commands in the order `odgen --help` lists them; each is the module odgen.cli.<name>.
 # A run imports only its command's module, and that module imports what it uses when it runs:
 # `odgen lint` of an EDS and `odgen --version` start without jinja2, lxml or canopen.
-COMMANDS = ("lint", "convert", "generate", "explain", "check", "node", "roundtrip", "profile", "diff", "report",
+COMMANDS = ("lint", "fix", "convert", "generate", "explain", "check", "node", "roundtrip", "profile", "diff", "report",
             "conformance", "rules", "rule")
 
 

@@ -39,6 +39,15 @@ def add_generation_policy(parser: argparse.ArgumentParser) -> None:
                         help="do not report these rule ids or prefixes (findings that block still refuse)")
 
 
+def add_fix_options(parser: argparse.ArgumentParser) -> None:
+    fix = parser.add_mutually_exclusive_group()
+    fix.add_argument("--fix", dest="fix_level", action="store_const", const="safe", default="",
+                     help="repair what the findings say in memory first, where the meaning is certain "
+                     "(docs/rules.md); every repair is listed on stderr and in the generated header")
+    fix.add_argument("--unsafe-fixes", dest="fix_level", action="store_const", const="unsafe",
+                     help="as --fix, and also the repairs that guess or let the node accept more than the file says")
+
+
 def existing_file(what: str) -> Callable[[str], Path]:
     """An argument naming a file that must exist: a missing one is the user's mistake (exit 2), named."""
     def check(text: str) -> Path:
@@ -66,11 +75,13 @@ def count_type(maximum: int) -> Callable[[str], int]:
     return parse
 
 
-def print_findings(diags: Diagnostics, request: Request | None = None) -> None:
+def print_findings(diags: Diagnostics, request: Request | None = None,
+                   marks: dict[Diagnostic, str] | None = None) -> None:
+    """Findings on stderr; `marks` (odgen.repair.blocking_marks) follow the message of those that block."""
     from ..pipeline import Request, reported
 
     for d in reported(diags, request or Request(Path())):
-        print(d.text(), file=sys.stderr)
+        print(d.text() + (marks or {}).get(d, ""), file=sys.stderr)
 
 
 def generate_request(args: argparse.Namespace) -> Request:
@@ -84,9 +95,23 @@ def generate_request(args: argparse.Namespace) -> Request:
     check_rule_ids(args.select, "--select")
     check_rule_ids(args.ignore, "--ignore")
     return Request(args.input, args.name, args.options, args.node_id, args.lookup, input_format=args.input_format,
-                   strict=args.strict, rule_filter=RuleFilter(tuple(args.select), tuple(args.ignore)))
+                   strict=args.strict, rule_filter=RuleFilter(tuple(args.select), tuple(args.ignore)),
+                   fix=getattr(args, "fix_level", ""))
 
 
-def refusal(args: argparse.Namespace, refused: list[Diagnostic], what: str = "written") -> str:
-    why = "blocking findings" if any(d.blocks for d in refused) else "findings (--strict)"
-    return f"odgen: {args.input}: {len(refused)} {why}, nothing {what}"
+def refusal(args: argparse.Namespace, refused: list[Diagnostic], what: str = "written",
+            repairable: tuple[int, int] | None = None) -> str:
+    """The last line of a refused generation; with `repairable`, the blocking findings by rule and how
+    many of them --fix and --unsafe-fixes would repair."""
+    blocking = [d for d in refused if d.blocks]
+    if not blocking or repairable is None:
+        why = "blocking findings" if blocking else "findings (--strict)"
+        return f"odgen: {args.input}: {len(refused)} {why}, nothing {what}"
+    rules: dict[str, int] = {}
+    for d in blocking:
+        rules[d.rule] = rules.get(d.rule, 0) + 1
+    by_rule = ", ".join(f"{rule} {n}" for rule, n in sorted(rules.items()))
+    safe, unsafe = repairable
+    verb = "finding blocks" if len(blocking) == 1 else "findings block"
+    return (f"odgen: {args.input}: {len(blocking)} {verb} generation "
+            f"({by_rule}); --fix would repair {safe}, --unsafe-fixes {unsafe}; nothing {what}")

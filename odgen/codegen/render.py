@@ -55,8 +55,8 @@ def rows(items: Iterable[tuple[Any, ...]], line: str, *fields: str) -> str:
     return "".join([line % values for values in map(get, items)])
 
 
-def render_files(view: DictView, name: str, findings: list[str]) -> dict[str, str]:
+def render_files(view: DictView, name: str, findings: list[str], repairs: list[str] | None = None) -> dict[str, str]:
     env = environment()
-    return {f"{name}.h": env.get_template("dict.h.j2").render(v=view, findings=findings),
+    return {f"{name}.h": env.get_template("dict.h.j2").render(v=view, findings=findings, repairs=repairs or []),
             f"{name}.c": env.get_template("dict.c.j2").render(v=view),
             f"{name}_config.h": env.get_template("dict_config.h.j2").render(v=view)}

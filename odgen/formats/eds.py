@@ -92,8 +92,8 @@ class _Reader:
     def loc(self, line: int) -> Loc:
         return Loc(self.od.source, line)
 
-    def report(self, rule: Rule, line: int, message: str, index: int | None = None) -> None:
-        self.diags.add(rule, self.loc(line), message, index)
+    def report(self, rule: Rule, line: int, message: str, index: int | None = None, blocks: bool = True) -> None:
+        self.diags.add(rule, self.loc(line), message, index, blocks=blocks)
 
     def read(self, stream: Iterable[tuple[str, ini.IniSection]], names: dict[str, int]) -> ObjectDictionary:
         """Sections are converted as they are read and then dropped; what needs a section further on
@@ -277,7 +277,9 @@ class _Reader:
     def _expand_compact(self, obj: Obj, section: ini.IniSection) -> None:
         count = obj.compact_sub_obj or 0
         if count > 0xFE:
-            self.report(SYN016, obj.line_of("compactsubobj"), f"CompactSubObj={count} is above 254", obj.index)
+            # sub-index 255 is reserved by CiA 301 (the object's structure): no master reads it as an element
+            self.report(SYN016, obj.line_of("compactsubobj"), f"CompactSubObj={count} is above 254", obj.index,
+                        blocks=False)
             count = 0xFE
         sub0 = Sub(0, "NrOfObjects", line=obj.line, data_type=0x0005, access="ro", compact=True)
         sub0.default = parse_value(str(count), BASIC_TYPES[0x0005], obj.line_of("compactsubobj"))
@@ -321,7 +323,7 @@ class _Reader:
             line = nr.line if nr is not None else section.line
             written = nr.value if nr is not None else "(missing)"
             mismatch = f"[{section.name}] NrOfEntries={written} but {len(result)} entries follow"
-            self.report(SYN016, line, mismatch, obj.index)
+            self.report(SYN016, line, mismatch, obj.index, blocks=False)  # the entries present are all read
         return result
 
     # -- small readers ---------------------------------------------------------
@@ -347,7 +349,8 @@ class _Reader:
         for rule, message in notes:
             self.diags.add(rule, self.loc(line), f"{key}: {message}")
         if number is None:
-            self.diags.add(SYN015, self.loc(line), f"{key}='{text}' is not a number")
+            # an empty value is read as absent, as every reader does: nothing the C holds depends on it
+            self.diags.add(SYN015, self.loc(line), f"{key}='{text}' is not a number", blocks=bool(text.strip()))
         return number
 
     def _flag(self, section: ini.IniSection, key: str) -> bool:
@@ -367,7 +370,8 @@ class _Reader:
             return number == 1
         if text in ("true", "false"):
             return text == "true"
-        self.diags.add(SYN015, self.loc(entry.line), f"{entry.key}='{entry.value}' is not 0 or 1")
+        self.diags.add(SYN015, self.loc(entry.line), f"{entry.key}='{entry.value}' is not 0 or 1",
+                       blocks=bool(text))
         return False
 
     def _check_spellings(self, section: ini.IniSection) -> None:

@@ -312,10 +312,20 @@ def _key_line(section: IniSection | None, line: str, number: int, source: str, d
     lower = key.lower()
     if lower in section.values and lower not in section.commented:
         diags.add(SYN003, Loc(source, number),
-                  f"key '{key}' repeats line {section.lines[lower]} in [{section.name}]; this one is ignored")
+                  f"key '{key}' repeats line {section.lines[lower]} in [{section.name}]; this one is ignored",
+                  blocks=_changes_dictionary(section.name) and value.strip() != section.values[lower].strip())
         return
     section.commented.discard(lower)
     section.put(lower, key, value, number)
+
+
+_LISTS = frozenset(("mandatoryobjects", "optionalobjects", "manufacturerobjects", "fileinfo", "comments"))
+
+
+def _changes_dictionary(section: str) -> bool:
+    """Whether a repeated key here could change the generated C: the object lists and the file's
+    own notes do not (the C is built from the object sections); an identical copy never does."""
+    return section.lower() not in _LISTS
 
 
 def _clip(text: str, width: int = 40) -> str:

@@ -96,9 +96,15 @@ CONTAINER_IGNORED = ("dataType", "accessType", "PDOmapping", "defaultValue", "ac
 READER_OWNED = {("CANopenObject", a) for a in ("index", "subNumber")} | {
     (e, a) for e in ("CANopenObject", "CANopenSubObject")
     for a in ("subIndex", "objectType", "dataType", "accessType", "PDOmapping", "objFlags")
-} | {("parameter", "access"), ("parameter", "uniqueID"), ("deviceCommissioning", "NodeID")} | {
+} | {("parameter", "access"), ("parameter", "uniqueID"), ("deviceCommissioning", "NodeID"),
+                                                                            ("deviceCommissioning", "nodeID")} | {
     ("CANopenGeneralFeatures", a) for a in ("granularity", "nrOfRxPDO", "nrOfTxPDO")  # header rules check them
 }
+
+def _node_id_attr(el: etree._Element) -> str:
+    """The node-id attribute's spelling: CiA 311's `nodeID`, or `NodeID` as some tools write it."""
+    return "NodeID" if el.get("nodeID") is None and el.get("NodeID") is not None else "nodeID"
+
 
 # The hexBinary forms of CiA 311 (as in the schema), with an example.
 HEX_FORMS = {"index": ("[0-9A-Fa-f]{4}", "1A00"), "subIndex": ("[0-9A-Fa-f]{2}", "0A"),
@@ -386,7 +392,7 @@ class _Reader:
             return
         section = self.od.ensure_section("DeviceComissioning")
         section.line = _line(el)
-        keys = (("NodeID", "NodeID"), ("nodeName", "NodeName"), ("actualBaudRate", "Baudrate"),
+        keys = ((_node_id_attr(el), "NodeID"), ("nodeName", "NodeName"), ("actualBaudRate", "Baudrate"),
                 ("networkNumber", "NetNumber"), ("networkName", "NetworkName"))
         for attr, key in keys:
             if el.get(attr) is not None:
@@ -398,12 +404,14 @@ class _Reader:
         self.od.node_id = self._node_id(el)
 
     def _node_id(self, el: etree._Element) -> int | None:
-        text = el.get("NodeID")
+        attr = _node_id_attr(el)
+        text = el.get(attr)
         if text is None:
-            return None  # required: the schema reports it
+            self.report(XML005, el, attr, "deviceCommissioning without nodeID")
+            return None
         number = _integer(text)
         if number is None:
-            self.report(XML005, el, "NodeID", f"deviceCommissioning NodeID '{text}' is not a number")
+            self.report(XML005, el, attr, f"deviceCommissioning {attr} '{text}' is not a number")
         return number
 
     # -- objects -------------------------------------------------------------------

@@ -103,7 +103,8 @@ def default_sdo_server(od: ObjectDictionary, diags: Diagnostics, options: LintOp
             continue
         if sub.access not in READ_ONLY:
             diags.add(COM017, Loc(od.source, sub.line_of("accesstype")),
-                      f"is {sub.access}; the default SDO server's COB-IDs are read-only", SDO_SERVER, subindex)
+                      f"is {sub.access}; the default SDO server's COB-IDs are read-only", SDO_SERVER, subindex,
+                      blocks=False)
         value, keyword = value_in_force(od, sub)
         wrong = [n for n in set(node_span(od, options)) if value is not None and at(value, n) != base + n]
         if value is not None and wrong and not value.error:

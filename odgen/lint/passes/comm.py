@@ -53,6 +53,17 @@ def _expected_type(obj: Obj, sub: Sub) -> int | None:
     return table.get(sub.subindex, table.get(0))
 
 
+# The communication objects the node layer reads or writes (runtime/odg_node*.c, odg_sdo.c, odg_pdo.c):
+# a wrong data type there makes the runtime read another size than the C holds, so COM002 blocks there
+# only; elsewhere (0x1008-0x100A, ...) the C serves the entry as the file types it.
+_RUNTIME_READS = (range(0x1000, 0x1008), range(0x1010, 0x1013), range(0x1014, 0x101A), range(0x1021, 0x1022),
+                  range(0x1029, 0x102A), range(0x1200, 0x1300), range(0x1400, 0x1C00))
+
+
+def runtime_reads(index: int) -> bool:
+    return any(index in r for r in _RUNTIME_READS)
+
+
 def comm_data_types(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:
     for index, obj in od.objects.items():
         if not DEVICE_TYPE <= index < TPDO_MAPPING + PDO_COUNT:
@@ -66,7 +77,8 @@ def comm_data_types(od: ObjectDictionary, diags: Diagnostics, options: LintOptio
             got = BASIC_TYPES.get(sub.data_type)
             diags.add(COM002, Loc(od.source, sub.line_of("datatype")),
                       f"DataType=0x{sub.data_type:04X}{f' ({got.name})' if got else ''}; "
-                      f"CiA 301 defines {BASIC_TYPES[expected].name}", index, addr(obj, sub))
+                      f"CiA 301 defines {BASIC_TYPES[expected].name}", index, addr(obj, sub),
+                      blocks=runtime_reads(index))
 
 
 def read_only_identity(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> None:

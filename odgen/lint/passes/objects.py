@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from ...catalogue.objects import (
     OBJ001, OBJ002, OBJ003, OBJ004, OBJ005, OBJ006, OBJ007, OBJ008, OBJ009, OBJ010, OBJ011, OBJ012, OBJ013, OBJ014,
     OBJ015, OBJ016, OBJ017, OBJ018, OBJ019, OBJ020, OBJ021, OBJ022, OBJ023, OBJ024, OBJ025, OBJ026, OBJ027, OBJ028,
-    OBJ029)
+    OBJ029, OBJ030)
 from ...catalogue.rule import Rule
 from ...diagnostics import Diagnostics, Loc
 from ...model import (ACCESS_TYPES, ARRAY, DEFSTRUCT, DEFTYPE, DOMAIN, RECORD, VAR, Field, Obj, ObjectDictionary, Sub,
@@ -182,7 +182,9 @@ def _container_shape(od: ObjectDictionary, obj: Obj, has_number: bool, has_compa
     kind = OBJECT_CODES[obj.object_code]
     if has_number == has_compact:
         what = "both SubNumber and CompactSubObj" if has_number else "neither SubNumber nor CompactSubObj"
-        diags.add(OBJ006, Loc(od.source, obj.line), f"{kind} has {what}", obj.index)
+        # with neither keyword the sub-object sections present are the container, as every reader takes them
+        diags.add(OBJ006, Loc(od.source, obj.line), f"{kind} has {what}", obj.index,
+                  blocks=has_number or not any(not s.compact for s in obj.subs.values()))
     if has_compact or not obj.extra:
         return
     stray = [obj.extra[k].key for k in HEADER_VALUE_KEYS if k in obj.extra]
@@ -210,13 +212,16 @@ def sub0_entries(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) ->
     od, diags = walk.od, walk.diags
     sub0 = obj.subs.get(0)
     if sub0 is None:
-        diags.add(OBJ010, Loc(od.source, obj.line), "has no sub0 (highest sub-index)", obj.index)
+        diags.add(OBJ010, Loc(od.source, obj.line), "has no sub0 (highest sub-index)", obj.index, blocks=False)
         return
     if sub0.data_type is not None and sub0.data_type != 0x0005:
         dtype = BASIC_TYPES.get(sub0.data_type)
         name = f" ({dtype.name})" if dtype else ""
+        # a read-only count in a wider unsigned type the C serves as written (an upload states its size);
+        # a writable one refuses a master's one-byte write, and a count of another kind is no count
+        count = dtype is not None and dtype.kind == "uint" and not sub0.writable
         diags.add(OBJ010, Loc(od.source, sub0.line_of("datatype")),
-                  f"DataType=0x{sub0.data_type:04X}{name} is not UNSIGNED8", obj.index, 0)
+                  f"DataType=0x{sub0.data_type:04X}{name} is not UNSIGNED8", obj.index, 0, blocks=not count)
     _sub0_value(od, obj, sub0, diags)
 
 
@@ -225,17 +230,17 @@ def _sub0_value(od: ObjectDictionary, obj: Obj, sub0: Sub, diags: Diagnostics) -
     if index == ERROR_HISTORY or RPDO_MAPPING <= index < RPDO_MAPPING + PDO_COUNT \
             or TPDO_MAPPING <= index < TPDO_MAPPING + PDO_COUNT:
         return  # sub0 is not "highest sub-index supported" here
-    default = sub0.default
-    declared = plain_int(default)
-    if default is None or declared is None:
+    value, keyword = value_in_force(od, sub0)  # a DCF's ParameterValue is what the device starts with
+    declared = plain_int(value)
+    if value is None or declared is None:
         return
     highest = max(obj.subs)
     if highest == 0 or declared == highest:
         return
     if declared < highest and sub0.writable:
         return  # sub0 counts the valid entries, as 0x1003 does: vendors use that pattern for other objects
-    diags.add(OBJ011, Loc(od.source, default_line(sub0)),
-              f"DefaultValue={_show(default)} but the highest sub-index is {highest}", obj.index, 0)
+    diags.add(OBJ011, Loc(od.source, value_line(sub0, value, keyword)),
+              f"{_LABEL[keyword]}={_show(value)} but the highest sub-index is {highest}", obj.index, 0)
 
 
 # -- O10, O11 ------------------------------------------------------------------
@@ -284,8 +289,21 @@ def _type_range(od: ObjectDictionary, index: int, where_sub: int | None, sub: Su
                 f"above the {dtype.name} maximum {_num(high)}"
             node = f" (= {_num(v)} for node-id {node_id})" if value.nodeid else ""
             diags.add(rule, Loc(od.source, value_line(sub, value, keyword)),
-                      f"{_LABEL[keyword]}={_show(value)}{node} is {side}", index, where_sub)
+                      f"{_LABEL[keyword]}={_show(value)}{node} is {side}", index, where_sub,
+                      blocks=not (rule is OBJ014 and _restricts_nothing(keyword, v, dtype)))
             return
+
+
+def _restricts_nothing(keyword: str, v: int | float, dtype: DataType) -> bool:
+    """A limit beyond the end of the type it bounds (HighLimit above the maximum, LowLimit below the
+    minimum) that the runtime still compares as the number it is: odg.c compares the limits of an
+    integer type as 64-bit numbers, unsigned or signed as the type is. The C then restricts nothing
+    there, as the file means. (REAL32 limits beyond the float range odg_verify refuses.)"""
+    if not isinstance(v, int) or dtype.min is None or dtype.max is None or dtype.kind == "real":
+        return False
+    signed = dtype.min < 0
+    fits = -(1 << 63) <= v < (1 << 63) if signed else 0 <= v < (1 << 64)
+    return fits and (v > dtype.max if keyword == "highlimit" else v < dtype.min)
 
 
 _TEXT_TYPES = frozenset(t.code for t in BASIC_TYPES.values() if t.kind in ("vstring", "domain"))
@@ -522,6 +540,16 @@ def array_elements(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) 
 
 # -- strings the runtime serves as C strings -----------------------------------
 
+def const_nodeid_values(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) -> None:
+    od = walk.od
+    for sub in valued:
+        value, keyword = value_in_force(od, sub)
+        if sub.access == "const" and value is not None and value.nodeid:
+            walk.diags.add(OBJ030, Loc(od.source, sub.line_of("accesstype")),
+                           f"is const but its value {value.text.strip()} is relative to the node-id",
+                           obj.index, addr(obj, sub))
+
+
 def visible_strings(walk: Walk, obj: Obj, written: list[Sub], valued: list[Sub]) -> None:
     od = walk.od
     for sub in obj.subs.values():
@@ -552,6 +580,7 @@ OBJECT_QUESTIONS: tuple[ObjectQuestion, ...] = (
     unknown_keywords,
     array_elements,
     visible_strings,
+    const_nodeid_values,
 )
 
 

@@ -8,7 +8,7 @@ a mapping entry where it has one, else with its DefaultValue.
 from __future__ import annotations
 
 from ...catalogue.pdo import PDO001, PDO002, PDO003, PDO004, PDO005, PDO006, PDO007, PDO008, PDO009, PDO010, PDO011
-from ...diagnostics import Diagnostics, Loc, where
+from ...diagnostics import Diagnostics, Loc, Severity, where
 from ...model import Obj, ObjectDictionary, Sub
 from ...model.pdo import (FD_FRAME_BITS, FRAME_BITS, MAPPINGS, MAX_ENTRIES, MappingEntry, decode_mapping,
                          mapping_objects)
@@ -140,8 +140,15 @@ def _length(od: ObjectDictionary, obj: Obj, entry: MappingEntry, dtype: DataType
         return  # strings and domains: size from the value, not checked here
     # BOOLEAN maps as 1 bit (bit-granular devices) or as a byte (byte-granular ones)
     if entry.length != dtype.bits and not (dtype.kind == "bool" and entry.length == 8):
+        short = dtype.code in SHORT_MAPPED and entry.length == 32  # served as CANopenNode does (odg_pdo.c)
         diags.add(PDO003, Loc(od.source, entry.line),
-                  f"maps {name} ({dtype.bits} bit) with length {entry.length}", obj.index, entry.sub.subindex)
+                  f"maps {name} ({dtype.bits} bit) with length {entry.length}"
+                  + ("; the runtime serves its low-order 32 bits, as CANopenNode does" if short else ""),
+                  obj.index, entry.sub.subindex, blocks=not short, severity=Severity.WARNING if short else None)
+
+
+# INTEGER64 and UNSIGNED64: mapped with 32 bits, the runtime serves their low-order four bytes
+SHORT_MAPPED = frozenset((0x0015, 0x001B))
 
 
 # -- C5, H6 ----------------------------------------------------------------------

@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from ...diagnostics import Severity, where
+from ...repair import blocking_marks
 from ..driver import FileResult
 
 COMMANDS = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "notice"}
@@ -19,9 +20,10 @@ def _escape(text: str, prop: bool = False) -> str:
 def render_github(results: Sequence[FileResult]) -> str:
     lines = []
     for r in results:
+        marks = blocking_marks(r.od, r.diagnostics)
         for d in r.diagnostics:
             subject = where(d.index, d.sub)
-            body = f"{subject} {d.message}" if subject else d.message
+            body = (f"{subject} {d.message}" if subject else d.message) + marks.get(d, "")
             props = f"file={_escape(d.loc.file, True)},line={max(d.loc.line, 1)},title={_escape(d.rule, True)}"
             lines.append(f"::{COMMANDS[d.severity]} {props}::{_escape(f'{d.rule} {body}')}")
     return "".join(line + "\n" for line in lines)

@@ -10,6 +10,7 @@ from ... import __version__
 from ...diagnostics import RULES, Diagnostic, Rule, Severity, where
 from ..driver import FileResult
 from ...model import ObjectDictionary
+from ...repair import blocking_marks
 
 SCHEMA_URI = "https://json.schemastore.org/sarif-2.1.0.json"
 LEVELS = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "note"}
@@ -61,20 +62,23 @@ def _rule(rule: Rule) -> dict[str, object]:
     }
 
 
-def _result(d: Diagnostic, rule_index: dict[str, int], od: ObjectDictionary | None) -> dict[str, object]:
+def _result(d: Diagnostic, rule_index: dict[str, int], od: ObjectDictionary | None, mark: str) -> dict[str, object]:
     physical: dict[str, object] = {"artifactLocation": artifact_location(d.loc.file),
                                    "region": {"startLine": _line(d, od)}}
     location: dict[str, object] = {"physicalLocation": physical}
     if d.index is not None:
         location["logicalLocations"] = [{"name": where(d.index, d.sub), "kind": "member"}]
     subject = where(d.index, d.sub)
-    return {
+    result: dict[str, object] = {
         "ruleId": d.rule,
         "ruleIndex": rule_index[d.rule],
         "level": LEVELS[d.severity],
-        "message": {"text": f"{subject} {d.message}" if subject else d.message},
+        "message": {"text": (f"{subject} {d.message}" if subject else d.message) + mark},
         "locations": [location],
     }
+    if mark:  # the same words as the message's mark, for tools that read properties
+        result["properties"] = {"blocksGenerate": True, "repair": mark.split("; ", 1)[1].rstrip("]")}
+    return result
 
 
 def uri_base_ids() -> dict[str, dict[str, str]]:
@@ -92,8 +96,9 @@ def render_sarif(results: Sequence[FileResult]) -> str:
         }},
         "originalUriBaseIds": uri_base_ids(),
         "artifacts": [{"location": artifact_location(r.source)} for r in results],
-        "results": [_result(d, rule_index, r.od if d.loc.file == r.source else None)
-                    for r in results for d in r.diagnostics],
+        "results": [_result(d, rule_index, r.od if d.loc.file == r.source else None, marks.get(d, ""))
+                    for r, marks in ((r, blocking_marks(r.od, r.diagnostics)) for r in results)
+                    for d in r.diagnostics],
         "columnKind": "unicodeCodePoints",
     }
     omitted = {r.source: r.omitted for r in results if r.omitted}

@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from ...diagnostics import Severity, more_line
+from ...repair import blocking_marks
 from ..driver import FileResult
 
 
@@ -20,7 +21,8 @@ def summary(results: Sequence[FileResult]) -> dict[str, int]:
 def render_text(results: Sequence[FileResult]) -> str:
     lines = []
     for r in results:
-        lines += [d.text() for d in r.diagnostics]
+        marks = blocking_marks(r.od, r.diagnostics)  # after the message: `file:line: error[ID]:` stays first
+        lines += [d.text() + marks.get(d, "") for d in r.diagnostics]
         lines += [more_line(r.source, rule_id, more) for rule_id, more in r.omitted.items()]
     s = summary(results)
     lines.append(
