@@ -13,11 +13,11 @@ from ..diagnostics import Diagnostics, Severity
 from ..errors import OdgenError
 from ..model import ObjectDictionary
 from ..place.layout import group_layouts
-from ..place.migration import CONVERT, DEFAULT, DROP, KEEP, RESIZE, GroupLayout, Step, plan
+from ..place.migration import CONVERT, DEFAULT, DROP, FOLLOW, KEEP, RESIZE, GroupLayout, Step, plan
 from ..place.nvmap import Region
 from .changes import Change
 
-KINDS = {CONVERT: "DIF201", RESIZE: "DIF202", DROP: "DIF203", DEFAULT: "DIF204", KEEP: "DIF205"}
+KINDS = {CONVERT: "DIF201", FOLLOW: "DIF201", RESIZE: "DIF202", DROP: "DIF203", DEFAULT: "DIF204", KEEP: "DIF205"}
 
 
 @dataclass
@@ -115,7 +115,8 @@ def _message(step: Step) -> str:
         limits = f"; a stored value outside {_limit(low)}..{_limit(high)} becomes the default"
     if step.action == KEEP:
         return "kept" + limits
-    what = {CONVERT: "converted", RESIZE: "resized, what fits kept", DROP: "dropped", DEFAULT: "the default"}
+    what = {CONVERT: "converted", FOLLOW: "the default", RESIZE: "resized, what fits kept", DROP: "dropped",
+            DEFAULT: "the default"}
     return f"{what[step.action]} at boot ({step.reason}){limits}"
 
 
