@@ -327,14 +327,16 @@ typedef enum odg_boot_status {
     (1u << ODG_BOOT_SIGNATURE | 1u << ODG_BOOT_NV_ERROR | 1u << ODG_BOOT_DAMAGED | ODG_BOOT_ENTRIES_LOST)
 
 /* What the boot did to one group: the status and, when an image was found, its entries kept,
- * converted (widened, or a string or domain cut), defaulted (new, retyped, narrowed, out of the
- * current limits) and dropped (no longer in the group). */
+ * converted (widened, a string or domain cut, sub 0 of an array whose length changed),
+ * defaulted (stored, but retyped, narrowed or out of the current limits: lost), dropped (no
+ * longer in the group: lost) and added (new in the group: the default, nothing lost). */
 typedef struct odg_boot {
     uint8_t status;          /* odg_boot_status_t */
     uint16_t kept;
     uint16_t converted;
     uint16_t defaulted;
     uint16_t dropped;
+    uint16_t added;
 } odg_boot_t;
 
 /* ---- the dictionary ------------------------------------------------------------- */

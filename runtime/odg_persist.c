@@ -350,9 +350,25 @@ static uint32_t image_size(const odg_dict_t *d, uint8_t g)
     return n;
 }
 
+/* The group id an "ODG2" slot of group `gr` carries: the CRC-32 of its name mixed with the
+ * region's place in NV (an odd multiplier: two places never give one tag), so that an image of
+ * this group written at another place (its region moved) is not taken for one of this region.
+ * Images written before carry the plain CRC-32 and are still taken (docs/persistence.md). */
+static uint32_t tagged_id(const odg_group_t *gr)
+{
+    return gr->id ^ ((gr->nv_addr + 1u) * 0x9E3779B1u);
+}
+
+static int our_id(const odg_group_t *gr, uint32_t id)
+{
+    return id == tagged_id(gr) || id == gr->id;
+}
+
 /* Read and check the "ODG2" slot at `addr` (header into `h`). `ours`: of group `gr`, and at
  * slot A or at the middle of the region it names. A valid image has a descriptor of records
- * with increasing keys whose values fill it. 1 valid, 0 not, -1 the driver failed. */
+ * with increasing keys whose values fill it. 1 valid, 0 not, -1 the driver failed, -2 (`ours`
+ * only) a header of ours whose image runs past the region and cannot be read there: an image
+ * of a larger region on an NV that ends before it, which is a loss, never "nothing there". */
 static int slot2_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t addr, uint8_t *h,
                       int ours)
 {
@@ -363,11 +379,14 @@ static int slot2_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t
     len = get32(h + 16);
     if (v != 1 || region > 0x01000000u || region / 2u < HDR2 + 2u || len < 2u ||
         len > region / 2u - HDR2 ||
-        (ours && (get32(h + 8) != gr->id ||
+        (ours && (!our_id(gr, get32(h + 8)) ||
                   (addr != gr->nv_addr && addr - gr->nv_addr != region / 2u)))) {
         return v < 0 ? -1 : 0;
     }
     v = crc_ok(nv, addr, h, HDR2, len, NULL);
+    if (v < 0 && ours && addr + HDR2 + len > gr->nv_addr + gr->region) {
+        return -2;
+    }
     if (v != 1 || nv->read(nv->ctx, addr + HDR2, c, 2) != 0) {
         return v == 0 ? 0 : -1;
     }
@@ -394,47 +413,43 @@ static int reads_back(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t
     return slot2_read(nv, gr, addr, t, 1) == 1 && get32(t + 20) == get32(h + 20);
 }
 
-/* The slot B named by the header of slot A (`h`, read but not checked): the middle of the
- * region slot A was written for, when that region is another power of two up to
- * ODG_PERSIST_MAX_REGION (a flipped bit never makes one power of two another); 0: none. The
- * header stays until slot A is written again, which a store does only once the newest image
- * is in slot B of the current region, so an image of another region's slot B is found until
- * then, whatever slot A's image holds. */
-static uint32_t named_b(const odg_group_t *gr, const uint8_t *h)
+/* The places an image of group `gr` can be, as offsets from its region's start after `half`:
+ * slot A (0), slot B of its region (the middle), then slot B of every other region size the
+ * group may have had, in place (powers of two from 64 bytes up to ODG_PERSIST_MAX_REGION): a
+ * region that grew or shrank keeps its images where they were written, and each image's
+ * header names the region it was written for. 0 after the last. */
+static uint32_t next_place(const odg_group_t *gr, uint32_t half)
 {
-    uint32_t r = get32(h + 12);
-    if (get32(h) != MAGIC2 || get32(h + 8) != gr->id || r == gr->region || r < 64u ||
-        r > ODG_PERSIST_MAX_REGION || (r & (r - 1u)) != 0u) {
-        return 0u;
+    if (half == 0u) {
+        return gr->region / 2u;
     }
-    return gr->nv_addr + r / 2u;
+    half = half == gr->region / 2u ? 32u : 2u * half;
+    if (half == gr->region / 2u) {
+        half *= 2u;
+    }
+    return half <= ODG_PERSIST_MAX_REGION / 2u ? half : 0u;
 }
 
-/* The newest valid slot of group `gr` (address in at[0], header in h): slot A, slot B of the
- * region, and the slot B slot A's header names (at[1], 0 when none). 1 found, 0 none, -1 the
+/* The newest valid image of group `gr` at any of its places (address in *at, header in h). 1
+ * found, 0 none, 2 the newest is an image of ours that cannot be read (slot2_read -2), -1 the
  * driver failed (a failing read past the region means no NV there). */
-static int newest2(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t at[2], uint8_t *h)
+static int newest2(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t *at, uint8_t *h)
 {
     uint8_t t[HDR2];
-    uint32_t cand[3], k;
+    uint32_t half = 0u;
     int v, found = 0;
-    cand[0] = gr->nv_addr;
-    cand[1] = gr->nv_addr + gr->region / 2u;
-    at[0] = at[1] = 0;
-    for (k = 0; k < 2u + (at[1] != 0u); k++) {
-        v = slot2_read(nv, gr, cand[k], t, 1);
-        if (v < 0 && cand[k] - gr->nv_addr < gr->region) {
+    *at = gr->nv_addr;
+    do {
+        v = slot2_read(nv, gr, gr->nv_addr + half, t, 1);
+        if (v == -1 && half < gr->region) {
             return -1;
         }
-        if (v > 0 && (!found || newer(get32(t + 4), get32(h + 4)))) {
-            found = 1;
-            at[0] = cand[k];
+        if ((v == 1 || v == -2) && (!found || newer(get32(t + 4), get32(h + 4)))) {
+            found = v == 1 ? 1 : 2;
+            *at = gr->nv_addr + half;
             odg_copy(h, t, HDR2);
         }
-        if (k == 0u) {
-            at[1] = cand[2] = named_b(gr, t);
-        }
-    }
+    } while ((half = next_place(gr, half)) != 0u);
     return found;
 }
 
@@ -512,33 +527,32 @@ static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
 /* Write the mirror of group `g` as its newest image: into slot A when the newest is in slot B
  * of the current region, else into that slot B (past the whole old region when the region
  * grew). Slot A, which names the old region, stays until the newest is in the current slot B,
- * so an image in the old slot B is found until then. Never over the newest image (DATA_STORE
- * when that is impossible: a region that shrank below an image of the old one). */
+ * so an image in the old slot B is found until then. */
 static odg_abort_t store2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
 {
     const odg_group_t *gr = &d->groups[g];
     uint8_t h[HDR2], t[HDR2];
-    uint32_t at[2], seq = 1, half = gr->region / 2u, addr = gr->nv_addr, size = image_size(d, g);
+    uint32_t at, seq = 1, half = gr->region / 2u, addr = gr->nv_addr, size = image_size(d, g);
     const odg_sub_t *s;
     recs_t r;
     out_t o;
-    int k = newest2(nv, gr, at, t);
+    int k = newest2(nv, gr, &at, t);
     if (k < 0) {
         return ODG_ABORT_HARDWARE;
     }
-    if (k) {
+    if (k > 0) {
+        /* the slot beside the newest; should the newest be an image of a larger region that
+         * reaches into it (after a rollback), it is written over: it was read (and migrated) at
+         * boot, and keeping it would refuse every store for good */
         seq = get32(t + 4) + 1u;
-        addr = at[0] == gr->nv_addr + half ? gr->nv_addr : gr->nv_addr + half;
-        if (addr < at[0] + HDR2 + get32(t + 16) && at[0] < addr + half) {
-            return ODG_ABORT_DATA_STORE;
-        }
+        addr = at == gr->nv_addr + half ? gr->nv_addr : gr->nv_addr + half;
     }
     if (HDR2 + size > half) {
         return ODG_ABORT_DATA_STORE; /* odg_verify: never for a generated dictionary */
     }
     put32(h, MAGIC2);
     put32(h + 4, seq);
-    put32(h + 8, gr->id);
+    put32(h + 8, tagged_id(gr));
     put32(h + 12, gr->region);
     put32(h + 16, size);
     o.nv = nv;
@@ -570,35 +584,82 @@ static int wipe(const odg_nv_driver_t *nv, uint32_t from, uint32_t to)
     return from < to && nv->erase(nv->ctx, from, to - from) != 0;
 }
 
-/* Make the next boot of group `g` use the defaults: erase its images outside the region (of
- * a region that shrank) and the region, all but the newest image first and then the newest, so
- * a power cut in between leaves the newest (as if nothing happened), never an older one. */
+/* Erase the bytes from `from` up to `to` that are not erased yet: whether the driver failed. */
+static int clear(const odg_nv_driver_t *nv, uint32_t from, uint32_t to)
+{
+    int v = from < to ? slot_blank(nv, from, to - from) : 1;
+    return v < 0 || (v == 0 && wipe(nv, from, to));
+}
+
+/* The image of ours at `addr` (0 when none): its end in `*end`, at most `limit` when it cannot
+ * be read past there. -1 when the driver failed. */
+static int image_at(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t addr, uint32_t limit,
+                    uint32_t *end)
+{
+    uint8_t h[HDR2];
+    int v = slot2_read(nv, gr, addr, h, 1);
+    *end = addr + extent(h);
+    if (v == -2 && *end > limit) {
+        *end = limit;
+    }
+    return v == -1 ? -1 : v != 0;
+}
+
+/* Make the next boot of group `g` use the defaults: erase its images at every place (those past
+ * the region first), then the region but the newest image, then the newest, so that a power
+ * cut in between leaves the newest (as if nothing happened), never an older one. */
 static odg_abort_t erase2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
 {
     const odg_group_t *gr = &d->groups[g];
-    uint8_t h[HDR2], t[HDR2];
-    uint32_t at[2], start = gr->nv_addr, end = gr->nv_addr + gr->region, e = 0;
-    uint32_t lo = end, hi = end; /* the newest image's bytes in the region */
-    int found = newest2(nv, gr, at, h), fail = found < 0;
-    /* an older image in the slot B slot A names, past the region (a region that shrank) */
-    if (!fail && at[1] >= end && at[1] != at[0] && slot2_read(nv, gr, at[1], t, 1) == 1) {
-        fail = wipe(nv, at[1], at[1] + extent(t));
-    }
-    if (found > 0) {
-        e = at[0] + extent(h);
-        if (at[0] < end) { /* the header is what counts */
-            lo = at[0];
-            hi = e = e > end ? end : e;
+    uint8_t h[HDR2];
+    uint32_t at, start = gr->nv_addr, end = gr->nv_addr + gr->region, half = 0u, e, lo = end, hi = end;
+    int found = newest2(nv, gr, &at, h), fail = found < 0, v;
+    while (!fail && (half = next_place(gr, half)) != 0u) {
+        if (start + half >= end && start + half != at) {
+            v = image_at(nv, gr, start + half, end, &e);
+            fail = v > 0 && wipe(nv, start + half, e);
         }
     }
-    fail = fail || wipe(nv, start, lo) || wipe(nv, hi, end) || wipe(nv, at[0], e);
+    if (found > 0) {
+        v = image_at(nv, gr, at, at < end ? end : 0xFFFFFFFFu, &e);
+        e = found == 2 && at < end && e > end ? end : e;
+        if (at < end) { /* the header is what counts */
+            lo = at;
+            hi = e > end ? end : e;
+        }
+        fail = fail || v < 0;
+    }
+    fail = fail || wipe(nv, start, lo) || wipe(nv, hi, end) || (found > 0 && wipe(nv, at, e));
     return fail ? ODG_ABORT_HARDWARE : ODG_OK;
+}
+
+/* After a boot of group `gr`: erase what its region holds besides its newest image: its older
+ * images, and images of other groups or of this one written at another place, left there by a
+ * firmware whose NV map differed. None of them may ever come back as a group's values (a
+ * firmware that cannot see the newest image, after a rollback, would take an older one). -1
+ * when the driver failed. */
+static int scrub(const odg_nv_driver_t *nv, const odg_group_t *gr)
+{
+    uint8_t h[HDR2];
+    uint32_t at, end = gr->nv_addr + gr->region, e = gr->nv_addr;
+    int found = newest2(nv, gr, &at, h);
+    if (found < 0) {
+        return -1;
+    }
+    if (found == 1 && at < end) {
+        e = at + extent(h);
+        if (clear(nv, gr->nv_addr, at)) {
+            return -1;
+        }
+    }
+    return clear(nv, e < end ? e : end, end) ? -1 : 0;
 }
 
 /* ---- boot migration: docs/persistence.md section 3, odgen/persist/migration.py ----------- */
 
-/* What became of a stored entry; n[DEFAULTED .. CONVERTED] go to odg_state_t.boot_counts */
-enum { KEPT = 0, DEFAULTED = 1, DROPPED = 2, CONVERTED = 3, FAILED = -1 };
+/* What became of an entry; n[DEFAULTED .. CONVERTED] go to odg_state_t.boot_counts. ADDED: new
+ * in the group (the default, no loss). */
+enum { KEPT = 0, DEFAULTED = 1, DROPPED = 2, CONVERTED = 3, ADDED = 4, FAILED = -1 };
 
 /* UNSIGNEDn -> UNSIGNEDm, INTEGERn -> INTEGERm, UNSIGNEDn -> INTEGERm with m > n. */
 static int widens(uint8_t from, uint8_t to)
@@ -707,16 +768,50 @@ static int restore(const odg_dict_t *d, const odg_nv_driver_t *nv, uint32_t pos,
     return s->type == st[3] ? KEPT : CONVERTED;
 }
 
+/* The highest sub-index of `index` among the records j.. of the image at `base` (cnt records),
+ * 0 when none; -1 when the driver failed. */
+static long stored_highest(const odg_nv_driver_t *nv, uint32_t base, uint32_t j, uint32_t cnt,
+                           uint16_t index)
+{
+    uint8_t st[REC];
+    long high = 0;
+    for (; j < cnt; j++) {
+        if (nv->read(nv->ctx, base + 2u + REC * j, st, REC) != 0) {
+            return -1;
+        }
+        if (get16(st) != index) {
+            break;
+        }
+        high = st[2];
+    }
+    return high;
+}
+
+/* The highest sub-index of the firmware's entry `e` persisted in the same group as its sub 0. */
+static uint8_t fw_highest(const odg_dict_t *d, const odg_entry_t *e)
+{
+    uint8_t high = 0, storage = d->subs[e->first].storage;
+    uint32_t p;
+    for (p = e->first; p < (uint32_t)e->first + e->count; p++) {
+        if (d->subs[p].storage == storage) {
+            high = d->subs[p].sub;
+        }
+    }
+    return high;
+}
+
 /* Every entry of group `g` from the image at `at`, merged by key with the firmware's layout;
- * the mirror holds the defaults before. Counts into n[KEPT .. DROPPED]; -1 when the driver
- * failed. */
+ * the mirror holds the defaults before. Counts into n[KEPT .. ADDED]; -1 when the driver
+ * failed. Sub 0 of an entry whose highest sub-index changed follows it (the default,
+ * converted). */
 static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, uint32_t at,
-                   uint16_t n[4])
+                   uint16_t n[5])
 {
     uint8_t st[REC];
     uint32_t base = at + HDR2, cnt, j = 0, vo, key;
     const odg_sub_t *s;
     recs_t fw;
+    long high;
     int have = 0, r;
     if (nv->read(nv->ctx, base, st, 2) != 0) {
         return -1;
@@ -724,7 +819,7 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
     cnt = get16(st);
     vo = base + 2u + REC * cnt;
     for (recs_start(&fw, d, g); (s = recs_next(&fw)) != NULL;) {
-        r = DEFAULTED;
+        r = ADDED;
         while (j < cnt) { /* stored entries before this key are no longer in the group */
             if (!have && nv->read(nv->ctx, base + 2u + REC * j, st, REC) != 0) {
                 return -1;
@@ -736,6 +831,13 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
             }
             if (key < fw.key) {
                 n[DROPPED]++;
+            } else if ((fw.key & 0xFFu) == 0u &&
+                       (high = stored_highest(nv, base, j + 1u, cnt, fw.e->index)) !=
+                           (long)fw_highest(d, fw.e)) {
+                if (high < 0) {
+                    return -1;
+                }
+                r = CONVERTED; /* the count follows the entry: its default */
             } else if ((r = restore(d, nv, fw.pos - 1u, s, st, vo)) == FAILED) {
                 return -1;
             }
@@ -752,31 +854,42 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
     return 0;
 }
 
-/* No valid image of ours: DEFAULTS when both slots are erased or hold another group's images
- * (its region moved), SIGNATURE for an "ODG1" image (the format before), else DAMAGED. */
+/* No image of ours: DEFAULTS when the region is blank (a first boot, or after a restore);
+ * SIGNATURE for an "ODG1" image (the format before); else DAMAGED: corrupt bytes, another
+ * group's image or this group's written at another place (the NV map changed), all losses. */
 static odg_boot_status_t no_image2(const odg_nv_driver_t *nv, const odg_group_t *gr)
 {
-    uint8_t t[HDR2];
-    uint32_t half = gr->region / 2u, addr;
-    odg_boot_status_t st = ODG_BOOT_DEFAULTS;
+    uint8_t t[HDR];
+    uint32_t half = gr->region / 2u;
     int k, v;
     for (k = 0; k < 2; k++) {
-        addr = gr->nv_addr + (k ? half : 0u);
-        v = slot_blank(nv, addr, half);
+        v = slot_blank(nv, gr->nv_addr + (k ? half : 0u), half);
         if (v == 0) {
-            v = slot2_read(nv, gr, addr, t, 0);
-        }
-        if (v == 0 && (v = slot_read(nv, addr, half - HDR, t, NULL)) == 1) {
-            st = ODG_BOOT_SIGNATURE;
+            v = slot_read(nv, gr->nv_addr + (k ? half : 0u), half - HDR, t, NULL);
+            return v < 0 ? ODG_BOOT_NV_ERROR : (v ? ODG_BOOT_SIGNATURE : ODG_BOOT_DAMAGED);
         }
         if (v < 0) {
             return ODG_BOOT_NV_ERROR;
         }
-        if (v == 0) {
-            return ODG_BOOT_DAMAGED;
-        }
     }
-    return st;
+    return ODG_BOOT_DEFAULTS;
+}
+
+/* The counts of a boot that found an image, into `b` and the totals of the EMCY. */
+static void count(odg_state_t *s, odg_boot_t *b, const uint16_t n[5])
+{
+    int i;
+    b->kept = n[KEPT];
+    b->converted = n[CONVERTED];
+    b->defaulted = n[DEFAULTED];
+    b->dropped = n[DROPPED];
+    b->added = n[ADDED];
+    for (i = 0; i < 3; i++) { /* entries defaulted, dropped, converted */
+        s->boot_counts[i] = add_sat(s->boot_counts[i], n[i + 1]);
+    }
+    if (n[DEFAULTED] || n[DROPPED]) { /* values stored and not served */
+        s->boot_seen = (uint8_t)(s->boot_seen | ODG_BOOT_ENTRIES_LOST);
+    }
 }
 
 static odg_boot_status_t boot2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g,
@@ -784,47 +897,46 @@ static odg_boot_status_t boot2(const odg_dict_t *d, const odg_nv_driver_t *nv, u
 {
     const odg_group_t *gr = &d->groups[g];
     uint8_t h[HDR2];
-    uint16_t n[4] = {0, 0, 0, 0}; /* entries KEPT, DEFAULTED, DROPPED, CONVERTED */
-    uint32_t at[2];
+    uint16_t n[5] = {0, 0, 0, 0, 0}; /* entries KEPT, DEFAULTED, DROPPED, CONVERTED, ADDED */
+    uint32_t at;
     odg_boot_status_t st;
-    odg_abort_t ac = ODG_OK;
-    odg_state_t *s = d->state;
-    int k = newest2(nv, gr, at, h), changed, i;
+    int k = newest2(nv, gr, &at, h), changed;
     if (k < 0) {
         st = ODG_BOOT_NV_ERROR;
     } else if (k == 0) {
         st = no_image2(nv, gr);
+    } else if (k == 2) {
+        st = ODG_BOOT_DAMAGED; /* the newest image cannot be read: its values are lost */
     } else {
         defaults(d, g);
         st = ODG_BOOT_NV_ERROR; /* unless the image reads the same a second time */
-        if (migrate(d, nv, g, at[0], n) == 0 && reads_back(nv, gr, at[0], h)) {
-            /* a migrated image is stored, with the A/B commit; the old one stays until it
-             * lands (DATA_STORE: no slot beside the old image, which is then migrated again) */
-            changed = n[DEFAULTED] || n[DROPPED] || n[CONVERTED];
-            if (changed) {
-                ac = store2(d, nv, g);
-            }
-            if (ac == ODG_OK || ac == ODG_ABORT_DATA_STORE) {
-                b->kept = n[KEPT];
-                b->converted = n[CONVERTED];
-                b->defaulted = n[DEFAULTED];
-                b->dropped = n[DROPPED];
-                for (i = 0; i < 3; i++) { /* entries defaulted, dropped, converted */
-                    s->boot_counts[i] = add_sat(s->boot_counts[i], n[i + 1]);
-                }
-                if (n[DEFAULTED] || n[DROPPED]) {
-                    s->boot_seen = (uint8_t)(s->boot_seen | ODG_BOOT_ENTRIES_LOST);
-                }
+        if (migrate(d, nv, g, at, n) == 0 && reads_back(nv, gr, at, h)) {
+            /* a migrated image is stored at once, with the A/B commit */
+            changed = n[DEFAULTED] || n[DROPPED] || n[CONVERTED] || n[ADDED];
+            if ((!changed || store2(d, nv, g) == ODG_OK) && scrub(nv, gr) == 0) {
+                count(d->state, b, n);
                 return changed ? ODG_BOOT_MIGRATED : ODG_BOOT_LOADED;
             }
         }
     }
     defaults(d, g);
-    if (st != ODG_BOOT_NV_ERROR && store2(d, nv, g) != ODG_OK) {
+    if (st != ODG_BOOT_NV_ERROR && (store2(d, nv, g) != ODG_OK || scrub(nv, gr) != 0)) {
         st = ODG_BOOT_NV_ERROR;
     }
     return st;
 }
+
+/* Whether the newest image of group `g` lies outside its region: 1 yes, 0 no (or no image, or
+ * a group without migration). */
+static int displaced(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
+{
+    const odg_group_t *gr = &d->groups[g];
+    uint8_t h[HDR2];
+    uint32_t at;
+    return MIGRATES(gr) && newest2(nv, gr, &at, h) == 1 && at - gr->nv_addr >= gr->region;
+}
+#else
+#define displaced(d, nv, g) 0
 #endif /* ODG_NO_MIGRATION */
 
 /* Write the mirror of `gr` as the new newest "ODG1" image. */
@@ -917,19 +1029,30 @@ static odg_abort_t act(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g
     return restore ? erase1(d, nv, g) : store1(d, nv, g);
 }
 
+/* Whether the NV behind `nv` holds the dictionary's NAME_NV_SIZE bytes (its last byte reads). */
+static int nv_fits(const odg_dict_t *d, const odg_nv_driver_t *nv)
+{
+    uint32_t size = odg_persist_nv_size(d);
+    uint8_t c;
+    return nv != NULL && (size == 0u || nv->read(nv->ctx, size - 1u, &c, 1) == 0);
+}
+
 /* 0x1010 / 0x1011 sub `sub`, handed over by the core: sub 1 acts on every group, another on
- * the groups with that store_sub; DATA_STORE when none has it. */
+ * the groups with that store_sub, each of them even past one that fails (the first failure is
+ * the answer); DATA_STORE when none has it, or the NV is smaller than the dictionary's. */
 static odg_abort_t command(odg_client_t *self, const odg_dict_t *d, uint8_t sub, int restore)
 {
     const odg_nv_driver_t *nv = ((const odg_persist_t *)(const void *)self)->nv;
-    odg_abort_t ac = ODG_ABORT_DATA_STORE;
-    uint8_t g;
+    odg_abort_t ac = ODG_ABORT_DATA_STORE, r;
+    uint8_t g, any = 0;
+    if (!nv_fits(d, nv)) {
+        return ODG_ABORT_DATA_STORE;
+    }
     for (g = 0; g < d->n_groups; g++) {
         if (sub == 1u || d->groups[g].store_sub == sub) {
-            ac = act(d, nv, g, restore);
-            if (ac != ODG_OK) {
-                break;
-            }
+            r = act(d, nv, g, restore); /* every group, even past one that failed */
+            ac = !any || ac == ODG_OK ? r : ac;
+            any = 1;
         }
     }
     return ac;
@@ -998,6 +1121,25 @@ static void report(const odg_dict_t *d, uint8_t g, const odg_boot_t *b)
     }
 }
 
+/* What the boot of group `g` found, into the dictionary's state, the status object, `st` and
+ * `boot` (either may be NULL), and *ac (HARDWARE on NV_ERROR). */
+static void booted(const odg_dict_t *d, uint8_t g, const odg_boot_t *b, odg_boot_status_t *st,
+                   odg_boot_t *boot, odg_abort_t *ac)
+{
+    odg_state_t *s = d->state;
+    s->boot_seen = (uint8_t)(s->boot_seen | 1u << b->status);
+    if (b->status == ODG_BOOT_NV_ERROR && *ac == ODG_OK) {
+        *ac = ODG_ABORT_HARDWARE;
+    }
+    report(d, g, b);
+    if (st != NULL) {
+        st[g] = (odg_boot_status_t)b->status;
+    }
+    if (boot != NULL) {
+        boot[g] = *b;
+    }
+}
+
 /* Attach the layer and boot every group; the statuses into `st`, the counts into `boot`
  * (either may be NULL). */
 static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_nv_driver_t *nv,
@@ -1005,7 +1147,8 @@ static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_
 {
     odg_abort_t ac = nv != NULL ? ODG_OK : ODG_ABORT_DATA_STORE;
     odg_state_t *s = dict->state;
-    uint8_t g;
+    uint8_t g, done[32]; /* the groups booted in the first pass */
+    int fits, pass;
     if (nv != NULL) {
         p->client.command = command;
         p->client.changed = NULL;
@@ -1016,21 +1159,25 @@ static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_
 #ifndef ODG_NO_MIGRATION /* the counts of entries a migration converted, defaulted, dropped */
     s->boot_counts[0] = s->boot_counts[1] = s->boot_counts[2] = 0;
 #endif
-    for (g = 0; g < dict->n_groups; g++) {
-        odg_boot_t b = {ODG_BOOT_NV_ERROR, 0, 0, 0, 0};
-        if (nv != NULL) {
-            b.status = (uint8_t)boot_group(dict, nv, g, &b);
+    fits = nv_fits(dict, nv);
+    /* two passes: first the groups whose newest image lies outside their region (in a region
+     * of another group, after the NV map changed), which move it home before that group's
+     * boot writes over it; then the others */
+    memset(done, 0, sizeof done);
+    for (pass = 0; pass < 2; pass++) {
+        for (g = 0; g < dict->n_groups; g++) {
+            odg_boot_t b = {ODG_BOOT_NV_ERROR, 0, 0, 0, 0, 0};
+            if ((done[g >> 3] >> (g & 7u)) & 1u || (fits && pass == 0 && !displaced(dict, nv, g))) {
+                continue;
+            }
+            done[g >> 3] = (uint8_t)(done[g >> 3] | 1u << (g & 7u));
+            if (fits) { /* an NV smaller than the dictionary's: NV_ERROR, nothing written */
+                b.status = (uint8_t)boot_group(dict, nv, g, &b);
+            }
+            booted(dict, g, &b, st, boot, &ac);
         }
-        s->boot_seen = (uint8_t)(s->boot_seen | 1u << b.status);
-        if (b.status == ODG_BOOT_NV_ERROR && ac == ODG_OK) {
-            ac = ODG_ABORT_HARDWARE;
-        }
-        report(dict, g, &b);
-        if (st != NULL) {
-            st[g] = (odg_boot_status_t)b.status;
-        }
-        if (boot != NULL) {
-            boot[g] = b;
+        if (!fits) {
+            break;
         }
     }
     odg_changed(dict, NULL);

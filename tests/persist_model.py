@@ -72,6 +72,7 @@ class Param:
 class Version:
     params: dict[int, Param]
     heartbeat: int = 1000
+    options: str = ""  # more options-file text ([persist], [[group]] regions)
 
 
 # -- firmware versions -------------------------------------------------------------------------
@@ -173,7 +174,7 @@ def _var(p: Param) -> list[str]:
 
 
 def options(v: Version) -> str:
-    text = '[[entry]]\nmatch = "0x1017"\nstorage = "persist:comm"\n'
+    text = v.options + '[[entry]]\nmatch = "0x1017"\nstorage = "persist:comm"\n'
     for p in sorted(v.params.values(), key=lambda p: p.index):
         text += f'\n[[entry]]\nmatch = "0x{p.index:04X}"\nstorage = "persist:{p.group}"\n'
         if p.capacity:
@@ -247,6 +248,11 @@ class Nv:
     size: int
     images: dict[str, list[Image | None]] = field(default_factory=dict)  # candidates, None: nothing
     written: dict[str, set[tuple[int, int]]] = field(default_factory=dict)  # regions each group used
+    # the images written at each place (a group's region) since it was last erased
+    placed: dict[tuple[str, int], list[Image]] = field(default_factory=dict)
+    # images a firmware left behind: written at a place its NV map does not cover at all (past its
+    # NAME_NV_SIZE), which nothing erases; docs/persistence.md says they may come back
+    stale: dict[str, list[Image]] = field(default_factory=dict)
 
 
 def script(rng: random.Random, fws: list[Firmware]) -> list[tuple[str, ...]]:
@@ -402,13 +408,15 @@ class Checker:
         fw = self.cur
         assert fw is not None
         groups = [g for g in GROUPS if fw.layouts[g].entries]
-        if cut:
+        if cut and self.working():
             for g in groups:
                 old = self.nv.images.get(g, [None])
                 new: list[Image | None] = [self._image(fw, g)] if word == "save" else [None]
                 self.nv.images[g] = old + new
                 self.nv.written.setdefault(g, set()).add(fw.regions[g])
             self.dirty = True
+            return
+        if cut:
             return
         if not self.working():
             if word == "save" and abort != DATA_STORE:
@@ -419,8 +427,35 @@ class Checker:
             self.bad("R4", f"{word} on working NV aborts 0x{abort:08X}")
             return
         for g in groups:
-            self.nv.images[g] = [self._image(fw, g)] if word == "save" else [None]
-            self.nv.written.setdefault(g, set()).add(fw.regions[g])
+            if word == "save":
+                self._commit(fw, g, self._image(fw, g))
+            else:
+                self.nv.images[g] = [None]
+                self.nv.placed.pop((g, fw.regions[g][0]), None)
+
+    def _commit(self, fw: Firmware, g: str, image: Image) -> None:
+        """The image the runtime has written (or kept) as group g's newest, in its region."""
+        self.nv.images[g] = [image]
+        self.nv.written.setdefault(g, set()).add(fw.regions[g])
+        self.nv.placed.setdefault((g, fw.regions[g][0]), []).append(image)
+
+    def _left_behind(self, fw: Firmware) -> None:
+        """Images at places the booting firmware's map does not cover: nothing erases them.
+        Places inside another region are erased by that region's group at this boot. And images
+        past the NV the driver shows this firmware: it cannot see them, so what it stores starts
+        over, and a later firmware that sees both may take the hidden one (docs/persistence.md)."""
+        for g, images in self.nv.images.items():
+            for image in images:
+                if image is not None and image.region[0] + image.region[1] > self.nv.size \
+                        and image not in self.nv.stale.get(g, []):
+                    self.nv.stale.setdefault(g, []).append(image)
+        for (g, offset), images in list(self.nv.placed.items()):
+            if fw.layouts[g].entries and fw.regions[g][0] == offset:
+                continue
+            del self.nv.placed[(g, offset)]
+            for image in images:
+                if image.region[0] + image.region[1] > fw.nv_size:  # the regions tile 0 .. NAME_NV_SIZE
+                    self.nv.stale.setdefault(g, []).append(image)
 
     def _image(self, fw: Firmware, g: str) -> Image:
         return Image(fw.layouts[g], dict(self.served[g]), fw.regions[g])
@@ -443,7 +478,11 @@ class Checker:
         return Image(fw.layouts[g], values, fw.regions[g])
 
     def stable(self, fw: Firmware) -> bool:
-        """Nothing in NV moved, and no region of the running firmware holds another group's bytes."""
+        """Nothing in NV moved, no region of the running firmware holds another group's bytes, and
+        every group's newest image lies inside the NV the driver shows."""
+        if any(i is not None and i.region[0] + i.region[1] > self.nv.size
+               for images in self.nv.images.values() for i in images):
+            return False
         for g, regions in self.nv.written.items():
             mine = fw.regions.get(g)
             for offset, size in regions:
@@ -466,12 +505,16 @@ class Checker:
                 self.served[g] = {e.key: to_image(e, boot.values.get(e.key, "")) for e in fw.layouts[g].entries}
             return
         stable = self.stable(fw) and not self.dirty
+        self._left_behind(fw)
         lost = False
         for n, g in enumerate(groups):
             layout, b = fw.layouts[g], boot.groups[n]
             got = {e.key: boot.values.get(e.key, "") for e in layout.entries}
             self.served[g] = {e.key: to_image(e, got[e.key]) for e in layout.entries}
-            cands = self.nv.images.get(g, [None])
+            here = [i for i in self.nv.stale.get(g, [])
+                    if i.region[0] == fw.regions[g][0] and i.region[0] + i.region[1] <= self.nv.size]
+            self.nv.stale[g] = [i for i in self.nv.stale.get(g, []) if i not in here]
+            cands = [*here, *self.nv.images.get(g, [None])]
             options = [(c, self._expect(fw, g, c)) for c in cands]
             match = [(c, want) for c, want in options if all(got[k] in (want[k][0], fw.defaults[k]) for k in got)]
             if not match:
@@ -484,14 +527,15 @@ class Checker:
                 continue
             exact = [(c, want) for c, want in match if all(got[k] == want[k][0] for k in got)]
             c, want = (exact or match)[-1]
-            group_lost = any(got[k] != want[k][0] for k in got) or (c is not None and self._dropped(fw, g, c))
-            if c is not None and group_lost and not boot.blank[n]:
+            group_lost = any(got[k] != want[k][0] for k in got) or (
+                c is not None and migrate(c.layout, layout, c.values).counts.lost)
+            first_boot = boot.blank[n] and b["status"] == DEFAULTS  # a blank region: nothing to report
+            if c is not None and group_lost and not first_boot and c not in here:
                 lost = True
             if stable and len(cands) == 1:
                 self._exact(fw, g, c, b, got, want, after_save)
             if b["status"] != NV_ERROR:
-                self.nv.images[g] = [self._as_served(fw, g)]
-                self.nv.written.setdefault(g, set()).add(fw.regions[g])
+                self._commit(fw, g, self._as_served(fw, g))
         self.dirty = False
         emcy = bool(boot.seen[0] & LOST_BITS)
         if lost and not emcy:
@@ -500,10 +544,6 @@ class Checker:
         if stable and not lost and emcy:
             self.bad("R3", f"v{self.fws.index(fw)}: a loss reported where nothing was lost "
                      f"(groups {boot.groups}, seen 0x{boot.seen[0]:02X})")
-
-    def _dropped(self, fw: Firmware, g: str, image: Image) -> bool:
-        keys = {e.key for e in fw.layouts[g].entries}
-        return any(e.key not in keys for e in image.layout.entries)
 
     def _expect(self, fw: Firmware, g: str, image: Image | None) -> dict[tuple[int, int], tuple[str, str]]:
         """Per entry: (the value migrate() serves from the image, as odg_read gives it; its action)."""
@@ -534,7 +574,7 @@ class Checker:
         m = migrate(image.layout, fw.layouts[g], image.values)
         status = MIGRATED if m.counts.migrated else LOADED
         counts = {"kept": m.counts.kept, "converted": m.counts.converted, "defaulted": m.counts.defaulted,
-                  "dropped": m.counts.dropped}
+                  "dropped": m.counts.dropped, "added": m.counts.added}
         if b["status"] != status or any(b[k] != v for k, v in counts.items()):
             self.bad("R2", f"{tag}: {b}, migrate() says status {status} {counts}")
         if after_save and b["status"] != LOADED:
@@ -573,6 +613,29 @@ def run_set(set_seed: int, sequences: int, work: Path | None = None) -> tuple[li
             at = checker.feed(st, lines, at)
         out += checker.violations
     return out, sum(len(sc) for sc in scripts)
+
+
+def run_script(vs: list[Version], commands: list[str], work: Path) -> tuple[list[Violation], list[Boot], list[str]]:
+    """Fixed steps on versions of one's own: the rule set's violations, every boot, and the
+    answers to the other commands (the regression tests of the issue's sequences)."""
+    exe, fws = build(vs, work)
+    _defaults(exe, fws)
+    steps = [(c, "set", _key(c)) if c.startswith("set ") else (c,) for c in commands]
+    lines = execute(exe, commands)
+    checker, boots, answers, at = Checker(fws, 0, 0), [], [], 0
+    for k, st in enumerate(steps):
+        checker.step = k
+        if st[0].startswith("boot"):
+            boots.append(_parse_boot(lines, at)[0])
+        else:
+            answers.append(lines[at])
+        at = checker.feed(st, lines, at)
+    return checker.violations, boots, answers
+
+
+def _key(command: str) -> str:
+    index, sub = command.split()[1:3]
+    return f"{int(index, 16)}:{int(sub, 16)}"
 
 
 def _defaults(exe: Path, fws: list[Firmware]) -> None:

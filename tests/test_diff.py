@@ -261,17 +261,19 @@ def _storage_group(od: ObjectDictionary, index: int, sub: int | None) -> str | N
     entry = obj.subs.get(sub or 0) if obj is not None else None
     if obj is None or entry is None:
         return None
-    return storage_from_description(entry.storage or obj.storage)
+    return storage_from_description(entry.storage) or storage_from_description(obj.storage)  # sub-level RAM: none
 
 
 def _format_only(c: Change, eds: ObjectDictionary, xdd: ObjectDictionary) -> bool:
     """A change only the file formats explain: an object CANopenEditor disabled (left out of the EDS), a
-    storage group the EDS does not carry, and what these cause: groups placed after a group the EDS does
+    storage group the EDS does not carry, a stored string default's trailing blanks, and what these cause: groups placed after a group the EDS does
     not have move in NV, and the version findings (class b)."""
     if c.kind == "DIF301" and c.index is not None:
         return disabled(xdd.objects[c.index])
     if c.kind == "DIF204" and c.index is not None:
         return _storage_group(eds, c.index, c.sub) is None and _storage_group(xdd, c.index, c.sub) is not None
+    if c.kind == "DIF202":  # a stored string whose XML default ends in blanks the INI value trims
+        return _ini_trims(c, xdd)
     return c.kind in ("DIF207", "DIF401", "DIF402") and c.change_class == STORED
 
 

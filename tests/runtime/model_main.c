@@ -86,8 +86,8 @@ static void boot(unsigned k)
     rc = odg_persist_boot(&persist, cur, &nv.driver, b);
     printf("rc %08lX\n", (unsigned long)rc);
     for (g = 0; g < cur->n_groups; g++) {
-        printf("group %u status %u kept %u converted %u defaulted %u dropped %u\n", g, b[g].status,
-               b[g].kept, b[g].converted, b[g].defaulted, b[g].dropped);
+        printf("group %u status %u kept %u converted %u defaulted %u dropped %u added %u\n", g,
+               b[g].status, b[g].kept, b[g].converted, b[g].defaulted, b[g].dropped, b[g].added);
     }
     printf("seen %u %u %u %u\n", cur->state->boot_seen, cur->state->boot_counts[0],
            cur->state->boot_counts[1], cur->state->boot_counts[2]);
@@ -122,7 +122,8 @@ int main(void)
     while (fgets(line, sizeof line, stdin) != NULL) {
         hex[0] = '\0';
         if (sscanf(line, "nv %u", &a) == 1 && a <= NV_MAX) {
-            nv_fault_init(&nv, mem, a, a | 1u);
+            nv_fault_init(&nv, mem, NV_MAX, a | 1u); /* all of it blank: a window may grow */
+            nv.size = a;
             printf("ok\n");
         } else if (sscanf(line, "window %u", &a) == 1 && a <= NV_MAX) {
             nv.size = a;
