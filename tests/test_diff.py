@@ -266,8 +266,9 @@ def _storage_group(od: ObjectDictionary, index: int, sub: int | None) -> str | N
 
 def _format_only(c: Change, eds: ObjectDictionary, xdd: ObjectDictionary) -> bool:
     """A change only the file formats explain: an object CANopenEditor disabled (left out of the EDS), a
-    storage group the EDS does not carry, a stored string default's trailing blanks, and what these cause: groups placed after a group the EDS does
-    not have move in NV, and the version findings (class b)."""
+    storage group the EDS does not carry, a stored string default's trailing blanks, and what these
+    cause: groups placed after a group the EDS does not have move in NV, and the version findings
+    (class b)."""
     if c.kind == "DIF301" and c.index is not None:
         return disabled(xdd.objects[c.index])
     if c.kind == "DIF204" and c.index is not None:
