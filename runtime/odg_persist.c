@@ -939,6 +939,56 @@ static int displaced(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
 #define displaced(d, nv, g) 0
 #endif /* ODG_NO_MIGRATION */
 
+/* The value of sub-entry `s` in the mirror of group `g` checked against the firmware's
+ * current limits: outside them (limits tightened since it was stored), its default: 1, else 0. */
+static uint16_t recheck_one(const odg_dict_t *d, uint8_t g, uint32_t pos, const odg_sub_t *s)
+{
+    const odg_group_t *gr = &d->groups[g];
+    uint8_t *v = odg_value_(d, s);
+    odg_num_t x;
+    if (!(s->attr & ODG_A_LIMIT) || (s->attr & ODG_A_NODEID) || s->size > sizeof x) {
+        return 0; /* a same-layout image holds values of the type; $NODEID ones are not checked */
+    }
+    x = odg_load_(v, s->size);
+    if (s->type >= ODG_T_INTEGER8 && s->type <= ODG_T_INTEGER32 && s->size < sizeof x &&
+        ((x >> (8u * s->size - 1u)) & 1u)) {
+        x |= ~(odg_num_t)0 << (8u * s->size); /* INTEGER8/16/32: sign-extended */
+    }
+    if (odg_check_(d, (uint16_t)pos, x) == ODG_OK) {
+        return 0;
+    }
+    odg_copy(v, (const uint8_t *)gr->defaults + (v - (uint8_t *)gr->mirror), s->size);
+    return 1;
+}
+
+/* An "ODG1" image of the same layout, loaded into the mirror of group `g`: its values outside
+ * the current limits take their defaults, as a migration does (docs/persistence.md). How many. */
+static uint16_t recheck(const odg_dict_t *d, uint8_t g)
+{
+    uint8_t storage = (uint8_t)(ODG_S_PERSIST | (unsigned)g << 2);
+    uint16_t n = 0, e, p;
+    odg_sub_t el;
+    uint8_t k;
+    for (e = 0; e < d->n_entries; e++) {
+        const odg_entry_t *en = &d->entries[e];
+        for (p = en->first; p < en->first + en->count; p++) {
+            const odg_sub_t *s = &d->subs[p];
+            if (s->storage != storage) {
+                continue;
+            }
+            if (ODG_CFG_PACKED && (en->code & ODG_E_PACKED) && s->sub > 0u) {
+                for (k = 1; k <= s->sub; k++) { /* the elements share the descriptor at p */
+                    odg_element_(s, k, &el);
+                    n = (uint16_t)(n + recheck_one(d, g, p, &el));
+                }
+            } else {
+                n = (uint16_t)(n + recheck_one(d, g, p, s));
+            }
+        }
+    }
+    return n;
+}
+
 /* Write the mirror of `gr` as the new newest "ODG1" image. */
 static odg_abort_t store_image1(const odg_nv_driver_t *nv, const odg_group_t *gr)
 {
@@ -1091,7 +1141,6 @@ static odg_boot_status_t boot_group(const odg_dict_t *d, const odg_nv_driver_t *
         return boot2(d, nv, g, b);
     }
 #endif
-    (void)b;
     k = newest(nv, gr, hdr);
     if (k == -2) {
         st = ODG_BOOT_NV_ERROR;
@@ -1101,8 +1150,11 @@ static odg_boot_status_t boot_group(const odg_dict_t *d, const odg_nv_driver_t *
         st = ODG_BOOT_NV_ERROR; /* it was valid a moment ago: a flaky read */
     } else if (get32(h + 8) != gr->signature || get32(h + 12) != gr->size) {
         st = ODG_BOOT_SIGNATURE; /* an image of another layout, read over the defaults below */
-    } else {
+    } else if ((b->defaulted = recheck(d, g)) == 0u) {
         return ODG_BOOT_LOADED;
+    } else { /* values outside tightened limits took their defaults: a loss, stored at once */
+        d->state->boot_seen = (uint8_t)(d->state->boot_seen | ODG_BOOT_ENTRIES_LOST);
+        return store1(d, nv, g) == ODG_OK ? ODG_BOOT_MIGRATED : ODG_BOOT_NV_ERROR;
     }
     defaults(d, g);
     if (st != ODG_BOOT_NV_ERROR && store1(d, nv, g) != ODG_OK) {

@@ -174,3 +174,71 @@ def test_sequence_1_canopennode_style_files_persist_their_pdo_settings(tmp_path:
     assert placed is not None, [d.text() for d in result.refused]
     assert placed[(0x2100, 0)].storage == "persist:comm" and placed[(0x2100, 1)].storage == "persist:comm"
     assert placed[(0x2100, 2)].storage == "persist:app"
+
+
+def test_sequence_7_without_migration_tightened_limits_give_the_default(tmp_path: Path) -> None:
+    """`[persist] migration = false`: a stored 80 under a HighLimit tightened from 100 to 50 is
+    not served as LOADED; it takes its default, the group reports the loss (MIGRATED, defaulted
+    1, EMCY bit) and the corrected image is stored."""
+    from .test_migration_runtime import Param as P
+    from .test_migration_runtime import firmware, run
+
+    off = "[persist]\nmigration = false\n"
+    v1, _ = firmware(tmp_path, "v1", (P(0x2000, U8, "7", "0", "100"),), 1000, False, off)
+    v2, _ = firmware(tmp_path, "v2", (P(0x2000, U8, "7", "0", "50"),), 1000, False, off)
+    nv = tmp_path / "od.nv"
+    run(v1, nv, "set:2000:00:50", "store")
+    got = run(v2, nv, "dump")
+    assert got.values[(0x2000, 0)] == "07"
+    assert got.groups[0]["status"] == MIGRATED and got.groups[0]["defaulted"] == 1 and got.seen[0] & 0x80
+    again = run(v2, nv, "dump")
+    assert again.groups[0]["status"] == LOADED and again.values[(0x2000, 0)] == "07"
+
+
+PREDICTED = {
+    "added": (small(), app(*small().params.values(), Param(0x2003, U16, "app", 4))),
+    "removed": (app(*small().params.values(), Param(0x2003, U16, "app", 4)), small()),
+    "narrowed": (app(Param(0x2000, U32, "app", 1)), app(Param(0x2000, U16, "app", 1))),
+    "widened": (app(Param(0x2000, U16, "app", 1)), app(Param(0x2000, U32, "app", 1))),
+    "array_grown": (app(Param(0x2005, U16, "app", 1, elements=4)), app(Param(0x2005, U16, "app", 1, elements=6))),
+    "moved_to_erased_nv": (small(), app(*small().params.values(), Param(0x2200, U32, "comm", 1, elements=30))),
+    "moved_onto_another_group": (
+        app(Param(0x2000, U32, "app", 0), options='[[group]]\nname = "comm"\nregion = 256\n\n'),
+        app(Param(0x2000, U32, "app", 0), options='[[group]]\nname = "comm"\nregion = 128\n\n')),
+}
+
+
+@pytest.mark.parametrize("name", list(PREDICTED))
+def test_odgen_diff_predicts_what_the_boot_reports(name: str, tmp_path: Path) -> None:
+    """docs/diff.md "What a boot will report": per group, the status and whether the storage EMCY
+    follows, from `odgen diff --options` alone, against the C runtime's boot of the new version on
+    NV the old one saved."""
+    from odgen.diff import diff_paths
+
+    from .persist_model import eds, options
+
+    old, new = PREDICTED[name]
+    for tag, v in (("old", old), ("new", new)):
+        (tmp_path / f"{tag}.eds").write_text(eds(v), encoding="utf-8")
+        (tmp_path / f"{tag}.toml").write_text(options(v), encoding="utf-8")
+    changes = diff_paths(tmp_path / "old.eds", tmp_path / "new.eds", tmp_path / "old.toml",
+                         tmp_path / "new.toml").changes
+    work = tmp_path / "run"
+    work.mkdir()
+    violations, boots, _ = run_script([old, new], ["nv 4096", "boot 0", "save", "boot 1"], work)
+    assert not violations, "\n".join(map(str, violations))
+    boot = boots[1]
+    names = sorted({p.group for p in new.params.values()} | {"comm"})  # NAME_GROUP_* order
+    emcy = False
+    for n, group in enumerate(names):
+        mine = [c for c in changes if f"group '{group}'" in c.message]
+        status = boot.groups[n]["status"]
+        if any(c.kind == "DIF207" for c in mine):
+            assert status in (DEFAULTS, DAMAGED), (group, status)
+            emcy = emcy or status == DAMAGED
+        elif any(c.kind in ("DIF201", "DIF202", "DIF203", "DIF204") for c in mine):
+            assert status == MIGRATED, (group, status, [c.message for c in mine])
+            emcy = emcy or any("a loss" in c.message for c in mine)
+        else:
+            assert status == LOADED, (group, status)
+    assert bool(boot.seen[0] & LOST_BITS) == emcy, (boot.groups, [c.message for c in changes])
