@@ -17,7 +17,8 @@ from .errors import OdgenError
 STANDARD = "-std=c99"
 WARNINGS = ("-Wall", "-Wextra", "-Werror", "-pedantic")
 CFLAGS = (STANDARD, *WARNINGS)
-CORE_SOURCES = ("odg.c", "odg_persist.c")  # the dictionary runtime a firmware links
+# the dictionary runtime a firmware links: the core and the persistence layer
+CORE_SOURCES = ("odg.c", "odg_persist.c", "odg_persist_slot.c", "odg_persist_fixed.c", "odg_persist_migrate.c")
 NODE_MAIN = "linux/odg_node_main.c"  # the SocketCAN node program's main(); apps bring their own
 
 

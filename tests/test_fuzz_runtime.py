@@ -13,13 +13,14 @@ from pathlib import Path
 
 import pytest
 
+from odgen.toolchain import CORE_SOURCES
 from .conftest import ROOT
 from .cprog import SANITIZE, build
 from .test_node import generate
 
 FUZZ = ROOT / "fuzz" / "runtime"
 RUNTIME = ROOT / "runtime"
-NODE_SOURCES = tuple(RUNTIME / s for s in ("odg.c", "odg_persist.c", "odg_node.c", "odg_sdo.c", "odg_pdo.c",
+NODE_SOURCES = tuple(RUNTIME / s for s in (*CORE_SOURCES, "odg_node.c", "odg_sdo.c", "odg_pdo.c",
                                            "odg_err.c", "odg_sync.c", "odg_hb.c", "odg_lss.c", "odg_time.c"))
 HARNESSES = {"sdo": "alltypes", "pdo": "pdo_node", "od": "alltypes"}
 

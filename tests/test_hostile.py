@@ -18,6 +18,7 @@ from pathlib import Path
 
 import pytest
 
+from odgen.toolchain import CORE_SOURCES
 from odgen.cli import main
 from odgen.codegen.check import run_check
 from odgen.codegen.generate import Request, generate
@@ -111,7 +112,7 @@ def test_hostile_string_values_compile_and_read_back(tmp_path: Path, kind: int, 
     expected = {index: value.encode(encoding) for index, value in HOSTILE_STRINGS.items()}
     (tmp_path / "reader.c").write_text(_reader_program("hostile", expected), encoding="utf-8")
     exe = tmp_path / "reader"
-    sources = (tmp_path / "reader.c", tmp_path / "hostile.c", RUNTIME / "odg.c", RUNTIME / "odg_persist.c")
+    sources = (tmp_path / "reader.c", tmp_path / "hostile.c", *(RUNTIME / s for s in CORE_SOURCES))
     build("gcc", ("-O1", "-trigraphs"), sources, (RUNTIME, tmp_path), exe)
     assert f"{len(HOSTILE_STRINGS)} passed, 0 failed" in run(exe, tmp_path)
 

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import pytest
 
+from odgen.toolchain import CORE_SOURCES
 from odgen.codegen.generate import Request, prepare
 from odgen.place.layout import group_layouts
 from odgen.place.migration import DOMAIN_TYPE, EntryLayout, GroupLayout, migrate, value_size
@@ -262,7 +263,7 @@ def firmware(tmp: Path, tag: str, params: tuple[Param, ...], heartbeat: int, rev
     assert done.returncode == 0, done.stdout + done.stderr
     exe = src / "migrate_main"
     flags = ("-O1", '-DODG_CONFIG="od_config.h"') if configured else ("-O1",)
-    build("gcc", flags, (CTESTS / "migrate_main.c", src / "od.c", RUNTIME / "odg.c", RUNTIME / "odg_persist.c",
+    build("gcc", flags, (CTESTS / "migrate_main.c", src / "od.c", *(RUNTIME / s for s in CORE_SOURCES),
                             RUNTIME / "odg_nv_file.c", CTESTS / "nv_fault.c"), (src, RUNTIME, CTESTS), exe)
     return exe, layouts
 

@@ -20,6 +20,7 @@ from pathlib import Path
 
 import pytest
 
+from odgen.toolchain import CORE_SOURCES
 from .cprog import BUILDS, EXTRA, STRICT, build, compiler, run
 from .conftest import FIXTURES, ROOT
 
@@ -28,7 +29,7 @@ LINUX = RUNTIME / "linux"
 NODE_TESTS = ROOT / "tests" / "node"
 CHECK_H = ROOT / "tests" / "runtime"  # check.h
 
-CORE = tuple(RUNTIME / s for s in ("odg.c", "odg_persist.c"))
+CORE = tuple(RUNTIME / s for s in CORE_SOURCES)
 NODE = tuple(RUNTIME / s for s in ("odg_node.c", "odg_sdo.c", "odg_pdo.c", "odg_err.c", "odg_sync.c", "odg_hb.c",
                                     "odg_lss.c", "odg_time.c"))
 PROGRAM_SOURCES = (*CORE, *NODE, RUNTIME / "odg_nv_file.c", LINUX / "odg_socketcan.c", LINUX / "odg_node_main.c")

@@ -8,6 +8,7 @@ from pathlib import Path
 
 import pytest
 
+from odgen.toolchain import CORE_SOURCES
 from odgen.cli import main
 from odgen.codegen.check import run_check
 from odgen.codegen.generate import Request
@@ -208,7 +209,7 @@ def test_glue_change_of_state_on_a_node(build_name: str, io_16_16_4_4: Path, tmp
     cc, flags = BUILDS[build_name]
     gen = io_16_16_4_4
     sources = (DS401_TESTS / "test_ds401_app.c", DS401_GLUE, gen / "io.c",
-               *(RUNTIME / s for s in ("odg.c", "odg_persist.c", "odg_node.c", "odg_sdo.c", "odg_pdo.c", "odg_err.c",
+               *(RUNTIME / s for s in (*CORE_SOURCES, "odg_node.c", "odg_sdo.c", "odg_pdo.c", "odg_err.c",
                                        "odg_sync.c", "odg_hb.c", "odg_lss.c", "odg_time.c")))
     exe = tmp_path / "test_ds401_app"
     build_c(cc, (*flags, "-DODG_NODE_TPDO_COS=0"), sources, (gen, RUNTIME, ROOT / "tests" / "node",

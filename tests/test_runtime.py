@@ -14,13 +14,14 @@ from pathlib import Path
 
 import pytest
 
+from odgen.toolchain import CORE_SOURCES
 from .cprog import BUILDS, EXTRA, STRICT, build, compiler, run
 from .conftest import ROOT
 
 RUNTIME = ROOT / "runtime"
 CTESTS = ROOT / "tests" / "runtime"
 
-CORE = ("odg.c", "odg_persist.c")
+CORE = CORE_SOURCES
 PROGRAMS: dict[str, tuple[Path, ...]] = {
     # the core alone: persistence is a layer above it, not linked in (0x1010/0x1011 abort)
     "test_core": (CTESTS / "test_core.c", CTESTS / "td.c", RUNTIME / "odg.c"),
@@ -86,7 +87,7 @@ ALL_OFF = tuple(f"-DODG_CFG_{f}=0" for f in ("INT64", "STRINGS", "UNICODE", "DOM
                          ids=["default", "no-text", "config-all-off", "portable-byte-order"])
 def test_runtime_sources_warning_free(cc: str, defines: tuple[str, ...], tmp_path: Path) -> None:
     """Each runtime source compiles alone, also -Wconversion clean, with every build option."""
-    for source in ("odg.c", "odg_persist.c", "odg_nv_file.c"):
+    for source in (*CORE_SOURCES, "odg_nv_file.c"):
         cmd = [compiler(cc), *STRICT, *EXTRA, *defines, "-Os", f"-I{RUNTIME}", "-c", str(RUNTIME / source), "-o",
                str(tmp_path / (source + ".o"))]
         done = subprocess.run(cmd, capture_output=True, text=True, check=False)

@@ -19,7 +19,7 @@ PY=$ROOT/.venv/bin/python
 CC=${FUZZ_CC:-clang}
 FLAGS=(-std=c99 -Wall -Wextra -Werror -pedantic -O1 -g -fno-omit-frame-pointer
        -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all)
-RUNTIME=(odg.c odg_persist.c odg_node.c odg_sdo.c odg_pdo.c odg_err.c odg_sync.c odg_hb.c odg_lss.c odg_time.c)
+RUNTIME=(odg.c odg_persist.c odg_persist_slot.c odg_persist_fixed.c odg_persist_migrate.c odg_node.c odg_sdo.c odg_pdo.c odg_err.c odg_sync.c odg_hb.c odg_lss.c odg_time.c)
 
 declare -A DICT=([sdo]=alltypes [pdo]=pdo_node [od]=alltypes)
 
@@ -97,7 +97,7 @@ PYEOF
 if [ -f "$ROOT/tests/runtime/test_faults.c" ]; then
     gcc -std=c99 -Wall -Wextra -Werror -pedantic -O2 -I"$ROOT/runtime" -I"$ROOT/tests/runtime" \
         "$ROOT/tests/runtime/test_faults.c" "$ROOT/tests/runtime/nv_fault.c" "$ROOT/tests/runtime/td.c" \
-        "$ROOT/runtime/odg.c" "$ROOT/runtime/odg_persist.c" -o "$OUT/test_faults"
+        "$ROOT/runtime/odg.c" "$ROOT"/runtime/odg_persist*.c -o "$OUT/test_faults"
     "$OUT/test_faults" --json "$RESULTS/faults.json" | tail -n 1
 fi
 
