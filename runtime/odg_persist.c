@@ -150,8 +150,11 @@ static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_
 {
     odg_abort_t ac = nv != NULL ? ODG_OK : ODG_ABORT_DATA_STORE;
     odg_state_t *s = dict->state;
-    uint8_t g, done[32]; /* the groups booted in the first pass */
+    uint8_t g;
     int fits, pass;
+#if ODG_CFG_PERSIST_MIGRATION
+    uint8_t done[32]; /* the groups booted in the first pass */
+#endif
     if (nv != NULL) {
         p->client.command = command;
         p->client.changed = NULL;
@@ -163,24 +166,27 @@ static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_
     s->boot_counts[0] = s->boot_counts[1] = s->boot_counts[2] = 0;
 #endif
     fits = nv_fits(dict, nv);
+#if ODG_CFG_PERSIST_MIGRATION
     /* two passes: first the groups whose newest image lies outside their region (in a region
      * of another group, after the NV map changed), which move it home before that group's
      * boot writes over it; then the others */
     memset(done, 0, sizeof done);
-    for (pass = 0; pass < 2; pass++) {
+    for (pass = fits ? 0 : 1; pass < 2; pass++) {
+#else
+    for (pass = 1; pass < 2; pass++) {
+#endif
         for (g = 0; g < dict->n_groups; g++) {
             odg_boot_t b = {ODG_BOOT_NV_ERROR, 0, 0, 0, 0, 0};
-            if ((done[g >> 3] >> (g & 7u)) & 1u || (fits && pass == 0 && !odg_described_displaced_(dict, nv, g))) {
+#if ODG_CFG_PERSIST_MIGRATION
+            if ((done[g >> 3] >> (g & 7u)) & 1u || (pass == 0 && !odg_described_displaced_(dict, nv, g))) {
                 continue;
             }
             done[g >> 3] = (uint8_t)(done[g >> 3] | 1u << (g & 7u));
+#endif
             if (fits) { /* an NV smaller than the dictionary's: NV_ERROR, nothing written */
                 b.status = (uint8_t)boot_group(dict, nv, g, &b);
             }
             booted(dict, g, &b, st, boot, &ac);
-        }
-        if (!fits) {
-            break;
         }
     }
     odg_changed(dict, NULL);

@@ -85,7 +85,8 @@ static uint16_t recheck_one(const odg_dict_t *d, uint8_t g, uint32_t pos, const 
     const odg_group_t *gr = &d->groups[g];
     uint8_t *v = odg_value_(d, s);
     odg_num_t x;
-    if (!(s->attr & ODG_A_LIMIT) || (s->attr & ODG_A_NODEID) || s->size > sizeof x) {
+    if (!(ODG_CFG_LIMITS || ODG_CFG_REAL_LIMITS) || !(s->attr & ODG_A_LIMIT) || (s->attr & ODG_A_NODEID) ||
+        s->size > sizeof x) {
         return 0; /* a same-layout image holds values of the type; $NODEID ones are not checked */
     }
     x = odg_load_(v, s->size);

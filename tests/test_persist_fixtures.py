@@ -22,6 +22,15 @@ OFF = "[persist]\nmigration = false\n"
 pytestmark = pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
 
 
+@pytest.fixture(scope="module")
+def firmwares(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
+    """The fixtures' firmware in both formats, and one that adds a parameter: built once."""
+    tmp = tmp_path_factory.mktemp("fixtures")
+    return {"odg2": firmware(tmp, "odg2", PARAMS, 1000, False)[0],
+            "odg1": firmware(tmp, "odg1", PARAMS, 1000, False, OFF)[0],
+            "added": firmware(tmp, "added", (*PARAMS, Param(0x2004, U32, "77")), 1000, False)[0]}
+
+
 def stored(name: str) -> dict[tuple[int, int], str]:
     out = {}
     for line in (FIX / f"{name}.txt").read_text(encoding="utf-8").splitlines():
@@ -36,8 +45,8 @@ def test_fixture_description_is_the_one_the_images_were_written_for() -> None:
 
 @pytest.mark.parametrize("fmt", ["odg2", "odg1"])
 @pytest.mark.parametrize("image", ["one_store", "two_stores"])
-def test_images_of_the_earlier_runtime_load(fmt: str, image: str, tmp_path: Path) -> None:
-    exe, _ = firmware(tmp_path, "v1", PARAMS, 1000, False, OFF if fmt == "odg1" else "")
+def test_images_of_the_earlier_runtime_load(fmt: str, image: str, tmp_path: Path, firmwares: dict[str, Path]) -> None:
+    exe = firmwares[fmt]
     nv = tmp_path / "od.nv"
     nv.write_bytes((FIX / f"{fmt}_{image}.nv").read_bytes())
     got = run(exe, nv, "dump")
@@ -47,10 +56,10 @@ def test_images_of_the_earlier_runtime_load(fmt: str, image: str, tmp_path: Path
 
 
 @pytest.mark.parametrize("image", ["one_store", "two_stores"])
-def test_images_of_the_earlier_runtime_migrate(image: str, tmp_path: Path) -> None:
+def test_images_of_the_earlier_runtime_migrate(image: str, tmp_path: Path, firmwares: dict[str, Path]) -> None:
     """A firmware that adds a parameter: every stored value kept, the new one its default, and
     nothing reported lost."""
-    exe, _ = firmware(tmp_path, "v2", (*PARAMS, Param(0x2004, U32, "77")), 1000, False)
+    exe = firmwares["added"]
     nv = tmp_path / "od.nv"
     nv.write_bytes((FIX / f"odg2_{image}.nv").read_bytes())
     got = run(exe, nv, "dump")
