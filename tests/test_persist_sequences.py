@@ -242,3 +242,17 @@ def test_odgen_diff_predicts_what_the_boot_reports(name: str, tmp_path: Path) ->
         else:
             assert status == LOADED, (group, status)
     assert bool(boot.seen[0] & LOST_BITS) == emcy, (boot.groups, [c.message for c in changes])
+
+
+def test_save_goes_on_past_a_failing_group(tmp_path: Path) -> None:
+    """0x1010 sub 1 stores every group even when the driver fails for one (group app, stored
+    first): the answer is that group's abort code, and group comm is saved all the same."""
+    violations, boots, answers = run_script([small()], [
+        "nv 384", "boot 0", "set 2000 00 05", "set 1017 00 F401", "failwrite 1", "save", "boot 0"], tmp_path)
+    assert answers[-1] == "save 06060000"  # HARDWARE: app's store failed
+    # the model flags the failing save (R4: a failing driver is no working NV) and then knows no
+    # longer what NV holds; the values say it
+    assert violations and violations[0].rule == "R4" and "save on working NV" in violations[0].text
+    after = boots[-1]
+    assert after.values[(0x1017, 0)] == "F401"
+    assert after.values[(0x2000, 0)] == "01"

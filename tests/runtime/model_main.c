@@ -15,6 +15,7 @@
  *   cut N            the power fails once N more bytes are programmed or erased (the byte in
  *                    progress left half done)                              -> "ok"
  *   power            the power is back                                     -> "ok"
+ *   failwrite N      the N-th write call from now fails (the driver says so) -> "ok"
  *   sizes            NAME_NV_SIZE of each version                          -> "sizes N..."
  */
 #include <stdio.h>
@@ -139,6 +140,9 @@ int main(void)
         } else if (sscanf(line, "cut %u", &a) == 1) {
             nv.torn = 1;
             nv_fault_cut_after(&nv, (long)a);
+            printf("ok\n");
+        } else if (sscanf(line, "failwrite %u", &a) == 1) {
+            nv.fail_write = (long)a;
             printf("ok\n");
         } else if (strncmp(line, "power", 5) == 0) {
             nv_fault_power_on(&nv);
