@@ -213,19 +213,36 @@ static uint32_t next_place(const odg_group_t *gr, uint32_t half)
     return half <= ODG_PERSIST_MAX_REGION / 2u ? half : 0u;
 }
 
-/* The newest valid image of group `gr` at any of its places (address in *at, header in h). 1
- * found, 0 none, 2 the newest is an image of ours that cannot be read (slot2_read -2), -1 the
- * driver failed (a failing read past the region means no NV there). */
-static int described_newest(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t *at, uint8_t *h)
+/* The newest valid image of group `gr` at any of its places inside the dictionary's NV (up to
+ * `end`, NAME_NV_SIZE) and at the place slot A's header names past it (the slot B of a larger
+ * region a later firmware used); address in *at, header in h. 1 found, 0 none, 2 the newest is
+ * an image of ours that cannot be read (described_read -2), -1 the driver failed (a failing
+ * read past the region means no NV there). */
+/* Whether the place `half` of group `gr` is looked at: inside the dictionary's NV (up to `end`,
+ * NAME_NV_SIZE), or the place slot A's header (`a`, read, not checked) names past it. */
+static int looked_at(const odg_group_t *gr, uint32_t end, uint32_t half, const uint8_t *a)
 {
-    uint8_t t[DESCRIBED_HDR];
+    return half == 0u || gr->nv_addr + half + DESCRIBED_HDR <= end ||
+           (odg_get32_(a) == DESCRIBED_MAGIC && our_id(gr, odg_get32_(a + 8)) && odg_get32_(a + 12) / 2u == half);
+}
+
+static int described_newest(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t end, uint32_t *at,
+                            uint8_t *h)
+{
+    uint8_t t[DESCRIBED_HDR], a[DESCRIBED_HDR];
     uint32_t half = 0u;
     int v, found = 0;
     *at = gr->nv_addr;
     do {
+        if (!looked_at(gr, end, half, a)) {
+            continue;
+        }
         v = described_read(nv, gr, gr->nv_addr + half, t, 1);
         if (v == -1 && half < gr->region) {
             return -1;
+        }
+        if (half == 0u) {
+            odg_copy(a, t, DESCRIBED_HDR); /* slot A's header, whatever it holds */
         }
         if ((v == 1 || v == -2) && (!found || odg_newer_(odg_get32_(t + 4), odg_get32_(h + 4)))) {
             found = v == 1 ? 1 : 2;
@@ -319,7 +336,7 @@ odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv,
     const odg_sub_t *s;
     recs_t r;
     out_t o;
-    int k = described_newest(nv, gr, &at, t);
+    int k = described_newest(nv, gr, odg_persist_nv_size(d), &at, t);
     if (k < 0) {
         return ODG_ABORT_HARDWARE;
     }
@@ -381,11 +398,13 @@ static int image_at(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t a
 odg_abort_t odg_described_erase_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
 {
     const odg_group_t *gr = &d->groups[g];
-    uint8_t h[DESCRIBED_HDR];
+    uint8_t h[DESCRIBED_HDR], a[DESCRIBED_HDR];
     uint32_t at, start = gr->nv_addr, end = gr->nv_addr + gr->region, half = 0u, e, lo = end, hi = end;
-    int found = described_newest(nv, gr, &at, h), fail = found < 0, v;
+    uint32_t nv_end = odg_persist_nv_size(d);
+    int found = described_newest(nv, gr, nv_end, &at, h), fail = found < 0, v;
+    fail = fail || (odg_hdr_read_(nv, start, a, DESCRIBED_HDR, DESCRIBED_MAGIC) < 0);
     while (!fail && (half = next_place(gr, half)) != 0u) {
-        if (start + half >= end && start + half != at) {
+        if (start + half >= end && start + half != at && looked_at(gr, nv_end, half, a)) {
             v = image_at(nv, gr, start + half, end, &e);
             fail = v > 0 && odg_wipe_(nv, start + half, e);
         }
@@ -408,11 +427,11 @@ odg_abort_t odg_described_erase_(const odg_dict_t *d, const odg_nv_driver_t *nv,
  * firmware whose NV map differed. None of them may ever come back as a group's values (a
  * firmware that cannot see the newest image, after a rollback, would take an older one). -1
  * when the driver failed. */
-static int scrub(const odg_nv_driver_t *nv, const odg_group_t *gr)
+static int scrub(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_t *gr)
 {
     uint8_t h[DESCRIBED_HDR];
     uint32_t at, end = gr->nv_addr + gr->region, e = gr->nv_addr;
-    int found = described_newest(nv, gr, &at, h);
+    int found = described_newest(nv, gr, odg_persist_nv_size(d), &at, h);
     if (found < 0) {
         return -1;
     }
@@ -670,7 +689,7 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
     uint16_t n[5] = {0, 0, 0, 0, 0}; /* entries KEPT, DEFAULTED, DROPPED, CONVERTED, ADDED */
     uint32_t at;
     odg_boot_status_t st;
-    int k = described_newest(nv, gr, &at, h), changed;
+    int k = described_newest(nv, gr, odg_persist_nv_size(d), &at, h), changed;
     if (k < 0) {
         st = ODG_BOOT_NV_ERROR;
     } else if (k == 0) {
@@ -683,14 +702,14 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
         if (migrate(d, nv, g, at, n) == 0 && reads_back(nv, gr, at, h)) {
             /* a migrated image is stored at once, with the A/B commit */
             changed = n[DEFAULTED] || n[DROPPED] || n[CONVERTED] || n[ADDED];
-            if ((!changed || odg_described_store_(d, nv, g) == ODG_OK) && scrub(nv, gr) == 0) {
+            if ((!changed || odg_described_store_(d, nv, g) == ODG_OK) && scrub(d, nv, gr) == 0) {
                 count(d->state, b, n);
                 return changed ? ODG_BOOT_MIGRATED : ODG_BOOT_LOADED;
             }
         }
     }
     odg_defaults_(d, g);
-    if (st != ODG_BOOT_NV_ERROR && (odg_described_store_(d, nv, g) != ODG_OK || scrub(nv, gr) != 0)) {
+    if (st != ODG_BOOT_NV_ERROR && (odg_described_store_(d, nv, g) != ODG_OK || scrub(d, nv, gr) != 0)) {
         st = ODG_BOOT_NV_ERROR;
     }
     return st;
@@ -703,7 +722,7 @@ int odg_described_displaced_(const odg_dict_t *d, const odg_nv_driver_t *nv, uin
     const odg_group_t *gr = &d->groups[g];
     uint8_t h[DESCRIBED_HDR];
     uint32_t at;
-    return ODG_MIGRATES_(gr) && described_newest(nv, gr, &at, h) == 1 && at - gr->nv_addr >= gr->region;
+    return ODG_MIGRATES_(gr) && described_newest(nv, gr, odg_persist_nv_size(d), &at, h) == 1 && at - gr->nv_addr >= gr->region;
 }
 
 #else

@@ -115,7 +115,8 @@ def _mutate(rng: random.Random, v: Version) -> Version:
         elif kind == "move":
             params[p.index] = replace(p, group=rng.choice([g for g in GROUPS if g != p.group]))
         elif kind == "limits" and p.dtype in NUMBERS and p.index != BULK:
-            high = rng.choice((None, rng.randrange(max(10, int(p.default) + 1), 3000)))
+            top = min(3000, NUMBERS[p.dtype][1])
+            high = rng.choice((None, rng.randrange(min(max(10, int(p.default) + 1), top), top + 1)))
             params[p.index] = replace(p, high=high)
         elif kind == "capacity" and p.dtype == VS:
             params[p.index] = replace(p, capacity=rng.randrange(2, 16))
@@ -460,7 +461,9 @@ class Checker:
         over, and a later firmware that sees both may take the hidden one (docs/persistence.md)."""
         for g, images in self.nv.images.items():
             for image in images:
-                if image is not None and image.region[0] + image.region[1] > self.nv.size:
+                # past the NV the driver shows, or past NAME_NV_SIZE (where boot looks only at
+                # the place slot A's header names)
+                if image is not None and image.region[0] + image.region[1] > min(self.nv.size, fw.nv_size):
                     self.nv.partial = True  # what this firmware writes cannot reach all of it
                     if image not in self.nv.stale.get(g, []):
                         self.nv.stale.setdefault(g, []).append(image)
@@ -497,7 +500,7 @@ class Checker:
         every group's newest image lies inside the NV the driver shows."""
         if self.nv.partial:
             return False
-        if any(i is not None and i.region[0] + i.region[1] > self.nv.size
+        if any(i is not None and i.region[0] + i.region[1] > min(self.nv.size, fw.nv_size)
                for images in self.nv.images.values() for i in images):
             return False
         for g, regions in self.nv.written.items():
@@ -529,7 +532,7 @@ class Checker:
             got = {e.key: boot.values.get(e.key, "") for e in layout.entries}
             self.served[g] = {e.key: to_image(e, got[e.key]) for e in layout.entries}
             here = [i for i in self.nv.stale.get(g, [])
-                    if i.region[0] == fw.regions[g][0] and i.region[0] + i.region[1] <= self.nv.size]
+                    if i.region[0] == fw.regions[g][0] and i.region[0] + i.region[1] <= min(self.nv.size, fw.nv_size)]
             self.nv.stale[g] = [i for i in self.nv.stale.get(g, []) if i not in here]
             cands = [*here, *self.nv.images.get(g, [None])]
             options = [(c, self._expect(fw, g, c)) for c in cands]
