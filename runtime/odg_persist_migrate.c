@@ -422,26 +422,43 @@ odg_abort_t odg_described_erase_(const odg_dict_t *d, const odg_nv_driver_t *nv,
     return fail ? ODG_ABORT_HARDWARE : ODG_OK;
 }
 
-/* After a boot of group `gr`: erase what its region holds besides its newest image: its older
- * images, and images of other groups or of this one written at another place, left there by a
- * firmware whose NV map differed. None of them may ever come back as a group's values (a
- * firmware that cannot see the newest image, after a rollback, would take an older one). -1
- * when the driver failed. */
-static int scrub(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_t *gr)
+#define PLACES 14u /* slot A, the region's slot B, and slot B of every power of two up to 64 KiB */
+
+/* After a boot of group `gr`: erase what its region holds besides its own images (at its
+ * places): images of other groups or of this one written at another place, and bytes of
+ * neither, left there by a firmware whose NV map differed, which must never come back as a
+ * group's values when the map changes again. Its own older images stay: a rollback firmware
+ * that cannot see the newest one (past its NV) finds the one the newest was migrated from.
+ * -1 when the driver failed. */
+static int scrub(const odg_nv_driver_t *nv, const odg_group_t *gr)
 {
-    uint8_t h[DESCRIBED_HDR];
-    uint32_t at, end = gr->nv_addr + gr->region, e = gr->nv_addr;
-    int found = described_newest(nv, gr, odg_persist_nv_size(d), &at, h);
-    if (found < 0) {
-        return -1;
-    }
-    if (found == 1 && at < end) {
-        e = at + extent(h);
-        if (odg_clear_(nv, gr->nv_addr, at)) {
+    uint32_t lo[PLACES], hi[PLACES], end = gr->nv_addr + gr->region, pos = gr->nv_addr, half = 0u, e, t;
+    unsigned n = 0, i, j;
+    int v;
+    do {
+        if (gr->nv_addr + half < end) {
+            if ((v = image_at(nv, gr, gr->nv_addr + half, end, &e)) < 0) {
+                return -1;
+            }
+            for (i = n; v > 0 && i > 0u && lo[i - 1u] > gr->nv_addr + half; i--) { /* sorted by place */
+                lo[i] = lo[i - 1u];
+                hi[i] = hi[i - 1u];
+            }
+            if (v > 0) {
+                lo[i] = gr->nv_addr + half;
+                hi[i] = e < end ? e : end;
+                n++;
+            }
+        }
+    } while ((half = next_place(gr, half)) != 0u && n < PLACES);
+    for (j = 0; j < n; j++) {
+        t = lo[j];
+        if (t > pos && odg_clear_(nv, pos, t)) {
             return -1;
         }
+        pos = hi[j] > pos ? hi[j] : pos;
     }
-    return odg_clear_(nv, e < end ? e : end, end) ? -1 : 0;
+    return odg_clear_(nv, pos, end) ? -1 : 0;
 }
 
 /* ---- boot migration: docs/persistence.md section 3, odgen/persist/migration.py ----------- */
@@ -702,14 +719,14 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
         if (migrate(d, nv, g, at, n) == 0 && reads_back(nv, gr, at, h)) {
             /* a migrated image is stored at once, with the A/B commit */
             changed = n[DEFAULTED] || n[DROPPED] || n[CONVERTED] || n[ADDED];
-            if ((!changed || odg_described_store_(d, nv, g) == ODG_OK) && scrub(d, nv, gr) == 0) {
+            if ((!changed || odg_described_store_(d, nv, g) == ODG_OK) && scrub(nv, gr) == 0) {
                 count(d->state, b, n);
                 return changed ? ODG_BOOT_MIGRATED : ODG_BOOT_LOADED;
             }
         }
     }
     odg_defaults_(d, g);
-    if (st != ODG_BOOT_NV_ERROR && (odg_described_store_(d, nv, g) != ODG_OK || scrub(d, nv, gr) != 0)) {
+    if (st != ODG_BOOT_NV_ERROR && (odg_described_store_(d, nv, g) != ODG_OK || scrub(nv, gr) != 0)) {
         st = ODG_BOOT_NV_ERROR;
     }
     return st;

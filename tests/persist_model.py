@@ -465,8 +465,11 @@ class Checker:
                 # the place slot A's header names)
                 if image is not None and image.region[0] + image.region[1] > min(self.nv.size, fw.nv_size):
                     self.nv.partial = True  # what this firmware writes cannot reach all of it
-                    if image not in self.nv.stale.get(g, []):
-                        self.nv.stale.setdefault(g, []).append(image)
+                    # it may serve any image written at its own region's place (slot A), older too
+                    earlier = self.nv.placed.get((g, fw.regions[g][0]), []) if fw.layouts[g].entries else []
+                    for i in (image, *earlier):
+                        if i not in self.nv.stale.get(g, []):
+                            self.nv.stale.setdefault(g, []).append(i)
         for (g, offset), images in list(self.nv.placed.items()):
             if fw.layouts[g].entries and fw.regions[g][0] == offset:
                 continue
