@@ -534,8 +534,9 @@ class Checker:
             layout, b = fw.layouts[g], boot.groups[n]
             got = {e.key: boot.values.get(e.key, "") for e in layout.entries}
             self.served[g] = {e.key: to_image(e, got[e.key]) for e in layout.entries}
-            here = [i for i in self.nv.stale.get(g, [])
-                    if i.region[0] == fw.regions[g][0] and i.region[0] + i.region[1] <= min(self.nv.size, fw.nv_size)]
+            # images left behind at this region's place: the runtime may take one it can read
+            # (inside its NV, or named by slot A's header)
+            here = [i for i in self.nv.stale.get(g, []) if i.region[0] == fw.regions[g][0]]
             self.nv.stale[g] = [i for i in self.nv.stale.get(g, []) if i not in here]
             cands = [*here, *self.nv.images.get(g, [None])]
             options = [(c, self._expect(fw, g, c)) for c in cands]
@@ -550,6 +551,7 @@ class Checker:
                 continue
             exact = [(c, want) for c, want in match if all(got[k] == want[k][0] for k in got)]
             newest = self.nv.images.get(g, [None])
+            self.nv.stale[g] += [i for i in here if i.region[0] + i.region[1] > min(self.nv.size, fw.nv_size)]
             first_boot = boot.blank[n] and b["status"] == DEFAULTS  # a blank region: nothing to report
             # what each image the served values fit says was lost: an image left behind (see
             # _left_behind) is one the runtime may take without knowing of the newer one
