@@ -80,11 +80,14 @@ bench-sdo: setup
 	$(BIN)/python tools/vcan/run.py -- $(BIN)/python benchmarks/sdo_speed.py
 
 # Fuzzing budgets (docs/robustness.md, which the last step regenerates): parser inputs,
-# runtime executions per libFuzzer harness. Findings fail the target.
+# runtime executions per libFuzzer harness, random firmware sequences through the persistence
+# layer (tests/persist_model.py). Findings fail the target.
 FUZZ_INPUTS ?= 1000000
 FUZZ_RUNS   ?= 10000000
+FUZZ_PERSIST_SEQUENCES ?= 20000
 fuzz: setup sysdeps
 	$(BIN)/python fuzz/parsers.py --inputs $(FUZZ_INPUTS)
+	nice -n 5 $(BIN)/python fuzz/persist_sequences.py --sequences $(FUZZ_PERSIST_SEQUENCES)
 	bash fuzz/runtime/run.sh $(FUZZ_RUNS)
 	$(BIN)/python fuzz/report.py
 

@@ -36,11 +36,13 @@ def flash(obj: Path) -> int:
 def runtime_flash() -> dict[str, int]:
     BUILD.mkdir(parents=True, exist_ok=True)
     sizes = {}
-    for label, defines in (("on", []), ("off", ["-DODG_NO_MIGRATION"])):
-        obj = BUILD / f"odg_persist-{label}.o"
-        subprocess.run(["arm-none-eabi-gcc", *CFLAGS, *defines, f"-I{RUNTIME}", "-c", str(RUNTIME / "odg_persist.c"),
-                        "-o", str(obj)], check=True, capture_output=True, text=True)
-        sizes[label] = flash(obj)
+    for label, defines in (("on", []), ("off", ["-DODG_CFG_PERSIST_MIGRATION=0"])):
+        sizes[label] = 0
+        for source in sorted(RUNTIME.glob("odg_persist*.c")):  # the layer, its slots and both formats
+            obj = BUILD / f"{source.stem}-{label}.o"
+            subprocess.run(["arm-none-eabi-gcc", *CFLAGS, *defines, f"-I{RUNTIME}", "-c", str(source), "-o", str(obj)],
+                           check=True, capture_output=True, text=True)
+            sizes[label] += flash(obj)
     return sizes
 
 

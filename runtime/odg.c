@@ -18,6 +18,7 @@
 
 #include "odg.h"
 #include "odg_impl.h"
+#include "odg_persist.h" /* odg_verify checks the groups' NV regions against its slot sizes */
 
 /* Type classes as bit masks over the type code (all codes are below 32). */
 #define TBIT(t) ((uint32_t)1u << ((uint32_t)(t) & 31u))

@@ -38,6 +38,7 @@
 #include <stdint.h>
 
 #include "odg.h"
+#include "odg_persist.h"
 #include "odg_lss.h"
 
 #ifdef __cplusplus

@@ -20,7 +20,7 @@
 
 #include <stdint.h>
 
-#include "odg.h"
+#include "odg_persist.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -1,96 +1,15 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
- * odg_persist.c - persistence groups in NV memory, safe against power loss.
- *
- * A group with a layout descriptor (generated with migration, the default) keeps "ODG2"
- * images: its values in wire format after the layout they were written with, in two slots at
- * the start and the middle of its own region; at boot a stored image of another layout is
- * migrated entry by entry (docs/persistence.md; the policy is odgen/persist/migration.py).
- * Without a layout the group keeps "ODG1" images, described here; both share the A/B commit.
- *
- * "ODG1": two slots (A at nv_addr, B right after it). A slot is a header followed by
- * the image (the group's RAM mirror, byte for byte):
- *
- *   offset  size  field (all little-endian, encoded byte by byte)
- *        0     4  magic "ODG1" (0x4F 0x44 0x47 0x31): the commit mark, written last
- *        4     4  sequence number (serial arithmetic: wraps around)
- *        8     4  layout signature of the group (odg_group_t.signature)
- *       12     4  image length in bytes
- *       16     4  CRC-32 of bytes 0..15 and the image
- *       20     n  image
- *
- * A slot is valid when its magic is complete, its length fits the slot and the CRC matches.
- * A store goes to the slot that does NOT hold the newest valid image: erase it, write the
- * image, write header bytes 4..19, and only then the 4 magic bytes. Until the last magic byte
- * lands the slot is invalid (an erased or half-written magic differs from "ODG1", whose
- * bytes are all different from the erased value 0xFF), and the other slot, untouched, still
- * holds the previous image. So a power cut at any byte leaves the old image or the new one,
- * never a mix; corrupted bits beyond that are caught by the CRC. Boot takes the valid slot
- * with the newest sequence number.
- *
- * The layer is a client of the dictionary (odg_client_t): odg_persist_init attaches it, and
- * the core hands it the "save" / "load" commands written to 0x1010 / 0x1011.
+ * odg_persist.c - the persistence layer: persistence groups in NV memory, safe against power
+ * loss (docs/persistence.md). It boots every group from NV, answers the "save" / "load"
+ * commands written to 0x1010 / 0x1011 (a client of the dictionary, odg_client_t), and hands
+ * each group to its image format: self-describing images migrated at boot
+ * (odg_persist_migrate.c) for a group generated with migration, else fixed-layout images
+ * (odg_persist_fixed.c); both on the slots of odg_persist_slot.c.
  */
 #include <string.h>
 
-#include "odg.h"
-#include "odg_impl.h"
-
-#define HDR ODG_PERSIST_HEADER_SIZE
-#define MAGIC 0x3147444Fu /* "ODG1" as a little-endian UNSIGNED32 */
-#define CHUNK 32u         /* bytes read at a time when only checking a slot */
-
-/* The migration code is left out by -DODG_NO_MIGRATION, or by a dictionary configuration
- * none of whose groups migrates. */
-#if !ODG_CFG_PERSIST_MIGRATION && !defined(ODG_NO_MIGRATION)
-#define ODG_NO_MIGRATION
-#endif
-
-/* Whether group `g` keeps "ODG2" images (it has a layout descriptor); a build for dictionaries
- * whose every group migrates (ODG_CFG_PERSIST_ODG1 0) leaves the "ODG1" group paths out. */
-#ifdef ODG_NO_MIGRATION
-#define MIGRATES(g) 0
-#elif ODG_CFG_PERSIST_ODG1
-#define MIGRATES(g) ((g)->n_layout != 0u)
-#else
-#define MIGRATES(g) 1
-#endif
-
-/* ---- CRC-32 (IEEE 802.3), bit by bit: no table in FLASH ------------------------------- */
-
-uint32_t odg_crc32(uint32_t crc, const void *data, uint32_t len)
-{
-    const uint8_t *p = (const uint8_t *)data;
-    unsigned k;
-    crc = ~crc;
-    while (len--) {
-        crc ^= *p++;
-        for (k = 0; k < 8u; k++) {
-            crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
-        }
-    }
-    return ~crc;
-}
-
-/* ---- header encoding -------------------------------------------------------------------- */
-
-static void put32(uint8_t *p, uint32_t v)
-{
-    p[0] = (uint8_t)v;
-    p[1] = (uint8_t)(v >> 8);
-    p[2] = (uint8_t)(v >> 16);
-    p[3] = (uint8_t)(v >> 24);
-}
-
-static uint32_t get32(const uint8_t *p)
-{
-    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
-}
-
-uint32_t odg_persist_slot_size(uint32_t size)
-{
-    return ODG_PERSIST_SLOT_SIZE(size);
-}
+#include "odg_persist_migrate.h"
 
 uint32_t odg_persist_nv_size(const odg_dict_t *dict)
 {
@@ -98,121 +17,15 @@ uint32_t odg_persist_nv_size(const odg_dict_t *dict)
     uint8_t g;
     for (g = 0; g < dict->n_groups; g++) {
         const odg_group_t *gr = &dict->groups[g];
-        e = gr->nv_addr + (MIGRATES(gr) ? gr->region : 2u * ODG_PERSIST_SLOT_SIZE(gr->size));
+        e = gr->nv_addr + (ODG_MIGRATES_(gr) ? gr->region : 2u * ODG_PERSIST_SLOT_SIZE(gr->size));
         end = e > end ? e : end;
     }
     return end;
 }
 
-static uint32_t slot_addr(const odg_group_t *g, int k)
-{
-    return g->nv_addr + (k ? ODG_PERSIST_SLOT_SIZE(g->size) : 0u);
-}
-
-/* a is newer than b: a - b in 1 .. 2^31 - 1 */
-static int newer(uint32_t a, uint32_t b)
-{
-    return a - b - 1u < 0x7FFFFFFFu;
-}
-
-/* Read the `n`-byte header of the slot at `addr` into `h`: 1 when it starts with `magic`, 0 when
- * not, -1 when the driver failed. Both formats have it so. */
-static int hdr_read(const odg_nv_driver_t *nv, uint32_t addr, uint8_t *h, uint32_t n,
-                    uint32_t magic)
-{
-    if (nv->read(nv->ctx, addr, h, n) != 0) {
-        return -1;
-    }
-    return get32(h) == magic;
-}
-
-/* Whether the CRC-32 that ends the `n`-byte header `h` of the slot at `addr` matches the header
- * before it and the `len` image bytes after it (read into `dst` when not NULL, which must hold
- * them): 1 yes, 0 no, -1 the driver failed. Both formats have it so. */
-static int crc_ok(const odg_nv_driver_t *nv, uint32_t addr, const uint8_t *h, uint32_t n,
-                  uint32_t len, uint8_t *dst)
-{
-    uint8_t chunk[CHUNK];
-    uint32_t crc = odg_crc32(0, h, n - 4u), off, k;
-    for (off = 0; off < len; off += k) {
-        uint8_t *p = dst ? dst + off : chunk;
-        k = len - off;
-        if (dst == NULL && k > CHUNK) {
-            k = CHUNK;
-        }
-        if (nv->read(nv->ctx, addr + n + off, p, k) != 0) {
-            return -1;
-        }
-        crc = odg_crc32(crc, p, k);
-    }
-    return crc == get32(h + n - 4u);
-}
-
-/* Read and check the slot at `addr` (header into `hdr`; the image into `dst` when not NULL,
- * which must hold `max` bytes). 1: valid, 0: not, -1: the driver failed. */
-static int slot_read(const odg_nv_driver_t *nv, uint32_t addr, uint32_t max, uint8_t *hdr,
-                     uint8_t *dst)
-{
-    int v = hdr_read(nv, addr, hdr, HDR, MAGIC);
-    if (v != 1 || get32(hdr + 12) > max) {
-        return v < 0 ? -1 : 0;
-    }
-    return crc_ok(nv, addr, hdr, HDR, get32(hdr + 12), dst);
-}
-
-/* Check both slots of group `g`: -2 on a driver error, -1 when neither is valid, else the
- * slot (0 or 1) holding the newest valid image, whose header is then in hdr[that slot]. */
-static int newest(const odg_nv_driver_t *nv, const odg_group_t *g, uint8_t hdr[2][HDR])
-{
-    int v[2], k;
-    for (k = 0; k < 2; k++) {
-        v[k] = slot_read(nv, slot_addr(g, k), g->size, hdr[k], NULL);
-        if (v[k] < 0) {
-            return -2;
-        }
-    }
-    if (v[0] && v[1]) {
-        return newer(get32(hdr[1] + 4), get32(hdr[0] + 4)) ? 1 : 0;
-    }
-    return v[0] ? 0 : (v[1] ? 1 : -1);
-}
-
-/* Whether the slot at `addr` is erased (every byte 0xFF): 1 yes, 0 no, -1 the driver failed. */
-static int slot_blank(const odg_nv_driver_t *nv, uint32_t addr, uint32_t size)
-{
-    uint8_t chunk[CHUNK];
-    uint32_t off, n, i;
-    for (off = 0; off < size; off += n) {
-        n = size - off < CHUNK ? size - off : CHUNK;
-        if (nv->read(nv->ctx, addr + off, chunk, n) != 0) {
-            return -1;
-        }
-        for (i = 0; i < n; i++) {
-            if (chunk[i] != 0xFFu) {
-                return 0;
-            }
-        }
-    }
-    return 1;
-}
-
-/* No valid image: DEFAULTS when both slots are erased (first boot, after a restore), DAMAGED
- * when something else is there, since then values once stored were lost. */
-static odg_boot_status_t no_image(const odg_nv_driver_t *nv, const odg_group_t *g)
-{
-    int v = slot_blank(nv, g->nv_addr, 2u * ODG_PERSIST_SLOT_SIZE(g->size)); /* B follows A */
-    return v < 0 ? ODG_BOOT_NV_ERROR : (v ? ODG_BOOT_DEFAULTS : ODG_BOOT_DAMAGED);
-}
-
-/* total + n, at most 255 */
-static uint8_t add_sat(uint8_t total, uint16_t n)
-{
-    return (uint8_t)(total + n > 255u ? 255u : total + n);
-}
-
 /* Defaults into the mirror of group `g`, with the node-id added to $NODEID values (what the
  * generated reset does for the whole dictionary). */
-static void defaults(const odg_dict_t *d, uint8_t g)
+void odg_defaults_(const odg_dict_t *d, uint8_t g)
 {
     const odg_group_t *gr = &d->groups[g];
     uint32_t p;
@@ -226,683 +39,6 @@ static void defaults(const odg_dict_t *d, uint8_t g)
     }
 }
 
-#ifndef ODG_NO_MIGRATION
-/* ---- "ODG2": self-describing images, migrated at boot (docs/persistence.md) -------------- */
-
-#define HDR2 ODG_PERSIST_HEADER2_SIZE
-#define MAGIC2 0x3247444Fu /* "ODG2" */
-#define REC 6u             /* a layout descriptor record: index u16, sub u8, type u8, length u16 */
-
-/* Wire size of the numeric types by CiA 301 code; 0 for strings, domains and unknown codes. */
-static const uint8_t num_size[0x1C] = {0, 1, 1, 2, 4, 1, 2, 4, 4, 0, 0, 0, 6, 6, 0, 0,
-                                       3, 8, 5, 6, 7, 8, 3, 0, 5, 6, 7, 8};
-
-#define BIT(t) ((uint32_t)1u << (t))
-#define SIGNED_INTS                                                                           \
-    (BIT(ODG_T_INTEGER8) | BIT(ODG_T_INTEGER16) | BIT(ODG_T_INTEGER24) | BIT(ODG_T_INTEGER32) | \
-     BIT(ODG_T_INTEGER40) | BIT(ODG_T_INTEGER48) | BIT(ODG_T_INTEGER56) | BIT(ODG_T_INTEGER64))
-#define UNSIGNED_INTS                                                                            \
-    (BIT(ODG_T_UNSIGNED8) | BIT(ODG_T_UNSIGNED16) | BIT(ODG_T_UNSIGNED24) | BIT(ODG_T_UNSIGNED32) | \
-     BIT(ODG_T_UNSIGNED40) | BIT(ODG_T_UNSIGNED48) | BIT(ODG_T_UNSIGNED56) | BIT(ODG_T_UNSIGNED64))
-/* Strings and domains among the persisted entries this build serves (odg.h: ODG_CFG_*): 0 when
- * none, so that the compiler leaves out their paths. */
-#define STREAMS                                                                          \
-    (ODG_CFG_PERSIST_STREAMS                                                             \
-         ? (ODG_CFG_STRINGS ? BIT(ODG_T_VISIBLE_STRING) | BIT(ODG_T_OCTET_STRING) : 0u) | \
-               (ODG_CFG_UNICODE ? BIT(ODG_T_UNICODE_STRING) : 0u) |                      \
-               (ODG_CFG_DOMAINS ? BIT(ODG_T_DOMAIN) : 0u)                                \
-         : 0u)
-#define IS(t, type) ((type_bit(t) & STREAMS & BIT(type)) != 0u)
-
-static uint32_t type_bit(uint8_t t)
-{
-    return t < 0x1Cu ? BIT(t) : 0u;
-}
-
-static uint16_t get16(const uint8_t *p)
-{
-    return (uint16_t)(p[0] | (unsigned)p[1] << 8);
-}
-
-static uint32_t rec_key(const uint8_t *rec)
-{
-    return (uint32_t)get16(rec) << 8 | rec[2];
-}
-
-/* Bytes of an entry's value in an image: a domain's used length (u32) precedes its bytes. */
-static uint32_t value_size(const uint8_t *rec)
-{
-    return get16(rec + 4) + (rec[3] == ODG_T_DOMAIN ? 4u : 0u);
-}
-
-/* The firmware's layout descriptor of a group: its persisted sub-entries in dict->subs order
- * (each element of a packed ARRAY in turn), each a record (index, sub, type, length) read from
- * the tables (odg_verify: n_layout of them). */
-typedef struct recs {
-    const odg_dict_t *d;
-    const odg_entry_t *e; /* the entry of the current sub-entry */
-    uint32_t key;         /* its index << 8 | sub */
-    uint16_t pos;         /* position in dict->subs after its descriptor */
-    uint16_t left;        /* records still to come */
-    uint8_t storage;      /* ODG_S_PERSIST | group << 2 */
-    const odg_sub_t *of;  /* the descriptor of the packed elements being walked, or NULL */
-    odg_sub_t elem;       /* the descriptor made for an element of a packed ARRAY */
-} recs_t;
-
-static void recs_start(recs_t *r, const odg_dict_t *d, uint8_t g)
-{
-    r->d = d;
-    r->e = d->entries;
-    r->pos = 0;
-    r->left = d->groups[g].n_layout;
-    r->storage = (uint8_t)(ODG_S_PERSIST | (unsigned)g << 2);
-    r->of = NULL;
-}
-
-/* The next persisted sub-entry (its descriptor at position r->pos - 1), or NULL after the last. */
-static const odg_sub_t *recs_next(recs_t *r)
-{
-    const odg_dict_t *d = r->d;
-    const odg_sub_t *s = &r->elem;
-    while (r->left > 0u) {
-        if (ODG_CFG_PACKED && r->of != NULL && r->elem.sub < r->of->sub) {
-            odg_element_(r->of, (uint8_t)(r->elem.sub + 1u), &r->elem);
-            s = &r->elem;
-        } else if (r->pos < d->n_subs) {
-            s = &d->subs[r->pos++];
-            while ((uint32_t)r->e->first + r->e->count < r->pos) {
-                r->e++;
-            }
-            r->of = NULL;
-            if (s->storage != r->storage) {
-                continue;
-            }
-            if (ODG_CFG_PACKED && (r->e->code & ODG_E_PACKED) && s->sub > 0u) {
-                r->of = s; /* its elements come from the next turns */
-                r->elem.sub = 0;
-                continue;
-            }
-        } else {
-            break;
-        }
-        r->left--;
-        r->key = (uint32_t)r->e->index << 8 | s->sub;
-        return s;
-    }
-    return NULL;
-}
-
-/* Bytes of a sub-entry's value in an image (value_size of its record). */
-static uint32_t sub_value_size(const odg_sub_t *s)
-{
-    return s->size + (IS(s->type, ODG_T_DOMAIN) ? 4u : 0u);
-}
-
-/* Bytes of group `g`'s image: the record count, the records and the values. */
-static uint32_t image_size(const odg_dict_t *d, uint8_t g)
-{
-    uint32_t n = 2u;
-    const odg_sub_t *s;
-    recs_t r;
-    recs_start(&r, d, g);
-    while ((s = recs_next(&r)) != NULL) {
-        n += REC + sub_value_size(s);
-    }
-    return n;
-}
-
-/* Read and check the "ODG2" slot at `addr` (header into `h`). `ours`: of group `gr`, and at
- * slot A or at the middle of the region it names. A valid image has a descriptor of records
- * with increasing keys whose values fill it. 1 valid, 0 not, -1 the driver failed. */
-static int slot2_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t addr, uint8_t *h,
-                      int ours)
-{
-    uint8_t c[REC];
-    uint32_t len, region, cnt, sum, prev = 0, i;
-    int v = hdr_read(nv, addr, h, HDR2, MAGIC2);
-    region = get32(h + 12);
-    len = get32(h + 16);
-    if (v != 1 || region > 0x01000000u || region / 2u < HDR2 + 2u || len < 2u ||
-        len > region / 2u - HDR2 ||
-        (ours && (get32(h + 8) != gr->id ||
-                  (addr != gr->nv_addr && addr - gr->nv_addr != region / 2u)))) {
-        return v < 0 ? -1 : 0;
-    }
-    v = crc_ok(nv, addr, h, HDR2, len, NULL);
-    if (v != 1 || nv->read(nv->ctx, addr + HDR2, c, 2) != 0) {
-        return v == 0 ? 0 : -1;
-    }
-    cnt = get16(c);
-    for (i = 0, sum = 2u + REC * cnt; i < cnt && sum <= len; i++) {
-        if (nv->read(nv->ctx, addr + HDR2 + 2u + REC * i, c, REC) != 0) {
-            return -1;
-        }
-        if (i > 0u && rec_key(c) <= prev) {
-            return 0;
-        }
-        prev = rec_key(c);
-        sum += value_size(c);
-    }
-    return sum == len;
-}
-
-/* Whether the slot at `addr` reads back as the valid image whose header is `h`: the CRC, which
- * covers the rest of the header and the image, is the same (the ODG1 store checks the same). */
-static int reads_back(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t addr,
-                      const uint8_t *h)
-{
-    uint8_t t[HDR2];
-    return slot2_read(nv, gr, addr, t, 1) == 1 && get32(t + 20) == get32(h + 20);
-}
-
-/* The slot B named by the header of slot A (`h`, read but not checked): the middle of the
- * region slot A was written for, when that region is another power of two up to
- * ODG_PERSIST_MAX_REGION (a flipped bit never makes one power of two another); 0: none. The
- * header stays until slot A is written again, which a store does only once the newest image
- * is in slot B of the current region, so an image of another region's slot B is found until
- * then, whatever slot A's image holds. */
-static uint32_t named_b(const odg_group_t *gr, const uint8_t *h)
-{
-    uint32_t r = get32(h + 12);
-    if (get32(h) != MAGIC2 || get32(h + 8) != gr->id || r == gr->region || r < 64u ||
-        r > ODG_PERSIST_MAX_REGION || (r & (r - 1u)) != 0u) {
-        return 0u;
-    }
-    return gr->nv_addr + r / 2u;
-}
-
-/* The newest valid slot of group `gr` (address in at[0], header in h): slot A, slot B of the
- * region, and the slot B slot A's header names (at[1], 0 when none). 1 found, 0 none, -1 the
- * driver failed (a failing read past the region means no NV there). */
-static int newest2(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t at[2], uint8_t *h)
-{
-    uint8_t t[HDR2];
-    uint32_t cand[3], k;
-    int v, found = 0;
-    cand[0] = gr->nv_addr;
-    cand[1] = gr->nv_addr + gr->region / 2u;
-    at[0] = at[1] = 0;
-    for (k = 0; k < 2u + (at[1] != 0u); k++) {
-        v = slot2_read(nv, gr, cand[k], t, 1);
-        if (v < 0 && cand[k] - gr->nv_addr < gr->region) {
-            return -1;
-        }
-        if (v > 0 && (!found || newer(get32(t + 4), get32(h + 4)))) {
-            found = 1;
-            at[0] = cand[k];
-            odg_copy(h, t, HDR2);
-        }
-        if (k == 0u) {
-            at[1] = cand[2] = named_b(gr, t);
-        }
-    }
-    return found;
-}
-
-/* The bytes a slot's image takes, rounded up to the slot alignment. */
-static uint32_t extent(const uint8_t *h)
-{
-    return (HDR2 + get32(h + 16) + ODG_PERSIST_ALIGN - 1u) & ~((uint32_t)ODG_PERSIST_ALIGN - 1u);
-}
-
-/* Image bytes on their way to NV, CRC-32 on the fly. */
-typedef struct out {
-    const odg_nv_driver_t *nv;
-    uint32_t addr; /* where buf goes */
-    uint32_t crc;
-    uint32_t n;    /* bytes in buf */
-    int fail;
-    uint8_t buf[CHUNK];
-} out_t;
-
-static void flush(out_t *o)
-{
-    if (o->n > 0u && !o->fail) {
-        o->fail = o->nv->write(o->nv->ctx, o->addr, o->buf, o->n) != 0;
-        o->crc = odg_crc32(o->crc, o->buf, o->n);
-        o->addr += o->n;
-    }
-    o->n = 0;
-}
-
-/* The `n` low bytes of `v`, little endian. */
-static void emit(out_t *o, odg_num_t v, uint32_t n)
-{
-    while (n-- > 0u) {
-        o->buf[o->n++] = (uint8_t)v;
-        v >>= 8;
-        if (o->n == CHUNK) {
-            flush(o);
-        }
-    }
-}
-
-/* One value in wire format: strings padded with zeros after their terminator, a domain as its
- * used length and then `size` bytes of its buffer, zeros after the used ones. */
-static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
-{
-    uint32_t i, n = s->size, keep = n, zero = 0;
-    const uint8_t *p;
-    if (IS(s->type, ODG_T_DOMAIN)) {
-        const odg_domain_t *dm = &d->domains[s->offset];
-        keep = *dm->length;
-        keep = keep < n ? keep : n;
-        keep = keep < dm->capacity ? keep : dm->capacity;
-        emit(o, keep, 4);
-        p = dm->data;
-    } else {
-        p = odg_value_(d, s);
-    }
-    if (!(type_bit(s->type) & STREAMS)) {
-        emit(o, odg_load_(p, n), n);
-    } else if (IS(s->type, ODG_T_UNICODE_STRING)) {
-        for (i = 0; i < n; i += 2u) {
-            uint16_t u;
-            memcpy(&u, p + i, 2);
-            zero |= u == 0u;
-            emit(o, zero ? 0u : u, n - i < 2u ? 1u : 2u);
-        }
-    } else {
-        for (i = 0; i < n; i++) {
-            zero |= i >= keep || (s->type == ODG_T_VISIBLE_STRING && p[i] == 0u);
-            emit(o, zero ? 0u : p[i], 1);
-        }
-    }
-}
-
-/* Write the mirror of group `g` as its newest image: into slot A when the newest is in slot B
- * of the current region, else into that slot B (past the whole old region when the region
- * grew). Slot A, which names the old region, stays until the newest is in the current slot B,
- * so an image in the old slot B is found until then. Never over the newest image (DATA_STORE
- * when that is impossible: a region that shrank below an image of the old one). */
-static odg_abort_t store2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
-{
-    const odg_group_t *gr = &d->groups[g];
-    uint8_t h[HDR2], t[HDR2];
-    uint32_t at[2], seq = 1, half = gr->region / 2u, addr = gr->nv_addr, size = image_size(d, g);
-    const odg_sub_t *s;
-    recs_t r;
-    out_t o;
-    int k = newest2(nv, gr, at, t);
-    if (k < 0) {
-        return ODG_ABORT_HARDWARE;
-    }
-    if (k) {
-        seq = get32(t + 4) + 1u;
-        addr = at[0] == gr->nv_addr + half ? gr->nv_addr : gr->nv_addr + half;
-        if (addr < at[0] + HDR2 + get32(t + 16) && at[0] < addr + half) {
-            return ODG_ABORT_DATA_STORE;
-        }
-    }
-    if (HDR2 + size > half) {
-        return ODG_ABORT_DATA_STORE; /* odg_verify: never for a generated dictionary */
-    }
-    put32(h, MAGIC2);
-    put32(h + 4, seq);
-    put32(h + 8, gr->id);
-    put32(h + 12, gr->region);
-    put32(h + 16, size);
-    o.nv = nv;
-    o.addr = addr + HDR2;
-    o.crc = odg_crc32(0, h, 20);
-    o.n = 0;
-    o.fail = nv->erase(nv->ctx, addr, half) != 0;
-    emit(&o, gr->n_layout, 2);
-    for (recs_start(&r, d, g); (s = recs_next(&r)) != NULL;) { /* the layout descriptor */
-        emit(&o, r.key >> 8 | (uint32_t)s->sub << 16 | (uint32_t)s->type << 24, 4);
-        emit(&o, s->size, 2);
-    }
-    for (recs_start(&r, d, g); (s = recs_next(&r)) != NULL;) {
-        emit_value(&o, d, s);
-    }
-    flush(&o);
-    /* the CRC covers the bytes written; the read-back below checks that they landed */
-    put32(h + 20, o.crc);
-    if (o.fail || nv->write(nv->ctx, addr + 4u, h + 4, HDR2 - 4u) != 0 ||
-        nv->write(nv->ctx, addr, h, 4u) != 0 || !reads_back(nv, gr, addr, h)) {
-        return ODG_ABORT_HARDWARE;
-    }
-    return ODG_OK;
-}
-
-/* Erase the bytes from `from` up to `to` (none when to <= from): whether the driver failed. */
-static int wipe(const odg_nv_driver_t *nv, uint32_t from, uint32_t to)
-{
-    return from < to && nv->erase(nv->ctx, from, to - from) != 0;
-}
-
-/* Make the next boot of group `g` use the defaults: erase its images outside the region (of
- * a region that shrank) and the region, all but the newest image first and then the newest, so
- * a power cut in between leaves the newest (as if nothing happened), never an older one. */
-static odg_abort_t erase2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
-{
-    const odg_group_t *gr = &d->groups[g];
-    uint8_t h[HDR2], t[HDR2];
-    uint32_t at[2], start = gr->nv_addr, end = gr->nv_addr + gr->region, e = 0;
-    uint32_t lo = end, hi = end; /* the newest image's bytes in the region */
-    int found = newest2(nv, gr, at, h), fail = found < 0;
-    /* an older image in the slot B slot A names, past the region (a region that shrank) */
-    if (!fail && at[1] >= end && at[1] != at[0] && slot2_read(nv, gr, at[1], t, 1) == 1) {
-        fail = wipe(nv, at[1], at[1] + extent(t));
-    }
-    if (found > 0) {
-        e = at[0] + extent(h);
-        if (at[0] < end) { /* the header is what counts */
-            lo = at[0];
-            hi = e = e > end ? end : e;
-        }
-    }
-    fail = fail || wipe(nv, start, lo) || wipe(nv, hi, end) || wipe(nv, at[0], e);
-    return fail ? ODG_ABORT_HARDWARE : ODG_OK;
-}
-
-/* ---- boot migration: docs/persistence.md section 3, odgen/persist/migration.py ----------- */
-
-/* What became of a stored entry; n[DEFAULTED .. CONVERTED] go to odg_state_t.boot_counts */
-enum { KEPT = 0, DEFAULTED = 1, DROPPED = 2, CONVERTED = 3, FAILED = -1 };
-
-/* UNSIGNEDn -> UNSIGNEDm, INTEGERn -> INTEGERm, UNSIGNEDn -> INTEGERm with m > n. */
-static int widens(uint8_t from, uint8_t to)
-{
-    uint32_t a = type_bit(from), b = type_bit(to);
-    if (!(a & (SIGNED_INTS | UNSIGNED_INTS)) || !(b & (SIGNED_INTS | UNSIGNED_INTS)) ||
-        num_size[to] <= num_size[from]) {
-        return 0;
-    }
-    return (a & SIGNED_INTS) ? (b & SIGNED_INTS) != 0u : 1;
-}
-
-/* A string (unit 1, or 2 for UNICODE_STRING): what fits, up to its terminator; converted when
- * the stored content went on past the new capacity. */
-static int resize_string(const odg_nv_driver_t *nv, const odg_sub_t *s, uint8_t *p, uint32_t sl,
-                         uint32_t addr)
-{
-    uint32_t unit = s->type == ODG_T_UNICODE_STRING ? 2u : 1u, fl = s->size, i;
-    uint8_t c[2] = {0, 0};
-    uint16_t u;
-    memset(p, 0, fl - fl % unit + unit);
-    for (i = 0; i + unit <= fl && i + unit <= sl; i += unit) {
-        if (nv->read(nv->ctx, addr + i, c, unit) != 0) {
-            return FAILED;
-        }
-        u = (uint16_t)(c[0] | (unsigned)c[1] << 8);
-        if (u == 0u) {
-            return KEPT;
-        }
-        if (unit == 2u) {
-            memcpy(p + i, &u, 2);
-        } else {
-            p[i] = c[0];
-        }
-    }
-    if (i + unit > sl) {
-        return KEPT;
-    }
-    if (nv->read(nv->ctx, addr + i, c, unit) != 0) {
-        return FAILED;
-    }
-    return c[0] != 0u || c[1] != 0u ? CONVERTED : KEPT;
-}
-
-/* A string or domain of the same type: keep what fits (resize). An OCTET_STRING and a domain
- * keep their first bytes (a domain's used ones, after its used length). */
-static int resize(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_sub_t *s, uint32_t sl,
-                  uint32_t addr)
-{
-    const odg_domain_t *dm = NULL;
-    uint8_t c[4], *p;
-    uint32_t used = sl, cap = s->size, n;
-    if (IS(s->type, ODG_T_DOMAIN)) {
-        dm = &d->domains[s->offset];
-        if (nv->read(nv->ctx, addr, c, 4) != 0) {
-            return FAILED;
-        }
-        used = get32(c) < sl ? get32(c) : sl;
-        cap = cap < dm->capacity ? cap : dm->capacity;
-        p = dm->data;
-        addr += 4u;
-    } else {
-        p = odg_value_(d, s);
-        if (s->type != ODG_T_OCTET_STRING) {
-            return resize_string(nv, s, p, sl, addr);
-        }
-        memset(p, 0, cap);
-    }
-    n = used < cap ? used : cap;
-    if ((n > 0u || dm == NULL) && nv->read(nv->ctx, addr, p, n) != 0) {
-        return FAILED;
-    }
-    if (dm != NULL) {
-        *dm->length = n;
-    }
-    return n < used ? CONVERTED : KEPT;
-}
-
-/* Restore the firmware's sub-entry `s` (at `pos` in dict->subs) from the stored entry `st`,
- * whose value lies at `addr`: kept, converted, or defaulted (the mirror keeps the default). */
-static int restore(const odg_dict_t *d, const odg_nv_driver_t *nv, uint32_t pos,
-                   const odg_sub_t *s, const uint8_t *st, uint32_t addr)
-{
-    uint32_t sl = get16(st + 4), i;
-    uint8_t c[8];
-    odg_num_t v;
-    if (s->type == st[3] && (type_bit(s->type) & STREAMS)) {
-        return resize(d, nv, s, sl, addr);
-    }
-    /* a number of a type this build serves: no wider than odg_num_t (ODG_CFG_INT64) */
-    if ((s->type != st[3] && !widens(st[3], s->type)) || type_bit(st[3]) == 0u ||
-        sl == 0u || sl != num_size[st[3]]) {
-        return DEFAULTED; /* narrowed, retyped, or a length that does not fit its type */
-    }
-    if (nv->read(nv->ctx, addr, c, sl) != 0) {
-        return FAILED;
-    }
-    v = (type_bit(st[3]) & SIGNED_INTS) && (c[sl - 1u] & 0x80u) ? ~(odg_num_t)0 : 0u;
-    for (i = sl; i-- > 0u;) {
-        v = v << 8 | c[i];
-    }
-    if (odg_check_(d, (uint16_t)pos, v) != ODG_OK) {
-        return DEFAULTED; /* outside the current limits */
-    }
-    odg_store_(odg_value_(d, s), s->size, v);
-    return s->type == st[3] ? KEPT : CONVERTED;
-}
-
-/* Every entry of group `g` from the image at `at`, merged by key with the firmware's layout;
- * the mirror holds the defaults before. Counts into n[KEPT .. DROPPED]; -1 when the driver
- * failed. */
-static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, uint32_t at,
-                   uint16_t n[4])
-{
-    uint8_t st[REC];
-    uint32_t base = at + HDR2, cnt, j = 0, vo, key;
-    const odg_sub_t *s;
-    recs_t fw;
-    int have = 0, r;
-    if (nv->read(nv->ctx, base, st, 2) != 0) {
-        return -1;
-    }
-    cnt = get16(st);
-    vo = base + 2u + REC * cnt;
-    for (recs_start(&fw, d, g); (s = recs_next(&fw)) != NULL;) {
-        r = DEFAULTED;
-        while (j < cnt) { /* stored entries before this key are no longer in the group */
-            if (!have && nv->read(nv->ctx, base + 2u + REC * j, st, REC) != 0) {
-                return -1;
-            }
-            have = 1;
-            key = rec_key(st);
-            if (key > fw.key) {
-                break; /* not stored: the default */
-            }
-            if (key < fw.key) {
-                n[DROPPED]++;
-            } else if ((r = restore(d, nv, fw.pos - 1u, s, st, vo)) == FAILED) {
-                return -1;
-            }
-            vo += value_size(st);
-            j++;
-            have = 0;
-            if (key == fw.key) {
-                break;
-            }
-        }
-        n[r]++;
-    }
-    n[DROPPED] = (uint16_t)(n[DROPPED] + (cnt - j));
-    return 0;
-}
-
-/* No valid image of ours: DEFAULTS when both slots are erased or hold another group's images
- * (its region moved), SIGNATURE for an "ODG1" image (the format before), else DAMAGED. */
-static odg_boot_status_t no_image2(const odg_nv_driver_t *nv, const odg_group_t *gr)
-{
-    uint8_t t[HDR2];
-    uint32_t half = gr->region / 2u, addr;
-    odg_boot_status_t st = ODG_BOOT_DEFAULTS;
-    int k, v;
-    for (k = 0; k < 2; k++) {
-        addr = gr->nv_addr + (k ? half : 0u);
-        v = slot_blank(nv, addr, half);
-        if (v == 0) {
-            v = slot2_read(nv, gr, addr, t, 0);
-        }
-        if (v == 0 && (v = slot_read(nv, addr, half - HDR, t, NULL)) == 1) {
-            st = ODG_BOOT_SIGNATURE;
-        }
-        if (v < 0) {
-            return ODG_BOOT_NV_ERROR;
-        }
-        if (v == 0) {
-            return ODG_BOOT_DAMAGED;
-        }
-    }
-    return st;
-}
-
-static odg_boot_status_t boot2(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g,
-                               odg_boot_t *b)
-{
-    const odg_group_t *gr = &d->groups[g];
-    uint8_t h[HDR2];
-    uint16_t n[4] = {0, 0, 0, 0}; /* entries KEPT, DEFAULTED, DROPPED, CONVERTED */
-    uint32_t at[2];
-    odg_boot_status_t st;
-    odg_abort_t ac = ODG_OK;
-    odg_state_t *s = d->state;
-    int k = newest2(nv, gr, at, h), changed, i;
-    if (k < 0) {
-        st = ODG_BOOT_NV_ERROR;
-    } else if (k == 0) {
-        st = no_image2(nv, gr);
-    } else {
-        defaults(d, g);
-        st = ODG_BOOT_NV_ERROR; /* unless the image reads the same a second time */
-        if (migrate(d, nv, g, at[0], n) == 0 && reads_back(nv, gr, at[0], h)) {
-            /* a migrated image is stored, with the A/B commit; the old one stays until it
-             * lands (DATA_STORE: no slot beside the old image, which is then migrated again) */
-            changed = n[DEFAULTED] || n[DROPPED] || n[CONVERTED];
-            if (changed) {
-                ac = store2(d, nv, g);
-            }
-            if (ac == ODG_OK || ac == ODG_ABORT_DATA_STORE) {
-                b->kept = n[KEPT];
-                b->converted = n[CONVERTED];
-                b->defaulted = n[DEFAULTED];
-                b->dropped = n[DROPPED];
-                for (i = 0; i < 3; i++) { /* entries defaulted, dropped, converted */
-                    s->boot_counts[i] = add_sat(s->boot_counts[i], n[i + 1]);
-                }
-                if (n[DEFAULTED] || n[DROPPED]) {
-                    s->boot_seen = (uint8_t)(s->boot_seen | ODG_BOOT_ENTRIES_LOST);
-                }
-                return changed ? ODG_BOOT_MIGRATED : ODG_BOOT_LOADED;
-            }
-        }
-    }
-    defaults(d, g);
-    if (st != ODG_BOOT_NV_ERROR && store2(d, nv, g) != ODG_OK) {
-        st = ODG_BOOT_NV_ERROR;
-    }
-    return st;
-}
-#endif /* ODG_NO_MIGRATION */
-
-/* Write the mirror of `gr` as the new newest "ODG1" image. */
-static odg_abort_t store_image1(const odg_nv_driver_t *nv, const odg_group_t *gr)
-{
-    uint8_t hdr[2][HDR], h[HDR];
-    uint32_t addr, seq = 1;
-    int k;
-    k = newest(nv, gr, hdr);
-    if (k == -2) {
-        return ODG_ABORT_HARDWARE;
-    }
-    if (k >= 0) {
-        seq = get32(hdr[k] + 4) + 1u;
-    }
-    addr = slot_addr(gr, k == 0);
-    put32(h, MAGIC);
-    put32(h + 4, seq);
-    put32(h + 8, gr->signature);
-    put32(h + 12, gr->size);
-    /* the CRC covers the bytes as they are now; should the mirror change while it is being
-     * written, the read-back below fails and the previous image stays the newest */
-    put32(h + 16, odg_crc32(odg_crc32(0, h, 16), gr->mirror, gr->size));
-    if (nv->erase(nv->ctx, addr, ODG_PERSIST_SLOT_SIZE(gr->size)) != 0 ||
-        nv->write(nv->ctx, addr + HDR, gr->mirror, gr->size) != 0 ||
-        nv->write(nv->ctx, addr + 4u, h + 4, HDR - 4u) != 0 ||
-        nv->write(nv->ctx, addr, h, 4u) != 0 ||
-        slot_read(nv, addr, gr->size, hdr[0], NULL) != 1 || get32(hdr[0] + 16) != get32(h + 16)) {
-        return ODG_ABORT_HARDWARE;
-    }
-    return ODG_OK;
-}
-
-static odg_abort_t store1(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
-{
-    return store_image1(nv, &d->groups[g]);
-}
-
-/* Records of other layers (the LSS configuration) in "ODG1" slots of their own. */
-odg_abort_t odg_persist_store_record(const odg_nv_driver_t *nv, const odg_group_t *rec)
-{
-    return nv != NULL ? store_image1(nv, rec) : ODG_ABORT_DATA_STORE;
-}
-
-int odg_persist_load_record(const odg_nv_driver_t *nv, const odg_group_t *rec)
-{
-    uint8_t hdr[2][HDR], h[HDR];
-    int k = nv != NULL ? newest(nv, rec, hdr) : -2;
-    if (k < 0) {
-        return k == -1 ? 0 : -1;
-    }
-    if (get32(hdr[k] + 8) != rec->signature || get32(hdr[k] + 12) != rec->size) {
-        return 0;
-    }
-    return slot_read(nv, slot_addr(rec, k), rec->size, h, (uint8_t *)rec->mirror) == 1 ? 1 : -1;
-}
-
-/* Make the next boot of group `g` ("ODG1") use the defaults: erase both slots. */
-static odg_abort_t erase1(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
-{
-    const odg_group_t *gr = &d->groups[g];
-    uint8_t hdr[2][HDR];
-    int k, n;
-    k = newest(nv, gr, hdr);
-    if (k == -2) {
-        return ODG_ABORT_HARDWARE;
-    }
-    /* the older slot first: a power cut in between leaves the newest image (nothing
-     * happened), never the older one */
-    for (n = 0, k = k == 0; n < 2; n++, k = !k) {
-        if (nv->erase(nv->ctx, slot_addr(gr, k), ODG_PERSIST_SLOT_SIZE(gr->size)) != 0) {
-            return ODG_ABORT_HARDWARE;
-        }
-    }
-    return ODG_OK;
-}
-
 /* Store group `g` (restore = 0) in the format of its group, "ODG2" with a layout, else "ODG1";
  * or make its next boot use the defaults (restore = 1). */
 static odg_abort_t act(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, int restore)
@@ -910,27 +46,38 @@ static odg_abort_t act(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g
     if (nv == NULL || g >= d->n_groups) {
         return ODG_ABORT_DATA_STORE;
     }
-#ifndef ODG_NO_MIGRATION
-    if (MIGRATES(&d->groups[g])) {
-        return restore ? erase2(d, nv, g) : store2(d, nv, g);
+#if ODG_CFG_PERSIST_MIGRATION
+    if (ODG_MIGRATES_(&d->groups[g])) {
+        return restore ? odg_described_erase_(d, nv, g) : odg_described_store_(d, nv, g);
     }
 #endif
-    return restore ? erase1(d, nv, g) : store1(d, nv, g);
+    return restore ? odg_fixed_erase_(d, nv, g) : odg_fixed_store_(d, nv, g);
+}
+
+/* Whether the NV behind `nv` holds the dictionary's NAME_NV_SIZE bytes (its last byte reads). */
+static int nv_fits(const odg_dict_t *d, const odg_nv_driver_t *nv)
+{
+    uint32_t size = odg_persist_nv_size(d);
+    uint8_t c;
+    return nv != NULL && (size == 0u || nv->read(nv->ctx, size - 1u, &c, 1) == 0);
 }
 
 /* 0x1010 / 0x1011 sub `sub`, handed over by the core: sub 1 acts on every group, another on
- * the groups with that store_sub; DATA_STORE when none has it. */
+ * the groups with that store_sub, each of them even past one that fails (the first failure is
+ * the answer); DATA_STORE when none has it, or the NV is smaller than the dictionary's. */
 static odg_abort_t command(odg_client_t *self, const odg_dict_t *d, uint8_t sub, int restore)
 {
     const odg_nv_driver_t *nv = ((const odg_persist_t *)(const void *)self)->nv;
-    odg_abort_t ac = ODG_ABORT_DATA_STORE;
-    uint8_t g;
+    odg_abort_t ac = ODG_ABORT_DATA_STORE, r;
+    uint8_t g, any = 0;
+    if (!nv_fits(d, nv)) {
+        return ODG_ABORT_DATA_STORE;
+    }
     for (g = 0; g < d->n_groups; g++) {
         if (sub == 1u || d->groups[g].store_sub == sub) {
-            ac = act(d, nv, g, restore);
-            if (ac != ODG_OK) {
-                break;
-            }
+            r = act(d, nv, g, restore); /* every group, even past one that failed */
+            ac = !any || ac == ODG_OK ? r : ac;
+            any = 1;
         }
     }
     return ac;
@@ -960,42 +107,40 @@ odg_abort_t odg_persist_restore(const odg_dict_t *dict, uint8_t g)
 static odg_boot_status_t boot_group(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g,
                                      odg_boot_t *b)
 {
-    const odg_group_t *gr = &d->groups[g];
-    uint8_t hdr[2][HDR], h[HDR];
-    odg_boot_status_t st = ODG_BOOT_DEFAULTS;
-    int k;
-#ifndef ODG_NO_MIGRATION
-    if (MIGRATES(gr)) {
-        return boot2(d, nv, g, b);
+#if ODG_CFG_PERSIST_MIGRATION
+    if (ODG_MIGRATES_(&d->groups[g])) {
+        return odg_described_boot_(d, nv, g, b);
     }
 #endif
-    (void)b;
-    k = newest(nv, gr, hdr);
-    if (k == -2) {
-        st = ODG_BOOT_NV_ERROR;
-    } else if (k == -1) {
-        st = no_image(nv, gr);
-    } else if (slot_read(nv, slot_addr(gr, k), gr->size, h, (uint8_t *)gr->mirror) != 1) {
-        st = ODG_BOOT_NV_ERROR; /* it was valid a moment ago: a flaky read */
-    } else if (get32(h + 8) != gr->signature || get32(h + 12) != gr->size) {
-        st = ODG_BOOT_SIGNATURE; /* an image of another layout, read over the defaults below */
-    } else {
-        return ODG_BOOT_LOADED;
-    }
-    defaults(d, g);
-    if (st != ODG_BOOT_NV_ERROR && store1(d, nv, g) != ODG_OK) {
-        st = ODG_BOOT_NV_ERROR;
-    }
-    return st;
+    return odg_fixed_boot_(d, nv, g, b);
 }
 
 /* The boot status object: sub g + 1 = status | converted << 8 | defaulted << 16 | dropped << 24 */
 static void report(const odg_dict_t *d, uint8_t g, const odg_boot_t *b)
 {
-    uint32_t v = (uint32_t)b->status | (uint32_t)add_sat(0, b->converted) << 8 |
-                 (uint32_t)add_sat(0, b->defaulted) << 16 | (uint32_t)add_sat(0, b->dropped) << 24;
+    uint32_t v = (uint32_t)b->status | (uint32_t)odg_add_sat_(0, b->converted) << 8 |
+                 (uint32_t)odg_add_sat_(0, b->defaulted) << 16 | (uint32_t)odg_add_sat_(0, b->dropped) << 24;
     if (ODG_CFG_PERSIST_STATUS && d->persist_status != 0u) {
         (void)odg_set(d, d->persist_status, (uint8_t)(g + 1u), &v, (uint32_t)sizeof v);
+    }
+}
+
+/* What the boot of group `g` found, into the dictionary's state, the status object, `st` and
+ * `boot` (either may be NULL), and *ac (HARDWARE on NV_ERROR). */
+static void booted(const odg_dict_t *d, uint8_t g, const odg_boot_t *b, odg_boot_status_t *st,
+                   odg_boot_t *boot, odg_abort_t *ac)
+{
+    odg_state_t *s = d->state;
+    s->boot_seen = (uint8_t)(s->boot_seen | 1u << b->status);
+    if (b->status == ODG_BOOT_NV_ERROR && *ac == ODG_OK) {
+        *ac = ODG_ABORT_HARDWARE;
+    }
+    report(d, g, b);
+    if (st != NULL) {
+        st[g] = (odg_boot_status_t)b->status;
+    }
+    if (boot != NULL) {
+        boot[g] = *b;
     }
 }
 
@@ -1007,6 +152,10 @@ static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_
     odg_abort_t ac = nv != NULL ? ODG_OK : ODG_ABORT_DATA_STORE;
     odg_state_t *s = dict->state;
     uint8_t g;
+    int fits, pass;
+#if ODG_CFG_PERSIST_MIGRATION
+    uint8_t done[32]; /* the groups booted in the first pass */
+#endif
     if (nv != NULL) {
         p->client.command = command;
         p->client.changed = NULL;
@@ -1014,24 +163,31 @@ static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_
         odg_attach(dict, &p->client);
     }
     s->boot_seen = 0;
-#ifndef ODG_NO_MIGRATION /* the counts of entries a migration converted, defaulted, dropped */
+#if ODG_CFG_PERSIST_MIGRATION /* the counts of entries a migration converted, defaulted, dropped */
     s->boot_counts[0] = s->boot_counts[1] = s->boot_counts[2] = 0;
 #endif
-    for (g = 0; g < dict->n_groups; g++) {
-        odg_boot_t b = {ODG_BOOT_NV_ERROR, 0, 0, 0, 0};
-        if (nv != NULL) {
-            b.status = (uint8_t)boot_group(dict, nv, g, &b);
-        }
-        s->boot_seen = (uint8_t)(s->boot_seen | 1u << b.status);
-        if (b.status == ODG_BOOT_NV_ERROR && ac == ODG_OK) {
-            ac = ODG_ABORT_HARDWARE;
-        }
-        report(dict, g, &b);
-        if (st != NULL) {
-            st[g] = (odg_boot_status_t)b.status;
-        }
-        if (boot != NULL) {
-            boot[g] = b;
+    fits = nv_fits(dict, nv);
+#if ODG_CFG_PERSIST_MIGRATION
+    /* two passes: first the groups whose newest image lies outside their region (in a region
+     * of another group, after the NV map changed), which move it home before that group's
+     * boot writes over it; then the others */
+    memset(done, 0, sizeof done);
+    for (pass = fits ? 0 : 1; pass < 2; pass++) {
+#else
+    for (pass = 1; pass < 2; pass++) {
+#endif
+        for (g = 0; g < dict->n_groups; g++) {
+            odg_boot_t b = {ODG_BOOT_NV_ERROR, 0, 0, 0, 0, 0};
+#if ODG_CFG_PERSIST_MIGRATION
+            if ((done[g >> 3] >> (g & 7u)) & 1u || (pass == 0 && !odg_described_displaced_(dict, nv, g))) {
+                continue;
+            }
+            done[g >> 3] = (uint8_t)(done[g >> 3] | 1u << (g & 7u));
+#endif
+            if (fits) { /* an NV smaller than the dictionary's: NV_ERROR, nothing written */
+                b.status = (uint8_t)boot_group(dict, nv, g, &b);
+            }
+            booted(dict, g, &b, st, boot, &ac);
         }
     }
     odg_changed(dict, NULL);

@@ -16,6 +16,7 @@ import sys
 from pathlib import Path
 
 import odgen
+from odgen import toolchain
 from odgen.catalogue import RULES
 
 from .conftest import ROOT
@@ -42,7 +43,7 @@ def _firmware_of_today(tmp: Path, eds_text: str) -> Path:
                   "-o", str(tmp))
     assert done.returncode == 0, done.stdout + done.stderr
     exe = tmp / "migrate_main"
-    build("gcc", ("-O1",), (CTESTS / "migrate_main.c", tmp / "od.c", RUNTIME / "odg.c", RUNTIME / "odg_persist.c",
+    build("gcc", ("-O1",), (CTESTS / "migrate_main.c", tmp / "od.c", *toolchain.core_sources(),
                             RUNTIME / "odg_nv_file.c", CTESTS / "nv_fault.c"), (tmp, RUNTIME, CTESTS), exe)
     return exe
 

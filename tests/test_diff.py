@@ -261,17 +261,20 @@ def _storage_group(od: ObjectDictionary, index: int, sub: int | None) -> str | N
     entry = obj.subs.get(sub or 0) if obj is not None else None
     if obj is None or entry is None:
         return None
-    return storage_from_description(entry.storage or obj.storage)
+    return storage_from_description(entry.storage) or storage_from_description(obj.storage)  # sub-level RAM: none
 
 
 def _format_only(c: Change, eds: ObjectDictionary, xdd: ObjectDictionary) -> bool:
     """A change only the file formats explain: an object CANopenEditor disabled (left out of the EDS), a
-    storage group the EDS does not carry, and what these cause: groups placed after a group the EDS does
-    not have move in NV, and the version findings (class b)."""
+    storage group the EDS does not carry, a stored string default's trailing blanks, and what these
+    cause: groups placed after a group the EDS does not have move in NV, and the version findings
+    (class b)."""
     if c.kind == "DIF301" and c.index is not None:
         return disabled(xdd.objects[c.index])
     if c.kind == "DIF204" and c.index is not None:
         return _storage_group(eds, c.index, c.sub) is None and _storage_group(xdd, c.index, c.sub) is not None
+    if c.kind == "DIF202":  # a stored string whose XML default ends in blanks the INI value trims
+        return _ini_trims(c, xdd)
     return c.kind in ("DIF207", "DIF401", "DIF402") and c.change_class == STORED
 
 
@@ -311,3 +314,38 @@ def test_retyped_and_tightened_stored_entries_show_in_both_classes(tmp_path: Pat
     found = {(c.kind, c.index) for c in diff_paths(BASE, new, OPTIONS, OPTIONS).changes}
     assert found == {("DIF103", 0x2001), ("DIF201", 0x2001), ("DIF108", 0x2002), ("DIF205", 0x2002),
                      ("DIF401", 0x1018), ("DIF402", None)}
+
+
+def test_a_shorter_string_default_is_breaking_as_its_capacity_shrinks(tmp_path: Path) -> None:
+    """Issue 25, sequence 8: a shorter VISIBLE_STRING default shrinks the capacity (no capacity in an
+    options file), so a master's write of the old length is refused: breaking, not compatible."""
+    old, new = tmp_path / "old.eds", tmp_path / "new.eds"
+    text = BASE.read_text(encoding="utf-8")
+    old.write_text(text + "\n[2F00]\nParameterName=Label\nObjectType=0x7\nDataType=0x0009\nAccessType=rw\n"
+                   "DefaultValue=hello world\nPDOMapping=0\n", encoding="utf-8")
+    new.write_text(old.read_text(encoding="utf-8").replace("DefaultValue=hello world", "DefaultValue=hi"),
+                   encoding="utf-8")
+    found = {c.kind: c for c in diff_paths(old, new).changes if c.index == 0x2F00}
+    assert found["DIF109"].change_class == BREAKING and "11 -> 2 bytes" in found["DIF109"].message
+
+
+@pytest.mark.parametrize("content", ["", "garbage\x00\x01 not a description\n", "[FileInfo]\nFileName=x.eds\n"])
+def test_an_empty_or_garbage_new_file_is_a_user_mistake(content: str, tmp_path: Path,
+                                                         capsys: pytest.CaptureFixture[str]) -> None:
+    """Issue 25, sequence 8: exit 2 with one sentence, never "every object removed" (exit 1)."""
+    new = tmp_path / "new.eds"
+    new.write_text(content, encoding="utf-8")
+    assert main(["diff", str(BASE), str(new)]) == 2
+    err = capsys.readouterr().err
+    assert "cannot compare it" in err and "DIF101" not in err
+
+
+def test_dif206_says_a_stored_value_outside_narrower_limits_is_not_kept(tmp_path: Path) -> None:
+    """Issue 25, sequence 8: a changed default of a stored entry whose limits narrowed does not claim
+    that every device keeps its value."""
+    new = tmp_path / "new.eds"
+    new.write_text(BASE.read_text(encoding="utf-8").replace("HighLimit=1000\nDefaultValue=100\n",
+                                                             "HighLimit=500\nDefaultValue=50\n"), encoding="utf-8")
+    v2 = DIFF / "options-v2.toml"  # 0x2100 stored in both
+    found = [c for c in diff_paths(BASE, new, v2, v2).changes if c.kind == "DIF206" and c.index == 0x2100]
+    assert found and "outside them gets the new default" in found[0].message

@@ -125,9 +125,25 @@ def test_added_parameter_keeps_the_others_and_downgrade_drops_it() -> None:
     stored = {(0x2001, 0): bytes([250]), (0x2002, 0): (123456).to_bytes(4, "little")}
     up = migrate(v1, v2, stored)
     assert up.values == {**stored, (0x2003, 0): None}
-    assert (up.counts.kept, up.counts.defaulted, up.counts.dropped) == (2, 1, 0)
+    assert (up.counts.kept, up.counts.added, up.counts.defaulted, up.counts.dropped) == (2, 1, 0, 0)
+    assert up.counts.migrated and not up.counts.lost  # an added parameter loses nothing
     down = migrate(v2, v1, {**stored, (0x2003, 0): (80).to_bytes(2, "little")})
     assert down.values == stored and (down.counts.kept, down.counts.dropped) == (2, 1)
+    assert down.counts.lost  # a value stored and not served
+
+
+def test_sequence_6_array_sub0_follows_the_array() -> None:
+    """Sub 0 of an ARRAY whose highest sub-index changed is the new default (the count follows
+    the array), counted as converted, not as a loss; elements keep their values."""
+    v1 = GroupLayout("app", (entry(0x2020, U8), *(EntryLayout(0x2020, k, U16, 2) for k in range(1, 5))))
+    v2 = GroupLayout("app", (entry(0x2020, U8), *(EntryLayout(0x2020, k, U16, 2) for k in range(1, 7))))
+    stored = {(0x2020, 0): bytes([4]), **{(0x2020, k): bytes([k, 0]) for k in range(1, 5)}}
+    grown = migrate(v1, v2, stored)
+    assert grown.values[(0x2020, 0)] is None and grown.values[(0x2020, 3)] == bytes([3, 0])
+    assert (grown.counts.converted, grown.counts.added, grown.counts.kept) == (1, 2, 4)
+    assert not grown.counts.lost
+    same = migrate(v1, v1, stored)
+    assert same.values == stored and not same.counts.migrated
 
 
 def test_value_of_the_wrong_size_is_not_restored() -> None:

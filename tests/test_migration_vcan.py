@@ -8,7 +8,9 @@ import subprocess
 import sys
 from pathlib import Path
 
-from .conftest import ROOT
+import pytest
+
+from .conftest import CORPUS, ROOT
 from .test_migration_runtime import BASE, Param, eds, options
 from .test_node import NODE_TESTS, node_program
 
@@ -35,3 +37,22 @@ def test_stored_values_migrate_on_vcan(tmp_path: Path, vcan_bus) -> None:
     output = done.stdout + done.stderr
     assert done.returncode == 0, output[-6000:]
     assert done.stdout.rstrip().splitlines()[-1] == "vcan migration: ok", output[-6000:]
+
+
+def test_canopennode_style_configuration_survives_save_and_reset_on_vcan(tmp_path: Path, vcan_bus) -> None:
+    """Issue 25, sequence 1: canopennode__DS301_profile.eds (object-level PERSIST_COMM, sub-level RAM)
+    keeps a TPDO's transmission type and event timer, an SDO client's server node-id and the heartbeat
+    time across "save" + reset node and a power cycle (tests/node/vcan_canopennode_save.py)."""
+    source = CORPUS / "canopennode__DS301_profile.eds"
+    if not source.is_file():
+        pytest.skip("../shared/corpus is absent")
+    out = tmp_path / "gen"
+    done = subprocess.run([sys.executable, "-m", "odgen", "generate", str(source), "--name", "od", "-o", str(out)],
+                          capture_output=True, text=True, check=False, cwd=ROOT)
+    assert done.returncode == 0, done.stdout + done.stderr
+    exe = node_program("gcc", "od", out, tmp_path)
+    cmd = [sys.executable, str(NODE_TESTS / "vcan_canopennode_save.py"), str(exe), str(tmp_path)]
+    done = vcan_bus.run(cmd, cwd=ROOT, timeout=180)
+    output = done.stdout + done.stderr
+    assert done.returncode == 0, output[-6000:]
+    assert done.stdout.rstrip().splitlines()[-1] == "vcan canopennode save: ok", output[-6000:]

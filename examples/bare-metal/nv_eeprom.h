@@ -4,7 +4,7 @@
 #ifndef NV_EEPROM_H
 #define NV_EEPROM_H
 
-#include "odg.h"
+#include "odg_persist.h"
 
 extern const odg_nv_driver_t nv_eeprom;
 

@@ -65,7 +65,7 @@ def fails(result: DiffResult, fail_on: str) -> bool:
 def _load(path: Path) -> tuple[ObjectDictionary, list[Diagnostic]]:
     od, diags = load_path(path)
     errors = [d for d in diags.sorted() if d.severity == Severity.ERROR]
-    if od is None:
-        reason = errors[0].text() if errors else f"{path}: not a device description"
+    if od is None or not od.objects:
+        reason = errors[0].text() if errors else f"{path}: not a device description (no object in it)"
         raise OdgenError(f"{reason}; cannot compare it")
     return od, errors

@@ -30,6 +30,8 @@ KINDS: dict[str, Kind] = {k.id: k for k in (
     Kind("DIF107", BREAKING, "communication default changed",
          "PDO mappings, COB-IDs and transmission types a master relies on changed without being written."),
     Kind("DIF108", BREAKING, "limits narrowed", "Values a master's configuration writes may now be refused."),
+    Kind("DIF109", BREAKING, "string capacity shrank",
+         "The capacity follows the default's length: a master's write of the old length is refused."),
     Kind("DIF201", STORED, "stored value converted", "Boot migration widens the stored integer."),
     Kind("DIF202", STORED, "stored capacity changed", "Boot migration keeps what fits of the stored string or domain."),
     Kind("DIF203", STORED, "stored value dropped", "Boot migration forgets the stored value."),
@@ -37,9 +39,11 @@ KINDS: dict[str, Kind] = {k.id: k for k in (
     Kind("DIF205", STORED, "stored value checked against narrower limits",
          "A stored value outside the new limits is replaced by the default at boot."),
     Kind("DIF206", STORED, "default of a stored parameter changed",
-         "Devices that stored the parameter keep their value; only the others see the new default."),
+         "Devices that stored the parameter keep their value (unless narrower limits refuse it); "
+         "only the others see the new default."),
     Kind("DIF207", STORED, "persistence group moves in NV",
-         "The runtime looks for the group's image at its new place and does not find it."),
+         "The runtime looks for the group's image at its new place and does not find it: DEFAULTS "
+         "on erased NV, else DAMAGED and the storage EMCY."),
     Kind("DIF301", COMPATIBLE, "object added", "Nothing a master configured before refers to it."),
     Kind("DIF302", COMPATIBLE, "sub-entry added", "Nothing a master configured before refers to it."),
     Kind("DIF303", COMPATIBLE, "name changed", "Names are documentation; masters address by index and sub-index."),

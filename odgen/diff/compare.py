@@ -11,6 +11,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from ..model import Obj, ObjectDictionary, Sub, Value
+from ..model.capacity import string_capacity, string_default
 from ..model.cia301 import (
     EMCY_COB_ID, SYNC_COB_ID, TIME_COB_ID, is_pdo_mapping, is_sdo_parameter, pdo_communication)
 from ..model.od import OBJECT_CODES
@@ -69,9 +70,13 @@ def _sub(index: int, sub: int | None, a: Sub, b: Sub, configured: bool, stored: 
     if a.pdo_mapping != b.pdo_mapping:
         kind = "DIF106" if a.pdo_mapping else "DIF305"
         out.append(change(kind, "no longer PDO-mappable" if a.pdo_mapping else "now PDO-mappable", "pdomapping"))
-    out += _limits(a, b, change)
+    limits = _limits(a, b, change)
+    out += limits
     if _value(a.default) != _value(b.default) and (index, b.subindex) != REVISION:
-        out.append(_default_change(index, b.subindex, stored, change, f"{_shown(a.default)} -> {_shown(b.default)}"))
+        narrowed = any(c.kind == "DIF108" for c in limits)
+        out.append(_default_change(index, b.subindex, stored, change, f"{_shown(a.default)} -> {_shown(b.default)}",
+                                   narrowed))
+        out += _capacity(a, b, change)
     if configured and _value(a.parameter_value) != _value(b.parameter_value):
         shown = f"{_shown(a.parameter_value)} -> {_shown(b.parameter_value)}"
         out.append(change("DIF308", f"ParameterValue {shown}", "parametervalue"))
@@ -83,12 +88,27 @@ def _sub(index: int, sub: int | None, a: Sub, b: Sub, configured: bool, stored: 
 
 
 def _default_change(index: int, subindex: int, stored: bool, change: Callable[[str, str, str], Change],
-                    shown: str) -> Change:
+                    shown: str, narrowed: bool = False) -> Change:
     if communication_default(index, subindex):
         return change("DIF107", f"default {shown}", "defaultvalue")
     if stored:
-        return change("DIF206", f"default {shown}; a device that stored a value keeps it", "defaultvalue")
+        keeps = ("a device that stored a value inside the new limits keeps it; one outside them gets the new "
+                 "default at boot (a loss, reported)") if narrowed else "a device that stored a value keeps it"
+        return change("DIF206", f"default {shown}; {keeps}", "defaultvalue")
     return change("DIF307", f"default {shown}", "defaultvalue")
+
+
+def _capacity(a: Sub, b: Sub, change: Callable[[str, str, str], Change]) -> list[Change]:
+    """A string whose capacity follows its default (no capacity in an options file) and shrinks."""
+    dtype = b.dtype
+    if dtype is None or dtype.kind not in ("vstring", "ostring", "ustring") or a.dtype != dtype:
+        return []
+    before = string_capacity(dtype, string_default(dtype, a.default), None)
+    after = string_capacity(dtype, string_default(dtype, b.default), None)
+    if after >= before:
+        return []
+    return [change("DIF109", f"capacity {before} -> {after} bytes (it follows the default's length): a write "
+                   f"of up to {before} bytes is refused unless the options file sets capacity", "defaultvalue")]
 
 
 def _access(a: Sub, b: Sub, change: Callable[[str, str, str], Change]) -> list[Change]:

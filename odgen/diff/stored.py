@@ -13,11 +13,11 @@ from ..diagnostics import Diagnostics, Severity
 from ..errors import OdgenError
 from ..model import ObjectDictionary
 from ..place.layout import group_layouts
-from ..place.migration import CONVERT, DEFAULT, DROP, KEEP, RESIZE, GroupLayout, Step, plan
+from ..place.migration import CONVERT, DEFAULT, DROP, FOLLOW, KEEP, RESIZE, GroupLayout, Step, plan
 from ..place.nvmap import Region
 from .changes import Change
 
-KINDS = {CONVERT: "DIF201", RESIZE: "DIF202", DROP: "DIF203", DEFAULT: "DIF204", KEEP: "DIF205"}
+KINDS = {CONVERT: "DIF201", FOLLOW: "DIF201", RESIZE: "DIF202", DROP: "DIF203", DEFAULT: "DIF204", KEEP: "DIF205"}
 
 
 @dataclass
@@ -104,7 +104,8 @@ def _moved(group: str, group_plan: GroupPlan, new_od: ObjectDictionary) -> Chang
     first = group_plan.steps[0]
     sub = new_od.find(first.index, first.sub)
     return Change("DIF207", f"group '{group}' moves in NV, {group_plan.moved}: its {len(group_plan.steps)} "
-                  "stored value(s) are not found at boot (pin the regions in the options file)",
+                  "stored value(s) are not found at boot; the group boots DEFAULTS where its new region is "
+                  "erased, else DAMAGED with the storage EMCY (pin the regions in the options file)",
                   line=sub.line if sub is not None else 0)
 
 
@@ -115,8 +116,18 @@ def _message(step: Step) -> str:
         limits = f"; a stored value outside {_limit(low)}..{_limit(high)} becomes the default"
     if step.action == KEEP:
         return "kept" + limits
-    what = {CONVERT: "converted", RESIZE: "resized, what fits kept", DROP: "dropped", DEFAULT: "the default"}
-    return f"{what[step.action]} at boot ({step.reason}){limits}"
+    what = {CONVERT: "converted", FOLLOW: "the default", RESIZE: "resized, what fits kept", DROP: "dropped",
+            DEFAULT: "the default"}
+    return f"{what[step.action]} at boot ({step.reason}){limits}; {_boot(step)}"
+
+
+def _boot(step: Step) -> str:
+    """What the boot that migrates the group reports for this entry (docs/persistence.md, 4)."""
+    if step.action == DEFAULT and step.old is None:
+        return "counted as added: MIGRATED, no EMCY"
+    if step.action in (DEFAULT, DROP):
+        return "a loss: MIGRATED, the storage EMCY (0x5530)"
+    return "MIGRATED, no EMCY"
 
 
 def _limit(value: int | float | None) -> str:

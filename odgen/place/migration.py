@@ -8,8 +8,11 @@ its key (index, sub), never by its position:
     convert  integer widened without loss (UNSIGNED8 -> UNSIGNED16/32/..., INTEGER16 -> INTEGER32,
              UNSIGNED16 -> INTEGER32): zero- or sign-extended, then checked against the limits
     resize   string or domain capacity changed: what fits is kept (cut at the new capacity)
-    drop     stored, but no longer in the group: forgotten
-    default  new in the group, narrowed, retyped, or out of the current limits: the default
+    drop     stored, but no longer in the group: forgotten (a loss)
+    default  new in the group (added, not a loss), or narrowed, retyped, out of the current
+             limits (a loss: a value stored and not served)
+    follow   sub 0 of an ARRAY or RECORD whose highest sub-index changed: the count follows the
+             array (the default), counted as converted, not as a loss
 
 `plan` says what will happen to each entry from the two layouts alone (what `odgen diff`
 reports); `migrate` applies the policy to stored values, as the runtime does at boot, and counts
@@ -26,8 +29,8 @@ from dataclasses import dataclass, field
 from ..model.datatypes import BASIC_TYPES, DataType
 from ..model.wire import wire_bytes, wire_number
 
-KEEP, CONVERT, RESIZE, DROP, DEFAULT = "keep", "convert", "resize", "drop", "default"
-ACTIONS = (KEEP, CONVERT, RESIZE, DROP, DEFAULT)
+KEEP, CONVERT, RESIZE, DROP, DEFAULT, FOLLOW = "keep", "convert", "resize", "drop", "default", "follow"
+ACTIONS = (KEEP, CONVERT, RESIZE, DROP, DEFAULT, FOLLOW)
 DESCRIPTOR_BYTES = 6  # per entry in an image: index u16, sub u8, data type u8, length u16 (little endian)
 DOMAIN_TYPE = 0x000F
 
@@ -86,10 +89,16 @@ class Counts:
     converted: int = 0
     defaulted: int = 0
     dropped: int = 0
+    added: int = 0  # new in the group: the default, nothing was lost
 
     @property
     def migrated(self) -> bool:
-        return bool(self.converted or self.defaulted or self.dropped)
+        return bool(self.converted or self.defaulted or self.dropped or self.added)
+
+    @property
+    def lost(self) -> bool:
+        """A value stored was not served: what the storage EMCY reports."""
+        return bool(self.defaulted or self.dropped)
 
 
 @dataclass
@@ -156,9 +165,18 @@ def plan(old: GroupLayout | None, new: GroupLayout | None) -> list[Step]:
     for key in sorted(set(before) | set(after)):
         a, b = before.get(key), after.get(key)
         action, reason = entry_action(a, b)
+        if key[1] == 0 and action in (KEEP, CONVERT) and _highest(before, key[0]) != _highest(after, key[0]):
+            action = FOLLOW
+            reason = (f"the highest sub-index changed from {_highest(before, key[0])} to "
+                      f"{_highest(after, key[0])}: sub 0 follows it")
         checked = action in (KEEP, CONVERT) and a is not None and b is not None and narrower_limits(a, b)
         steps.append(Step(key[0], key[1], action, reason, a, b, checked))
     return steps
+
+
+def _highest(entries: dict[Key, EntryLayout], index: int) -> int:
+    """The highest sub-index of `index` among the group's entries (0 when only sub 0 is there)."""
+    return max((sub for i, sub in entries if i == index), default=0)
 
 
 # -- the image: layout descriptor and value sizes ---------------------------------------------
@@ -197,10 +215,15 @@ def migrate(old: GroupLayout, new: GroupLayout, stored: Mapping[Key, bytes]) -> 
             continue
         value, changed = None, False
         raw = stored.get((step.index, step.sub))
-        if step.action != DEFAULT and step.old is not None and step.new is not None and raw is not None:
+        if step.action not in (DEFAULT, FOLLOW) and step.old is not None and step.new is not None \
+                and raw is not None:
             value, changed = _restore(step.action, step.old, step.new, raw)
         result.values[(step.index, step.sub)] = value
-        if value is None:
+        if step.action == FOLLOW:
+            result.counts.converted += 1
+        elif step.old is None:
+            result.counts.added += 1
+        elif value is None:
             result.counts.defaulted += 1
         elif changed:
             result.counts.converted += 1

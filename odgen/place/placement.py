@@ -96,10 +96,9 @@ def place(od: ObjectDictionary, options: Options, diags: Diagnostics) -> dict[tu
 def _place_one(od: ObjectDictionary, obj: Obj, sub: Sub, entries: list[tuple[OptionEntry, Loc, str]]) -> Placement:
     """The placement of one sub-entry; `entries` are the options' entries with their place (and its text)."""
     storage, why = auto_storage(obj.index, sub)
-    described = storage_from_description(sub.storage or obj.storage) if sub.storage or obj.storage else None
+    described, text, line = _described(obj, sub)
     if described is not None and storage != STORE_CLASS:
-        line = sub.line_of("storagelocation") if sub.storage else obj.line_of("storagelocation")
-        storage, why = described, f"{od.source}:{line}: storage location {sub.storage or obj.storage}"
+        storage, why = described, f"{od.source}:{line}: storage location {text}"
         if storage == "rom" and _unfit_for_rom(sub):  # CANopenNode v1: CO_OD_ROM is RAM that 0x1010 saves
             storage, why = "persist:rom", why + " (CANopenNode v1: kept in RAM, saved by 0x1010)"
     placement = Placement(storage, why)
@@ -108,6 +107,19 @@ def _place_one(od: ObjectDictionary, obj: Obj, sub: Sub, entries: list[tuple[Opt
             entry.used = True
             _apply(placement, entry, loc, origin)
     return placement
+
+
+def _described(obj: Obj, sub: Sub) -> tuple[str | None, str, int]:
+    """The storage the description decides for a sub-entry, its text and line: the sub-entry's
+    own `StorageLocation` when it decides one, else the object's. A sub-level `RAM` is
+    CANopenNode's "no preference" (CANopenEditor writes it on every sub-entry and places whole
+    objects with the object-level key), so it never overrides the object's `PERSIST_COMM`."""
+    own = storage_from_description(sub.storage)
+    if own is not None:
+        return own, sub.storage or "", sub.line_of("storagelocation")
+    if obj.storage:
+        return storage_from_description(obj.storage), obj.storage, obj.line_of("storagelocation")
+    return None, "", 0
 
 
 def _apply(placement: Placement, entry: OptionEntry, loc: Loc, origin: str) -> None:

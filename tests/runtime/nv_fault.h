@@ -9,7 +9,7 @@
 
 #include <stdint.h>
 
-#include "odg.h"
+#include "odg_persist.h"
 
 typedef struct nv_fault {
     odg_nv_driver_t driver; /* ctx points to this struct */

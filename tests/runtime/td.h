@@ -12,6 +12,7 @@
 #include <stdint.h>
 
 #include "odg.h"
+#include "odg_persist.h" /* as a generated NAME.h does */
 
 #ifndef ODG_ATTR_ROM
 #define ODG_ATTR_ROM

@@ -97,11 +97,21 @@ static unsigned matches(uint8_t g)
     return m;
 }
 
+/* Random bytes into the mirror of group g; values with limits keep their defaults, since a
+ * stored value always passed them (odg_write checks them, and boot checks them again: a value
+ * outside takes its default, docs/persistence.md). */
 static void fill_random(uint8_t g)
 {
     uint32_t i;
+    uint16_t p;
     for (i = 0; i < msize(g); i++) {
         mirror(g)[i] = (uint8_t)nv_fault_rand(&nv);
+    }
+    for (p = 0; p < td.n_subs; p++) {
+        const odg_sub_t *s = &td.subs[p];
+        if (s->storage == (uint8_t)(ODG_S_PERSIST | (unsigned)g << 2) && (s->attr & ODG_A_LIMIT)) {
+            memcpy(mirror(g) + s->offset, (const uint8_t *)td.groups[g].defaults + s->offset, s->size);
+        }
     }
 }
 

@@ -30,6 +30,7 @@
 #ifndef ALLTYPES_NV_BASE
 #define ALLTYPES_NV_BASE 0u
 #endif
+#include "odg_persist.h"
 /* NV map: each persistence group owns a region from ALLTYPES_NV_BASE (docs/persistence.md). */
 #define ALLTYPES_NV_APP_OFFSET 512u
 #define ALLTYPES_NV_APP_REGION 1024u
@@ -38,8 +39,8 @@
 #define ALLTYPES_NV_SIZE 1536u
 /* Stored images migrate at boot ([persist] migration); the runtime needs its migration code. */
 #define ALLTYPES_PERSIST_MIGRATION 1
-#if ALLTYPES_PERSIST_MIGRATION && defined(ODG_NO_MIGRATION)
-#error "alltypes migrates stored images: build the runtime without ODG_NO_MIGRATION, or set [persist] migration = false"
+#if ALLTYPES_PERSIST_MIGRATION && (defined(ODG_NO_MIGRATION) || !ODG_CFG_PERSIST_MIGRATION)
+#error "alltypes migrates stored images: build the runtime with ODG_CFG_PERSIST_MIGRATION 1, or set [persist] migration = false"
 #endif
 
 #ifdef __cplusplus

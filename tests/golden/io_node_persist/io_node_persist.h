@@ -30,6 +30,7 @@
 #ifndef IO_NODE_PERSIST_NV_BASE
 #define IO_NODE_PERSIST_NV_BASE 0u
 #endif
+#include "odg_persist.h"
 /* NV map: each persistence group owns a region from IO_NODE_PERSIST_NV_BASE (docs/persistence.md). */
 #define IO_NODE_PERSIST_NV_APP_OFFSET 512u
 #define IO_NODE_PERSIST_NV_APP_REGION 128u
@@ -38,8 +39,8 @@
 #define IO_NODE_PERSIST_NV_SIZE 640u
 /* Stored images migrate at boot ([persist] migration); the runtime needs its migration code. */
 #define IO_NODE_PERSIST_PERSIST_MIGRATION 1
-#if IO_NODE_PERSIST_PERSIST_MIGRATION && defined(ODG_NO_MIGRATION)
-#error "io_node_persist migrates stored images: build the runtime without ODG_NO_MIGRATION, or set [persist] migration = false"
+#if IO_NODE_PERSIST_PERSIST_MIGRATION && (defined(ODG_NO_MIGRATION) || !ODG_CFG_PERSIST_MIGRATION)
+#error "io_node_persist migrates stored images: build the runtime with ODG_CFG_PERSIST_MIGRATION 1, or set [persist] migration = false"
 #endif
 
 #ifdef __cplusplus

@@ -1,0 +1,747 @@
+/*
+ * odg_persist_migrate.c - self-describing images ("ODG2") and their migration at boot: a
+ * group generated with migration (the default) keeps its values in wire format after the
+ * layout they were written with, in two slots at the start and the middle of its own region;
+ * at boot a stored image of another layout is migrated entry by entry (docs/persistence.md;
+ * the policy is odgen/place/migration.py). Left out when ODG_CFG_PERSIST_MIGRATION is 0.
+ */
+#include <string.h>
+
+#include "odg_persist_migrate.h"
+
+#if ODG_CFG_PERSIST_MIGRATION
+
+#define DESCRIBED_HDR ODG_PERSIST_HEADER2_SIZE
+#define DESCRIBED_MAGIC 0x3247444Fu /* "ODG2" */
+#define REC 6u             /* a layout descriptor record: index u16, sub u8, type u8, length u16 */
+
+/* Wire size of the numeric types by CiA 301 code; 0 for strings, domains and unknown codes. */
+static const uint8_t num_size[0x1C] = {0, 1, 1, 2, 4, 1, 2, 4, 4, 0, 0, 0, 6, 6, 0, 0,
+                                       3, 8, 5, 6, 7, 8, 3, 0, 5, 6, 7, 8};
+
+#define BIT(t) ((uint32_t)1u << (t))
+#define SIGNED_INTS                                                                           \
+    (BIT(ODG_T_INTEGER8) | BIT(ODG_T_INTEGER16) | BIT(ODG_T_INTEGER24) | BIT(ODG_T_INTEGER32) | \
+     BIT(ODG_T_INTEGER40) | BIT(ODG_T_INTEGER48) | BIT(ODG_T_INTEGER56) | BIT(ODG_T_INTEGER64))
+#define UNSIGNED_INTS                                                                            \
+    (BIT(ODG_T_UNSIGNED8) | BIT(ODG_T_UNSIGNED16) | BIT(ODG_T_UNSIGNED24) | BIT(ODG_T_UNSIGNED32) | \
+     BIT(ODG_T_UNSIGNED40) | BIT(ODG_T_UNSIGNED48) | BIT(ODG_T_UNSIGNED56) | BIT(ODG_T_UNSIGNED64))
+/* Strings and domains among the persisted entries this build serves (odg.h: ODG_CFG_*): 0 when
+ * none, so that the compiler leaves out their paths. */
+#define STREAMS                                                                          \
+    (ODG_CFG_PERSIST_STREAMS                                                             \
+         ? (ODG_CFG_STRINGS ? BIT(ODG_T_VISIBLE_STRING) | BIT(ODG_T_OCTET_STRING) : 0u) | \
+               (ODG_CFG_UNICODE ? BIT(ODG_T_UNICODE_STRING) : 0u) |                      \
+               (ODG_CFG_DOMAINS ? BIT(ODG_T_DOMAIN) : 0u)                                \
+         : 0u)
+#define IS(t, type) ((type_bit(t) & STREAMS & BIT(type)) != 0u)
+
+static uint32_t type_bit(uint8_t t)
+{
+    return t < 0x1Cu ? BIT(t) : 0u;
+}
+
+static uint16_t get16(const uint8_t *p)
+{
+    return (uint16_t)(p[0] | (unsigned)p[1] << 8);
+}
+
+static uint32_t rec_key(const uint8_t *rec)
+{
+    return (uint32_t)get16(rec) << 8 | rec[2];
+}
+
+/* Bytes of an entry's value in an image: a domain's used length (u32) precedes its bytes. */
+static uint32_t value_size(const uint8_t *rec)
+{
+    return get16(rec + 4) + (rec[3] == ODG_T_DOMAIN ? 4u : 0u);
+}
+
+/* The firmware's layout descriptor of a group: its persisted sub-entries in dict->subs order
+ * (each element of a packed ARRAY in turn), each a record (index, sub, type, length) read from
+ * the tables (odg_verify: n_layout of them). */
+typedef struct recs {
+    const odg_dict_t *d;
+    const odg_entry_t *e; /* the entry of the current sub-entry */
+    uint32_t key;         /* its index << 8 | sub */
+    uint16_t pos;         /* position in dict->subs after its descriptor */
+    uint16_t left;        /* records still to come */
+    uint8_t storage;      /* ODG_S_PERSIST | group << 2 */
+    const odg_sub_t *of;  /* the descriptor of the packed elements being walked, or NULL */
+    odg_sub_t elem;       /* the descriptor made for an element of a packed ARRAY */
+} recs_t;
+
+static void recs_start(recs_t *r, const odg_dict_t *d, uint8_t g)
+{
+    r->d = d;
+    r->e = d->entries;
+    r->pos = 0;
+    r->left = d->groups[g].n_layout;
+    r->storage = (uint8_t)(ODG_S_PERSIST | (unsigned)g << 2);
+    r->of = NULL;
+}
+
+/* The next persisted sub-entry (its descriptor at position r->pos - 1), or NULL after the last. */
+static const odg_sub_t *recs_next(recs_t *r)
+{
+    const odg_dict_t *d = r->d;
+    const odg_sub_t *s = &r->elem;
+    while (r->left > 0u) {
+        if (ODG_CFG_PACKED && r->of != NULL && r->elem.sub < r->of->sub) {
+            odg_element_(r->of, (uint8_t)(r->elem.sub + 1u), &r->elem);
+            s = &r->elem;
+        } else if (r->pos < d->n_subs) {
+            s = &d->subs[r->pos++];
+            while ((uint32_t)r->e->first + r->e->count < r->pos) {
+                r->e++;
+            }
+            r->of = NULL;
+            if (s->storage != r->storage) {
+                continue;
+            }
+            if (ODG_CFG_PACKED && (r->e->code & ODG_E_PACKED) && s->sub > 0u) {
+                r->of = s; /* its elements come from the next turns */
+                r->elem.sub = 0;
+                continue;
+            }
+        } else {
+            break;
+        }
+        r->left--;
+        r->key = (uint32_t)r->e->index << 8 | s->sub;
+        return s;
+    }
+    return NULL;
+}
+
+/* Bytes of a sub-entry's value in an image (value_size of its record). */
+static uint32_t sub_value_size(const odg_sub_t *s)
+{
+    return s->size + (IS(s->type, ODG_T_DOMAIN) ? 4u : 0u);
+}
+
+/* Bytes of group `g`'s image: the record count, the records and the values. */
+static uint32_t image_size(const odg_dict_t *d, uint8_t g)
+{
+    uint32_t n = 2u;
+    const odg_sub_t *s;
+    recs_t r;
+    recs_start(&r, d, g);
+    while ((s = recs_next(&r)) != NULL) {
+        n += REC + sub_value_size(s);
+    }
+    return n;
+}
+
+/* The group id an "ODG2" slot of group `gr` carries: the CRC-32 of its name mixed with the
+ * region's place in NV (an odd multiplier: two places never give one tag), so that an image of
+ * this group written at another place (its region moved) is not taken for one of this region.
+ * Images written before carry the plain CRC-32 and are still taken (docs/persistence.md). */
+static uint32_t tagged_id(const odg_group_t *gr)
+{
+    return gr->id ^ ((gr->nv_addr + 1u) * 0x9E3779B1u);
+}
+
+static int our_id(const odg_group_t *gr, uint32_t id)
+{
+    return id == tagged_id(gr) || id == gr->id;
+}
+
+/* Read and check the "ODG2" slot at `addr` (header into `h`). `ours`: of group `gr`, and at
+ * slot A or at the middle of the region it names. A valid image has a descriptor of records
+ * with increasing keys whose values fill it. 1 valid, 0 not, -1 the driver failed, -2 (`ours`
+ * only) a header of ours whose image runs past the region and cannot be read there: an image
+ * of a larger region on an NV that ends before it, which is a loss, never "nothing there". */
+static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t addr, uint8_t *h,
+                      int ours)
+{
+    uint8_t c[REC];
+    uint32_t len, region, cnt, sum, prev = 0, i;
+    int v = odg_hdr_read_(nv, addr, h, DESCRIBED_HDR, DESCRIBED_MAGIC);
+    region = odg_get32_(h + 12);
+    len = odg_get32_(h + 16);
+    if (v != 1 || region > 0x01000000u || region / 2u < DESCRIBED_HDR + 2u || len < 2u ||
+        len > region / 2u - DESCRIBED_HDR ||
+        (ours && (!our_id(gr, odg_get32_(h + 8)) ||
+                  (addr != gr->nv_addr && addr - gr->nv_addr != region / 2u)))) {
+        return v < 0 ? -1 : 0;
+    }
+    v = odg_crc_ok_(nv, addr, h, DESCRIBED_HDR, len, NULL);
+    if (v < 0 && ours && addr + DESCRIBED_HDR + len > gr->nv_addr + gr->region) {
+        return -2;
+    }
+    if (v != 1 || nv->read(nv->ctx, addr + DESCRIBED_HDR, c, 2) != 0) {
+        return v == 0 ? 0 : -1;
+    }
+    cnt = get16(c);
+    for (i = 0, sum = 2u + REC * cnt; i < cnt && sum <= len; i++) {
+        if (nv->read(nv->ctx, addr + DESCRIBED_HDR + 2u + REC * i, c, REC) != 0) {
+            return -1;
+        }
+        if (i > 0u && rec_key(c) <= prev) {
+            return 0;
+        }
+        prev = rec_key(c);
+        sum += value_size(c);
+    }
+    return sum == len;
+}
+
+/* Whether the slot at `addr` reads back as the valid image whose header is `h`: the CRC, which
+ * covers the rest of the header and the image, is the same (the ODG1 store checks the same). */
+static int reads_back(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t addr,
+                      const uint8_t *h)
+{
+    uint8_t t[DESCRIBED_HDR];
+    return described_read(nv, gr, addr, t, 1) == 1 && odg_get32_(t + 20) == odg_get32_(h + 20);
+}
+
+/* The places an image of group `gr` can be, as offsets from its region's start after `half`:
+ * slot A (0), slot B of its region (the middle), then slot B of every other region size the
+ * group may have had, in place (powers of two from 64 bytes up to ODG_PERSIST_MAX_REGION): a
+ * region that grew or shrank keeps its images where they were written, and each image's
+ * header names the region it was written for. 0 after the last. */
+static uint32_t next_place(const odg_group_t *gr, uint32_t half)
+{
+    if (half == 0u) {
+        return gr->region / 2u;
+    }
+    half = half == gr->region / 2u ? 32u : 2u * half;
+    if (half == gr->region / 2u) {
+        half *= 2u;
+    }
+    return half <= ODG_PERSIST_MAX_REGION / 2u ? half : 0u;
+}
+
+/* The newest valid image of group `gr` at any of its places inside the dictionary's NV (up to
+ * `end`, NAME_NV_SIZE) and at the place slot A's header names past it (the slot B of a larger
+ * region a later firmware used); address in *at, header in h. 1 found, 0 none, 2 the newest is
+ * an image of ours that cannot be read (described_read -2), -1 the driver failed (a failing
+ * read past the region means no NV there). */
+/* Whether the place `half` of group `gr` is looked at: inside the dictionary's NV (up to `end`,
+ * NAME_NV_SIZE), or the place slot A's header (`a`, read, not checked) names past it. */
+static int looked_at(const odg_group_t *gr, uint32_t end, uint32_t half, const uint8_t *a)
+{
+    return half == 0u || gr->nv_addr + half + DESCRIBED_HDR <= end ||
+           (odg_get32_(a) == DESCRIBED_MAGIC && our_id(gr, odg_get32_(a + 8)) && odg_get32_(a + 12) / 2u == half);
+}
+
+static int described_newest(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t end, uint32_t *at,
+                            uint8_t *h)
+{
+    uint8_t t[DESCRIBED_HDR], a[DESCRIBED_HDR];
+    uint32_t half = 0u;
+    int v, found = 0;
+    *at = gr->nv_addr;
+    do {
+        if (!looked_at(gr, end, half, a)) {
+            continue;
+        }
+        v = described_read(nv, gr, gr->nv_addr + half, t, 1);
+        if (v == -1 && half < gr->region) {
+            return -1;
+        }
+        if (half == 0u) {
+            odg_copy(a, t, DESCRIBED_HDR); /* slot A's header, whatever it holds */
+        }
+        if ((v == 1 || v == -2) && (!found || odg_newer_(odg_get32_(t + 4), odg_get32_(h + 4)))) {
+            found = v == 1 ? 1 : 2;
+            *at = gr->nv_addr + half;
+            odg_copy(h, t, DESCRIBED_HDR);
+        }
+    } while ((half = next_place(gr, half)) != 0u);
+    return found;
+}
+
+/* The bytes a slot's image takes, rounded up to the slot alignment. */
+static uint32_t extent(const uint8_t *h)
+{
+    return (DESCRIBED_HDR + odg_get32_(h + 16) + ODG_PERSIST_ALIGN - 1u) & ~((uint32_t)ODG_PERSIST_ALIGN - 1u);
+}
+
+/* Image bytes on their way to NV, CRC-32 on the fly. */
+typedef struct out {
+    const odg_nv_driver_t *nv;
+    uint32_t addr; /* where buf goes */
+    uint32_t crc;
+    uint32_t n;    /* bytes in buf */
+    int fail;
+    uint8_t buf[ODG_PERSIST_CHUNK_];
+} out_t;
+
+static void flush(out_t *o)
+{
+    if (o->n > 0u && !o->fail) {
+        o->fail = o->nv->write(o->nv->ctx, o->addr, o->buf, o->n) != 0;
+        o->crc = odg_crc32(o->crc, o->buf, o->n);
+        o->addr += o->n;
+    }
+    o->n = 0;
+}
+
+/* The `n` low bytes of `v`, little endian. */
+static void emit(out_t *o, odg_num_t v, uint32_t n)
+{
+    while (n-- > 0u) {
+        o->buf[o->n++] = (uint8_t)v;
+        v >>= 8;
+        if (o->n == ODG_PERSIST_CHUNK_) {
+            flush(o);
+        }
+    }
+}
+
+/* One value in wire format: strings padded with zeros after their terminator, a domain as its
+ * used length and then `size` bytes of its buffer, zeros after the used ones. */
+static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
+{
+    uint32_t i, n = s->size, keep = n, zero = 0;
+    const uint8_t *p;
+    if (IS(s->type, ODG_T_DOMAIN)) {
+        const odg_domain_t *dm = &d->domains[s->offset];
+        keep = *dm->length;
+        keep = keep < n ? keep : n;
+        keep = keep < dm->capacity ? keep : dm->capacity;
+        emit(o, keep, 4);
+        p = dm->data;
+    } else {
+        p = odg_value_(d, s);
+    }
+    if (!(type_bit(s->type) & STREAMS)) {
+        emit(o, odg_load_(p, n), n);
+    } else if (IS(s->type, ODG_T_UNICODE_STRING)) {
+        for (i = 0; i < n; i += 2u) {
+            uint16_t u;
+            memcpy(&u, p + i, 2);
+            zero |= u == 0u;
+            emit(o, zero ? 0u : u, n - i < 2u ? 1u : 2u);
+        }
+    } else {
+        for (i = 0; i < n; i++) {
+            zero |= i >= keep || (s->type == ODG_T_VISIBLE_STRING && p[i] == 0u);
+            emit(o, zero ? 0u : p[i], 1);
+        }
+    }
+}
+
+/* Write the mirror of group `g` as its newest image: into slot A when the newest is in slot B
+ * of the current region, else into that slot B (past the whole old region when the region
+ * grew). Slot A, which names the old region, stays until the newest is in the current slot B,
+ * so an image in the old slot B is found until then. */
+odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
+{
+    const odg_group_t *gr = &d->groups[g];
+    uint8_t h[DESCRIBED_HDR], t[DESCRIBED_HDR];
+    uint32_t at, seq = 1, half = gr->region / 2u, addr = gr->nv_addr, size = image_size(d, g);
+    const odg_sub_t *s;
+    recs_t r;
+    out_t o;
+    int k = described_newest(nv, gr, odg_persist_nv_size(d), &at, t);
+    if (k < 0) {
+        return ODG_ABORT_HARDWARE;
+    }
+    if (k > 0) {
+        /* the slot beside the newest; should the newest be an image of a larger region that
+         * reaches into it (after a rollback), it is written over: it was read (and migrated) at
+         * boot, and keeping it would refuse every store for good */
+        seq = odg_get32_(t + 4) + 1u;
+        addr = at == gr->nv_addr + half ? gr->nv_addr : gr->nv_addr + half;
+    }
+    if (DESCRIBED_HDR + size > half) {
+        return ODG_ABORT_DATA_STORE; /* odg_verify: never for a generated dictionary */
+    }
+    odg_put32_(h, DESCRIBED_MAGIC);
+    odg_put32_(h + 4, seq);
+    odg_put32_(h + 8, tagged_id(gr));
+    odg_put32_(h + 12, gr->region);
+    odg_put32_(h + 16, size);
+    o.nv = nv;
+    o.addr = addr + DESCRIBED_HDR;
+    o.crc = odg_crc32(0, h, 20);
+    o.n = 0;
+    o.fail = nv->erase(nv->ctx, addr, half) != 0;
+    emit(&o, gr->n_layout, 2);
+    for (recs_start(&r, d, g); (s = recs_next(&r)) != NULL;) { /* the layout descriptor */
+        emit(&o, r.key >> 8 | (uint32_t)s->sub << 16 | (uint32_t)s->type << 24, 4);
+        emit(&o, s->size, 2);
+    }
+    for (recs_start(&r, d, g); (s = recs_next(&r)) != NULL;) {
+        emit_value(&o, d, s);
+    }
+    flush(&o);
+    /* the CRC covers the bytes written; the read-back below checks that they landed */
+    odg_put32_(h + 20, o.crc);
+    if (o.fail || nv->write(nv->ctx, addr + 4u, h + 4, DESCRIBED_HDR - 4u) != 0 ||
+        nv->write(nv->ctx, addr, h, 4u) != 0 || !reads_back(nv, gr, addr, h)) {
+        return ODG_ABORT_HARDWARE;
+    }
+    return ODG_OK;
+}
+
+/* The image of ours at `addr` (0 when none): its end in `*end`, at most `limit` when it cannot
+ * be read past there. -1 when the driver failed. */
+static int image_at(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t addr, uint32_t limit,
+                    uint32_t *end)
+{
+    uint8_t h[DESCRIBED_HDR];
+    int v = described_read(nv, gr, addr, h, 1);
+    *end = addr + extent(h);
+    if (v == -2 && *end > limit) {
+        *end = limit;
+    }
+    return v == -1 ? -1 : v != 0;
+}
+
+/* Make the next boot of group `g` use the defaults: erase its images at every place (those past
+ * the region first), then the region but the newest image, then the newest, so that a power
+ * cut in between leaves the newest (as if nothing happened), never an older one. */
+odg_abort_t odg_described_erase_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
+{
+    const odg_group_t *gr = &d->groups[g];
+    uint8_t h[DESCRIBED_HDR], a[DESCRIBED_HDR];
+    uint32_t at, start = gr->nv_addr, end = gr->nv_addr + gr->region, half = 0u, e, lo = end, hi = end;
+    uint32_t nv_end = odg_persist_nv_size(d);
+    int found = described_newest(nv, gr, nv_end, &at, h), fail = found < 0, v;
+    fail = fail || (odg_hdr_read_(nv, start, a, DESCRIBED_HDR, DESCRIBED_MAGIC) < 0);
+    while (!fail && (half = next_place(gr, half)) != 0u) {
+        if (start + half >= end && start + half != at && looked_at(gr, nv_end, half, a)) {
+            v = image_at(nv, gr, start + half, end, &e);
+            fail = v > 0 && odg_wipe_(nv, start + half, e);
+        }
+    }
+    if (found > 0) {
+        v = image_at(nv, gr, at, at < end ? end : 0xFFFFFFFFu, &e);
+        e = found == 2 && at < end && e > end ? end : e;
+        if (at < end) { /* the header is what counts */
+            lo = at;
+            hi = e > end ? end : e;
+        }
+        fail = fail || v < 0;
+    }
+    fail = fail || odg_wipe_(nv, start, lo) || odg_wipe_(nv, hi, end) || (found > 0 && odg_wipe_(nv, at, e));
+    return fail ? ODG_ABORT_HARDWARE : ODG_OK;
+}
+
+#define PLACES 14u /* slot A, the region's slot B, and slot B of every power of two up to 64 KiB */
+
+/* After a boot of group `gr`: erase what its region holds besides its own images (at its
+ * places): images of other groups or of this one written at another place, and bytes of
+ * neither, left there by a firmware whose NV map differed, which must never come back as a
+ * group's values when the map changes again. Its own older images stay: a rollback firmware
+ * that cannot see the newest one (past its NV) finds the one the newest was migrated from.
+ * -1 when the driver failed. */
+static int scrub(const odg_nv_driver_t *nv, const odg_group_t *gr)
+{
+    uint32_t lo[PLACES], hi[PLACES], end = gr->nv_addr + gr->region, pos = gr->nv_addr, half = 0u, e, t;
+    unsigned n = 0, i, j;
+    int v;
+    do {
+        if (gr->nv_addr + half < end) {
+            if ((v = image_at(nv, gr, gr->nv_addr + half, end, &e)) < 0) {
+                return -1;
+            }
+            for (i = n; v > 0 && i > 0u && lo[i - 1u] > gr->nv_addr + half; i--) { /* sorted by place */
+                lo[i] = lo[i - 1u];
+                hi[i] = hi[i - 1u];
+            }
+            if (v > 0) {
+                lo[i] = gr->nv_addr + half;
+                hi[i] = e < end ? e : end;
+                n++;
+            }
+        }
+    } while ((half = next_place(gr, half)) != 0u && n < PLACES);
+    for (j = 0; j < n; j++) {
+        t = lo[j];
+        if (t > pos && odg_clear_(nv, pos, t)) {
+            return -1;
+        }
+        pos = hi[j] > pos ? hi[j] : pos;
+    }
+    return odg_clear_(nv, pos, end) ? -1 : 0;
+}
+
+/* ---- boot migration: docs/persistence.md section 3, odgen/persist/migration.py ----------- */
+
+/* What became of an entry; n[DEFAULTED .. CONVERTED] go to odg_state_t.boot_counts. ADDED: new
+ * in the group (the default, no loss). */
+enum { KEPT = 0, DEFAULTED = 1, DROPPED = 2, CONVERTED = 3, ADDED = 4, FAILED = -1 };
+
+/* UNSIGNEDn -> UNSIGNEDm, INTEGERn -> INTEGERm, UNSIGNEDn -> INTEGERm with m > n. */
+static int widens(uint8_t from, uint8_t to)
+{
+    uint32_t a = type_bit(from), b = type_bit(to);
+    if (!(a & (SIGNED_INTS | UNSIGNED_INTS)) || !(b & (SIGNED_INTS | UNSIGNED_INTS)) ||
+        num_size[to] <= num_size[from]) {
+        return 0;
+    }
+    return (a & SIGNED_INTS) ? (b & SIGNED_INTS) != 0u : 1;
+}
+
+/* A string (unit 1, or 2 for UNICODE_STRING): what fits, up to its terminator; converted when
+ * the stored content went on past the new capacity. */
+static int resize_string(const odg_nv_driver_t *nv, const odg_sub_t *s, uint8_t *p, uint32_t sl,
+                         uint32_t addr)
+{
+    uint32_t unit = s->type == ODG_T_UNICODE_STRING ? 2u : 1u, fl = s->size, i;
+    uint8_t c[2] = {0, 0};
+    uint16_t u;
+    memset(p, 0, fl - fl % unit + unit);
+    for (i = 0; i + unit <= fl && i + unit <= sl; i += unit) {
+        if (nv->read(nv->ctx, addr + i, c, unit) != 0) {
+            return FAILED;
+        }
+        u = (uint16_t)(c[0] | (unsigned)c[1] << 8);
+        if (u == 0u) {
+            return KEPT;
+        }
+        if (unit == 2u) {
+            memcpy(p + i, &u, 2);
+        } else {
+            p[i] = c[0];
+        }
+    }
+    if (i + unit > sl) {
+        return KEPT;
+    }
+    if (nv->read(nv->ctx, addr + i, c, unit) != 0) {
+        return FAILED;
+    }
+    return c[0] != 0u || c[1] != 0u ? CONVERTED : KEPT;
+}
+
+/* A string or domain of the same type: keep what fits (resize). An OCTET_STRING and a domain
+ * keep their first bytes (a domain's used ones, after its used length). */
+static int resize(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_sub_t *s, uint32_t sl,
+                  uint32_t addr)
+{
+    const odg_domain_t *dm = NULL;
+    uint8_t c[4], *p;
+    uint32_t used = sl, cap = s->size, n;
+    if (IS(s->type, ODG_T_DOMAIN)) {
+        dm = &d->domains[s->offset];
+        if (nv->read(nv->ctx, addr, c, 4) != 0) {
+            return FAILED;
+        }
+        used = odg_get32_(c) < sl ? odg_get32_(c) : sl;
+        cap = cap < dm->capacity ? cap : dm->capacity;
+        p = dm->data;
+        addr += 4u;
+    } else {
+        p = odg_value_(d, s);
+        if (s->type != ODG_T_OCTET_STRING) {
+            return resize_string(nv, s, p, sl, addr);
+        }
+        memset(p, 0, cap);
+    }
+    n = used < cap ? used : cap;
+    if ((n > 0u || dm == NULL) && nv->read(nv->ctx, addr, p, n) != 0) {
+        return FAILED;
+    }
+    if (dm != NULL) {
+        *dm->length = n;
+    }
+    return n < used ? CONVERTED : KEPT;
+}
+
+/* Restore the firmware's sub-entry `s` (at `pos` in dict->subs) from the stored entry `st`,
+ * whose value lies at `addr`: kept, converted, or defaulted (the mirror keeps the default). */
+static int restore(const odg_dict_t *d, const odg_nv_driver_t *nv, uint32_t pos,
+                   const odg_sub_t *s, const uint8_t *st, uint32_t addr)
+{
+    uint32_t sl = get16(st + 4), i;
+    uint8_t c[8];
+    odg_num_t v;
+    if (s->type == st[3] && (type_bit(s->type) & STREAMS)) {
+        return resize(d, nv, s, sl, addr);
+    }
+    /* a number of a type this build serves: no wider than odg_num_t (ODG_CFG_INT64) */
+    if ((s->type != st[3] && !widens(st[3], s->type)) || type_bit(st[3]) == 0u ||
+        sl == 0u || sl != num_size[st[3]]) {
+        return DEFAULTED; /* narrowed, retyped, or a length that does not fit its type */
+    }
+    if (nv->read(nv->ctx, addr, c, sl) != 0) {
+        return FAILED;
+    }
+    v = (type_bit(st[3]) & SIGNED_INTS) && (c[sl - 1u] & 0x80u) ? ~(odg_num_t)0 : 0u;
+    for (i = sl; i-- > 0u;) {
+        v = v << 8 | c[i];
+    }
+    if (odg_check_(d, (uint16_t)pos, v) != ODG_OK) {
+        return DEFAULTED; /* outside the current limits */
+    }
+    odg_store_(odg_value_(d, s), s->size, v);
+    return s->type == st[3] ? KEPT : CONVERTED;
+}
+
+/* The highest sub-index of `index` among the records j.. of the image at `base` (cnt records),
+ * 0 when none; -1 when the driver failed. */
+static long stored_highest(const odg_nv_driver_t *nv, uint32_t base, uint32_t j, uint32_t cnt,
+                           uint16_t index)
+{
+    uint8_t st[REC];
+    long high = 0;
+    for (; j < cnt; j++) {
+        if (nv->read(nv->ctx, base + 2u + REC * j, st, REC) != 0) {
+            return -1;
+        }
+        if (get16(st) != index) {
+            break;
+        }
+        high = st[2];
+    }
+    return high;
+}
+
+/* The highest sub-index of the firmware's entry `e` persisted in the same group as its sub 0. */
+static uint8_t fw_highest(const odg_dict_t *d, const odg_entry_t *e)
+{
+    uint8_t high = 0, storage = d->subs[e->first].storage;
+    uint32_t p;
+    for (p = e->first; p < (uint32_t)e->first + e->count; p++) {
+        if (d->subs[p].storage == storage) {
+            high = d->subs[p].sub;
+        }
+    }
+    return high;
+}
+
+/* Every entry of group `g` from the image at `at`, merged by key with the firmware's layout;
+ * the mirror holds the defaults before. Counts into n[KEPT .. ADDED]; -1 when the driver
+ * failed. Sub 0 of an entry whose highest sub-index changed follows it (the default,
+ * converted). */
+static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, uint32_t at,
+                   uint16_t n[5])
+{
+    uint8_t st[REC];
+    uint32_t base = at + DESCRIBED_HDR, cnt, j = 0, vo, key;
+    const odg_sub_t *s;
+    recs_t fw;
+    long high;
+    int have = 0, r;
+    if (nv->read(nv->ctx, base, st, 2) != 0) {
+        return -1;
+    }
+    cnt = get16(st);
+    vo = base + 2u + REC * cnt;
+    for (recs_start(&fw, d, g); (s = recs_next(&fw)) != NULL;) {
+        r = ADDED;
+        while (j < cnt) { /* stored entries before this key are no longer in the group */
+            if (!have && nv->read(nv->ctx, base + 2u + REC * j, st, REC) != 0) {
+                return -1;
+            }
+            have = 1;
+            key = rec_key(st);
+            if (key > fw.key) {
+                break; /* not stored: the default */
+            }
+            if (key < fw.key) {
+                n[DROPPED]++;
+            } else if ((fw.key & 0xFFu) == 0u &&
+                       (high = stored_highest(nv, base, j + 1u, cnt, fw.e->index)) !=
+                           (long)fw_highest(d, fw.e)) {
+                if (high < 0) {
+                    return -1;
+                }
+                r = CONVERTED; /* the count follows the entry: its default */
+            } else if ((r = restore(d, nv, fw.pos - 1u, s, st, vo)) == FAILED) {
+                return -1;
+            }
+            vo += value_size(st);
+            j++;
+            have = 0;
+            if (key == fw.key) {
+                break;
+            }
+        }
+        n[r]++;
+    }
+    n[DROPPED] = (uint16_t)(n[DROPPED] + (cnt - j));
+    return 0;
+}
+
+/* No image of ours: DEFAULTS when the region is blank (a first boot, or after a restore);
+ * SIGNATURE for an "ODG1" image (the format before); else DAMAGED: corrupt bytes, another
+ * group's image or this group's written at another place (the NV map changed), all losses. */
+static odg_boot_status_t described_no_image(const odg_nv_driver_t *nv, const odg_group_t *gr)
+{
+    uint8_t t[ODG_PERSIST_HEADER_SIZE];
+    uint32_t half = gr->region / 2u;
+    int k, v;
+    for (k = 0; k < 2; k++) {
+        v = odg_slot_blank_(nv, gr->nv_addr + (k ? half : 0u), half);
+        if (v == 0) {
+            v = odg_fixed_read_(nv, gr->nv_addr + (k ? half : 0u), half - ODG_PERSIST_HEADER_SIZE, t, NULL);
+            return v < 0 ? ODG_BOOT_NV_ERROR : (v ? ODG_BOOT_SIGNATURE : ODG_BOOT_DAMAGED);
+        }
+        if (v < 0) {
+            return ODG_BOOT_NV_ERROR;
+        }
+    }
+    return ODG_BOOT_DEFAULTS;
+}
+
+/* The counts of a boot that found an image, into `b` and the totals of the EMCY. */
+static void count(odg_state_t *s, odg_boot_t *b, const uint16_t n[5])
+{
+    int i;
+    b->kept = n[KEPT];
+    b->converted = n[CONVERTED];
+    b->defaulted = n[DEFAULTED];
+    b->dropped = n[DROPPED];
+    b->added = n[ADDED];
+    for (i = 0; i < 3; i++) { /* entries defaulted, dropped, converted */
+        s->boot_counts[i] = odg_add_sat_(s->boot_counts[i], n[i + 1]);
+    }
+    if (n[DEFAULTED] || n[DROPPED]) { /* values stored and not served */
+        s->boot_seen = (uint8_t)(s->boot_seen | ODG_BOOT_ENTRIES_LOST);
+    }
+}
+
+odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g,
+                               odg_boot_t *b)
+{
+    const odg_group_t *gr = &d->groups[g];
+    uint8_t h[DESCRIBED_HDR];
+    uint16_t n[5] = {0, 0, 0, 0, 0}; /* entries KEPT, DEFAULTED, DROPPED, CONVERTED, ADDED */
+    uint32_t at;
+    odg_boot_status_t st;
+    int k = described_newest(nv, gr, odg_persist_nv_size(d), &at, h), changed;
+    if (k < 0) {
+        st = ODG_BOOT_NV_ERROR;
+    } else if (k == 0) {
+        st = described_no_image(nv, gr);
+    } else if (k == 2) {
+        st = ODG_BOOT_DAMAGED; /* the newest image cannot be read: its values are lost */
+    } else {
+        odg_defaults_(d, g);
+        st = ODG_BOOT_NV_ERROR; /* unless the image reads the same a second time */
+        if (migrate(d, nv, g, at, n) == 0 && reads_back(nv, gr, at, h)) {
+            /* a migrated image is stored at once, with the A/B commit */
+            changed = n[DEFAULTED] || n[DROPPED] || n[CONVERTED] || n[ADDED];
+            if ((!changed || odg_described_store_(d, nv, g) == ODG_OK) && scrub(nv, gr) == 0) {
+                count(d->state, b, n);
+                return changed ? ODG_BOOT_MIGRATED : ODG_BOOT_LOADED;
+            }
+        }
+    }
+    odg_defaults_(d, g);
+    if (st != ODG_BOOT_NV_ERROR && (odg_described_store_(d, nv, g) != ODG_OK || scrub(nv, gr) != 0)) {
+        st = ODG_BOOT_NV_ERROR;
+    }
+    return st;
+}
+
+/* Whether the newest image of group `g` lies outside its region: 1 yes, 0 no (or no image, or
+ * a group without migration). */
+int odg_described_displaced_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
+{
+    const odg_group_t *gr = &d->groups[g];
+    uint8_t h[DESCRIBED_HDR];
+    uint32_t at;
+    return ODG_MIGRATES_(gr) && described_newest(nv, gr, odg_persist_nv_size(d), &at, h) == 1 && at - gr->nv_addr >= gr->region;
+}
+
+#else
+typedef int odg_persist_migrate_unused_; /* ISO C: a translation unit declares something */
+#endif /* ODG_CFG_PERSIST_MIGRATION */

@@ -1,0 +1,115 @@
+/*
+ * odg_persist_slot.c - the slots both image formats share: the CRC-32, header bytes, the
+ * sequence order, erased-NV checks and erasures (docs/persistence.md, runtime/README.md).
+ * Internal to the persistence layer (odg_persist_impl.h).
+ */
+#include "odg_persist_impl.h"
+
+/* ---- CRC-32 (IEEE 802.3), bit by bit: no table in FLASH ------------------------------- */
+
+uint32_t odg_crc32(uint32_t crc, const void *data, uint32_t len)
+{
+    const uint8_t *p = (const uint8_t *)data;
+    unsigned k;
+    crc = ~crc;
+    while (len--) {
+        crc ^= *p++;
+        for (k = 0; k < 8u; k++) {
+            crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+        }
+    }
+    return ~crc;
+}
+
+/* ---- header encoding -------------------------------------------------------------------- */
+
+void odg_put32_(uint8_t *p, uint32_t v)
+{
+    p[0] = (uint8_t)v;
+    p[1] = (uint8_t)(v >> 8);
+    p[2] = (uint8_t)(v >> 16);
+    p[3] = (uint8_t)(v >> 24);
+}
+
+uint32_t odg_get32_(const uint8_t *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+/* a is newer than b: a - b in 1 .. 2^31 - 1 */
+int odg_newer_(uint32_t a, uint32_t b)
+{
+    return a - b - 1u < 0x7FFFFFFFu;
+}
+
+/* Read the `n`-byte header of the slot at `addr` into `h`: 1 when it starts with `magic`, 0 when
+ * not, -1 when the driver failed. Both formats have it so. */
+int odg_hdr_read_(const odg_nv_driver_t *nv, uint32_t addr, uint8_t *h, uint32_t n,
+                    uint32_t magic)
+{
+    if (nv->read(nv->ctx, addr, h, n) != 0) {
+        return -1;
+    }
+    return odg_get32_(h) == magic;
+}
+
+/* Whether the CRC-32 that ends the `n`-byte header `h` of the slot at `addr` matches the header
+ * before it and the `len` image bytes after it (read into `dst` when not NULL, which must hold
+ * them): 1 yes, 0 no, -1 the driver failed. Both formats have it so. */
+int odg_crc_ok_(const odg_nv_driver_t *nv, uint32_t addr, const uint8_t *h, uint32_t n,
+                  uint32_t len, uint8_t *dst)
+{
+    uint8_t chunk[ODG_PERSIST_CHUNK_];
+    uint32_t crc = odg_crc32(0, h, n - 4u), off, k;
+    for (off = 0; off < len; off += k) {
+        uint8_t *p = dst ? dst + off : chunk;
+        k = len - off;
+        if (dst == NULL && k > ODG_PERSIST_CHUNK_) {
+            k = ODG_PERSIST_CHUNK_;
+        }
+        if (nv->read(nv->ctx, addr + n + off, p, k) != 0) {
+            return -1;
+        }
+        crc = odg_crc32(crc, p, k);
+    }
+    return crc == odg_get32_(h + n - 4u);
+}
+
+/* Whether the slot at `addr` is erased (every byte 0xFF): 1 yes, 0 no, -1 the driver failed. */
+int odg_slot_blank_(const odg_nv_driver_t *nv, uint32_t addr, uint32_t size)
+{
+    uint8_t chunk[ODG_PERSIST_CHUNK_];
+    uint32_t off, n, i;
+    for (off = 0; off < size; off += n) {
+        n = size - off < ODG_PERSIST_CHUNK_ ? size - off : ODG_PERSIST_CHUNK_;
+        if (nv->read(nv->ctx, addr + off, chunk, n) != 0) {
+            return -1;
+        }
+        for (i = 0; i < n; i++) {
+            if (chunk[i] != 0xFFu) {
+                return 0;
+            }
+        }
+    }
+    return 1;
+}
+
+/* Erase the bytes from `from` up to `to` (none when to <= from): whether the driver failed. */
+int odg_wipe_(const odg_nv_driver_t *nv, uint32_t from, uint32_t to)
+{
+    return from < to && nv->erase(nv->ctx, from, to - from) != 0;
+}
+
+/* Erase the bytes from `from` up to `to` that are not erased yet: whether the driver failed. */
+int odg_clear_(const odg_nv_driver_t *nv, uint32_t from, uint32_t to)
+{
+    int v = from < to ? odg_slot_blank_(nv, from, to - from) : 1;
+    return v < 0 || (v == 0 && odg_wipe_(nv, from, to));
+}
+
+/* total + n, at most 255 */
+uint8_t odg_add_sat_(uint8_t total, uint16_t n)
+{
+    return (uint8_t)(total + n > 255u ? 255u : total + n);
+}
+

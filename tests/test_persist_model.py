@@ -1,0 +1,42 @@
+"""The model-based persistence test in `make test`: 300 random firmware sequences through the C
+runtime (tests/persist_model.py; `make fuzz` runs 20,000), and the layout sets of every failure
+found so far (tests/fixtures/persist_model/regressions.txt), each checked against the rule set of
+docs/persistence.md."""
+
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import pytest
+
+from .persist_model import run_set
+
+REGRESSIONS = Path(__file__).resolve().parent / "fixtures" / "persist_model" / "regressions.txt"
+SETS = 6  # layout sets (one build each) of 50 sequences: 300 sequences
+SEQUENCES = 50
+
+pytestmark = pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
+
+
+def regressions() -> list[tuple[int, int]]:
+    """(set seed, sequences) of each kept failure; `#` starts a comment."""
+    out = []
+    for line in REGRESSIONS.read_text(encoding="utf-8").splitlines():
+        words = line.split("#", 1)[0].split()
+        if words:
+            out.append((int(words[0]), int(words[1])))
+    return out
+
+
+@pytest.mark.parametrize("set_seed", [1_000_003 * 77 + k for k in range(SETS)])
+def test_random_sequences_keep_the_rule_set(set_seed: int) -> None:
+    violations, steps = run_set(set_seed, SEQUENCES)
+    assert steps > SEQUENCES * 4
+    assert not violations, "\n".join(map(str, violations[:20]))
+
+
+@pytest.mark.parametrize(("set_seed", "sequences"), regressions())
+def test_regression_seeds(set_seed: int, sequences: int) -> None:
+    violations, _ = run_set(set_seed, sequences)
+    assert not violations, "\n".join(map(str, violations[:20]))
