@@ -31,6 +31,7 @@ from .codegen.runtimecfg import node_options
 from .codegen.viewmodel import DictView, build
 from .diagnostics import Diagnostic, Diagnostics, Loc, Severity, more_line
 from .formats import MAX_BYTES, detect_format, load_bytes, read_bytes
+from .formats.eds_writer import write_eds
 from .gcpause import no_cyclic_gc
 from .lint.driver import RuleFilter, lint_model
 from .lint.passes import LintOptions
@@ -105,8 +106,8 @@ def load(request: Request) -> Loaded:
         data = read_bytes(request.input, MAX_BYTES)  # larger files are refused unread (SYN018)
         h.update(data)
         od, diags = load_bytes(data, str(request.input), detect_format(request.input, request.input_format))
-    else:
-        h.update(repr(od).encode())
+    else:  # a model built in memory: identified by the EDS text it writes
+        h.update(write_eds(od).encode())
         diags = Diagnostics()
     options = _options(request, diags, h)
     h.update(f"|{_name(request)}|{request.lookup}|{request.node_id}|{request.defaults}|{__version__}".encode())

@@ -5,13 +5,12 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from pathlib import Path
 
-from ..place.options import load_options
 from ..place.persistence import nv_regions
-from ..place.placement import place
 from ..catalogue.gen import GEN001
-from ..diagnostics import Diagnostics, Severity
+from ..diagnostics import Severity
 from ..errors import OdgenError
 from ..model import ObjectDictionary
+from ..pipeline import Request, load, placed
 from ..place.layout import group_layouts
 from ..place.migration import CONVERT, DEFAULT, DROP, FOLLOW, KEEP, RESIZE, GroupLayout, Step, plan
 from ..place.nvmap import Region
@@ -30,15 +29,15 @@ class Stored:
 
 
 def placed_groups(od: ObjectDictionary, options: Path | None) -> Stored:
-    """The persistence groups of a description placed with an options file (or none)."""
-    diags = Diagnostics()
-    opts = load_options(options, diags)
-    placements = place(od, opts, diags)
-    errors = [d for d in diags.sorted() if d.rule == GEN001.id and d.severity == Severity.ERROR]
+    """The persistence groups of a description placed with an options file (or none), by the
+    pipeline's load and place stages (lint is not asked: a diff compares what is there)."""
+    loaded = load(Request(Path(od.source), options=options, model=od))
+    where = placed(loaded, loaded.diags)
+    errors = [d for d in loaded.diags.sorted() if d.rule == GEN001.id and d.severity == Severity.ERROR]
     if errors:
         raise OdgenError(f"{errors[0].text()}; fix the options file")
-    groups = group_layouts(od, placements)
-    return Stored(groups, nv_regions(groups, opts.persist), opts.persist.migration)
+    groups = group_layouts(od, where.placements)
+    return Stored(groups, nv_regions(groups, where.persist), where.persist.migration)
 
 
 @dataclass
