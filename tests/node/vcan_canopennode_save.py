@@ -16,8 +16,7 @@ import os
 import struct
 import sys
 
-import canopen
-from vcan_node import CHANNEL, start, stop
+from vcan_node import remote, start, stop
 
 NODE = 9
 WRITES = ((0x1800, 2, b"\x01"), (0x1800, 5, struct.pack("<H", 500)), (0x1280, 3, b"\x22"),
@@ -27,14 +26,9 @@ WRITES = ((0x1800, 2, b"\x01"), (0x1800, 5, struct.pack("<H", 500)), (0x1280, 3,
 def main() -> int:
     exe, workdir = sys.argv[1:3]
     nv = os.path.join(workdir, "od.nv")
-    net = canopen.Network()
-    net.NOTIFIER_CYCLE = 0.1
-    net.connect(interface="socketcan", channel=CHANNEL)
+    net, node = remote(NODE)
     procs = []
     try:
-        node = canopen.RemoteNode(NODE, canopen.ObjectDictionary())
-        net.add_node(node)
-        node.sdo.RESPONSE_TIMEOUT = 2.0
         procs.append(start(exe, NODE, "--nv", nv))
         node.nmt.wait_for_bootup(5)
         defaults = {(i, s): node.sdo.upload(i, s) for i, s, _ in WRITES}

@@ -14,8 +14,7 @@ import struct
 import sys
 import time
 
-import canopen
-from vcan_node import CHANNEL, start, stop
+from vcan_node import remote, start, stop
 
 NODE = 7
 MIGRATED, LOADED = 5, 0
@@ -24,14 +23,9 @@ MIGRATED, LOADED = 5, 0
 def main() -> int:
     v1, v2, workdir = sys.argv[1:4]
     nv = os.path.join(workdir, "od.nv")
-    net = canopen.Network()
-    net.NOTIFIER_CYCLE = 0.1
-    net.connect(interface="socketcan", channel=CHANNEL)
+    net, node = remote(NODE)
     procs = []
     try:
-        node = canopen.RemoteNode(NODE, canopen.ObjectDictionary())
-        net.add_node(node)
-        node.sdo.RESPONSE_TIMEOUT = 2.0
         procs.append(start(v1, NODE, "--nv", nv))
         node.nmt.wait_for_bootup(5)
         node.sdo.download(0x2000, 0, b"\xfa")  # UNSIGNED8 250: widened to UNSIGNED32 by v2

@@ -48,6 +48,18 @@ def start(exe: str, node_id: int, *extra: str) -> subprocess.Popen[bytes]:
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE)
 
 
+def remote(node_id: int) -> tuple[canopen.Network, canopen.RemoteNode]:
+    """python canopen on the test bus, and the node `node_id` as a remote node of it (no description:
+    the scripts upload and download raw bytes)."""
+    net = canopen.Network()
+    net.NOTIFIER_CYCLE = 0.1
+    net.connect(interface="socketcan", channel=CHANNEL)
+    node = canopen.RemoteNode(node_id, canopen.ObjectDictionary())
+    net.add_node(node)
+    node.sdo.RESPONSE_TIMEOUT = 2.0
+    return net, node
+
+
 def stop(proc: subprocess.Popen[bytes]) -> None:
     proc.send_signal(signal.SIGTERM)
     out, err = proc.communicate(timeout=DEADLINE)
