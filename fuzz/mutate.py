@@ -25,6 +25,7 @@ from pathlib import Path
 
 from odgen.diagnostics import Severity
 from odgen.formats import FORMATS, load_bytes
+from odgen.formats.eds import COMMENT_KEYS
 from odgen.formats.eds_writer import write_eds
 from odgen.lint.driver import lint_model
 from odgen.lint.passes import LintOptions
@@ -416,7 +417,10 @@ def _unstable_key(written: str) -> str | None:
 
     Two limits of INI, which has no quoting, are the exception: readers drop blanks at either end
     of a value (an XDD string padded with spaces loses the padding in EDS form) and take ` ;` and
-    what follows for a comment (an XDD name `a ;b` is `a` in EDS form, reported as SYN014)."""
+    what follows for a comment (an XDD name `a ;b` is `a` in EDS form, reported as SYN014). And
+    comments are no data: the `;Key=Value` lines convert writes for an XDD's own properties
+    (CANopenEditor's CO_flagsPDO ...) are for the reader of the file, and an EDS reader skips them;
+    only the comment keys the EDS reader reads (`;StorageLocation=` ...) are compared."""
     again, _ = load_bytes(written.encode("utf-8"), "converted.eds", "eds")
     if again is None:
         return "unreadable"
@@ -429,7 +433,8 @@ def _unstable_key(written: str) -> str | None:
 
 def _trimmed(text: str) -> list[str]:
     return [key.strip() + eq + _COMMENT.sub("", value).strip()
-            for key, eq, value in (line.partition("=") for line in text.split("\n"))]
+            for key, eq, value in (line.partition("=") for line in text.split("\n"))
+            if not key.startswith(";") or key[1:].strip().lower() in COMMENT_KEYS]
 
 
 def signature(err: BaseException) -> str:

@@ -50,9 +50,9 @@ def test_fix_repairs_real_files_line_by_line(fixed_corpus: dict[str, tuple[Path,
         od, diags = load_bytes(target.read_bytes(), str(target), target.suffix[1:].lower())
         assert od is not None, name
         lint_model(od, diags, LintOptions())
-        # a repaired finding is gone: no finding of its rule, at its entry, that blocks as it did
-        left = {(d.rule, d.index, d.sub, d.blocks) for d in diags} & \
-            {(r.rule, r.finding.index, r.finding.sub, r.finding.blocks) for r in fixed.repairs}
+        # a repaired finding is gone: no finding of its rule, at its entry, saying what it said
+        left = {(d.rule, d.index, d.sub, d.message) for d in diags} & \
+            {(r.rule, r.finding.index, r.finding.sub, r.finding.message) for r in fixed.repairs}
         assert not left, f"{name}: {sorted(left, key=str)} still reported after the repair"
 
 

@@ -30,9 +30,8 @@ REFUSED: dict[str, tuple[set[str], str]] = {
                                    "its LowLimit"),
     "nodecanopen__test.eds": ({"OBJ012"}, "DataType 0x0020-0x0023 neither basic nor defined"),
     "nodecanopen__tiny_sample.eds": ({"COM010", "OBJ010"}, "a record with a VISIBLE_STRING sub0 in the SDO range"),
-    "oresatmon__oresat_c3.dcf": ({"COM017", "PDO003", "PDO005"},
-                                 "default SDO server disabled; mappings longer than their objects, 128-bit RPDOs"),
-    "oresatmon__oresat_gps.xdd": ({"COM016", "COM017"}, "TPDOs on one CAN-ID; default SDO server disabled"),
+    "oresatmon__oresat_c3.dcf": ({"PDO003", "PDO005"}, "mappings longer than their objects, 128-bit RPDOs"),
+    "oresatmon__oresat_gps.xdd": ({"COM016"}, "TPDOs on one CAN-ID"),
     "pycanopen__sample.eds": ({"OBJ006", "OBJ010", "OBJ012", "PDO001"},
                               "test file: maps absent objects, REAL32 sub0, undefined type, an ARRAY header as a "
                               "value"),

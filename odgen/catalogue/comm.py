@@ -165,9 +165,10 @@ COM017 = define(
     "default.",
     example="[1200sub1]\nAccessType=rw\nDefaultValue=$NODEID+0x600",
     fix="Write `$NODEID+0x600` / `$NODEID+0x580` with AccessType=ro; use 0x1201.. for other channels.",
-    blocks=True,
-    blocking="Blocks when the default SDO server's COB-IDs are not the predefined ones: the runtime serves SDO "
-    "where 0x1200 says, so masters could not reach the node. A writable 0x1200 does not block.",
+    blocks=False,
+    blocking="Does not block: the runtime serves SDO where 0x1200 says, so a master configured from the "
+    "description reaches the node (odgen's round trip and conformance battery do); a master that assumes "
+    "the predefined COB-IDs does not, which is why it is an error. A writable 0x1200 does not block either.",
     repair="safe: the COB-ID written as $NODEID+0x600 / $NODEID+0x580, which CiA 301 fixes")
 
 COM018 = define(
