@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_persist.h - the persistence layer's API: boot every persistence group from NV, answer
  * "save" / "load" (0x1010 / 0x1011), and what a boot reports (docs/persistence.md, the rule

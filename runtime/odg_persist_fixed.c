@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_persist_fixed.c - fixed-layout images: a group generated without migration keeps its RAM
  * mirror byte for byte ("ODG1"), checked by its layout signature; records of other layers (the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_persist_impl.h - what the persistence layer's sources share: the slots and CRC-32
  * (odg_persist_slot.c), the fixed-layout images (odg_persist_fixed.c), the defaults of a group

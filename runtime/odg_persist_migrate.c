@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_persist_migrate.c - self-describing images ("ODG2") and their migration at boot: a
  * group generated with migration (the default) keeps its values in wire format after the

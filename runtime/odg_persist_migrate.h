@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_persist_migrate.h - self-describing images and boot migration (odg_persist_migrate.c):
  * what the persistence layer (odg_persist.c) calls for a group generated with migration.

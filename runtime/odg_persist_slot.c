@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_persist_slot.c - the slots both image formats share: the CRC-32, header bytes, the
  * sequence order, erased-NV checks and erasures (docs/persistence.md, runtime/README.md).
