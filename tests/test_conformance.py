@@ -61,7 +61,7 @@ REASONS = {
     "sdo.limits": ("no writable number outside the communication objects",),
     "sdo.lengths": ("no writable number outside the communication objects",),
     "nmt.heartbeat": ("no 0x1017",),
-    "nmt.hb-consumer": ("no writable 0x1016 sub 1, or EMCY disabled",),
+    "nmt.hb-consumer": ("no writable 0x1016 sub 1, or EMCY disabled", "leaves no room for a node-id"),
     "nmt.guarding": ("no 0x100C/0x100D, or a heartbeat that cannot be switched off",),
     "nmt.reset-comm": ("no communication entry a client may change",),
     "sync.producer": ("0x1005 and 0x1006 are not both writable",),
@@ -77,6 +77,24 @@ REASONS = {
     "store.save-load": ("no 0x1010/0x1011 sub 1",),
 }
 SKIPS = {
+    "eyou__YiyouServo_V1.4.eds": "access.write-only lss.inquire",
+    "gocanopen__base.eds": "nmt.guarding",
+    "kacanopen__Easy-ak_v1.30.eds": "access.write-only nmt.heartbeat emcy.inhibit nmt.hb-consumer lss.inquire",
+    "kacanopen__roboteq_motor_controllers_v2.0-30-01-2019.eds":
+        "sync.producer sync.window emcy.inhibit sdo.server lss.inquire store.signature store.save-load",
+    "kacanopen__roboteq_motor_controllers_v80beta-old.eds":
+        "sync.producer sync.window emcy.inhibit sdo.server lss.inquire store.signature store.save-load",
+    "roscanopen__Elmo.dcf":
+        "sync.producer sync.window emcy.inhibit nmt.hb-consumer nmt.guarding sdo.server lss.inquire",
+    "roscanopen__prbt_0_1.dcf": "sync.producer sync.window emcy.inhibit store.signature store.save-load",
+    "victron__curtis_e.eds":
+        "sdo.limits sdo.lengths access.write-only nmt.heartbeat sync.producer sync.window pdo.sequence "
+        "pdo.tpdo-types emcy.rpdo-length emcy.inhibit emcy.error-register nmt.hb-consumer nmt.guarding "
+        "nmt.reset-comm sdo.server lss.inquire store.signature store.save-load",
+    "victron__emsiso.eds":
+        "sdo.limits sdo.lengths access.write-only nmt.heartbeat sync.producer sync.window pdo.sequence "
+        "pdo.tpdo-types emcy.rpdo-length emcy.inhibit emcy.error-register nmt.hb-consumer nmt.guarding "
+        "nmt.reset-comm sdo.server lss.inquire store.signature store.save-load",
     "io-node.eds": "access.write-only sync.producer sync.window emcy.inhibit nmt.hb-consumer nmt.guarding lss.inquire",
     "canfestival__DS401_Slave_Gui.eds": "access.write-only sync.producer sync.window emcy.inhibit lss.inquire",
     "canopendemo__demoDevice.eds": "access.write-only nmt.guarding",

@@ -29,7 +29,7 @@ from ..catalogue.gen import GEN004, GEN005, GEN006, GEN007, GEN009
 from ..diagnostics import Diagnostics, Loc
 from ..model import Obj, ObjectDictionary, Sub, Value
 from ..model.expect import initial_value
-from ..model.capacity import domain_capacity, domain_default, limit_value, string_capacity, string_default
+from ..model.capacity import domain_capacity, domain_default, string_capacity, string_default, value_limits
 from ..model.od import READABLE, WRITABLE
 from ..model.datatypes import BASIC_TYPES, DataType
 from ..cnames import COMMENT_WIDTH, comment, identifier, string_literal
@@ -609,8 +609,7 @@ def _domain(b: _Builder, view: DictView, target: StorageStruct, member: str, val
 def _limit(view: DictView, pos: int, sub: Sub, dtype: DataType) -> bool:
     if not dtype.is_numeric or (sub.low is None and sub.high is None):
         return False
-    low = limit_value(sub.low, dtype.min)
-    high = limit_value(sub.high, dtype.max)
+    low, high = value_limits(sub.low, sub.high, dtype)
     if low is None or high is None:
         return False
     view.limits.append(LimitView(f"UINT64_C(0x{limit_bits(low, dtype):016X})",

@@ -10,6 +10,7 @@ consistency (docs/conformance.md).
 
 from __future__ import annotations
 
+from ..model.values import number
 from ..model.cia301 import CONSUMER_HEARTBEAT, ERROR_BEHAVIOUR, ERROR_HISTORY, ERROR_REGISTER, SYNC_OVERFLOW, \
     SYNC_PERIOD
 from .client import NO_ANSWER, Client
@@ -44,12 +45,12 @@ def write_refusals(c: Client, index: int, sub: int, data: bytes) -> dict[int, st
     say: code -> the reason."""
     value = int.from_bytes(data, "little")
     out: dict[int, str] = {}
-    if index == SYNC_OVERFLOW and len(data) == 1:
-        if value == 1 or value > 240:
+    if index == SYNC_OVERFLOW:
+        if len(data) == 1 and (value == 1 or value > 240):
             why = f"CiA 301 reserves 0x1019 = {value} (only 0 and 2..240 are defined)"
             out.update({RANGE: why, HIGH: why, LOW: why})
         period = c.number(SYNC_PERIOD) if c.od.find(SYNC_PERIOD) is not None else 0
-        if period:
+        if period:  # whatever the length: CiA 301 does not say which a device looks at first
             out[DEVICE_STATE] = f"0x1019 may only be written while 0x1006 is 0 (it is {period})"
     elif index == CONSUMER_HEARTBEAT and sub >= 1 and len(data) == 4:
         node, ms = value >> 16 & 0xFF, value & 0xFFFF
@@ -61,3 +62,14 @@ def write_refusals(c: Client, index: int, sub: int, data: bytes) -> dict[int, st
         why = f"CiA 301 reserves 0x1029 = {value} (0, 1, 2 and 128..255 are defined)"
         out.update({RANGE: why, HIGH: why, LOW: why})
     return out
+
+
+def consumer_room(c: Client, sub: int) -> str:
+    """Why the description leaves 0x1016 `sub` no room to watch a node (its HighLimit below what the
+    entry's node-id, bits 16-23, needs), or "": a check that must watch one cannot be judged then."""
+    entry = c.od.find(CONSUMER_HEARTBEAT, sub)
+    limit = entry.high if entry is not None else None
+    high = number(limit) if limit is not None and not limit.nodeid else None
+    if limit is not None and high is not None and high < 1 << 16:
+        return f"0x1016sub{sub}'s HighLimit {limit.text.strip()} leaves no room for a node-id (bits 16-23)"
+    return ""

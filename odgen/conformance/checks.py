@@ -21,7 +21,7 @@ from ..model.cia301 import COMMUNICATION_AREA, CONSUMER_HEARTBEAT, ERROR_BEHAVIO
 from ..model.header import header_field, header_int
 from ..model.datatypes import BASIC_TYPES, DataType
 from .verdict import ABORTS, ACTIVE, NO_OBJECT, NO_SUB, WRITE_ONLY, Check
-from .allowed import NO_DATA, RUN_TIME_STATE, code_text, watched_elsewhere, write_refusals
+from .allowed import NO_DATA, RUN_TIME_STATE, code_text, consumer_room, watched_elsewhere, write_refusals
 from .client import DEADLINE, SDO_TIMEOUT, SILENCE, Client
 
 READ_ONLY = ABORTS["ODG_ABORT_READ_ONLY"]
@@ -512,6 +512,9 @@ def check_hb_consumer(c: Client) -> Check:
     emcy = c.emcy_cob()
     if entry is None or not entry.writable or emcy is None or emcy & 0x80000000:
         check.skipped = "no writable 0x1016 sub 1, or EMCY disabled"
+        return check
+    if room := consumer_room(c, 1):
+        check.skipped = room
         return check
     other = played_node(c, 1)
     saved, saved_hb = c.upload(CONSUMER_HEARTBEAT, 1)[0], c.upload(PRODUCER_HEARTBEAT, 0)[0] if hb is not None else None

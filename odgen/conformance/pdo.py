@@ -17,7 +17,7 @@ from ..model.cia301 import CAN_ID_MASK, CONSUMER_HEARTBEAT, EMCY_INHIBIT, ERROR_
 from .verdict import ACTIVE, Check
 from .checks import EMCY_HEARTBEAT, EMCY_RPDO_LENGTH, INCOMPATIBLE, MAP_TOO_LONG, NOT_MAPPABLE, RANGE, SIGNATURE, \
     NO_SYNC_PRODUCER, SYNC_GENERATE, Entry, _hex, entries, is_command, played_node
-from .allowed import code_text, write_refusals
+from .allowed import code_text, consumer_room, write_refusals
 from .client import Client
 
 INVALID = 0x80000000
@@ -399,7 +399,9 @@ def check_error_register(c: Client) -> Check:
             return check
         frame = _short_rpdo(c, pdo, size, lambda got, d: got == cob and d[:2] == EMCY_RPDO_LENGTH.to_bytes(2, "little"))
         _register_follows(c, check, frame, EMCY_RPDO_LENGTH, "short RPDO")
-        if consumer is not None and consumer.writable and c.settings.destructive:
+        if consumer is not None and consumer.writable and consumer_room(c, 1):
+            check.notes.append(f"a second error (a watched heartbeat that stops) not tried: {consumer_room(c, 1)}")
+        elif consumer is not None and consumer.writable and c.settings.destructive:
             _heartbeat_error(c, check, cob)
             c.nmt("OPERATIONAL")  # 0x1029 may have left it
         elif consumer is not None and consumer.writable:
@@ -448,6 +450,14 @@ def _stored_numbers(c: Client) -> list[Entry]:
     return sorted(found, key=lambda e: e.obj.index < 0x2000)  # the application's first: no CiA 301 rules
 
 
+def _other_value(c: Client, e: Entry, present: bytes | None) -> bytes | None:
+    """A value `e` takes (within its limits, none CiA 301 lets the node refuse) that is neither the
+    described one nor `present`."""
+    default = expected_bytes(c.od, e.sub, e.dtype, c.node_id)
+    return next((d for d, expect in write_cases(e.sub, e.dtype) if expect == "ODG_OK"
+                 and d not in (default, present) and not write_refusals(c, *e.key, d)), None)
+
+
 def check_store_restore(c: Client) -> Check:
     """'save' keeps a value across a reset node, 'load' brings the defaults back"""
     check = Check("'save' keeps a stored value across a reset node; 'load' and a reset node bring the described "
@@ -463,14 +473,13 @@ def check_store_restore(c: Client) -> Check:
     if not stored:
         check.skipped = "the options put no writable number (outside the communication objects) in a stored group"
         return check
-    target = stored[0]
     snapshot = {e.key: c.upload(*e.key)[0] for e in stored}
-    default = expected_bytes(c.od, target.sub, target.dtype, c.node_id)
-    value = next((d for d, expect in write_cases(target.sub, target.dtype) if expect == "ODG_OK"
-                  and d not in (default, snapshot[target.key]) and not write_refusals(c, *target.key, d)), None)
-    if value is None:
-        check.skipped = f"{target.label}: no valid value other than the described and the present one"
+    # the first stored entry that has a valid value other than the described and the present one
+    picked = next(((e, d) for e in stored if (d := _other_value(c, e, snapshot[e.key])) is not None), None)
+    if picked is None:
+        check.skipped = f"{stored[0].label}: no valid value other than the described and the present one"
         return check
+    target, value = picked
     check.expect(c.download(*target.key, value) == 0, f"{target.label}: write refused")
     check.expect(c.download(STORE, 1, SAVE) == 0, "0x1010sub1 'save' refused")
     _reset(c, check)

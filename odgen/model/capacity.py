@@ -56,3 +56,16 @@ def limit_value(value: Value | None, fallback: int | float | None) -> int | floa
     if value.error is not None or value.nodeid or not isinstance(value.parsed, (int, float)):
         return None
     return value.parsed
+
+
+def value_limits(low: Value | None, high: Value | None,
+                 dtype: DataType) -> tuple[int | float | None, int | float | None]:
+    """The limits that apply to a value of `dtype`: each given one, else the type's end; a given limit
+    past the type's end bounds nothing beyond it (OBJ014: `HighLimit=65536` on an UNSIGNED16 is
+    65535), so it is the type's end too. None where a limit cannot be used."""
+    lo, hi = limit_value(low, dtype.min), limit_value(high, dtype.max)
+    if dtype.min is not None and lo is not None and lo < dtype.min:
+        lo = dtype.min
+    if dtype.max is not None and hi is not None and hi > dtype.max:
+        hi = dtype.max
+    return lo, hi

@@ -8,7 +8,7 @@ point of comparing.
 
 from __future__ import annotations
 
-from .capacity import limit_value
+from .capacity import value_limits
 from .datatypes import DataType
 from .od import ObjectDictionary, Sub
 from .values import Value
@@ -57,7 +57,7 @@ def _described_bytes(od: ObjectDictionary, sub: Sub, dtype: DataType, node_id: i
 
 
 def _limits(sub: Sub, dtype: DataType) -> tuple[int | float, int | float] | None:
-    lo, hi = limit_value(sub.low, dtype.min), limit_value(sub.high, dtype.max)
+    lo, hi = value_limits(sub.low, sub.high, dtype)
     return (lo, hi) if lo is not None and hi is not None and lo <= hi else None
 
 
