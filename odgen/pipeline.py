@@ -70,7 +70,7 @@ class Loaded:
 
     od: ObjectDictionary | None
     options: Options
-    digest: str
+    identity: Callable[[], str]  # the input's digest for the headers, worked out when view asks
     lss: bool  # build a node with the LSS slave: LSS_Supported=1 or the options' [node] lss
     diags: Diagnostics  # the findings so far; every later stage adds its own
     node_caps: dict[str, int] = field(default_factory=dict)  # the options' [node] limits
@@ -106,18 +106,32 @@ def load(request: Request) -> Loaded:
         data = read_bytes(request.input, MAX_BYTES)  # larger files are refused unread (SYN018)
         h.update(data)
         od, diags = load_bytes(data, str(request.input), detect_format(request.input, request.input_format))
-    else:  # a model built in memory: identified by the EDS text it writes
-        h.update(write_eds(od).encode())
+    else:
         diags = Diagnostics()
     options = _options(request, diags, h)
     h.update(f"|{_name(request)}|{request.lookup}|{request.node_id}|{request.defaults}|{__version__}".encode())
     if request.fix:
         h.update(f"|fix={request.fix}".encode())
     caps = node_options(options.node, options.source, options.text, diags)
+    identity = _identity(h, request.model)
     if od is None:
-        return Loaded(None, options, h.hexdigest()[:16], False, diags, caps)
+        return Loaded(None, options, identity, False, diags, caps)
     lss = options.node_lss or header_int(header_field(od, "DeviceInfo", "LSS_Supported")) == 1
-    return Loaded(_with_odgen_objects(od, options, diags), options, h.hexdigest()[:16], lss, diags, caps)
+    return Loaded(_with_odgen_objects(od, options, diags), options, identity, lss, diags, caps)
+
+
+def _identity(h: hashlib._Hash, model: ObjectDictionary | None) -> Callable[[], str]:
+    """The digest of what was read; a model built in memory adds the EDS text it writes, but only
+    when the digest is asked for: `diff` loads models and never prints one."""
+    if model is None:
+        done = h.hexdigest()[:16]
+        return lambda: done
+
+    def later() -> str:
+        with_model = h.copy()
+        with_model.update(write_eds(model).encode())
+        return with_model.hexdigest()[:16]
+    return later
 
 
 def lint(loaded: Loaded, request: Request, diags: Diagnostics) -> None:
@@ -135,7 +149,7 @@ def view(loaded: Loaded, where: Placed, request: Request, diags: Diagnostics) ->
     """Everything the templates print for a loaded, linted, placed description."""
     assert loaded.od is not None
     return build(loaded.od, where.placements, where.persist, _name(request), version=__version__,
-                 digest=loaded.digest, lookup=request.lookup, diags=diags, lss=loaded.lss,
+                 digest=loaded.identity(), lookup=request.lookup, diags=diags, lss=loaded.lss,
                  node_caps=loaded.node_caps)
 
 
