@@ -29,7 +29,7 @@ def _net(findings: list[dict]) -> list[tuple[str, str, int, str]]:
 
 @pytest.mark.parametrize(("toml", "code", "expected"), [
     ("NET001.toml", 1, ("NET001", "NET001.toml", 5,
-                        "error[NET001]: [[node]] needs exactly `file` (a string) and `node_id` (an integer)")),
+                        "error[NET001]: [[node]] needs `file` (a string) and `node_id` (an integer)")),
     ("NET002.toml", 1, ("NET002", "NET002.toml", 5, "error[NET002]: node_id 1 is also the node at line 1")),
     ("NET003.toml", 2, ("NET003", "NET003.toml", 5, "error[NET003]: " + str(NET / "missing.eds")
                         + ": cannot read: No such file or directory")),

@@ -7,76 +7,70 @@
 
 from __future__ import annotations
 
-import re
-import sys
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from pathlib import Path
 
-from ..catalogue.network import NET001, NET002, NET003
+from ..catalogue.network import NET003, NET014
 from ..diagnostics import Diagnostics, Loc
 from ..errors import OdgenError
+from ..formats import load_path
+from ..model import ObjectDictionary
 from .driver import FileResult, RuleFilter, lint_path
+from .netconfig import NodeModel, check_boot, configure
+from .netfile import NetworkSpec, NodeSpec, parse_network
 from .passes import LintOptions
 from .passes.network import Node, check_network
 
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - exercised on Python 3.10 only
-    import tomli as tomllib
+__all__ = ["BOOT_STATUS", "NodeSpec", "lint_network", "parse_network", "read_network"]
+
+BOOT_STATUS = 0x5F81  # the master's slave boot status object (docs/network.md)
 
 
-@dataclass(frozen=True)
-class NodeSpec:
-    file: Path
-    node_id: int | None  # None when NET002 rejected it
-    loc: Loc  # the [[node]] line
-
-
-def parse_network(text: str, path: Path, diags: Diagnostics) -> list[NodeSpec]:
-    source = str(path)
-    try:
-        doc = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as err:
-        m = re.search(r"line (\d+)", str(err))
-        diags.add(NET001, Loc(source, int(m.group(1)) if m else 0), f"not valid TOML: {err}")
-        return []
-    raw_nodes = doc.get("node")
-    if set(doc) != {"node"} or not isinstance(raw_nodes, list) or not raw_nodes:
-        diags.add(NET001, Loc(source, 1), "expected only [[node]] tables, at least one")
-        return []
-    lines = [n for n, line in enumerate(text.splitlines(), start=1) if line.strip().startswith("[[node]]")]
-    specs: list[NodeSpec] = []
-    seen: dict[int, int] = {}
-    for n, raw in enumerate(raw_nodes):
-        loc = Loc(source, lines[n] if n < len(lines) else 0)
-        if not isinstance(raw, dict) or set(raw) != {"file", "node_id"} or not isinstance(raw["file"], str) \
-                or not isinstance(raw["node_id"], int) or isinstance(raw["node_id"], bool):
-            diags.add(NET001, loc, "[[node]] needs exactly `file` (a string) and `node_id` (an integer)")
-            continue
-        node_id: int | None = raw["node_id"]
-        if not 1 <= raw["node_id"] <= 127:
-            diags.add(NET002, loc, f"node_id {raw['node_id']} is outside 1..127")
-            node_id = None
-        elif raw["node_id"] in seen:
-            diags.add(NET002, loc, f"node_id {raw['node_id']} is also the node at line {seen[raw['node_id']]}")
-            node_id = None
-        else:
-            seen[raw["node_id"]] = loc.line
-        specs.append(NodeSpec(path.parent / raw["file"], node_id, loc))
-    return specs
-
-
-def lint_network(path: Path, options: LintOptions, rule_filter: RuleFilter) -> tuple[list[FileResult], bool]:
-    """The results per file (NET.toml first) and whether a node's file was unreadable."""
+def read_network(path: Path) -> tuple[str, NetworkSpec, Diagnostics]:
+    """The network file's text, what it says, and its NET001/NET002 findings."""
     try:
         text = path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as err:
         raise OdgenError(f"{path}: cannot read: {err}") from None
     diags = Diagnostics()
+    return text, parse_network(text, path, diags), diags
+
+
+def network_checks(spec: NetworkSpec, nodes: list[NodeModel], dcfs: dict[str, ObjectDictionary | None],
+                   diags: Diagnostics) -> None:
+    """Configure the nodes (NET008-NET012), check boot options (NET011, NET013), the master (NET014)
+    and the PDOs of the network as configured (NET004-NET007)."""
+    configure(spec, nodes, dcfs, diags)
+    check_boot(spec, nodes, diags)
+    master = next((n for n in nodes if n.spec.master), None)
+    if master is not None and BOOT_STATUS in master.od.objects:
+        diags.add(NET014, Loc(master.od.source, master.od.objects[BOOT_STATUS].line),
+                  f"declares 0x{BOOT_STATUS:04X}, which the master's dictionary holds as the slave boot status",
+                  BOOT_STATUS)
+    check_network([Node(n.configured_od(), n.node_id, {k: v.loc for k, v in n.values.items()}) for n in nodes],
+                  diags)
+
+
+def load_dcfs(spec: NetworkSpec, diags: Diagnostics) -> dict[str, ObjectDictionary | None]:
+    """The DCFs `dcf = ...` names, by node name; NET003 for one that cannot be read."""
+    dcfs: dict[str, ObjectDictionary | None] = {}
+    for node in spec.nodes:
+        if node.dcf is None:
+            continue
+        try:
+            dcfs[node.name], _ = load_path(node.dcf)
+        except OdgenError as err:
+            diags.add(NET003, Loc(spec.source, node.line("dcf")), str(err))
+    return dcfs
+
+
+def lint_network(path: Path, options: LintOptions, rule_filter: RuleFilter) -> tuple[list[FileResult], bool]:
+    """The results per file (NET.toml first) and whether a node's file was unreadable."""
+    _, network, diags = read_network(path)
     results: dict[str, FileResult] = {str(path): FileResult(str(path), None)}
-    nodes: list[Node] = []
+    nodes: list[NodeModel] = []
     unreadable = False
-    for spec in parse_network(text, path, diags):
+    for spec in network.nodes:
         try:
             result = lint_path(spec.file, replace(options, node_id=spec.node_id), rule_filter)
         except OdgenError as err:
@@ -87,8 +81,8 @@ def lint_network(path: Path, options: LintOptions, rule_filter: RuleFilter) -> t
         merged.diagnostics += [d for d in result.diagnostics if d not in merged.diagnostics]
         merged.omitted.update(result.omitted)
         if result.od is not None and spec.node_id is not None:
-            nodes.append(Node(result.od, spec.node_id))
-    check_network(nodes, diags)
+            nodes.append(NodeModel(spec, result.od))
+    network_checks(network, nodes, load_dcfs(network, diags), diags)
     for d in diags:
         if rule_filter.keeps(d.rule):
             results.setdefault(d.loc.file, FileResult(d.loc.file, None)).diagnostics.append(d)

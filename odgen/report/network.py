@@ -39,7 +39,7 @@ def _nodes(path: Path) -> list[Node]:
     except (OSError, UnicodeDecodeError) as err:
         raise OdgenError(f"{path}: cannot read: {err}") from None
     nodes = []
-    for spec in parse_network(text, path, Diagnostics()):  # lint_network reports what is wrong
+    for spec in parse_network(text, path, Diagnostics()).nodes:  # lint_network reports what is wrong
         try:
             od, _ = load_path(spec.file)
         except OdgenError:

@@ -7,7 +7,8 @@ with `$NODEID` resolved with the node-id NET.toml gives; COB-IDs with bit 31 set
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, field
 
 from ...catalogue.network import NET004, NET005, NET006, NET007
 from ...diagnostics import Diagnostics, Loc
@@ -29,6 +30,11 @@ KINDS = (("RPDO", RPDO_COMM, RPDO_MAPPING), ("TPDO", TPDO_COMM, TPDO_MAPPING))
 class Node:
     od: ObjectDictionary
     node_id: int
+    origin: Mapping[tuple[int, int], Loc] = field(default_factory=dict)  # values the network file configured
+
+    def loc(self, index: int, sub: int, line: int) -> Loc:
+        """Where a value comes from: the network file that configured it, else the description."""
+        return self.origin.get((index, sub), Loc(self.od.source, line))
 
 
 @dataclass
@@ -48,7 +54,7 @@ class Pdo:
 
     @property
     def at(self) -> str:
-        return str(Loc(self.node.od.source, self.line))
+        return str(self.node.loc(self.comm, 1, self.line))
 
     def layout(self) -> str:
         bits = [str(b) for b, _, _ in self.lengths or []]
@@ -92,12 +98,12 @@ def check_network(nodes: list[Node], diags: Diagnostics) -> None:
             continue
         first = producers.setdefault(p.cob_id, p)
         if first is not p:
-            diags.add(NET004, Loc(p.node.od.source, p.line), f"{p.name} transmits COB-ID 0x{p.cob_id:X}, "
+            diags.add(NET004, p.node.loc(p.comm, 1, p.line), f"{p.name} transmits COB-ID 0x{p.cob_id:X}, "
                       f"as {first.name} does ({first.at})", p.comm, 1)
     for p in every:
         producer = producers.get(p.cob_id)
         if p.kind == "RPDO" and producer is None:
-            diags.add(NET005, Loc(p.node.od.source, p.line),
+            diags.add(NET005, p.node.loc(p.comm, 1, p.line),
                       f"{p.name} receives COB-ID 0x{p.cob_id:X}, which no node transmits", p.comm, 1)
         elif p.kind == "RPDO" and producer is not None:
             _compare(p, producer, diags)
@@ -105,7 +111,7 @@ def check_network(nodes: list[Node], diags: Diagnostics) -> None:
     for p in every:
         owner = fixed.get(p.cob_id)
         if owner is not None and owner[0].node_id != p.node.node_id:
-            diags.add(NET007, Loc(p.node.od.source, p.line), f"{p.name} uses COB-ID 0x{p.cob_id:X}, the "
+            diags.add(NET007, p.node.loc(p.comm, 1, p.line), f"{p.name} uses COB-ID 0x{p.cob_id:X}, the "
                       f"{owner[1]} COB-ID of node {owner[0].node_id}", p.comm, 1)
 
 
@@ -117,6 +123,6 @@ def _compare(rpdo: Pdo, tpdo: Pdo, diags: Diagnostics) -> None:
         return
     differ = next((i for i, (a, b) in enumerate(zip(mine, theirs, strict=False)) if a != b), None)
     line, sub = (rpdo.lengths[differ][1], rpdo.lengths[differ][2]) if differ is not None else (rpdo.map_line, 0)
-    diags.add(NET006, Loc(rpdo.node.od.source, line),
+    diags.add(NET006, rpdo.node.loc(rpdo.comm + 0x200, sub, line),
               f"{rpdo.name} maps {rpdo.layout()} but {tpdo.name} ({tpdo.at}) transmits {tpdo.layout()}",
               rpdo.comm + 0x200, sub)
