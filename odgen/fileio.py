@@ -26,7 +26,7 @@ def _cannot(path: Path, err: OSError) -> OdgenError:
     return OdgenError(f"cannot write {path}: {err.strerror or err}")
 
 
-def _write_temp(path: Path, text: str) -> str:
+def _write_temp(path: Path, text: str | bytes) -> str:
     import tempfile  # with shutil, bz2 and lzma: not paid by a lint that writes nothing
 
     try:
@@ -34,8 +34,8 @@ def _write_temp(path: Path, text: str) -> str:
     except OSError as err:
         raise _cannot(path, err) from None
     try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as out:
-            out.write(text)
+        with os.fdopen(fd, "wb") as out:  # text as UTF-8 with \n line ends, bytes as they are
+            out.write(text.encode("utf-8") if isinstance(text, str) else text)
             out.flush()
             os.fsync(out.fileno())
         os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes 0600; outputs are ordinary files
@@ -51,14 +51,15 @@ def write_atomic(path: str | Path, text: str) -> None:
     write_files({Path(path): text})
 
 
-def unchanged(path: Path, text: str) -> bool:
+def unchanged(path: Path, text: str | bytes) -> bool:
+    data = text.encode("utf-8") if isinstance(text, str) else text
     try:
-        return path.is_file() and not path.is_symlink() and path.read_bytes() == text.encode("utf-8")
+        return path.is_file() and not path.is_symlink() and path.read_bytes() == data
     except OSError:
         return False
 
 
-def write_files(files: Mapping[Path, str], only_changed: bool = False) -> list[Path]:
+def write_files(files: Mapping[Path, str] | Mapping[Path, str | bytes], only_changed: bool = False) -> list[Path]:
     """Write several files as one step: every temp file first, then the renames. Returns those written."""
     todo = {path: text for path, text in files.items() if not (only_changed and unchanged(path, text))}
     temps: dict[Path, str] = {}

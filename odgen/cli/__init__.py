@@ -24,8 +24,8 @@ from ..errors import OdgenError
 # The commands in the order `odgen --help` lists them; each is the module odgen.cli.<name>.
 # A run imports only its command's module, and that module imports what it uses when it runs:
 # `odgen lint` of an EDS and `odgen --version` start without jinja2, lxml or canopen.
-COMMANDS = ("lint", "fix", "convert", "generate", "explain", "check", "node", "roundtrip", "profile", "diff", "report",
-            "conformance", "rules", "rule")
+COMMANDS = ("lint", "fix", "convert", "generate", "explain", "check", "node", "roundtrip", "profile", "network", "diff",
+            "report", "conformance", "rules", "rule")
 
 
 def _command(name: str) -> ModuleType:

@@ -598,11 +598,17 @@ def _string_init(dtype: DataType, value: Value | None, capacity: int | None) -> 
 def _domain(b: _Builder, view: DictView, target: StorageStruct, member: str, value: Value | None,
             placement: Placement, note: str, key: tuple[int, int]) -> tuple[str, int]:
     data = domain_default(value)
-    cap = domain_capacity(value, placement.capacity)
+    rom = placement.storage == "rom"  # const: exactly its bytes, in FLASH
+    cap = max(len(data), 1) if rom else domain_capacity(value, placement.capacity)
     body = ", ".join(f"0x{x:02X}" for x in data) or "0"
     target.members.append(Member(member + "_buf", "uint8_t", f"[{cap}]", "{" + body + "}", note, 1, key))
     target.members.append(Member(member + "_len", "uint32_t", "", f"UINT32_C({len(data)})", note, 4, key))
-    view.domains.append(DomainView(member, f"{target.name}.{member}_buf", f"&{target.name}.{member}_len", cap))
+    # odg_domain_t points at writable memory; a DOMAIN in rom is const and never written through
+    # them (odg_write refuses ODG_S_ROM and entries without ODG_A_WRITE), so the casts are safe.
+    buffer, length = f"{target.name}.{member}_buf", f"&{target.name}.{member}_len"
+    if rom:
+        buffer, length = f"(uint8_t *){buffer}", f"(uint32_t *){length}"
+    view.domains.append(DomainView(member, buffer, length, cap))
     return str(len(view.domains) - 1), cap
 
 

@@ -7,7 +7,7 @@
 
 from __future__ import annotations
 
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from ..catalogue.network import NET003, NET014
@@ -21,7 +21,8 @@ from .netfile import NetworkSpec, NodeSpec, parse_network
 from .passes import LintOptions
 from .passes.network import Node, check_network
 
-__all__ = ["BOOT_STATUS", "NodeSpec", "lint_network", "parse_network", "read_network"]
+__all__ = ["BOOT_STATUS", "LintedNetwork", "NodeSpec", "lint_network", "lint_network_nodes", "parse_network",
+           "read_network"]
 
 BOOT_STATUS = 0x5F81  # the master's slave boot status object (docs/network.md)
 
@@ -64,8 +65,22 @@ def load_dcfs(spec: NetworkSpec, diags: Diagnostics) -> dict[str, ObjectDictiona
     return dcfs
 
 
+@dataclass
+class LintedNetwork:
+    results: list[FileResult]  # per file, NET.toml first
+    unreadable: bool  # a node's file could not be read
+    spec: NetworkSpec
+    nodes: list[NodeModel]  # the nodes whose description was read, with what the network file configures
+
+
 def lint_network(path: Path, options: LintOptions, rule_filter: RuleFilter) -> tuple[list[FileResult], bool]:
     """The results per file (NET.toml first) and whether a node's file was unreadable."""
+    linted = lint_network_nodes(path, options, rule_filter)
+    return linted.results, linted.unreadable
+
+
+def lint_network_nodes(path: Path, options: LintOptions, rule_filter: RuleFilter) -> LintedNetwork:
+    """Lint every node's description and the network; the nodes as configured."""
     _, network, diags = read_network(path)
     results: dict[str, FileResult] = {str(path): FileResult(str(path), None)}
     nodes: list[NodeModel] = []
@@ -88,5 +103,5 @@ def lint_network(path: Path, options: LintOptions, rule_filter: RuleFilter) -> t
             results.setdefault(d.loc.file, FileResult(d.loc.file, None)).diagnostics.append(d)
     for r in results.values():
         r.diagnostics = Diagnostics(list(dict.fromkeys(r.diagnostics))).sorted()
-    return list(results.values()), unreadable
+    return LintedNetwork(list(results.values()), unreadable, network, nodes)
 

@@ -61,6 +61,8 @@ def storage_from_description(text: str | None) -> str | None:
 def auto_storage(index: int, sub: Sub) -> tuple[str, str]:
     if is_store_command(index, sub.subindex):
         return STORE_CLASS, "auto: 0x1010/0x1011 store/restore commands"
+    if sub.data_type == 0x000F and sub.access == "const" and sub.default is not None and not sub.default.empty:
+        return "rom", "auto: a const DOMAIN whose value is fixed at generation"
     if sub.data_type == 0x000F:
         return "ram", "auto: DOMAIN buffers live in RAM"
     if index in RUNTIME_UPDATED:
@@ -140,8 +142,8 @@ def _unfit_for_rom(sub: Sub) -> list[str]:
         reasons.append(f"it is writable ({sub.access})")
     if sub.default is not None and sub.default.nodeid:
         reasons.append("its default is $NODEID-relative")
-    if sub.data_type == 0x000F:
-        reasons.append("a DOMAIN keeps its buffer and length in RAM")
+    if sub.data_type == 0x000F and sub.access != "const":
+        reasons.append("a DOMAIN that is not const keeps its buffer and length in RAM")
     return reasons
 
 

@@ -1,0 +1,100 @@
+"""The master's model: its description as configured (PDO wiring included), plus the CiA 302-2
+objects its configuration manager reads (docs/network.md lists them, with their layout).
+
+Arrays indexed by node-id hold a sub-entry per slave only: sub 0 is the highest node-id of a
+slave, and the runtime reads a missing sub-entry as 0 (not a slave, nothing to check).
+"""
+
+from __future__ import annotations
+
+from ..lint.netconfig import NodeModel, expected_identity
+from ..lint.network import BOOT_STATUS
+from ..model import ObjectDictionary
+from ..model.datatypes import BASIC_TYPES, UNSIGNED8, UNSIGNED32, DataType
+from ..model.edit import with_object
+from ..model.od import ARRAY, VAR, Obj, Sub
+from ..model.values import Value, parse_value
+
+DOMAIN = BASIC_TYPES[0x000F]  # the concise DCFs
+
+# 0x1F80 NMT start-up (CiA 302-2): bit -> ([master] key, the value of the key that sets the bit)
+STARTUP_BITS = ((1, "start_all", True), (2, "start_self", False), (3, "start_slaves", False),
+                (4, "reset_all", True), (6, "stop_all", True))
+# 0x1F81 NMT slave assignment
+SLAVE, BOOT_AGAIN, MANDATORY, KEEP_ALIVE = 1 << 0, 1 << 2, 1 << 3, 1 << 4
+IDENTITY_ARRAYS = ((0x1F85, "Vendor identification", 1), (0x1F86, "Product code", 2),
+                   (0x1F87, "Revision number", 3), (0x1F88, "Serial number", 4))
+
+
+def master_model(master: NodeModel, slaves: list[NodeModel], concise: dict[int, bytes],
+                 files: dict[int, str]) -> ObjectDictionary:
+    """`concise` and `files`: each slave's concise DCF and the name of its .bin, by node-id."""
+    od = master.configured_od()
+    for obj in _objects(master, slaves, concise):
+        if obj.index == 0x1F22:
+            for node_id, name in files.items():
+                obj.subs[node_id].upload_file = name  # CiA 306: a DOMAIN's content is named by its file
+        od = _put(od, obj)
+    return od
+
+
+def _objects(master: NodeModel, slaves: list[NodeModel], concise: dict[int, bytes]) -> list[Obj]:
+    ids = [s.node_id for s in slaves]
+    startup = 1 | sum(1 << bit for bit, key, sets in STARTUP_BITS
+                      if master.spec.options.get(key, not sets) == sets)
+    objects = [
+        _var(0x1F80, "NMT start-up", startup),
+        _var(0x1F89, "Boot time", int(master.spec.options.get("boot_time", 0))),
+        _array(0x1F81, "NMT slave assignment", {s.node_id: _assignment(s) for s in slaves}),
+        _array(0x1F84, "Device type identification", {s.node_id: s.in_force(0x1000, 0) or 0 for s in slaves}),
+        _array(0x1F26, "Expected configuration date", dict.fromkeys(ids, 0)),
+        _array(0x1F27, "Expected configuration time", dict.fromkeys(ids, 0)),
+        _array(0x1F22, "Concise DCF", {n: concise[n].hex().upper() for n in ids}, DOMAIN, "const"),
+        _array(BOOT_STATUS, "Slave boot status", dict.fromkeys(ids, 0), UNSIGNED8, "ro"),
+    ]
+    objects += [_array(index, name, {s.node_id: expected_identity(s).get(sub, 0) for s in slaves})
+                for index, name, sub in IDENTITY_ARRAYS]
+    heartbeats = [(s.node_id << 16) | int(s.spec.options.get("heartbeat", 0)) for s in slaves
+                  if s.spec.options.get("heartbeat")]
+    if heartbeats:
+        objects.append(_array(0x1016, "Consumer heartbeat time", dict(enumerate(heartbeats, start=1))))
+    return objects
+
+
+def _assignment(slave: NodeModel) -> int:
+    options = slave.spec.options
+    return SLAVE | BOOT_AGAIN | (MANDATORY if options.get("mandatory") else 0) \
+        | (KEEP_ALIVE if options.get("keep_alive") else 0)
+
+
+def _var(index: int, name: str, value: int) -> Obj:
+    obj = Obj(index, name, object_code=VAR)
+    obj.subs[0] = Sub(0, name, data_type=UNSIGNED32.code, access="rw", default=_value(value, UNSIGNED32))
+    return obj
+
+
+def _array(index: int, name: str, values: dict[int, int] | dict[int, str], dtype: DataType = UNSIGNED32,
+           access: str = "rw") -> Obj:
+    """An ARRAY with a sub-entry per key of `values` (sub 0: the highest)."""
+    obj = Obj(index, name, object_code=ARRAY)
+    obj.subs[0] = Sub(0, "Highest sub-index supported", data_type=UNSIGNED8.code, access="ro",
+                      default=_value(max(values, default=0), UNSIGNED8))
+    for sub, value in sorted(values.items()):
+        text = f"0x{value:X}" if isinstance(value, int) else str(value)
+        obj.subs[sub] = Sub(sub, f"{name} {sub}", data_type=dtype.code, access=access,
+                            default=parse_value(text, dtype))
+    return obj
+
+
+def _value(n: int, dtype: DataType) -> Value:
+    return parse_value(f"0x{n:X}", dtype)
+
+
+def _put(od: ObjectDictionary, obj: Obj) -> ObjectDictionary:
+    """The model with `obj`, in place of the description's object at its index if there is one."""
+    old = od.objects.get(obj.index)
+    if old is None:
+        return with_object(od, obj)
+    obj.object_list, obj.sub_number = old.object_list, len(obj.subs)
+    od.objects = {**od.objects, obj.index: obj}
+    return od
