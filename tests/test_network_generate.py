@@ -1,0 +1,129 @@
+"""`odgen network NET.toml -o DIR` on examples/network: what each file holds, read by other means.
+
+- every slave's concise DCF is decoded by a reader written from CiA 306 (tests/test_concise.py),
+  and each value it writes is what python canopen reads as the ParameterValue of the slave's DCF;
+- the master's C dictionary is compiled with the runtime core and run: each 0x1F22 sub-entry
+  reads back, from FLASH, the bytes of the slave's .bin, and refuses a write; the CiA 302-2
+  objects and the boot status object 0x5F81 read as docs/network.md says.
+"""
+
+from __future__ import annotations
+
+import shutil
+import subprocess
+from pathlib import Path
+
+import canopen
+import pytest
+
+from odgen import toolchain
+from odgen.cli import main
+
+from .conftest import ROOT
+from .test_concise import _cia306_read
+
+EXAMPLE = ROOT / "examples" / "network" / "machine.toml"
+SLAVES = {"hv": 1, "vacuum": 2, "flow": 3, "inverter": 4, "io": 5}
+
+
+@pytest.fixture(scope="module")
+def out(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    folder = tmp_path_factory.mktemp("network")
+    assert main(["network", str(EXAMPLE), "-o", str(folder)]) == 0
+    return folder
+
+
+def test_files_and_determinism(out: Path, tmp_path: Path) -> None:
+    names = sorted(p.name for p in out.iterdir())
+    assert names == sorted([*(f"{s}.bin" for s in SLAVES), *(f"{s}.dcf" for s in SLAVES), "controller.dcf",
+                            "controller.c", "controller.h", "controller_config.h"])
+    assert main(["network", str(EXAMPLE), "-o", str(tmp_path)]) == 0
+    for name in names:
+        assert (tmp_path / name).read_bytes() == (out / name).read_bytes(), name
+
+
+@pytest.mark.parametrize("slave", list(SLAVES))
+def test_concise_dcf_holds_the_dcf_values(out: Path, slave: str) -> None:
+    entries = _cia306_read((out / f"{slave}.bin").read_bytes())
+    od = canopen.import_od(str(out / f"{slave}.dcf"), SLAVES[slave])
+    final = {(index, sub): data for index, sub, data in entries}  # the last write of each entry stays
+    assert final, "nothing configured"
+    for (index, sub), data in final.items():
+        var = od[index] if isinstance(od[index], canopen.objectdictionary.ODVariable) else od[index][sub]
+        assert data == var.encode_raw(var.value), f"{slave} 0x{index:04X}sub{sub}"
+    assert final[(0x1017, 0)] == (100 if slave != "io" else 200).to_bytes(2, "little")
+
+
+def test_pdo_written_in_cia301_order(out: Path) -> None:
+    writes = [(i, s, int.from_bytes(d, "little")) for i, s, d in _cia306_read((out / "hv.bin").read_bytes())]
+    rpdo = [w for w in writes if w[0] in (0x1400, 0x1600)]
+    assert rpdo == [(0x1400, 1, 0x80000201), (0x1400, 2, 1), (0x1600, 0, 0), (0x1600, 1, 0x62000108),
+                    (0x1600, 2, 0x62000208), (0x1600, 3, 0x64100108), (0x1600, 0, 3), (0x1400, 1, 0x201)]
+    tpdo = [w for w in writes if w[0] in (0x1800, 0x1A00)]
+    assert tpdo[0] == (0x1800, 1, 0x80000181) and tpdo[-1] == (0x1800, 1, 0x181)
+    assert (0x1A00, 1, 0x64010110) in tpdo and (0x1A00, 2, 0x64010210) in tpdo
+
+
+PROGRAM = r"""
+#include <stdio.h>
+#include "odg.h"
+#include "controller.h"
+
+static unsigned long u32(uint16_t index, uint8_t sub)
+{
+    uint32_t v = 0;
+    return odg_get(&controller, index, sub, &v, sizeof v) == ODG_OK ? (unsigned long)v : 0xDEADBEEFul;
+}
+
+int main(void)
+{
+    static uint8_t buf[4096];
+    odg_ref_t ref;
+    uint32_t n = 0;
+    unsigned i;
+    uint8_t node, status = 0xFF;
+    if (odg_init(&controller, 127) != ODG_OK) return 1;
+    for (node = 1; node <= 6; node++) {
+        if (odg_find(&controller, 0x1F22, node, &ref) != ODG_OK) { printf("1F22 %u none\n", node); continue; }
+        if (odg_read(&ref, 0, buf, sizeof buf, &n) != ODG_OK) return 2;
+        printf("1F22 %u ", node);
+        for (i = 0; i < n; i++) printf("%02X", buf[i]);
+        printf(" write=%08lX\n", (unsigned long)odg_write(&ref, buf, n));
+        printf("1F81 %u %08lX\n", node, u32(0x1F81, node));
+        printf("1F86 %u %08lX\n", node, u32(0x1F86, node));
+        (void)odg_get(&controller, 0x5F81, node, &status, 1);
+        printf("5F81 %u %u\n", node, status);
+    }
+    (void)odg_get(&controller, 0x1016, 0, &status, 1);
+    printf("1F80 %08lX\n1F89 %lu\n1016 %u %08lX %08lX\n", u32(0x1F80, 0), u32(0x1F89, 0),
+           status, u32(0x1016, 1), u32(0x1016, 5));
+    return 0;
+}
+"""
+
+
+def test_master_dictionary_compiled_and_read(out: Path, tmp_path: Path) -> None:
+    if shutil.which(toolchain.compiler()) is None:
+        pytest.skip("no C compiler")
+    (tmp_path / "main.c").write_text(PROGRAM)
+    exe = tmp_path / "master"
+    cmd = [toolchain.compiler(), *toolchain.CFLAGS, "-I", str(out), *(f"-I{d}" for d in toolchain.include_dirs()),
+           str(tmp_path / "main.c"), str(out / "controller.c"), *map(str, toolchain.core_sources()), "-o", str(exe)]
+    subprocess.run(cmd, check=True, capture_output=True, text=True)
+    lines = subprocess.run([str(exe)], check=True, capture_output=True, text=True).stdout.splitlines()
+    got = {tuple(line.split()[:2]): line.split()[2:] for line in lines}
+    for slave, node in SLAVES.items():
+        data, write = got[("1F22", str(node))]
+        assert bytes.fromhex(data) == (out / f"{slave}.bin").read_bytes()
+        assert write == "write=06010002"  # read-only: the bytes are in FLASH
+        assert got[("5F81", str(node))] == ["0"]
+    assert got[("1F22", "6")] == ["none"]
+    # hv and vacuum are mandatory, inverter keeps alive; every slave is booted again after an error
+    assert [got[("1F81", str(n))][0] for n in range(1, 6)] == ["0000000D", "0000000D", "00000005", "00000015",
+                                                               "00000005"]
+    for slave, node in SLAVES.items():  # the product code checked is the description's
+        product = canopen.import_od(str(out / f"{slave}.dcf"), node)[0x1018][2].default
+        assert int(got[("1F86", str(node))][0], 16) == product != 0
+    assert ("1F80", "00000001") in got  # NMT master; starts itself and the slaves one by one
+    assert ("1F89", "5000") in got
+    assert got[("1016", "5")] == ["0001012C", "000501F4"]  # 5 consumers: node 1 300 ms ... node 5 500 ms
