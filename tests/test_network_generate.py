@@ -127,3 +127,26 @@ def test_master_dictionary_compiled_and_read(out: Path, tmp_path: Path) -> None:
     assert ("1F80", "00000001") in got  # NMT master; starts itself and the slaves one by one
     assert ("1F89", "5000") in got
     assert got[("1016", "5")] == ["0001012C", "000501F4"]  # 5 consumers: node 1 300 ms ... node 5 500 ms
+
+
+def test_domain_in_rom_only_when_its_value_is_fixed() -> None:
+    from odgen.diagnostics import Diagnostics
+    from odgen.model.od import DOMAIN, Obj, ObjectDictionary, Sub
+    from odgen.model.values import Value
+    from odgen.place.options import Options, parse_options
+    from odgen.place.placement import place
+
+    od = ObjectDictionary("t.eds", "eds")
+    for index, access, default in ((0x2000, "const", "0A0B"), (0x2001, "const", None), (0x2002, "rw", "0A0B")):
+        obj = Obj(index, "d", object_code=DOMAIN)
+        obj.subs[0] = Sub(0, "d", data_type=0x000F, access=access,
+                          default=Value(default) if default is not None else None)
+        od.objects[index] = obj
+    diags = Diagnostics()
+    got = place(od, Options(), diags)
+    assert [got[(i, 0)].storage for i in (0x2000, 0x2001, 0x2002)] == ["rom", "ram", "ram"]
+    assert not list(diags)
+    forced = parse_options('[[entry]]\nmatch = "0x2002"\nstorage = "rom"\n', "o.toml", diags)
+    place(od, forced, diags)
+    assert [(d.rule, d.index) for d in diags] == [("GEN003", 0x2002)]
+    assert "not const keeps its buffer" in next(iter(diags)).message

@@ -119,19 +119,19 @@ def set_value(node: NodeModel, index: int, subindex: int, raw: int | float | str
               diags: Diagnostics) -> bool:
     """Configure one entry; NET009 if the description does not let it be written, NET010 if the
     value is not one of its type or outside its limits."""
-    sub = node.od.find(index, subindex)
-    label = f"{node.spec.name} {where(index, subindex)}"
-    if sub is None:
-        diags.add(NET009, loc, f"{label}: {node.od.source} has no such entry", index, subindex)
+    obj, sub = node.od.objects.get(index), node.od.find(index, subindex)
+    if obj is None or sub is None:
+        diags.add(NET009, loc, f"{node.spec.name}: {node.od.source} has no such entry", index, subindex)
         return False
+    at = None if obj.is_var else subindex  # findings name 0x1017, not 0x1017sub0
     if not sub.writable:
-        diags.add(NET009, loc, f"{label} ({sub.name}) is {sub.access or 'without access type'} in "
-                  f"{node.od.source}:{sub.line}; the master cannot write it", index, subindex)
+        diags.add(NET009, loc, f"{node.spec.name}: {sub.name!r} is {sub.access or 'without access type'} in "
+                  f"{node.od.source}:{sub.line}; the master cannot write it", index, at)
         return False
     value = parse_value(_text(raw), sub.dtype, loc.line)
     problem = _outside(node, sub, value)
     if problem:
-        diags.add(NET010, loc, f"{label} ({sub.name}) = {raw!r}: {problem}", index, subindex)
+        diags.add(NET010, loc, f"{node.spec.name}: {sub.name!r} = {raw!r}: {problem}", index, at)
         return False
     node.values[(index, subindex)] = Configured(value, loc)
     return True
@@ -231,8 +231,8 @@ def _wire_value(node: NodeModel, index: int, sub: int, value: int, loc: Loc, dia
     before = node.wired.get((index, sub))
     if before is not None and before != value:
         line = node.values[(index, sub)].loc.line
-        diags.add(NET012, loc, f"{node.spec.name} {where(index, sub)}: this wiring sets 0x{value:X}, the "
-                  f"wiring at line {line} 0x{before:X}", index, sub)
+        diags.add(NET012, loc, f"{node.spec.name}: this wiring sets 0x{value:X}, the wiring at line {line} "
+                  f"0x{before:X}", index, sub)
         return
     if set_value(node, index, sub, value, loc, diags):
         node.wired[(index, sub)] = value
@@ -307,7 +307,7 @@ def check_boot(network: NetworkSpec, nodes: list[NodeModel], diags: Diagnostics)
             if entry is None:
                 diags.add(NET011, loc, f"{node.spec.name}: {key} 0x{given:X} is checked against 0x1018sub{sub}, "
                           f"which {node.od.source} does not have", 0x1018, sub)
-            elif described is not None and described != given and (sub < 4 or not entry.writable):
+            elif described and described != given:  # 0: a description of any unit, not of this one
                 diags.add(NET011, loc, f"{node.spec.name}: {key} 0x{given:X} but {node.od.source}:{entry.line} "
                           f"gives 0x{described:X}", 0x1018, sub)
         if node.spec.options.get("check_identity", True) and node.od.find(0x1018, 1) is None:
@@ -326,7 +326,7 @@ def _heartbeat(network: NetworkSpec, node: NodeModel, diags: Diagnostics) -> Non
     if producer is None or producer == 0:
         diags.add(NET013, loc, f"{node.spec.name}: the master expects a heartbeat every {consumer} ms but the "
                   f"slave sends none (0x1017 = {producer if producer is not None else 'absent'}); configure 0x1017",
-                  0x1017, 0)
+                  0x1017)
     elif consumer <= producer:
         diags.add(NET013, loc, f"{node.spec.name}: heartbeat {consumer} ms is not longer than the slave's "
-                  f"producer heartbeat time 0x1017 = {producer} ms", 0x1017, 0)
+                  f"producer heartbeat time 0x1017 = {producer} ms", 0x1017)
