@@ -150,3 +150,15 @@ def test_domain_in_rom_only_when_its_value_is_fixed() -> None:
     place(od, forced, diags)
     assert [(d.rule, d.index) for d in diags] == [("GEN003", 0x2002)]
     assert "not const keeps its buffer" in next(iter(diags)).message
+
+
+def test_report_shows_boot_configuration_and_wiring(tmp_path: Path) -> None:
+    page = tmp_path / "r.md"
+    assert main(["report", str(ROOT / "examples" / "plasma-equipment" / "master.eds"), "--network", str(EXAMPLE),
+                 "-o", str(page)]) == 0
+    text = page.read_text()
+    assert "| 127 | controller | master; starts the slaves one by one; boot time 5000 ms |" in text
+    assert "| 4 | inverter | optional slave, kept alive | product_code 0x104 | 300 ms | 1 |" in text
+    assert "| controller TPDO1 | hv RPDO1 | 0x201 | HV start/stop → Start/stop," in text
+    # the PDOs are those of the network as configured: io's RPDO1 is disabled by the network file
+    assert "node 5 RPDO1" not in text
