@@ -38,7 +38,8 @@ class NetworkOutput:
 def build(path: Path, lookup: str = "hash") -> NetworkOutput:
     linted = lint_network_nodes(path, LintOptions(), RuleFilter())
     findings = [d for r in linted.results for d in r.diagnostics if d.severity >= Severity.WARNING]
-    if linted.unreadable or any(d.severity >= Severity.ERROR for d in findings):
+    if linted.unreadable or any(d.severity >= Severity.ERROR and (d.rule.startswith("NET") or d.blocks)
+                                for d in findings):
         return NetworkOutput(findings, refused=True)
     master = next((n for n in linted.nodes if n.spec.master), None)
     if master is None:
