@@ -112,3 +112,34 @@ def test_file_mistakes(text: str, line: int, words: str) -> None:
     diags = Diagnostics()
     parse_network(text, Path("net.toml"), diags)
     assert [(d.rule, d.loc.line) for d in diags if words in d.message] == [("NET001", line)], list(diags)
+
+
+def test_values_from_a_dcf(tmp_path: Path) -> None:
+    """`dcf = ...`: its ParameterValues that differ from the description's are configured, under
+    `[node.values]`; the concise DCF holds them, as a reader written from CiA 306 decodes it."""
+    from .test_concise import _cia306_read
+
+    eds = (FIXTURES / "network" / "slave_a.eds").read_text()
+    (tmp_path / "slave_a.eds").write_text(eds)
+    dcf = eds.replace("[1017]\n", "[1017]\nParameterValue=250\n", 1) \
+        .replace("[1400sub2]\n", "[1400sub2]\nParameterValue=254\n", 1) \
+        .replace("[2001]\n", "[2001]\nParameterValue=7\n", 1)
+    assert dcf.count("ParameterValue") == 3
+    (tmp_path / "a.dcf").write_text(dcf)
+    (tmp_path / "master.eds").write_text((FIXTURES / "network" / "master.eds").read_text())
+    (tmp_path / "net.toml").write_text('[master]\nfile = "master.eds"\nnode_id = 1\n'
+                                       '[[node]]\nname = "a"\nfile = "slave_a.eds"\nnode_id = 2\ndcf = "a.dcf"\n'
+                                       '[node.values]\n"Process value 16 bit" = 9\n')
+    assert main(["network", str(tmp_path / "net.toml"), "-o", str(tmp_path / "out")]) == 0
+    entries = _cia306_read((tmp_path / "out" / "a.bin").read_bytes())
+    assert entries == [(0x1017, 0, (250).to_bytes(2, "little")), (0x2001, 0, (9).to_bytes(2, "little"))]
+
+
+def test_master_values_lines() -> None:
+    text = ('[[node]]\nfile = "a.eds"\nnode_id = 2\n[node.values]\n"0x1017" = 1\n'
+            '[master]\nfile = "m.eds"\nnode_id = 1\n[master.values]\n"0x1017" = 2\n')
+    diags = Diagnostics()
+    spec = parse_network(text, Path("net.toml"), diags)
+    assert not list(diags)
+    assert [(n.name, [(s.value, s.line) for s in n.settings]) for n in spec.nodes] == [
+        ("master", [(2, 10)]), ("node2", [(1, 5)])]
