@@ -211,17 +211,17 @@ def _wire(pdo: PdoSpec, by_name: dict[str, NodeModel], source: str, diags: Diagn
     mapped = _entries(pdo, producer, consumer, loc, diags)
     if mapped is None:
         return
-    for node, comm, mapping, number_, side in ((producer, TPDO_COMM, TPDO_MAPPING, pdo.tpdo, 0),
-                                               (consumer, RPDO_COMM, RPDO_MAPPING, pdo.rpdo, 1)):
-        c, m = comm + number_ - 1, mapping + number_ - 1
-        kind = "TPDO" if side == 0 else "RPDO"
+    sides = (("TPDO", producer, TPDO_COMM, TPDO_MAPPING, pdo.tpdo, [(a, bits) for a, _, bits in mapped]),
+             ("RPDO", consumer, RPDO_COMM, RPDO_MAPPING, pdo.rpdo, [(b, bits) for _, b, bits in mapped]))
+    for kind, node, comm, mapping, pdo_number, entries in sides:
+        c, m = comm + pdo_number - 1, mapping + pdo_number - 1
         if node.od.find(c, 1) is None or node.od.find(m, 0) is None \
-                or any(node.od.find(m, n) is None for n in range(1, len(mapped) + 1)):
-            diags.add(NET012, loc, f"{node.spec.name} has no {kind}{number_} with {len(mapped)} mapping "
+                or any(node.od.find(m, n) is None for n in range(1, len(entries) + 1)):
+            diags.add(NET012, loc, f"{node.spec.name} has no {kind}{pdo_number} with {len(entries)} mapping "
                       f"entries ({where(c)}, {where(m)}) in {node.od.source}")
             continue
-        words = [(entry[0] << 16) | (entry[1] << 8) | bits for a, b, bits in mapped for entry in [(a, b)[side]]]
-        wanted = {(c, 1): cob, (c, 2): pdo.transmission, (m, 0): len(mapped)}
+        words = [(index << 16) | (sub << 8) | bits for (index, sub), bits in entries]
+        wanted = {(c, 1): cob, (c, 2): pdo.transmission, (m, 0): len(entries)}
         wanted.update({(m, n): w for n, w in enumerate(words, start=1)})
         for (index, sub), value in wanted.items():
             _wire_value(node, index, sub, value, loc, diags)

@@ -1,8 +1,12 @@
 """`odgen lint --network NET.toml`: lint every node's file, then the network (NET rules).
 
     [[node]]
-    file = "master.eds"   # relative to NET.toml
-    node_id = 1
+    file = "slave.eds"   # relative to NET.toml
+    node_id = 2
+
+The network file (docs/network.md, read by netfile.py) may also name a `[master]`, configure
+values and boot options per node and wire PDOs (`[[pdo]]`); netconfig.py works out what is
+configured, and the NET passes (passes/network.py) check the PDOs of the network as configured.
 """
 
 from __future__ import annotations
