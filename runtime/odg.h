@@ -201,8 +201,9 @@ enum odg_type {
  */
 
 typedef struct odg_domain {
-    uint8_t *data;     /* RAM buffer of `capacity` bytes */
-    uint32_t *length;  /* current length in RAM */
+    uint8_t *data;     /* RAM buffer of `capacity` bytes; for an ODG_S_ROM entry the const bytes in
+                        * FLASH (cast: never written, as odg_write refuses ODG_S_ROM) */
+    uint32_t *length;  /* current length (RAM; for ODG_S_ROM, const) */
     uint32_t capacity;
 } odg_domain_t;
 
