@@ -143,3 +143,14 @@ def test_master_values_lines() -> None:
     assert not list(diags)
     assert [(n.name, [(s.value, s.line) for s in n.settings]) for n in spec.nodes] == [
         ("master", [(2, 10)]), ("node2", [(1, 5)])]
+
+
+def test_mapping_of_a_pdo_without_cob_id(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    eds = (FIXTURES / "network" / "slave_a.eds").read_text()
+    cut = eds.index("[1800sub1]")
+    eds = eds[:cut] + eds[eds.index("[1800sub2]"):]  # TPDO1 without its COB-ID
+    (tmp_path / "slave_a.eds").write_text(eds)
+    (tmp_path / "net.toml").write_text('[[node]]\nfile = "slave_a.eds"\nnode_id = 2\n[node.values]\n'
+                                       '"0x1A00sub1" = 0x20010010\n')
+    _, found = _findings(capsys, tmp_path / "net.toml")
+    assert ("NET009", "net.toml", 5) in found

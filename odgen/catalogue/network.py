@@ -78,7 +78,9 @@ NET008 = define(
 NET009 = define(
     "NET009", E, "configured entry is read-only or absent in the slave's description",
     why="The master writes each configured value by SDO at boot; a slave refuses a write to an entry its "
-    "description declares ro or const (abort 0x06010002) or does not have (0x06020000), and the boot fails.",
+    "description declares ro or const (abort 0x06010002) or does not have (0x06020000), and the boot fails. "
+    "A PDO mapping is changed between invalidating and validating the PDO's COB-ID (CiA 301), so a "
+    "configured mapping needs its PDO's communication object with a COB-ID.",
     example='[node.values]\n"0x1000" = 0x191   # device type, ro',
     fix="Configure only entries the slave's description declares writable (wo, rw, rwr, rww).",
     blocking="Network findings come from `odgen lint --network` and `odgen network`; `generate` reads one file "

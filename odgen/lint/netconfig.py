@@ -178,6 +178,20 @@ def configure(network: NetworkSpec, nodes: list[NodeModel], dcfs: dict[str, Obje
     by_name = {node.spec.name: node for node in nodes}
     for pdo in network.pdos:
         _wire(pdo, by_name, network.source, diags)
+    for node in nodes:
+        _pdo_without_cob_id(node, diags)
+
+
+def _pdo_without_cob_id(node: NodeModel, diags: Diagnostics) -> None:
+    """A configured mapping is written between invalidating and validating its PDO's COB-ID
+    (CiA 301), so the PDO's communication object must have one."""
+    for (index, sub), configured in list(node.values.items()):
+        if (RPDO_MAPPING <= index < RPDO_MAPPING + 0x200 or TPDO_MAPPING <= index < TPDO_MAPPING + 0x200) \
+                and node.in_force(index - 0x200, 1) is None:
+            diags.add(NET009, configured.loc, f"{node.spec.name}: {node.od.source} has no COB-ID "
+                      f"{where(index - 0x200, 1)} for this mapping's PDO; it cannot be changed as CiA 301 "
+                      "requires", index, sub)
+            del node.values[(index, sub)]
 
 
 def _from_dcf(node: NodeModel, dcf: ObjectDictionary, diags: Diagnostics) -> None:
