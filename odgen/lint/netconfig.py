@@ -324,7 +324,8 @@ def check_boot(network: NetworkSpec, nodes: list[NodeModel], diags: Diagnostics)
             elif described and described != given:  # 0: a description of any unit, not of this one
                 diags.add(NET011, loc, f"{node.spec.name}: {key} 0x{given:X} but {node.od.source}:{entry.line} "
                           f"gives 0x{described:X}", 0x1018, sub)
-        if node.spec.options.get("check_identity", True) and node.od.find(0x1018, 1) is None:
+        booted = network.master is not None  # without a master nobody checks identities
+        if booted and node.spec.options.get("check_identity", True) and node.od.find(0x1018, 1) is None:
             diags.add(NET011, Loc(network.source, node.spec.line("check_identity")),
                       f"{node.spec.name}: the identity is checked but {node.od.source} has no 0x1018sub1 "
                       "(vendor-ID); set check_identity = false", 0x1018, 1)
