@@ -100,7 +100,9 @@ def resolve(node: NodeModel, text: str, loc: Loc, diags: Diagnostics) -> tuple[i
     found = find_entry(node.od, text)
     if len(found) == 1:
         return found[0]
-    if not found:
+    if not found and _ADDRESS_RE.match(text.strip()):
+        diags.add(NET008, loc, f"{node.spec.name}: {node.od.source} has no entry {text.strip()}")
+    elif not found:
         diags.add(NET008, loc, f"{node.spec.name}: no entry of {node.od.source} is named {text!r}")
     else:
         shown = ", ".join(where(i, s) for i, s in found[:5]) + (" ..." if len(found) > 5 else "")
