@@ -36,6 +36,7 @@ class NetworkOutput:
 
 
 def build(path: Path, lookup: str = "hash") -> NetworkOutput:
+    """Every output file of the network at `path`, or the findings that refuse it; nothing is written here."""
     linted = lint_network_nodes(path, LintOptions(), RuleFilter())
     findings = [d for r in linted.results for d in r.diagnostics if d.severity >= Severity.WARNING]
     if linted.unreadable or any(d.severity >= Severity.ERROR and (d.rule.startswith("NET") or d.blocks)
