@@ -154,3 +154,71 @@ def test_mapping_of_a_pdo_without_cob_id(tmp_path: Path, capsys: pytest.CaptureF
                                        '"0x1A00sub1" = 0x20010010\n')
     _, found = _findings(capsys, tmp_path / "net.toml")
     assert ("NET009", "net.toml", 5) in found
+
+
+def _network(tmp_path: Path, body: str) -> Path:
+    for name in ("master.eds", "slave_a.eds", "slave_b.eds"):
+        (tmp_path / name).write_text((FIXTURES / "network" / name).read_text())
+    (tmp_path / "net.toml").write_text('[master]\nfile = "master.eds"\nnode_id = 1\n'
+                                       '[[node]]\nname = "a"\nfile = "slave_a.eds"\nnode_id = 2\n'
+                                       '[[node]]\nname = "b"\nfile = "slave_b.eds"\nnode_id = 3\n' + body)
+    return tmp_path / "net.toml"
+
+
+def test_names_ignore_case_spaces_and_underscores(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    from .test_concise import _cia306_read
+
+    net = _network(tmp_path, '[node.values]\n"producer_HEARTBEAT   time" = 120\n')
+    assert main(["network", str(net), "-o", str(tmp_path / "out")]) == 0
+    assert _cia306_read((tmp_path / "out" / "b.bin").read_bytes()) == [(0x1017, 0, (120).to_bytes(2, "little"))]
+    assert "\n[DeviceComissioning]\nNodeID=0x03\n" in (tmp_path / "out" / "b.dcf").read_text()
+
+
+@pytest.mark.parametrize(("body", "line", "words"), [
+    # two tables set master's RPDO1 two ways
+    ('[[pdo]]\nfrom = "a"\ntpdo = 1\nto = "master"\nrpdo = 1\nentries = [["0x2000", "0x2000"]]\n'
+     '[[pdo]]\nfrom = "b"\ntpdo = 1\nto = "master"\nrpdo = 1\nentries = [["0x2001", "0x2001"]]\n', 18,
+     "this wiring sets"),
+    # 3 x 32 bit
+    ('[[pdo]]\nfrom = "a"\ntpdo = 1\nto = "master"\nrpdo = 1\n'
+     'entries = [["0x2002", "0x2002"], ["0x2002", "0x2002"], ["0x2002", "0x2002"]]\n', 12, "96 bit mapped"),
+    # TPDO5 has no predefined COB-ID
+    ('[[pdo]]\nfrom = "a"\ntpdo = 5\nto = "master"\nrpdo = 1\nentries = [["0x2000", "0x2000"]]\n', 12,
+     "give `cob_id`"),
+    # a node the network does not have
+    ('[[pdo]]\nfrom = "c"\ntpdo = 1\nto = "master"\nrpdo = 1\nentries = [["0x2000", "0x2000"]]\n', 13,
+     "is no node of the network"),
+])
+def test_wiring_mistakes(tmp_path: Path, body: str, line: int, words: str) -> None:
+    from odgen.lint.driver import RuleFilter
+    from odgen.lint.network import lint_network_nodes
+    from odgen.lint.passes import LintOptions
+
+    linted = lint_network_nodes(_network(tmp_path, body), LintOptions(), RuleFilter())
+    found = [(d.rule, d.loc.line) for r in linted.results for d in r.diagnostics if words in d.message]
+    assert found and found[0][1] == line and found[0][0] in ("NET001", "NET012"), found
+
+
+def test_one_tpdo_feeds_two_consumers(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    wire = '[[pdo]]\nfrom = "a"\ntpdo = 1\nto = "{}"\nrpdo = 1\nentries = [["0x2000", "0x2000"]]\n'
+    net = _network(tmp_path, wire.format("master") + wire.format("b"))
+    _, found = _findings(capsys, net)
+    assert not {f for f in found if f[0] in ("NET004", "NET006", "NET012")}, found
+
+
+@pytest.mark.parametrize(("keys", "startup"), [
+    ("", 0x01),
+    ("start_all = true\n", 0x03),
+    ("start_self = false\n", 0x05),
+    ("start_slaves = false\n", 0x09),
+    ("reset_all = true\nstop_all = true\n", 0x51),
+])
+def test_nmt_startup_bits(tmp_path: Path, keys: str, startup: int) -> None:
+    import canopen
+
+    net = _network(tmp_path, "")
+    net.write_text(net.read_text().replace("node_id = 1\n", "node_id = 1\n" + keys, 1))
+    assert main(["network", str(net), "-o", str(tmp_path / "out")]) == 0
+    od = canopen.import_od(str(tmp_path / "out" / "master.dcf"), 1)
+    assert od[0x1F80].default == startup
+    assert [od[0x1F81][n].default for n in (2, 3)] == [0x05, 0x05]  # slave, booted again after an error
