@@ -201,7 +201,7 @@ def test_rules_run_on_real_files(path: Path) -> None:
 @pytest.mark.parametrize("name,line", [
     ("eyou__YiyouServo_V1.4.eds", "error[OBJ014]: 0x2023 HighLimit=65536 is above the UNSIGNED16 maximum 65535"),
     ("kacanopen__Easy-ak_v1.30.eds", "error[OBJ010]: 0x1003sub0 DataType=0x0007 (UNSIGNED32) is not UNSIGNED8"),
-    ("roscanopen__Schunk.eds", "error[PDO004]: 0x1601sub1 RPDO maps 0x606Bsub0, which is ro"),
+    ("roscanopen__Schunk.eds", "warning[PDO004]: 0x1601sub1 RPDO maps 0x606Bsub0, which is ro; RPDO2 starts disabled"),
     ("pycanopen__e35.eds", "warning[HDR012]: VendorNumber=101 but 0x1018sub1 is 0xFF"),
     ("wustsat__lora.eds", "[MandatoryObjects] entry 3 lists 0x03FA, which has no section "
                           "(1018 is decimal; 0x1018 was probably meant)"),
