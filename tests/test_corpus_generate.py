@@ -18,8 +18,8 @@ from odgen.pipeline import Request, generate
 
 from .conftest import BUILD, corpus_files
 
-# Refused without a flag: file -> (the rules that block, what makes the C or the node wrong). Each but the
-# last three generates with --unsafe-fixes (the repairs are guesses: docs/rules.md); none with --fix alone.
+# Refused without a flag: file -> (the rules that block, what makes the C or the node wrong). Each not in
+# UNREPAIRABLE generates with --unsafe-fixes (the repairs are guesses: docs/rules.md); none with --fix alone.
 REFUSED: dict[str, tuple[set[str], str]] = {
     "kacanopen__CiA_profiles_301.eds": ({"SYN011"}, "a template: prose as values"),
     "mabcandle__MD80_latest.eds": ({"COM016", "OBJ017"}, "SDO server 1 on server 0's CAN-IDs (two answers to one "
