@@ -91,3 +91,24 @@ def test_where_the_node_could_not_the_finding_blocks(case: str, tmp_path: Path) 
     result = generate(Request(path, name="policy_node"))
     assert not result.files
     assert {d.rule for d in result.refused} == rules, [d.text() for d in result.refused]
+
+
+@pytest.mark.parametrize("asked", ["", "rom"])
+def test_const_nodeid_value_lives_in_ram_unless_rom_is_asked(asked: str, tmp_path: Path) -> None:
+    """A const entry with a $NODEID value (OBJ030) is worked out at start-up: the automatic rule places it
+    in RAM, read-only as before; an options file that asks for rom still gets GEN003."""
+    path = tmp_path / "policy-node.eds"
+    path.write_text(_edit(POLICY.read_text(encoding="utf-8"), "2001", "AccessType=ro", "AccessType=const"),
+                    encoding="utf-8")
+    options = None
+    if asked:
+        options = tmp_path / "rom.toml"
+        options.write_text('[[entry]]\nmatch = "0x2001"\nstorage = "rom"\n', encoding="utf-8")
+    result = generate(Request(path, name="policy_node", options=options))
+    if asked:
+        assert not result.files and {d.rule for d in result.refused} == {"GEN003"}
+        return
+    assert result.files and result.placements is not None
+    assert result.placements[(0x2001, 0)].storage == "ram"
+    outcome = run_check(Request(path, name="policy_node"), cc=shutil.which("gcc") or "gcc")
+    assert outcome.ok, outcome.output[-3000:]
