@@ -238,7 +238,16 @@ odg_abort_t odg_pdo_check_(odg_node_t *n, uint16_t index, uint8_t sub, uint32_t 
         return check_mapping_write(n, tx, index, sub, v, valid);
     }
     if (sub == 1u) {
-        return check_cob(cob, v);
+        odg_abort_t ac = check_cob(cob, v);
+        /* a mapping the node cannot serve is only possible in the dictionary's defaults (SDO
+         * writes of mappings are checked): the PDO stays unused, and enabling it is refused */
+        if (ac == ODG_OK && !valid && !(v & ODG_COB_INVALID)) {
+            uint16_t map = (uint16_t)(index + 0x200u);
+            if (read_mapping(n, tx, map, odg_node_get_or_(n, map, 0, 0), NULL) != ODG_OK) {
+                return ODG_ABORT_INCOMPATIBLE;
+            }
+        }
+        return ac;
     }
     if (sub == 2u) {
         return v > TYPE_SYNC_MAX && v < (tx ? TYPE_RTR_SYNC : TYPE_EVENT) ? ODG_ABORT_VALUE_RANGE : ODG_OK;

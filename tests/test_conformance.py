@@ -130,7 +130,13 @@ SKIPS = {
         "access.write-only emcy.rpdo-length emcy.inhibit emcy.error-register "
         "nmt.hb-consumer lss.inquire",
     "kacanopen__3301002_1.eds": "access.write-only sync.producer sync.window emcy.inhibit",
+    "kacanopen__605.3150.51-V-EK-2-60.eds":
+        "access.write-only nmt.heartbeat sync.producer sync.window pdo.sequence pdo.tpdo-types "
+        "emcy.rpdo-length emcy.inhibit emcy.error-register nmt.hb-consumer",
     "kacanopen__605.3150.67-B-EK-2-60.eds": "sync.producer sync.window emcy.inhibit",
+    "kacanopen__605.3150.71-A-EK-2-60.eds":
+        "access.write-only nmt.heartbeat sync.producer sync.window pdo.sequence pdo.tpdo-types "
+        "emcy.rpdo-length emcy.inhibit emcy.error-register nmt.hb-consumer",
     "kacanopen__CL4-E-2-12.eds": "sync.producer sync.window emcy.inhibit sdo.server lss.inquire",
     "kacanopen__CiA_profiles_401.eds":
         "access.write-only sync.producer sync.window emcy.inhibit nmt.hb-consumer "
@@ -187,12 +193,17 @@ SKIPS = {
         "store.save-load",
     "pycanopen__e35.eds": "emcy.inhibit nmt.hb-consumer",
     "pycanopen__e35_broken_vendor001.eds": "emcy.inhibit nmt.hb-consumer",
+    "pycanopen__sensor.eds":
+        "access.write-only sync.producer sync.window pdo.sequence pdo.tpdo-types "
+        "emcy.rpdo-length emcy.inhibit emcy.error-register nmt.hb-consumer nmt.guarding "
+        "sdo.server lss.inquire store.signature store.save-load",
     "redpesk__m150c.dcf":
         "access.write-only sync.producer sync.window pdo.sequence pdo.tpdo-types "
         "emcy.rpdo-length emcy.inhibit emcy.error-register nmt.guarding sdo.server "
         "lss.inquire store.signature store.save-load",
     "ros2canopen__technosoft.eds": "sync.window emcy.inhibit nmt.hb-consumer",
     "roscanopen__ISD860.eds": "sync.window emcy.inhibit nmt.hb-consumer lss.inquire store.signature store.save-load",
+    "roscanopen__Schunk.eds": "sync.producer sync.window emcy.inhibit store.signature store.save-load",
     "roscanopen__Schunk_0_63.dcf": "sync.producer sync.window emcy.inhibit store.signature store.save-load",
     "roscanopen__cia402_slave.eds": "access.write-only sync.producer sync.window sdo.server lss.inquire",
     "roscanopen__concurrency_master.dcf":

@@ -14,7 +14,7 @@ import pytest
 from odgen.diagnostics import RULES, Diagnostics, Severity
 from odgen.formats import load_path
 from odgen.lint.driver import FileResult
-from odgen.model import ARRAY, Field, Obj, ObjectDictionary, Sub, parse_value
+from odgen.model import ARRAY, RECORD, Field, Obj, ObjectDictionary, Sub, parse_value
 from odgen.model.datatypes import BY_NAME
 from odgen.lint.passes import LintOptions, run_rules
 
@@ -130,6 +130,20 @@ def test_signed_hex_limit_shows_its_reading() -> None:
     ]
 
 
+def test_two_tpdos_on_one_can_id_are_found_past_a_fixed_one() -> None:
+    """RPDO1 on a fixed 0x181 meets TPDO1 ($NODEID+0x180) at node-id 1 only; TPDO5 on TPDO1's COB-ID
+    collides at every node-id, whichever use comes first at node-id 1."""
+    od = ObjectDictionary(source="model", format="eds")
+    for index, cob in ((0x1400, "0x181"), (0x1800, "$NODEID+0x180"), (0x1804, "$NODEID+0x180")):
+        obj = od.objects[index] = Obj(index=index, name=f"PDO {index:04X}", object_code=RECORD)
+        obj.subs[1] = Sub(1, "COB-ID", line=index, data_type=0x0007, access="rw",
+                          default=parse_value(cob, BY_NAME["UNSIGNED32"], index))
+    diags = Diagnostics()
+    run_rules(od, diags, LintOptions())
+    assert [(d.index, d.message) for d in diags if d.rule == "COM016"] == [
+        (0x1804, "TPDO5 uses CAN-ID 0x181, as does TPDO1 (0x1800sub1)")]
+
+
 def test_xdd_models_skip_list_rules_and_xdd_extensions() -> None:
     od = _od((0x2000, _var("1", "UNSIGNED8")))
     od.objects[0x2000].var.extra["co_flagspdo"] = Field("CO_flagsPDO", "0", 7)
@@ -201,7 +215,7 @@ def test_rules_run_on_real_files(path: Path) -> None:
 @pytest.mark.parametrize("name,line", [
     ("eyou__YiyouServo_V1.4.eds", "error[OBJ014]: 0x2023 HighLimit=65536 is above the UNSIGNED16 maximum 65535"),
     ("kacanopen__Easy-ak_v1.30.eds", "error[OBJ010]: 0x1003sub0 DataType=0x0007 (UNSIGNED32) is not UNSIGNED8"),
-    ("roscanopen__Schunk.eds", "error[PDO004]: 0x1601sub1 RPDO maps 0x606Bsub0, which is ro"),
+    ("roscanopen__Schunk.eds", "warning[PDO004]: 0x1601sub1 RPDO maps 0x606Bsub0, which is ro; RPDO2 starts disabled"),
     ("pycanopen__e35.eds", "warning[HDR012]: VendorNumber=101 but 0x1018sub1 is 0xFF"),
     ("wustsat__lora.eds", "[MandatoryObjects] entry 3 lists 0x03FA, which has no section "
                           "(1018 is decimal; 0x1018 was probably meant)"),

@@ -4,6 +4,11 @@ from __future__ import annotations
 
 from .rule import E, INFO, W, define
 
+# OBJ015/OBJ017 on a read-only entry (model.capacity.served_limits)
+UNCHECKED = ("On a read-only entry no write is ever checked (the SDO server refuses it, RPDOs map writable entries "
+             "only, the application's own writes skip limits), so the C leaves out limits that could not hold: a "
+             "warning.")
+
 OBJ001 = define(
     "OBJ001", E, "ParameterName missing", ref="CiA 306 table row O1",
     why="Every object and sub-object section needs a `ParameterName`. Lely and CANopenEditor refuse "
@@ -166,8 +171,8 @@ OBJ015 = define(
     example="LowLimit=100\nHighLimit=10",
     fix="Swap or correct the limits.",
     blocks=True,
-    blocking="The runtime refuses reversed limits when it checks its tables (odg_verify), so the node would not "
-    "start.",
+    blocking="Blocks on a writable entry: the runtime refuses reversed limits when it checks its tables "
+    "(odg_verify), so the node would not start. " + UNCHECKED,
     repair="unsafe: limits written as bit patterns of a signed type that read reversed removed; other reversed "
     "limits swapped")
 
@@ -188,9 +193,9 @@ OBJ017 = define(
     example="LowLimit=1\nHighLimit=10\nDefaultValue=0",
     fix="Correct the value or the limits.",
     blocks=True,
-    blocking="The runtime checks every value against its limits when it checks its tables (odg_verify), "
-    "read-only entries included, so the node would not start; on a writable entry it would also refuse to "
-    "be written its own default.",
+    blocking="Blocks on a writable entry: the runtime checks its value against its limits when it checks its "
+    "tables (odg_verify), so the node would not start, and a master writing back what it read would be refused. "
+    + UNCHECKED,
     repair="unsafe: a value outside its limits clamped to them; a $NODEID value, which cannot be clamped for every "
     "node-id, has the limit it crosses removed")
 
@@ -302,8 +307,8 @@ OBJ030 = define(
     why="`const` says the value is the same for the device's whole life, and generators (odgen, "
     "CANopenNode) place it in FLASH. A `$NODEID+v` value is worked out at start-up from the node-id, "
     "so it is read-only rather than constant: CiA 301 gives the default SDO server's COB-IDs "
-    "(0x1200sub1/sub2) as `ro`. odgen cannot place such a value in rom (GEN003 when the options "
-    "leave it to the automatic rule); masters see no difference between the two, both refuse a write.",
+    "(0x1200sub1/sub2) as `ro`. odgen places such a value in RAM, as a read-only one (GEN003 when the options "
+    "ask for rom); masters see no difference between the two, both refuse a write.",
     example="[1200sub1]\nAccessType=const\nDefaultValue=$NODEID+0x600",
     fix="Write `AccessType=ro`.",
     repair="safe: AccessType const -> ro (masters see the same read-only entry)")

@@ -4,6 +4,10 @@ from __future__ import annotations
 
 from .rule import E, W, define
 
+# The mapping rules' exemption (PDO001-PDO005): a mapping the runtime cannot serve, of a PDO the file starts disabled.
+DISABLED = ("A PDO that starts disabled (COB-ID bit 31) does not block: the node leaves it unused, as the file "
+            "starts it, and refuses to enable it with that mapping (abort 0x06040043), so a master remaps it first.")
+
 PDO001 = define(
     "PDO001", E, "mapped entry does not exist",
     ref="CiA 306 table row C1 / CiA 301 PDO mapping parameter",
@@ -13,7 +17,8 @@ PDO001 = define(
     example="[1A00sub1]\nDefaultValue=0x60000108\n(no [6000] section)",
     fix="Map an existing entry, add the object, or enable the dummy with `DummyXXXX=1`.",
     blocks=True,
-    blocking="The runtime refuses a mapping of a missing entry at start-up, so the PDO would be dead on the bus.",
+    blocking="The runtime refuses a mapping of a missing entry at start-up, so the PDO would be dead on the bus. "
+    + DISABLED,
     repair="unsafe: the mapping entry removed (later entries move up, sub0 counts one less)")
 
 PDO002 = define(
@@ -23,9 +28,11 @@ PDO002 = define(
     example="[6000sub1]\nPDOMapping=0\n[1A00sub1]\nDefaultValue=0x60000108",
     fix="Set `PDOMapping=1` on the entry, or map another one.",
     blocks=True,
-    blocking="The runtime refuses a mapping of a non-mappable entry at start-up, so the PDO would be dead on the "
-    "bus.",
-    repair="unsafe: the mapped entry made PDO-mappable, as the file's own mapping uses it")
+    blocking="Blocks only for an entry no PDO carries (a string, a DOMAIN). The file's own mapping is the more "
+    "specific statement (a device serves its default mapping), so the C makes a number it maps mappable in that "
+    "mapping's direction and the PDO works as described. " + DISABLED,
+    repair="unsafe: a mapped number made PDO-mappable (PDOMapping=1), as the file's own mapping uses it",
+    no_repair="No PDO carries a string or a DOMAIN: which entry the mapping meant is unknown.")
 
 PDO003 = define(
     "PDO003", E, "mapping length differs from the entry's size", ref="CiA 306 table row C3",
@@ -41,7 +48,7 @@ PDO003 = define(
     blocks=True,
     blocking="A mapping longer than its entry shifts every later field, and other short ones the odg runtime "
     "refuses at start-up: the PDO would not carry what the file says. A 64-bit integer mapped with 32 bits "
-    "the runtime serves as CANopenNode does, so that one is a warning and does not block.",
+    "the runtime serves as CANopenNode does, so that one is a warning and does not block. " + DISABLED,
     repair="unsafe: a mapping longer than its entry shortened to the entry's size (later fields of the frame "
     "move)",
     no_repair="A mapping shorter than its entry (other than the 64-bit case): which length is right is unknown.")
@@ -55,7 +62,7 @@ PDO004 = define(
     fix="Map the entry in the other PDO direction, or correct its AccessType.",
     blocks=True,
     blocking="The runtime refuses a mapping against the entry's access at start-up, so the PDO would be dead on the"
-    " bus.",
+    " bus. " + DISABLED,
     repair="unsafe: the mapping entry removed (later entries move up, sub0 counts one less)")
 
 PDO005 = define(
@@ -65,7 +72,8 @@ PDO005 = define(
     example="[1A00sub0]\nDefaultValue=3\n3 entries of 32 bits",
     fix="Move entries to another PDO.",
     blocks=True,
-    blocking="The runtime refuses a mapping longer than a frame at start-up, so the PDO would be dead on the bus.",
+    blocking="The runtime refuses a mapping longer than a frame at start-up, so the PDO would be dead on the bus. "
+    + DISABLED,
     no_repair="Which entries the frame should carry is unknown.")
 
 PDO006 = define(

@@ -29,8 +29,9 @@ from ..catalogue.gen import GEN004, GEN005, GEN006, GEN007, GEN009
 from ..diagnostics import Diagnostics, Loc
 from ..model import Obj, ObjectDictionary, Sub, Value
 from ..model.expect import initial_value
-from ..model.capacity import domain_capacity, domain_default, string_capacity, string_default, value_limits
+from ..model.capacity import domain_capacity, domain_default, served_limits, string_capacity, string_default
 from ..model.od import READABLE, WRITABLE
+from ..model.pdo import default_mapped
 from ..model.datatypes import BASIC_TYPES, DataType
 from ..cnames import COMMENT_WIDTH, comment, identifier, string_literal
 from .packing import packable
@@ -304,6 +305,7 @@ class _Builder:
         self.structs: dict[str, StorageStruct] = {}  # by storage class, "persist:app"
         self.member_names: dict[str, tuple[int, int]] = {}
         self.storage_codes: dict[str, str] = {}  # ODG_S_* by storage class
+        self.mapped = default_mapped(od)  # PDOMapping=0 entries the description's own mappings map (PDO002)
 
     def struct_for(self, storage: str) -> StorageStruct:
         struct = self.structs.get(storage)
@@ -494,7 +496,8 @@ def _sub(b: _Builder, view: DictView, obj: Obj, sub: Sub, names: _Names) -> None
     note = comment(sub.name)
     value = b.od.value_in_force(sub)
     nodeid = value is not None and value.nodeid and isinstance(value.parsed, int)
-    attr = _attr_flags(sub.access, sub.pdo_mapping and dtype.is_numeric, nodeid, bool(placement.hooks))
+    pdo = (_BOTH if sub.pdo_mapping else b.mapped.get((obj.index, subindex), _NONE)) if dtype.is_numeric else _NONE
+    attr = _attr_flags(sub.access, pdo, nodeid, bool(placement.hooks))
     pos = len(view.subs)
     if placement.storage == STORE_CLASS:
         storage = "ODG_S_STORE" + (" | ODG_S_RESTORE_FLAG" if obj.index == RESTORE else "")
@@ -504,7 +507,7 @@ def _sub(b: _Builder, view: DictView, obj: Obj, sub: Sub, names: _Names) -> None
     member_note = _prefixed_comment(f"0x{names.hex_index}sub{subindex}", sub.name, note)
     offset, size = _value_member(b, view, target, (obj.index, subindex), sub, dtype, placement, member, value,
                                  member_note)
-    if (sub.low is not None or sub.high is not None) and _limit(view, pos, sub, dtype):
+    if (sub.low is not None or sub.high is not None) and _limit(view, pos, sub, value, dtype):
         attr += " | ODG_A_LIMIT"
     view.subs.append(SubView(offset, size, subindex, dtype.code, attr, b.storage_code(placement), note))
     if placement.hooks:
@@ -527,20 +530,24 @@ def _prefixed_comment(prefix: str, text: str, flat: str) -> str:
     return comment(f"{prefix} {text}")
 
 
+_BOTH: frozenset[str] = frozenset(("RPDO", "TPDO"))
+_NONE: frozenset[str] = frozenset()
+
+
 @functools.cache
-def _attr_flags(access: str | None, pdo: bool, nodeid: bool, hooked: bool) -> str:
-    """ODG_A_* of a sub-entry: its access, PDO mapping (`pdo`: mappable and numeric), a $NODEID
-    default, hooks. Few combinations occur, so each is worked out once."""
+def _attr_flags(access: str | None, pdo: frozenset[str], nodeid: bool, hooked: bool) -> str:
+    """ODG_A_* of a sub-entry: its access, PDO mapping (`pdo`: the directions a numeric entry may be
+    mapped in, as far as its access allows), a $NODEID default, hooks. Few combinations occur, so each is
+    worked out once."""
     flags = []
     if access in READABLE:
         flags.append("ODG_A_READ")
     if access in WRITABLE:
         flags.append("ODG_A_WRITE")
-    if pdo:
-        if access in ("ro", "const", "rwr", "rw"):
-            flags.append("ODG_A_TPDO")
-        if access in ("wo", "rww", "rw"):
-            flags.append("ODG_A_RPDO")
+    if "TPDO" in pdo and access in ("ro", "const", "rwr", "rw"):
+        flags.append("ODG_A_TPDO")
+    if "RPDO" in pdo and access in ("wo", "rww", "rw"):
+        flags.append("ODG_A_RPDO")
     if nodeid:
         flags.append("ODG_A_NODEID")
     if hooked:
@@ -612,12 +619,13 @@ def _domain(b: _Builder, view: DictView, target: StorageStruct, member: str, val
     return str(len(view.domains) - 1), cap
 
 
-def _limit(view: DictView, pos: int, sub: Sub, dtype: DataType) -> bool:
+def _limit(view: DictView, pos: int, sub: Sub, value: Value | None, dtype: DataType) -> bool:
     if not dtype.is_numeric or (sub.low is None and sub.high is None):
         return False
-    low, high = value_limits(sub.low, sub.high, dtype)
-    if low is None or high is None:
+    limits = served_limits(sub.low, sub.high, value, dtype, sub.writable)
+    if limits is None:
         return False
+    low, high = limits
     view.limits.append(LimitView(f"UINT64_C(0x{limit_bits(low, dtype):016X})",
                                  f"UINT64_C(0x{limit_bits(high, dtype):016X})", pos, comment(f"{low} .. {high}")))
     return True

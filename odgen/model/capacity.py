@@ -69,3 +69,34 @@ def value_limits(low: Value | None, high: Value | None,
     if dtype.max is not None and hi is not None and hi > dtype.max:
         hi = dtype.max
     return lo, hi
+
+
+# A $NODEID value is linear in the node-id, so whether it stays within limits shows at the ends.
+NODE_ID_ENDS = (1, 127)
+
+
+def served_limits(low: Value | None, high: Value | None, value: Value | None, dtype: DataType,
+                  writable: bool) -> tuple[int | float, int | float] | None:
+    """The limits the C checks a write of the entry against (value_limits()), or None for none.
+
+    A read-only entry keeps no limits that could not hold: reversed ones (OBJ015) or ones its value
+    in force lies outside of (OBJ017). No write from the bus reaches such an entry (the SDO server
+    refuses it for its access, an RPDO maps writable entries only) and the application's own writes
+    are not checked against limits, so the node behaves the same without them, while the runtime's
+    table check (odg_verify) would refuse them and the node would not start."""
+    lo, hi = value_limits(low, high, dtype)
+    if lo is None or hi is None:
+        return None
+    if writable or lo <= hi and _within(value, lo, hi):
+        return lo, hi
+    return None
+
+
+def _within(value: Value | None, lo: int | float, hi: int | float) -> bool:
+    if value is None or value.error is not None:
+        return True
+    for node_id in NODE_ID_ENDS if value.nodeid else NODE_ID_ENDS[:1]:
+        v = value.resolve(node_id)
+        if isinstance(v, (int, float)) and not lo <= v <= hi:
+            return False
+    return True

@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 
-from .cia301 import RPDO_COMM, RPDO_MAPPING, TPDO_COMM, TPDO_MAPPING
+from .cia301 import COB_INVALID, RPDO_COMM, RPDO_MAPPING, TPDO_COMM, TPDO_MAPPING
 from .od import ARRAY, RECORD, Obj, ObjectDictionary, Sub
 from .values import Value, number, plain_int
 
@@ -98,3 +98,34 @@ def decode_entry(od: ObjectDictionary, sub: Sub) -> MappingEntry | None:
     line = value.line if value.line else sub.line_of("parametervalue" if value is sub.parameter_value
                                                      else "defaultvalue")
     return MappingEntry(sub, value, raw >> 16, (raw >> 8) & 0xFF, raw & 0xFF, line)
+
+
+def default_mapped(od: ObjectDictionary) -> dict[tuple[int, int], frozenset[str]]:
+    """(index, sub-index) -> the directions ("RPDO", "TPDO") the dictionary's own mappings map the entry in.
+
+    An entry the description's mapping maps is mappable in that direction whatever its PDOMapping says
+    (PDO002): the mapping is the more specific statement, a device serves its own default mapping."""
+    found: dict[tuple[int, int], frozenset[str]] = {}
+    for obj, kind in mapping_objects(od):
+        for entry in decode_mapping(od, obj).entries:
+            key = (entry.index, entry.subindex)
+            found[key] = found.get(key, frozenset()) | {kind}
+    return found
+
+
+# A $NODEID COB-ID is linear in the node-id: what holds at both ends holds for every node-id.
+_NODE_ID_ENDS = (1, 127)
+
+
+def pdo_disabled(od: ObjectDictionary, mapping_index: int) -> bool:
+    """Whether the PDO of a mapping object starts disabled: its COB-ID in force has bit 31 set at every
+    node-id. The runtime then leaves a mapping it cannot serve unused and refuses to enable the PDO with it
+    (odg_pdo.c), so the node starts as the description says."""
+    kind = mapping_kind(mapping_index)
+    comm = od.objects.get(MAPPINGS[mapping_index - kind[1]][1] + kind[1]) if kind is not None else None
+    sub = comm.subs.get(1) if comm is not None else None
+    value = od.value_in_force(sub) if sub is not None else None
+    if value is None or value.error is not None or not isinstance(value.parsed, int):
+        return False
+    ends = _NODE_ID_ENDS if value.nodeid else _NODE_ID_ENDS[:1]
+    return all(isinstance(v, int) and 0 <= v <= 0xFFFFFFFF and v & COB_INVALID for v in map(value.resolve, ends))

@@ -67,9 +67,9 @@ def auto_storage(index: int, sub: Sub) -> tuple[str, str]:
         return "ram", "auto: DOMAIN buffers live in RAM"
     if index in RUNTIME_UPDATED:
         return "ram", "auto: the stack updates it at run time (CiA 301)"
-    if sub.access == "const":
-        return "rom", "auto: const"
     nodeid = sub.default is not None and sub.default.nodeid
+    if sub.access == "const" and not nodeid:  # a $NODEID value is worked out at start-up (OBJ030)
+        return "rom", "auto: const"
     if sub.access == "ro" and not sub.pdo_mapping and not nodeid:
         return "rom", "auto: ro, not PDO-mappable"
     reason = "$NODEID-relative" if nodeid else "writable or PDO-mappable"

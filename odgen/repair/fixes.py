@@ -391,8 +391,10 @@ def _mappable(work: _Work, d: Diagnostic) -> Repair | None:
     if raw is None:
         return None
     target = work.od.find(raw >> 16, (raw >> 8) & 0xFF)
-    if target is None or target.pdo_mapping:
-        return _repair(work, d, False, "mapped entry already made PDO-mappable") if target is not None else None
+    if target is None or target.dtype is None or not target.dtype.is_numeric:
+        return None  # no PDO carries a string or a DOMAIN, mappable or not
+    if target.pdo_mapping:
+        return _repair(work, d, False, "mapped entry already made PDO-mappable")
     target.pdo_mapping = True
     line = target.lines.get("pdomapping", 0)
     if target.compact:

@@ -65,13 +65,16 @@ def _uses(od: ObjectDictionary, node_id: int) -> Iterator[tuple[int, Use]]:
 
 
 def _collisions(od: ObjectDictionary, node_id: int) -> dict[tuple[Use, Use], int]:
-    """(later use, first use) -> CAN-ID of every two uses that share a CAN-ID at `node_id`."""
-    seen: dict[int, Use] = {}
+    """(later use, earlier use) -> CAN-ID of every two uses that share a CAN-ID at `node_id`. Every
+    pair, not only the first use of a CAN-ID: which use comes first can change with the node-id (a
+    fixed 0x181 before $NODEID+0x180 at node-id 1 only), and a pair is reported where it holds at both."""
+    seen: dict[int, list[Use]] = {}
     found: dict[tuple[Use, Use], int] = {}
     for can_id, use in _uses(od, node_id):
-        first = seen.setdefault(can_id, use)
-        if first is not use:
+        earlier = seen.setdefault(can_id, [])
+        for first in earlier:
             found[use, first] = can_id
+        earlier.append(use)
     return found
 
 

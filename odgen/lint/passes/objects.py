@@ -10,7 +10,7 @@ from ...catalogue.objects import (
     OBJ015, OBJ016, OBJ017, OBJ018, OBJ019, OBJ020, OBJ021, OBJ022, OBJ023, OBJ024, OBJ025, OBJ026, OBJ027, OBJ028,
     OBJ029, OBJ030)
 from ...catalogue.rule import Rule
-from ...diagnostics import Diagnostics, Loc
+from ...diagnostics import Diagnostics, Loc, Severity
 from ...model import (ACCESS_TYPES, ARRAY, DEFSTRUCT, DEFTYPE, DOMAIN, RECORD, VAR, Field, Obj, ObjectDictionary, Sub,
                      Value)
 from ...model.cia301 import ERROR_HISTORY, PDO_COUNT, RPDO_MAPPING, TPDO_MAPPING
@@ -338,7 +338,17 @@ def _ordered(od: ObjectDictionary, index: int, where_sub: int | None, sub: Sub, 
         return
     node = f" for node-id {node_id}" if sub.low.nodeid or sub.high.nodeid else ""
     diags.add(OBJ015, Loc(od.source, value_line(sub, sub.low, "lowlimit")),
-              f"LowLimit={_show(sub.low)} is above HighLimit={_show(sub.high)}{node}", index, where_sub)
+              f"LowLimit={_show(sub.low)} is above HighLimit={_show(sub.high)}{node}{_unchecked(sub)}", index,
+              where_sub, blocks=sub.writable, severity=_milder(sub))
+
+
+def _milder(sub: Sub) -> Severity | None:
+    return None if sub.writable else Severity.WARNING
+
+
+def _unchecked(sub: Sub) -> str:
+    """What the C does with the limits of a read-only entry that could not hold (model.capacity.served_limits)."""
+    return "" if sub.writable else f"; {sub.access} entry: no write is checked, the C leaves the limits out"
 
 
 
@@ -382,8 +392,8 @@ def _within_limits(od: ObjectDictionary, obj: Obj, sub: Sub, keyword: str, value
         node = f" for node-id {node_id}" if value.nodeid or limit.nodeid else ""
         side = "below" if below else "above"
         diags.add(OBJ017, Loc(od.source, value_line(sub, value, keyword)),
-                  f"{_LABEL[keyword]}={_show(value)} is {side} {name}={_show(limit)}{node}",
-                  obj.index, addr(obj, sub))
+                  f"{_LABEL[keyword]}={_show(value)} is {side} {name}={_show(limit)}{node}{_unchecked(sub)}",
+                  obj.index, addr(obj, sub), blocks=sub.writable, severity=_milder(sub))
         return
 
 

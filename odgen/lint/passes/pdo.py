@@ -7,11 +7,12 @@ a mapping entry where it has one, else with its DefaultValue.
 
 from __future__ import annotations
 
+from ...catalogue import RULES
 from ...catalogue.pdo import PDO001, PDO002, PDO003, PDO004, PDO005, PDO006, PDO007, PDO008, PDO009, PDO010, PDO011
 from ...diagnostics import Diagnostics, Loc, Severity, where
 from ...model import Obj, ObjectDictionary, Sub
 from ...model.pdo import (FD_FRAME_BITS, FRAME_BITS, MAPPINGS, MAX_ENTRIES, MappingEntry, decode_mapping,
-                         mapping_objects)
+                         mapping_objects, pdo_disabled)
 from ...model.datatypes import BASIC_TYPES, DataType
 from .base import LintOptions, LintPass
 from ...model.header import header_field, header_int
@@ -26,8 +27,9 @@ def mappings(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> 
         offset = 0
         misaligned = False
         contrary: list[MappingEntry] = []
-        for entry in mapping_entries(od, obj, diags):
-            _target(od, obj, kind, entry, contrary, diags)
+        found = Diagnostics()  # the findings that block, unless the PDO starts disabled
+        for entry in mapping_entries(od, obj, diags, found):
+            _target(od, obj, kind, entry, contrary, found, diags)
             if gran and gran > 0 and offset % gran and not misaligned:
                 misaligned = True
                 diags.add(PDO007, Loc(od.source, entry.line),
@@ -36,7 +38,23 @@ def mappings(od: ObjectDictionary, diags: Diagnostics, options: LintOptions) -> 
             offset += entry.length
         _report_contrary(od, obj, kind, contrary, diags)
         if offset > limit:
-            _overflow(od, obj, kind, offset, limit, options, diags)
+            _overflow(od, obj, kind, offset, limit, options, found)
+        _unserved(od, obj, kind, found, diags)
+
+
+def _unserved(od: ObjectDictionary, obj: Obj, kind: str, found: Diagnostics, diags: Diagnostics) -> None:
+    """A mapping the runtime cannot serve blocks, unless its PDO starts disabled (model.pdo.pdo_disabled):
+    the node then leaves the PDO unused, as the description starts it, and refuses to enable it with this
+    mapping (abort 0x06040043), so a master remaps it first."""
+    off = pdo_disabled(od, obj.index)
+    for d in found:
+        if not off or not d.blocks:
+            diags.add(RULES[d.rule], d.loc, d.message, d.index, d.sub, blocks=d.blocking, severity=d.severity)
+            continue
+        diags.add(RULES[d.rule], d.loc, f"{d.message}; {kind}{(obj.index & 0x1FF) + 1} starts disabled and the node "
+                  "refuses to enable it with this mapping", d.index, d.sub, blocks=False, severity=Severity.WARNING)
+    for rule_id, omitted in found.omitted().items():  # past the cap: counted, not listed
+        diags.counts[rule_id] += omitted
 
 
 def _overflow(od: ObjectDictionary, obj: Obj, kind: str, offset: int, limit: int, options: LintOptions,
@@ -50,8 +68,10 @@ def _overflow(od: ObjectDictionary, obj: Obj, kind: str, offset: int, limit: int
               f"{kind} maps {offset} bits; a {frame} carries {limit}", obj.index, 0)
 
 
-def mapping_entries(od: ObjectDictionary, obj: Obj, diags: Diagnostics) -> list[MappingEntry]:
-    """The entries sub0 activates, reporting counted entries that are absent or empty."""
+def mapping_entries(od: ObjectDictionary, obj: Obj, diags: Diagnostics,
+                    unserved: Diagnostics | None = None) -> list[MappingEntry]:
+    """The entries sub0 activates, reporting counted entries that are absent or empty (absent ones, which
+    the runtime cannot serve, into `unserved` when given)."""
     mapping = decode_mapping(od, obj)
     sub0 = obj.subs.get(0)
     if mapping.count is None or sub0 is None:
@@ -64,8 +84,9 @@ def mapping_entries(od: ObjectDictionary, obj: Obj, diags: Diagnostics) -> list[
     if mapping.absent:
         absent = mapping.absent
         names = ", ".join(f"sub{i}" for i in absent[:4]) + (" ..." if len(absent) > 4 else "")
-        diags.add(PDO001, loc, f"sub0={said} counts {names}, which {'is' if len(absent) == 1 else 'are'} "
-                  "not defined", obj.index, 0)
+        (diags if unserved is None else unserved).add(
+            PDO001, loc, f"sub0={said} counts {names}, which {'is' if len(absent) == 1 else 'are'} not defined",
+            obj.index, 0)
     if mapping.empty:
         # once per object: generators write sub0 = highest sub-index over all-zero entries
         empty = mapping.empty
@@ -76,22 +97,37 @@ def mapping_entries(od: ObjectDictionary, obj: Obj, diags: Diagnostics) -> list[
 
 
 def _target(od: ObjectDictionary, obj: Obj, kind: str, entry: MappingEntry, contrary: list[MappingEntry],
-            diags: Diagnostics) -> None:
+            diags: Diagnostics, direct: Diagnostics) -> None:
+    """The mapped entry's findings: those the runtime could not serve into `diags`, the others (a dummy
+    the runtime serves whatever [DummyUsage] says) into `direct`."""
     loc = Loc(od.source, entry.line)
     name = where(entry.index, entry.subindex)
     if entry.index < 0x0020:
-        _dummy(od, obj, entry, diags)
+        _dummy(od, obj, entry, direct)
         return
     target = od.find(entry.index, entry.subindex)
     if target is None:
         diags.add(PDO001, loc, f"maps {name}, which does not exist", obj.index, entry.sub.subindex)
         return
     if not target.pdo_mapping:
-        diags.add(PDO002, loc, f"maps {name}, which has PDOMapping=0", obj.index, entry.sub.subindex)
+        _unflagged(od, obj, kind, entry, target, diags)
     _direction(od, obj, kind, entry, target, diags)
     if (kind, target.access) in (("RPDO", "rwr"), ("TPDO", "rww")):
         contrary.append(entry)
     _length(od, obj, entry, target.dtype, name, diags)
+
+
+def _unflagged(od: ObjectDictionary, obj: Obj, kind: str, entry: MappingEntry, target: Sub,
+               diags: Diagnostics) -> None:
+    """PDO002: the description's own mapping is the more specific statement, so the C makes a number it
+    maps mappable in that direction (model.pdo.default_mapped); other types no PDO carries."""
+    loc, name = Loc(od.source, entry.line), where(entry.index, entry.subindex)
+    dtype = target.dtype
+    if dtype is None or not dtype.is_numeric:
+        diags.add(PDO002, loc, f"maps {name}, which has PDOMapping=0", obj.index, entry.sub.subindex)
+        return
+    diags.add(PDO002, loc, f"maps {name}, which has PDOMapping=0; the C makes it {kind}-mappable, as this "
+              "mapping uses it", obj.index, entry.sub.subindex, blocks=False, severity=Severity.WARNING)
 
 
 def _dummy(od: ObjectDictionary, obj: Obj, entry: MappingEntry, diags: Diagnostics) -> None:
