@@ -93,11 +93,15 @@ static void upload(odg_master_t *m, odg_master_slave_t *s, uint8_t phase, uint16
     }
 }
 
-static void begin(odg_master_t *m, odg_master_slave_t *s)
+/* The boot-up process from its start. A retry of a slave that is absent or was lost keeps its
+ * error status until the slave answers; a boot-up message or the master's start announces it. */
+static void begin(odg_master_t *m, odg_master_slave_t *s, int announce)
 {
     odg_sdoc_abort(channel(m, s), ODG_ABORT_GENERAL); /* a transfer of the boot before */
     odg_nmtm_unwatch(&m->nmt, s->id);
-    set_status(m, s, ODG_SLAVE_BOOTING);
+    if (announce || !is_error(s->status)) {
+        set_status(m, s, ODG_SLAVE_BOOTING);
+    }
     upload(m, s, P_DEVTYPE, 0x1000u, 0);
 }
 
@@ -109,10 +113,13 @@ static void try_later(odg_master_slave_t *s, uint32_t ms)
 
 static void check_network(odg_master_t *m);
 
-/* A check failed: report it; an absent slave is tried again, a wrong one at its next boot-up. */
+/* A check failed: report it; an absent slave is tried again, a wrong one at its next boot-up.
+ * No answer from a slave already in error (lost, or absent before) keeps that error. */
 static void fail(odg_master_t *m, odg_master_slave_t *s, uint8_t status)
 {
-    set_status(m, s, status);
+    if (status != ODG_SLAVE_NO_ANSWER || !is_error(s->status)) {
+        set_status(m, s, status);
+    }
     s->tried = 1;
     if (status == ODG_SLAVE_NO_ANSWER) {
         try_later(s, ODG_MASTER_RETRY_MS);
@@ -282,7 +289,10 @@ static void step(odg_master_t *m, odg_master_slave_t *s)
     case P_DEVTYPE:
         if (!ok) {
             fail(m, s, ODG_SLAVE_NO_ANSWER);
-        } else if (array_u32(m, 0x1F84u, s->id) != 0u && v != array_u32(m, 0x1F84u, s->id)) {
+            break;
+        }
+        set_status(m, s, ODG_SLAVE_BOOTING); /* it answers: a retry's error status ends */
+        if (array_u32(m, 0x1F84u, s->id) != 0u && v != array_u32(m, 0x1F84u, s->id)) {
             fail(m, s, ODG_SLAVE_DEVICE_TYPE);
         } else if ((s->assignment & ODG_ASSIGN_KEEP_ALIVE) != 0u &&
                    odg_nmtm_state(&m->nmt, s->id) == ODG_NMT_OPERATIONAL) {
@@ -349,7 +359,7 @@ static void on_nmt_event(void *ctx, uint8_t node_id, uint8_t event)
         return;
     }
     if (event == ODG_NMTM_BOOTUP) {
-        begin(m, s); /* a slave that (re)booted is configured again */
+        begin(m, s, 1); /* a slave that (re)booted is configured again */
     } else if (event == ODG_HB_TIMEOUT && s->phase == P_DONE) {
         lost(m, s);
     }
@@ -433,7 +443,7 @@ void odg_master_process(odg_master_t *m, uint32_t elapsed_ms)
         if (s->phase == P_WAIT) {
             s->timer = s->timer > elapsed_ms ? s->timer - elapsed_ms : 0u;
             if (s->timer == 0u) {
-                begin(m, s);
+                begin(m, s, 0);
             }
         } else if (s->phase >= P_DEVTYPE && s->phase <= P_DCF && m->sdo[i].state != ODG_SDOC_BUSY) {
             step(m, s); /* timed out */
@@ -462,6 +472,6 @@ void odg_master_reboot(odg_master_t *m, uint8_t node_id)
 {
     odg_master_slave_t *s = find(m, node_id);
     if (s != NULL) {
-        begin(m, s);
+        begin(m, s, 1);
     }
 }
