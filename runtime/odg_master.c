@@ -226,7 +226,7 @@ static void next_entry(odg_master_t *m, odg_master_slave_t *s)
     }
     s->phase = P_DCF;
     s->dcf_left--;
-    if (odg_sdoc_download_ref(channel(m, s), (uint16_t)(h[0] | h[1] << 8), h[2], &ref, s->dcf_at + DCF_HEADER,
+    if (odg_sdoc_download_ref(channel(m, s), (uint16_t)(h[0] | (uint32_t)h[1] << 8), h[2], &ref, s->dcf_at + DCF_HEADER,
                               size) != ODG_OK) {
         try_later(s, ODG_MASTER_RETRY_MS);
     }

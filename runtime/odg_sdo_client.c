@@ -212,7 +212,7 @@ static void next_segment(odg_sdoc_t *ch)
     }
     ch->n += k;
     ch->phase = WAIT_DL_SEG;
-    if (send_frame(ch, (uint8_t)(ch->toggle << 4 | (7u - k) << 1 | (ch->n == ch->total ? 1u : 0u)), seg, 0) != 0) {
+    if (send_frame(ch, (uint8_t)((uint32_t)ch->toggle << 4 | (7u - k) << 1 | (ch->n == ch->total ? 1u : 0u)), seg, 0) != 0) {
         finish(ch, ODG_ABORT_HARDWARE);
     }
 }
@@ -271,7 +271,7 @@ static void upload_segment(odg_sdoc_t *ch, const uint8_t *d)
             ch->state = ODG_SDOC_BUSY; /* tell the server too */
             odg_sdoc_abort(ch, ODG_ABORT_TYPE_LENGTH);
         }
-    } else if (send_frame(ch, (uint8_t)(0x60u | ch->toggle << 4), NULL, 0) != 0) {
+    } else if (send_frame(ch, (uint8_t)(0x60u | (uint32_t)ch->toggle << 4), NULL, 0) != 0) {
         finish(ch, ODG_ABORT_HARDWARE);
     }
 }
