@@ -113,15 +113,17 @@ static void try_later(odg_master_slave_t *s, uint32_t ms)
 
 static void check_network(odg_master_t *m);
 
-/* A check failed: report it; an absent slave is tried again, a wrong one at its next boot-up.
- * No answer from a slave already in error (lost, or absent before) keeps that error. */
+/* A check failed: report it. A slave that did not answer (absent, or an SDO timeout) is tried
+ * again; a wrong one at its next boot-up. No answer from a slave already in error (lost, or
+ * absent before) keeps that error. */
 static void fail(odg_master_t *m, odg_master_slave_t *s, uint8_t status)
 {
-    if (status != ODG_SLAVE_NO_ANSWER || !is_error(s->status)) {
+    int silent = status == ODG_SLAVE_NO_ANSWER || s->abort == ODG_ABORT_TIMEOUT;
+    if (!silent || !is_error(s->status)) {
         set_status(m, s, status);
     }
     s->tried = 1;
-    if (status == ODG_SLAVE_NO_ANSWER) {
+    if (silent) {
         try_later(s, ODG_MASTER_RETRY_MS);
     } else {
         s->phase = P_FAILED;
@@ -285,6 +287,7 @@ static void step(odg_master_t *m, odg_master_slave_t *s)
     const odg_sdoc_t *ch = channel(m, s);
     int ok = ch->state == ODG_SDOC_DONE;
     uint32_t v = odg_sdoc_u32(s->value, ch->n);
+    s->abort = ok ? 0u : ch->abort;
     switch (s->phase) {
     case P_DEVTYPE:
         if (!ok) {
@@ -323,7 +326,6 @@ static void step(odg_master_t *m, odg_master_slave_t *s)
         break;
     case P_DCF:
         if (!ok) {
-            s->abort = ch->abort;
             fail(m, s, ODG_SLAVE_DOWNLOAD);
         } else {
             next_entry(m, s);

@@ -53,7 +53,7 @@ extern "C" {
 #define ODG_SLAVE_VENDOR 'D'      /* 0x1018 sub 1 differs from 0x1F85 */
 #define ODG_SLAVE_HEARTBEAT 'E'   /* heartbeat lost */
 #define ODG_SLAVE_GUARDING 'F'    /* no answer to node guarding */
-#define ODG_SLAVE_DOWNLOAD 'J'    /* configuration download failed (odg_master_slave_t.abort) */
+#define ODG_SLAVE_DOWNLOAD 'J'    /* configuration download failed */
 #define ODG_SLAVE_OPERATIONAL 'L' /* a keep-alive slave was found operational: left as it was */
 #define ODG_SLAVE_PRODUCT 'M'     /* 0x1018 sub 2 differs from 0x1F86 */
 #define ODG_SLAVE_REVISION 'N'    /* 0x1018 sub 3 differs from 0x1F87 */
@@ -92,7 +92,8 @@ typedef struct odg_master_slave {
     uint32_t timer;       /* ms left before the next attempt (waiting) */
     uint32_t dcf_at;      /* the next concise DCF entry's offset */
     uint32_t dcf_left;    /* entries left to download */
-    uint32_t abort;       /* the SDO abort code of the last failed transfer */
+    uint32_t abort;       /* the SDO abort code of the transfer that failed a check (0: none);
+                           * ODG_ABORT_TIMEOUT: no answer, the boot is tried again */
     uint8_t value[4];     /* an uploaded number */
     uint8_t id;           /* node-id */
     uint8_t phase;        /* what the boot-up process does (odg_master.c) */

@@ -129,7 +129,7 @@ def set_default(eds: str, section: str, value: str) -> str:
 
 
 def master_eds(out: Path) -> Path:
-    eds = (TESTS / "master.eds").read_text(encoding="utf-8")
+    eds = set_default((TESTS / "master.eds").read_text(encoding="utf-8"), "1017", "200")  # its own heartbeat
     for n, node_id in enumerate(NET, 1):
         assign = 0x05 | (0x08 if node_id == 2 else 0)  # slave, boot again after a loss; node 2 mandatory
         eds = set_default(eds, f"1F81sub{node_id}", f"0x{assign:08X}")

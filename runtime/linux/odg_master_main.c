@@ -10,7 +10,8 @@
  *
  * RUNTIME, MASTER and HOST are the source lists of odgen/toolchain.py (CORE_SOURCES and
  * SERVICE_SOURCES, MASTER_SOURCES, HOST_SOURCES). Every change of a slave's boot status is
- * printed on stdout as "odg-master: node N status S" (S in hex: docs/master.md); errors go to
+ * printed on stdout as "odg-master: node N status S" (S in hex: docs/master.md; with the SDO
+ * abort code of a failed check); errors go to
  * stderr; SIGTERM and SIGINT end it with status 0.
  */
 #if !defined(_POSIX_C_SOURCE) || _POSIX_C_SOURCE < 200809L
@@ -58,8 +59,12 @@ static uint64_t now_ms(void)
 
 static void on_status(void *ctx, uint8_t node_id, uint8_t status)
 {
-    (void)ctx;
-    printf("odg-master: node %u status 0x%02X\n", node_id, status);
+    const odg_master_slave_t *s = odg_master_slave((const odg_master_t *)ctx, node_id);
+    printf("odg-master: node %u status 0x%02X", node_id, status);
+    if (s != NULL && s->abort != 0u && status >= (uint8_t)'A') {
+        printf(" (SDO abort 0x%08lX %s)", (unsigned long)s->abort, odg_abort_text(s->abort));
+    }
+    printf("\n");
     fflush(stdout);
 }
 
@@ -77,6 +82,7 @@ static int run(int fd, odg_node_t *node, odg_master_t *master)
             fprintf(stderr, "odg-master: poll: %s\n", strerror(errno));
             return 1;
         }
+        r = r < 0 ? 0 : r; /* a signal: the loop condition decides */
         while (r > 0 && (r = odg_socketcan_recv(fd, &f)) == 1) {
             odg_node_receive(node, &f);
             odg_master_receive(master, &f);
@@ -148,6 +154,7 @@ int main(int argc, char **argv)
     mcfg.send_ctx = &fd;
     mcfg.node = &node;
     mcfg.on_status = on_status;
+    mcfg.ctx = &master;
     ac = odg_master_init(&master, &mcfg);
     if (ac != ODG_OK) {
         fprintf(stderr, "odg-master: master init: 0x%08lX %s\n", (unsigned long)ac, odg_abort_text(ac));
