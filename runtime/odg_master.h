@@ -34,7 +34,8 @@
 extern "C" {
 #endif
 
-/* The slave boot status object (docs/network.md): ARRAY of UNSIGNED8, sub-index = node-id. */
+/* The slave boot status object (docs/master.md): ARRAY of UNSIGNED8, sub-index = node-id; the
+ * index odgen network gives it in the master's dictionary. */
 #ifndef ODG_MASTER_STATUS_INDEX
 #define ODG_MASTER_STATUS_INDEX 0x5F81u
 #endif
@@ -58,7 +59,8 @@ extern "C" {
 #define ODG_SLAVE_PRODUCT 'M'     /* 0x1018 sub 2 differs from 0x1F86 */
 #define ODG_SLAVE_REVISION 'N'    /* 0x1018 sub 3 differs from 0x1F87 */
 #define ODG_SLAVE_SERIAL 'O'      /* 0x1018 sub 4 differs from 0x1F88 */
-/* on_status with node-id 0: the boot time 0x1F89 passed before every mandatory slave booted */
+/* on_status with node-id 0: the boot time 0x1F89 passed before the network came up (every
+ * mandatory slave booted, every slave tried once: docs/master.md) */
 #define ODG_MASTER_BOOT_TIMEOUT 0xFEu
 
 /* EMCY codes the master sends (vendor bytes: status, node-id) through cfg.node */

@@ -28,6 +28,7 @@ static uint8_t connected[N_SLAVES];
 static odg_node_t mnode;
 static odg_master_t mgr;
 static int mgr_up; /* odg_master_init ran for this scenario */
+static uint32_t boot_time; /* 0x1F89 of the next start() */
 
 typedef struct queued {
     odg_frame_t f;
@@ -194,6 +195,7 @@ static void start(uint32_t startup, const uint32_t assign[N_SLAVES], unsigned pr
     cfg.send_ctx = &me;
     CHECK_EQ(odg_node_init(&mnode, &cfg), ODG_OK);
     CHECK_EQ(odg_set_u32(&master, 0x1F80, 0, startup), ODG_OK);
+    CHECK_EQ(odg_set_u32(&master, 0x1F89, 0, boot_time), ODG_OK);
     for (i = 0; i < N_SLAVES; i++) {
         uint8_t id = (uint8_t)(i + 2u);
         CHECK_EQ(odg_set_u32(&master, 0x1F81, id, assign[i]), ODG_OK);
@@ -342,8 +344,17 @@ static void test_mandatory_lost_stops_all(void)
 static void test_mandatory_missing_holds_the_start(void)
 {
     const uint32_t assign[N_SLAVES] = {OPTIONAL, MANDATORY, 0, 0};
+    unsigned i, timeouts = 0;
+    boot_time = 2000;
     start(ODG_STARTUP_MASTER, assign, 0x1, 99, 99); /* the mandatory node 3 is absent */
-    run(2500);
+    boot_time = 0;
+    run(1990);
+    CHECK_EQ(n_status > 0u && status_log[n_status - 1u][0] == 0, 0);
+    run(510);
+    for (i = 0; i < n_status; i++) {
+        timeouts += status_log[i][0] == 0 && status_log[i][1] == ODG_MASTER_BOOT_TIMEOUT;
+    }
+    CHECK_EQ(timeouts, 1); /* 0x1F89 passed */
     CHECK_EQ(status(2), ODG_SLAVE_BOOTED);
     CHECK_EQ(status(3), ODG_SLAVE_NO_ANSWER);
     CHECK_EQ(odg_node_state(&slave_nodes[0]), ODG_NMT_PRE_OPERATIONAL); /* configured, not started */
