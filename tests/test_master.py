@@ -88,7 +88,8 @@ def test_master_sources_warning_free(cc: str, tmp_path: Path) -> None:
 
 
 def test_master_core_has_no_stdio_or_heap() -> None:
-    forbidden = re.compile(r"#\s*include\s*<(stdio|stdlib|malloc|string)\.h>|\b(malloc|calloc|realloc|free|printf|memcpy)\s*\(")
+    forbidden = re.compile(r"#\s*include\s*<(stdio|stdlib|malloc|string)\.h>"
+                           r"|\b(malloc|calloc|realloc|free|printf|memcpy)\s*\(")
     for source in MASTER:
         text = source.read_text(encoding="utf-8")
         assert not forbidden.search(text), f"{source.name}: {forbidden.search(text)}"

@@ -19,6 +19,7 @@ import subprocess
 import sys
 import threading
 import time
+from pathlib import Path
 
 import canopen
 from canopen.sdo.exceptions import SdoCommunicationError
@@ -71,7 +72,7 @@ def stop(proc: subprocess.Popen[bytes]) -> tuple[bytes, bytes]:
 
 
 def main() -> None:
-    plan = json.loads(open(sys.argv[1], encoding="utf-8").read())
+    plan = json.loads(Path(sys.argv[1]).read_text(encoding="utf-8"))
     slaves = {int(k): v for k, v in plan["slaves"].items()}
     values = {int(k): v for k, v in plan["values"].items()}
     late, wrong = plan["late"], plan["wrong"]
