@@ -294,9 +294,12 @@ int odg_sdoc_receive(odg_sdoc_t *ch, const odg_frame_t *frame)
     }
     if (frame->len < 8u) {
         odg_sdoc_abort(ch, ODG_ABORT_COMMAND);
+    } else if ((d[0] == 0x80u || scs == 2u || scs == 3u) && !same_object(ch, d)) {
+        /* an abort or initiate answer about another object: a late answer to a transfer given
+         * up before (the server rebooted, say), not this one's: ignored */
     } else if (d[0] == 0x80u) { /* the server aborted */
         finish(ch, odg_sdoc_u32(d + 4, 4) != 0u ? odg_sdoc_u32(d + 4, 4) : ODG_ABORT_GENERAL);
-    } else if (ch->phase == WAIT_DL_INIT && scs == 3u && same_object(ch, d)) {
+    } else if (ch->phase == WAIT_DL_INIT && scs == 3u) {
         if (ch->total <= 4u && ch->total > 0u) {
             finish(ch, ODG_OK);
         } else {
@@ -305,7 +308,7 @@ int odg_sdoc_receive(odg_sdoc_t *ch, const odg_frame_t *frame)
     } else if (ch->phase == WAIT_DL_SEG && scs == 1u && (d[0] >> 4 & 1u) == ch->toggle) {
         ch->toggle ^= 1u;
         next_segment(ch);
-    } else if (ch->phase == WAIT_UL_INIT && scs == 2u && same_object(ch, d)) {
+    } else if (ch->phase == WAIT_UL_INIT && scs == 2u) {
         upload_initiated(ch, d);
     } else if (ch->phase == WAIT_UL_SEG && scs == 0u) {
         upload_segment(ch, d);

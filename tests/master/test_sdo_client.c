@@ -169,9 +169,23 @@ static void test_uploads(void)
     CHECK_EQ(ch.state, ODG_SDOC_ABORTED);
     CHECK_EQ(ch.abort, ODG_ABORT_OUT_OF_MEMORY);
     CHECK_EQ(last()[0], 0x80);
-    /* the answer names another object: aborted */
+    /* an answer or abort about another object (late, of a transfer given up) is ignored */
+    n_sent = 0;
     CHECK_EQ(odg_sdoc_upload(&ch, 0x1000, 0, buf, sizeof buf), ODG_OK);
-    (void)answer(&ch, 0x587, exp2);
+    CHECK_EQ(answer(&ch, 0x587, exp2), 1);
+    seg[0] = 0x80;
+    seg[1] = 0x08;
+    seg[2] = 0x10;
+    CHECK_EQ(answer(&ch, 0x587, seg), 1);
+    CHECK_EQ(ch.state, ODG_SDOC_BUSY);
+    CHECK_EQ(n_sent, 1);
+    (void)answer(&ch, 0x587, exp);
+    CHECK_EQ(ch.state, ODG_SDOC_DONE);
+    CHECK_EQ(odg_sdoc_u32(buf, ch.n), 0x000E0191);
+    /* an upload segment while an initiate answer is awaited: aborted */
+    CHECK_EQ(odg_sdoc_upload(&ch, 0x1000, 0, buf, sizeof buf), ODG_OK);
+    memcpy(seg, "\x00" "abcdefg", 8);
+    (void)answer(&ch, 0x587, seg);
     CHECK_EQ(ch.abort, ODG_ABORT_COMMAND);
 }
 
