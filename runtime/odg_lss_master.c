@@ -45,6 +45,7 @@ void odg_lssm_init(odg_lssm_t *m, odg_send_fn send, void *send_ctx, uint32_t tim
     m->sub = 0;
     m->bit = 0;
     m->heard = 0;
+    m->known = 0;
 }
 
 /* Send one command and wait for answer `awaited` (0: none, the service is done). */
@@ -119,18 +120,25 @@ static void scan_ask(odg_lssm_t *m)
     }
 }
 
-odg_abort_t odg_lssm_fastscan(odg_lssm_t *m)
+odg_abort_t odg_lssm_fastscan_known(odg_lssm_t *m, const uint32_t identity[4], uint8_t known)
 {
     odg_abort_t ac = request(m, 0x51u, 0, 0x80u, 0x4Fu);
     unsigned i;
     if (ac == ODG_OK) {
         m->scan = SCAN_START;
         m->heard = 0;
+        m->known = (uint8_t)(known & 0x0Fu);
         for (i = 0; i < 4u; i++) {
-            m->identity[i] = 0;
+            m->identity[i] = (m->known & 1u << i) != 0u ? identity[i] : 0u;
         }
     }
     return ac;
+}
+
+odg_abort_t odg_lssm_fastscan(odg_lssm_t *m)
+{
+    static const uint32_t none[4] = {0, 0, 0, 0};
+    return odg_lssm_fastscan_known(m, none, 0);
 }
 
 /* Fastscan: the answer (answered = 1) or the silence after the last question. */
@@ -146,7 +154,7 @@ static void scan_step(odg_lssm_t *m, int answered)
             return;
         }
         m->sub = m->scan == SCAN_START ? 0u : m->sub;
-        m->scan = SCAN_BIT;
+        m->scan = (m->known & 1u << m->sub) != 0u ? SCAN_CONFIRM : SCAN_BIT; /* known: confirm it */
         m->bit = 31;
     } else {
         if (!answered) { /* nobody has a 0 there: the bit is 1 */

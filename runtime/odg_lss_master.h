@@ -51,6 +51,7 @@ typedef struct odg_lssm {
     uint8_t sub;          /* fastscan: the part of the identity being found */
     uint8_t bit;          /* fastscan: the bit being found */
     uint8_t heard;        /* fastscan: an answer came to the question in flight */
+    uint8_t known;        /* fastscan: the parts of the identity given (bit k: part k) */
 } odg_lssm_t;
 
 /* timeout_ms 0: ODG_LSSM_TIMEOUT_MS. */
@@ -68,6 +69,9 @@ odg_abort_t odg_lssm_store(odg_lssm_t *m);
 odg_abort_t odg_lssm_inquire_node_id(odg_lssm_t *m); /* DONE: odg_lssm_t.value */
 /* Find one slave without node-id (in waiting mode) bit by bit; it ends in configuration mode. */
 odg_abort_t odg_lssm_fastscan(odg_lssm_t *m);
+/* The same for a slave of which parts of the identity are known (bit k of `known`: part k, in
+ * identity[k], the vendor-ID being part 0): each known part takes one question instead of 33. */
+odg_abort_t odg_lssm_fastscan_known(odg_lssm_t *m, const uint32_t identity[4], uint8_t known);
 
 /* Every received frame: 1 when it was an LSS answer (0x7E4). */
 int odg_lssm_receive(odg_lssm_t *m, const odg_frame_t *frame);

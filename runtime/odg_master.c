@@ -21,6 +21,12 @@
 
 #define DCF_HEADER 7u /* index (2), sub (1), size (4) before each entry's data */
 
+/* odg_master_t.lss_step */
+#define LSS_OVER 0u
+#define LSS_SCAN 1u      /* fastscan for the identity of slave[lss_slave] */
+#define LSS_NODE_ID 2u   /* configuring the node-id of the slave found */
+#define LSS_STORE 3u     /* storing it */
+
 static uint32_t array_u32(const odg_master_t *m, uint16_t index, uint8_t sub)
 {
     uint32_t v = 0;
@@ -367,6 +373,48 @@ static void on_nmt_event(void *ctx, uint8_t node_id, uint8_t event)
     }
 }
 
+/* Node-ids by LSS: for each assigned slave whose vendor-ID and product code the master expects
+ * (0x1F85, 0x1F86; with 0x1F87, 0x1F88 when non-zero), a fastscan for that identity (the parts
+ * known take one question each); the slave found gets its node-id (and stores it) and stays in
+ * configuration mode. After the last, every slave goes back to waiting: those configured boot
+ * with their node-ids, and their boot-up processes begin. */
+static void lss_target(odg_master_t *m)
+{
+    uint32_t want[4];
+    uint8_t known, k;
+    for (; m->lss_slave < m->n_slaves; m->lss_slave++) {
+        const odg_master_slave_t *s = &m->slave[m->lss_slave];
+        for (k = 0, known = 0; k < 4u; k++) {
+            want[k] = array_u32(m, (uint16_t)(0x1F85u + k), s->id);
+            known = (uint8_t)(known | (want[k] != 0u ? 1u << k : 0u));
+        }
+        if ((known & 3u) == 3u) {
+            m->lss_step = LSS_SCAN;
+            (void)odg_lssm_fastscan_known(&m->lss, want, known);
+            return;
+        }
+    }
+    m->lss_step = LSS_OVER;
+    (void)odg_lssm_switch_global(&m->lss, ODG_LSS_WAITING);
+}
+
+static void lss_next(odg_master_t *m)
+{
+    if (m->lss.state == ODG_LSSM_BUSY) {
+        return;
+    }
+    if (m->lss_step == LSS_SCAN && m->lss.state == ODG_LSSM_DONE) {
+        m->lss_step = LSS_NODE_ID;
+        (void)odg_lssm_configure_node_id(&m->lss, m->slave[m->lss_slave].id);
+    } else if (m->lss_step == LSS_NODE_ID && m->lss.state == ODG_LSSM_DONE && m->cfg.lss == ODG_MASTER_LSS_STORE) {
+        m->lss_step = LSS_STORE;
+        (void)odg_lssm_store(&m->lss);
+    } else { /* not found, configured, stored or refused: the next slave */
+        m->lss_slave++;
+        lss_target(m);
+    }
+}
+
 odg_abort_t odg_master_init(odg_master_t *m, const odg_master_config_t *cfg)
 {
     unsigned i;
@@ -374,6 +422,7 @@ odg_abort_t odg_master_init(odg_master_t *m, const odg_master_config_t *cfg)
     odg_abort_t ac = ODG_OK;
     m->n_slaves = 0;
     m->network_up = 0;
+    m->lss_step = LSS_OVER;
     if (cfg == NULL || cfg->dict == NULL || cfg->send == NULL) {
         return ODG_ABORT_INCOMPATIBLE;
     }
@@ -415,6 +464,11 @@ odg_abort_t odg_master_init(odg_master_t *m, const odg_master_config_t *cfg)
             }
         }
     }
+    if (cfg->lss != 0u && m->n_slaves > 0u) {
+        odg_lssm_init(&m->lss, cfg->send, cfg->send_ctx, 0);
+        m->lss_slave = 0;
+        lss_target(m);
+    }
     check_network(m); /* no slave at all: the master starts itself */
     return ac;
 }
@@ -422,6 +476,10 @@ odg_abort_t odg_master_init(odg_master_t *m, const odg_master_config_t *cfg)
 void odg_master_receive(odg_master_t *m, const odg_frame_t *frame)
 {
     unsigned i;
+    if (m->lss_step != LSS_OVER && odg_lssm_receive(&m->lss, frame)) {
+        lss_next(m);
+        return;
+    }
     if (odg_nmtm_receive(&m->nmt, frame)) {
         return;
     }
@@ -439,9 +497,16 @@ void odg_master_process(odg_master_t *m, uint32_t elapsed_ms)
 {
     unsigned i;
     odg_nmtm_tick(&m->nmt, elapsed_ms);
+    if (m->lss_step != LSS_OVER) {
+        odg_lssm_tick(&m->lss, elapsed_ms);
+        lss_next(m);
+    }
     for (i = 0; i < m->n_slaves; i++) {
         odg_master_slave_t *s = &m->slave[i];
         odg_sdoc_tick(&m->sdo[i], elapsed_ms);
+        if (s->phase == P_WAIT && m->lss_step != LSS_OVER) {
+            continue; /* no attempt without a boot-up while node-ids are given */
+        }
         if (s->phase == P_WAIT) {
             s->timer = s->timer > elapsed_ms ? s->timer - elapsed_ms : 0u;
             if (s->timer == 0u) {
@@ -451,7 +516,7 @@ void odg_master_process(odg_master_t *m, uint32_t elapsed_ms)
             step(m, s); /* timed out */
         }
     }
-    if (m->boot_left != 0u) {
+    if (m->boot_left != 0u && m->lss_step == LSS_OVER) {
         m->boot_left = m->boot_left > elapsed_ms ? m->boot_left - elapsed_ms : 0u;
         if (m->boot_left == 0u && !m->network_up && m->cfg.on_status != NULL) {
             m->cfg.on_status(m->cfg.ctx, 0, ODG_MASTER_BOOT_TIMEOUT);

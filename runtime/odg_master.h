@@ -27,6 +27,7 @@
 
 #include "odg.h"
 #include "odg_node.h"
+#include "odg_lss_master.h"
 #include "odg_nmt_master.h"
 #include "odg_sdo_client.h"
 
@@ -80,6 +81,10 @@ extern "C" {
 #define ODG_ASSIGN_MANDATORY 0x08u
 #define ODG_ASSIGN_KEEP_ALIVE 0x10u   /* not reset at the master's start */
 
+/* odg_master_config_t.lss: node-ids by LSS before the boot (docs/master.md, "Node-ids by LSS") */
+#define ODG_MASTER_LSS 1u        /* give a slave without node-id the node-id its identity says */
+#define ODG_MASTER_LSS_STORE 2u  /* the same, and store it in the slave (LSS store configuration) */
+
 typedef struct odg_master_config {
     const odg_dict_t *dict;  /* the master's dictionary, holding the CiA 302 objects */
     odg_send_fn send;
@@ -87,6 +92,7 @@ typedef struct odg_master_config {
     struct odg_node *node;   /* the master's own node (EMCY, its own NMT state), or NULL */
     void (*on_status)(void *ctx, uint8_t node_id, uint8_t status); /* each new status; or NULL */
     void *ctx;
+    uint8_t lss;             /* 0, ODG_MASTER_LSS or ODG_MASTER_LSS_STORE */
 } odg_master_config_t;
 
 typedef struct odg_master_slave {
@@ -110,14 +116,18 @@ typedef struct odg_master {
     odg_nmtm_t nmt;
     odg_sdoc_t sdo[ODG_MASTER_MAX_SLAVES];        /* one client channel per slave */
     odg_master_slave_t slave[ODG_MASTER_MAX_SLAVES];
+    odg_lssm_t lss;        /* node-ids by LSS (cfg.lss) */
     uint32_t startup;      /* 0x1F80 */
     uint32_t boot_left;    /* ms of the boot time 0x1F89 left (0: none, or over) */
     uint8_t n_slaves;
     uint8_t network_up;    /* the slaves were started (as 0x1F80 says) once */
+    uint8_t lss_step;      /* node-ids by LSS: what the LSS master does (odg_master.c); 0: over */
+    uint8_t lss_slave;     /* node-ids by LSS: the slave looked for */
 } odg_master_t;
 
 /* Read 0x1F80 and 0x1F81 from cfg->dict, take the first ODG_MASTER_MAX_SLAVES assigned slaves,
- * reset communication of those not kept alive and begin their boot. ODG_ABORT_DATA_STATE when
+ * reset communication of those not kept alive and begin their boot (with cfg->lss, after the
+ * slaves without node-id got theirs). ODG_ABORT_DATA_STATE when
  * 0x1F80 does not say NMT master (nothing happens then), ODG_ABORT_NO_RESOURCE when more slaves
  * are assigned than fit (the others are ignored), ODG_ABORT_INCOMPATIBLE without dict or send. */
 odg_abort_t odg_master_init(odg_master_t *m, const odg_master_config_t *cfg);

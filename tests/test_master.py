@@ -36,7 +36,8 @@ PLASMA = ROOT / "examples" / "plasma-equipment"
 MASTER = tuple(toolchain.master_sources())
 NODE = (*toolchain.core_sources(), *toolchain.service_sources())
 # the slaves of test_master.c, by C name
-SLAVES = {"hv": "hv_supply", "vac": "vacuum_gauge", "flow": "flow_meter", "inv": "inverter"}
+SLAVES = {"hv": PLASMA / "hv_supply.eds", "vac": PLASMA / "vacuum_gauge.eds", "flow": PLASMA / "flow_meter.eds",
+          "inv": PLASMA / "inverter.eds", "lss": ROOT / "tests" / "node" / "lss-node.eds"}
 
 
 def odgen_generate(eds: Path, name: str, out: Path, options: Path | None = None) -> None:
@@ -51,7 +52,7 @@ def dicts(tmp_path_factory: pytest.TempPathFactory) -> Path:
     out = tmp_path_factory.mktemp("master-dicts")
     odgen_generate(TESTS / "master.eds", "master", out, TESTS / "master.toml")
     for name, eds in SLAVES.items():
-        odgen_generate(PLASMA / f"{eds}.eds", name, out)
+        odgen_generate(eds, name, out)
     return out
 
 
@@ -67,8 +68,9 @@ PROGRAMS = {
 def test_master_program(program: str, build_name: str, dicts: Path, tmp_path: Path) -> None:
     cc, flags = BUILDS[build_name]
     sources = (TESTS / f"{program}.c", *PROGRAMS[program])
-    if program == "test_master":
+    if program == "test_master":  # every node with the LSS slave: node 6 waits for a node-id
         sources += tuple(dicts / f"{name}.c" for name in ("master", *SLAVES))
+        flags = (*flags, "-DODG_NODE_LSS=1")
     exe = tmp_path / program
     build(cc, flags, sources, (dicts, RUNTIME, CHECK_H), exe)
     output = run(exe, tmp_path)
@@ -105,16 +107,21 @@ def test_concise_reader_round_trip() -> None:
 # ---- vcan ---------------------------------------------------------------------------------
 
 MASTER_ID = 1
-# node-id -> description; node 4 is powered up late, node 5's product code is expected wrong
-NET = {2: "hv_supply", 3: "vacuum_gauge", 4: "flow_meter", 5: "inverter"}
-DEVICE_TYPE = {2: 0x000E0191, 3: 0x00070191, 4: 0x000F0191, 5: 0x000B0191}
-PRODUCT = {2: 0x101, 3: 0x102, 4: 0x103, 5: 0x105}  # the inverter is 0x104
-LATE, WRONG = 4, 5
+# node-id -> description; node 4 is powered up late, node 5's product code is expected wrong,
+# node 6 powers up without node-id (LSS)
+NET = {2: PLASMA / "hv_supply.eds", 3: PLASMA / "vacuum_gauge.eds", 4: PLASMA / "flow_meter.eds",
+       5: PLASMA / "inverter.eds", 6: ROOT / "tests" / "node" / "lss-node.eds"}
+DEVICE_TYPE = {2: 0x000E0191, 3: 0x00070191, 4: 0x000F0191, 5: 0x000B0191, 6: 0x00000191}
+PRODUCT = {2: 0x101, 3: 0x102, 4: 0x103, 5: 0x105, 6: 0x00010203}  # the inverter is 0x104
+LSS_IDENTITY = {"1F85": 0x4D2, "1F87": 0x00020001}  # node 6's vendor-ID and revision: LSS finds it by them
+LATE, WRONG, UNCONFIGURED = 4, 5, 6
 
 
 def slave_entries(node_id: int) -> list[concise.Entry]:
     """Heartbeat 100 ms, TPDO 1's event timer (changed with the PDO invalid, as CiA 301 wants)
-    and 0x6200 sub 2."""
+    and 0x6200 sub 2; the LSS node (without those): heartbeat and 0x2000."""
+    if node_id == UNCONFIGURED:
+        return [(0x1017, 0, struct.pack("<H", 100)), (0x2000, 0, b"\x5a")]
     cob = 0x180 + node_id
     return [(0x1017, 0, struct.pack("<H", 100)), (0x1800, 1, struct.pack("<I", 0x80000000 | cob)),
             (0x1800, 5, struct.pack("<H", 200 + node_id)), (0x1800, 1, struct.pack("<I", cob)),
@@ -137,8 +144,10 @@ def master_eds(out: Path) -> Path:
         eds = set_default(eds, f"1F84sub{node_id}", f"0x{DEVICE_TYPE[node_id]:08X}")
         eds = set_default(eds, f"1F86sub{node_id}", f"0x{PRODUCT[node_id]:08X}")
         eds = set_default(eds, f"1F22sub{node_id}", concise.write(slave_entries(node_id)).hex().upper())
-        if node_id != WRONG:
+        if node_id not in (WRONG, UNCONFIGURED):
             eds = set_default(eds, f"1016sub{n}", f"0x{node_id << 16 | 500:08X}")
+    for index, value in LSS_IDENTITY.items():
+        eds = set_default(eds, f"{index}sub{UNCONFIGURED}", f"0x{value:08X}")
     path = out / "master.eds"
     path.write_text(eds, encoding="utf-8")
     return path
@@ -151,13 +160,13 @@ def test_master_boots_slaves_on_vcan(tmp_path: Path, vcan_bus) -> None:
     build("gcc", ("-O2", "-DODG_DICT=controller", '-DODG_CONFIG="controller_config.h"'),
           (LINUX / "odg_master_main.c", gen / "controller.c", *NODE, *MASTER, *toolchain.host_sources()),
           (gen, RUNTIME, LINUX), master)
-    slaves = {node_id: str(build_node(Request(PLASMA / f"{eds}.eds"))[0]) for node_id, eds in NET.items()}
+    slaves = {node_id: str(build_node(Request(eds))[0]) for node_id, eds in NET.items()}
     values = {node_id: {f"{i:04X}:{s:02X}": d.hex() for (i, s), d in
                         concise.final_values(concise.read(concise.write(slave_entries(node_id)))).items()}
               for node_id in NET}
     plan = tmp_path / "plan.json"
     plan.write_text(json.dumps({"master": str(master), "slaves": slaves, "values": values, "late": LATE,
-                                "wrong": WRONG}), encoding="utf-8")
+                                "wrong": WRONG, "unconfigured": UNCONFIGURED}), encoding="utf-8")
     done = vcan_bus.run([sys.executable, str(TESTS / "vcan_master.py"), str(plan)], cwd=ROOT, timeout=120)
     output = done.stdout + done.stderr
     assert done.returncode == 0, output[-6000:]

@@ -6,8 +6,10 @@
  *     odgen generate controller.eds -o gen                 (C name of the dictionary: controller)
  *     cc -std=c99 -O2 -DODG_DICT=controller -DODG_CONFIG='"controller_config.h"' -Igen -Iruntime \
  *        -Iruntime/linux runtime/linux/odg_master_main.c gen/controller.c  RUNTIME  MASTER  HOST
- *     ./controller-master --iface vcan0 --node-id 1
+ *     ./controller-master --iface vcan0 --node-id 1 [--lss assign|store]
  *
+ * With --lss, slaves without node-id whose identity the master expects get their node-ids by
+ * LSS first ("store": kept in the slave's NV); docs/master.md.
  * RUNTIME, MASTER and HOST are the source lists of odgen/toolchain.py (CORE_SOURCES and
  * SERVICE_SOURCES, MASTER_SOURCES, HOST_SOURCES). Every change of a slave's boot status is
  * printed on stdout as "odg-master: node N status S" (S in hex: docs/master.md; with the SDO
@@ -111,6 +113,7 @@ int main(int argc, char **argv)
     odg_master_config_t mcfg;
     struct sigaction sa;
     long node_id = 0;
+    uint8_t lss = 0;
     int i, fd, rc;
     odg_abort_t ac;
 
@@ -119,12 +122,16 @@ int main(int argc, char **argv)
             iface = argv[i + 1];
         } else if (strcmp(argv[i], "--node-id") == 0) {
             node_id = strtol(argv[i + 1], NULL, 0);
+        } else if (strcmp(argv[i], "--lss") == 0 && strcmp(argv[i + 1], "assign") == 0) {
+            lss = ODG_MASTER_LSS;
+        } else if (strcmp(argv[i], "--lss") == 0 && strcmp(argv[i + 1], "store") == 0) {
+            lss = ODG_MASTER_LSS_STORE;
         } else {
             break;
         }
     }
     if (i != argc || iface == NULL || node_id < 1 || node_id > 127) {
-        fprintf(stderr, "usage: %s --iface IFACE --node-id 1..127\n", argv[0]);
+        fprintf(stderr, "usage: %s --iface IFACE --node-id 1..127 [--lss assign|store]\n", argv[0]);
         return 2;
     }
     if ((fd = odg_socketcan_open(iface)) < 0) {
@@ -155,6 +162,7 @@ int main(int argc, char **argv)
     mcfg.node = &node;
     mcfg.on_status = on_status;
     mcfg.ctx = &master;
+    mcfg.lss = lss;
     ac = odg_master_init(&master, &mcfg);
     if (ac != ODG_OK) {
         fprintf(stderr, "odg-master: master init: 0x%08lX %s\n", (unsigned long)ac, odg_abort_text(ac));

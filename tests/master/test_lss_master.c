@@ -229,10 +229,42 @@ static void test_services(void)
     CHECK_EQ(m.state, ODG_LSSM_NO_ANSWER);
 }
 
+/* Parts of the identity known: each takes one question; the slave found is the one that has them. */
+static void test_fastscan_known(void)
+{
+    odg_lssm_t m;
+    uint32_t want[4];
+    unsigned ms;
+    setup();
+    delay_ticks = 0;
+    odg_lssm_init(&m, to_slaves, NULL, 10);
+    memcpy(want, slaves[0].id, sizeof want);
+    CHECK_EQ(odg_lssm_fastscan_known(&m, want, 0x0F), ODG_OK); /* all four: 5 questions */
+    ms = run(&m);
+    CHECK_EQ(m.state, ODG_LSSM_DONE);
+    CHECK_EQ(ms, 5u * 10u);
+    CHECK_EQ(find_in_config_mode(), 0);
+    CHECK(memcmp(m.identity, slaves[0].id, sizeof m.identity) == 0);
+    setup();
+    CHECK_EQ(odg_lssm_fastscan_known(&m, want, 0x07), ODG_OK); /* the serial searched: slave 1 is lower */
+    ms = run(&m);
+    CHECK_EQ(m.state, ODG_LSSM_DONE);
+    CHECK_EQ(ms, (4u + 33u) * 10u);
+    CHECK_EQ(find_in_config_mode(), 1);
+    CHECK_EQ(m.identity[3], slaves[1].id[3]);
+    setup();
+    want[1] = 0x0BAD;
+    CHECK_EQ(odg_lssm_fastscan_known(&m, want, 0x03), ODG_OK); /* nobody has that product code */
+    (void)run(&m);
+    CHECK_EQ(m.state, ODG_LSSM_NO_ANSWER);
+    CHECK_EQ(find_in_config_mode(), -1);
+}
+
 int main(void)
 {
     test_fastscan_all(0);
     test_fastscan_all(7); /* answers late in each question's time */
     test_services();
+    test_fastscan_known();
     return done();
 }

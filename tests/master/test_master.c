@@ -17,12 +17,14 @@
 #include "vac.h"
 #include "flow.h"
 #include "inv.h"
+#include "lss.h"
 
-#define N_SLAVES 4u
+#define N_SLAVES 5u
 #define MASTER_ID 1u
 
-/* participants: 0 the master (node + configuration manager), 1..4 slaves of node-id 2..5 */
-static const odg_dict_t *const slave_dicts[N_SLAVES] = {&hv, &vac, &flow, &inv};
+/* participants: 0 the master (node + configuration manager), 1..5 slaves of node-id 2..6; node 6
+ * (tests/node/lss-node.eds) boots without node-id in the LSS scenario */
+static const odg_dict_t *const slave_dicts[N_SLAVES] = {&hv, &vac, &flow, &inv, &lss};
 static odg_node_t slave_nodes[N_SLAVES];
 static uint8_t connected[N_SLAVES];
 static odg_node_t mnode;
@@ -40,7 +42,9 @@ static odg_frame_t seen[512]; /* every frame on the bus, for the checks */
 static unsigned n_seen;
 static uint8_t status_log[64][2];
 static unsigned n_status;
-static int ids[N_SLAVES + 1] = {0, 1, 2, 3, 4};
+static int ids[N_SLAVES + 1] = {0, 1, 2, 3, 4, 5};
+static uint8_t lss_mode; /* odg_master_config_t.lss of the next start() */
+static unsigned no_node_id; /* participants (bits) that power up without node-id */
 
 static int bus_send(void *ctx, const odg_frame_t *f)
 {
@@ -110,7 +114,7 @@ static void power_up(unsigned i)
     odg_node_config_t cfg;
     memset(&cfg, 0, sizeof cfg);
     cfg.dict = slave_dicts[i];
-    cfg.node_id = (uint8_t)(i + 2u);
+    cfg.node_id = (no_node_id & (1u << i)) != 0u ? ODG_LSS_UNCONFIGURED : (uint8_t)(i + 2u);
     cfg.send = bus_send;
     cfg.send_ctx = &ids[i + 1u];
     connected[i] = 1;
@@ -160,6 +164,11 @@ static void dcf_add(dcf_t *d, uint16_t index, uint8_t sub, uint32_t value, uint3
 static void standard_dcf(dcf_t *d, uint8_t id)
 {
     memset(d, 0, sizeof *d);
+    if (id == 6u) { /* the LSS node has neither 0x1800 sub 5 nor 0x6200 */
+        dcf_add(d, 0x1017, 0, 100, 2);
+        dcf_add(d, 0x2000, 0, 0x5A, 1);
+        return;
+    }
     dcf_add(d, 0x1017, 0, 100, 2);
     dcf_add(d, 0x1800, 1, 0x80000180u + id, 4);
     dcf_add(d, 0x1800, 5, 200u + id, 2);
@@ -178,7 +187,8 @@ static void set_dcf(uint8_t id, const dcf_t *d)
 static void start(uint32_t startup, const uint32_t assign[N_SLAVES], unsigned present, uint32_t wrong_product,
                   uint32_t wrong_type)
 {
-    static const uint32_t types[N_SLAVES] = {0x000E0191, 0x00070191, 0x000F0191, 0x000B0191};
+    static const uint32_t types[N_SLAVES] = {0x000E0191, 0x00070191, 0x000F0191, 0x000B0191, 0x00000191};
+    static const uint32_t products[N_SLAVES] = {0x101, 0x102, 0x103, 0x104, 0x00010203};
     odg_node_config_t cfg;
     odg_master_config_t mcfg;
     static int me = 0;
@@ -200,7 +210,9 @@ static void start(uint32_t startup, const uint32_t assign[N_SLAVES], unsigned pr
         uint8_t id = (uint8_t)(i + 2u);
         CHECK_EQ(odg_set_u32(&master, 0x1F81, id, assign[i]), ODG_OK);
         CHECK_EQ(odg_set_u32(&master, 0x1F84, id, i == wrong_type ? 0x12345678u : types[i]), ODG_OK);
-        CHECK_EQ(odg_set_u32(&master, 0x1F86, id, 0x101u + i + (i == wrong_product ? 1u : 0u)), ODG_OK);
+        CHECK_EQ(odg_set_u32(&master, 0x1F86, id, products[i] + (i == wrong_product ? 1u : 0u)), ODG_OK);
+        CHECK_EQ(odg_set_u32(&master, 0x1F85, id, i == 4u ? 0x4D2u : 0u), ODG_OK);
+        CHECK_EQ(odg_set_u32(&master, 0x1F87, id, i == 4u ? 0x20001u : 0u), ODG_OK);
         standard_dcf(&d, id);
         set_dcf(id, &d);
         connected[i] = 0;
@@ -214,6 +226,7 @@ static void start(uint32_t startup, const uint32_t assign[N_SLAVES], unsigned pr
     mcfg.send_ctx = &me;
     mcfg.node = &mnode;
     mcfg.on_status = on_status;
+    mcfg.lss = lss_mode;
     for (i = 0; i < N_SLAVES; i++) {
         if (present & (1u << i)) {
             power_up(i);
@@ -263,11 +276,11 @@ static const uint32_t MANDATORY = ODG_ASSIGN_SLAVE | ODG_ASSIGN_REBOOT | ODG_ASS
 
 static void test_boot_reset_and_loss(void)
 {
-    const uint32_t assign[N_SLAVES] = {MANDATORY, OPTIONAL, OPTIONAL, OPTIONAL};
+    const uint32_t assign[N_SLAVES] = {MANDATORY, OPTIONAL, OPTIONAL, OPTIONAL, 0};
     unsigned i, n;
     uint16_t hb = 0;
     start(ODG_STARTUP_MASTER, assign, 0xF, 3, 99); /* node 5: product code differs */
-    for (i = 0; i < N_SLAVES; i++) {
+    for (i = 0; i < 4u; i++) {
         CHECK_EQ_AT(status((uint8_t)(i + 2u)), ODG_SLAVE_BOOTING, i);
     }
     run(1500);
@@ -309,7 +322,7 @@ static void test_boot_reset_and_loss(void)
 
 static void test_late_slave(void)
 {
-    const uint32_t assign[N_SLAVES] = {OPTIONAL, OPTIONAL, OPTIONAL, 0};
+    const uint32_t assign[N_SLAVES] = {OPTIONAL, OPTIONAL, OPTIONAL, 0, 0};
     start(ODG_STARTUP_MASTER, assign, 0x3, 99, 99); /* node 4 absent, node 5 not a slave */
     run(2000);
     CHECK_EQ(status(2), ODG_SLAVE_BOOTED);
@@ -326,7 +339,7 @@ static void test_late_slave(void)
 
 static void test_mandatory_lost_stops_all(void)
 {
-    const uint32_t assign[N_SLAVES] = {MANDATORY, OPTIONAL, OPTIONAL, 0};
+    const uint32_t assign[N_SLAVES] = {MANDATORY, OPTIONAL, OPTIONAL, 0, 0};
     unsigned i;
     start(ODG_STARTUP_MASTER | ODG_STARTUP_STOP_ALL, assign, 0x7, 99, 99);
     run(1500);
@@ -343,7 +356,7 @@ static void test_mandatory_lost_stops_all(void)
 
 static void test_mandatory_missing_holds_the_start(void)
 {
-    const uint32_t assign[N_SLAVES] = {OPTIONAL, MANDATORY, 0, 0};
+    const uint32_t assign[N_SLAVES] = {OPTIONAL, MANDATORY, 0, 0, 0};
     unsigned i, timeouts = 0;
     boot_time = 2000;
     start(ODG_STARTUP_MASTER, assign, 0x1, 99, 99); /* the mandatory node 3 is absent */
@@ -369,8 +382,8 @@ static void test_mandatory_missing_holds_the_start(void)
 
 static void test_failures_and_start_all(void)
 {
-    const uint32_t assign[N_SLAVES] = {OPTIONAL, OPTIONAL, OPTIONAL, 0};
-    const uint32_t all_ok[N_SLAVES] = {OPTIONAL, OPTIONAL, OPTIONAL, OPTIONAL};
+    const uint32_t assign[N_SLAVES] = {OPTIONAL, OPTIONAL, OPTIONAL, 0, 0};
+    const uint32_t all_ok[N_SLAVES] = {OPTIONAL, OPTIONAL, OPTIONAL, OPTIONAL, 0};
     dcf_t d;
     unsigned i, starts = 0;
     start(ODG_STARTUP_MASTER, assign, 0x7, 99, 2); /* node 4: device type differs */
@@ -398,7 +411,7 @@ static void test_failures_and_start_all(void)
         }
     }
     CHECK_EQ(starts, 1);
-    for (i = 0; i < N_SLAVES; i++) {
+    for (i = 0; i < 4u; i++) {
         CHECK_EQ_AT(odg_node_state(&slave_nodes[i]), ODG_NMT_OPERATIONAL, i);
     }
     CHECK_EQ(odg_node_state(&mnode), ODG_NMT_PRE_OPERATIONAL);
@@ -406,7 +419,7 @@ static void test_failures_and_start_all(void)
 
 static void test_not_a_master(void)
 {
-    const uint32_t assign[N_SLAVES] = {OPTIONAL, 0, 0, 0};
+    const uint32_t assign[N_SLAVES] = {OPTIONAL, 0, 0, 0, 0};
     odg_master_config_t mcfg;
     start(ODG_STARTUP_MASTER, assign, 0x1, 99, 99);
     memset(&mcfg, 0, sizeof mcfg);
@@ -419,6 +432,37 @@ static void test_not_a_master(void)
     CHECK_EQ(odg_master_init(&mgr, &mcfg), ODG_ABORT_INCOMPATIBLE);
 }
 
+/* Node 6 powers up without node-id: a fastscan for the identity the master expects of node 6
+ * (vendor, product, revision; the serial searched) finds it and gives it node-id 6, then it boots
+ * like the others; another slave without node-id, whose identity the master does not expect,
+ * is left without. */
+static void test_node_id_by_lss(void)
+{
+    const uint32_t assign[N_SLAVES] = {OPTIONAL, 0, 0, 0, OPTIONAL};
+    uint8_t v = 0;
+    uint16_t hb = 0;
+    lss_mode = ODG_MASTER_LSS;
+    no_node_id = 1u << 4 | 1u << 3; /* node 6, and the inverter (node 5 not assigned) */
+    start(ODG_STARTUP_MASTER, assign, 0x19, 99, 99);
+    lss_mode = 0;
+    no_node_id = 0;
+    CHECK_EQ(odg_node_state(&slave_nodes[4]), ODG_NMT_INITIALISING); /* waits for LSS */
+    run(1000);
+    CHECK_EQ(slave_nodes[4].cfg.node_id, ODG_LSS_UNCONFIGURED); /* 37 questions of 50 ms */
+    CHECK_EQ(status(2), ODG_SLAVE_BOOTED); /* a slave with its node-id boots meanwhile */
+    run(1500);
+    CHECK_EQ(slave_nodes[4].cfg.node_id, 6);
+    CHECK_EQ(status(6), ODG_SLAVE_BOOTED);
+    CHECK_EQ(status(2), ODG_SLAVE_BOOTED);
+    CHECK_EQ(odg_node_state(&slave_nodes[4]), ODG_NMT_OPERATIONAL);
+    CHECK_EQ(odg_get_u8(&lss, 0x2000, 0, &v), ODG_OK);
+    CHECK_EQ(v, 0x5A);
+    CHECK_EQ(odg_get_u16(&lss, 0x1017, 0, &hb), ODG_OK);
+    CHECK_EQ(hb, 100);
+    CHECK_EQ(slave_nodes[3].cfg.node_id, ODG_LSS_UNCONFIGURED); /* found, but no slave of the master */
+    CHECK_EQ(odg_node_state(&slave_nodes[3]), ODG_NMT_INITIALISING);
+}
+
 int main(void)
 {
     test_boot_reset_and_loss();
@@ -427,5 +471,6 @@ int main(void)
     test_mandatory_missing_holds_the_start();
     test_failures_and_start_all();
     test_not_a_master();
+    test_node_id_by_lss();
     return done();
 }

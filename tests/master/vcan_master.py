@@ -3,11 +3,12 @@
     python tests/master/vcan_master.py PLAN.json        (inside tools/vcan/run.py)
 
 PLAN.json names the master program, the slave programs by node-id, the node-id powered up late,
-the node-id whose identity the master expects wrong, and each slave's configured values (hex
-bytes by "index:sub"). Checks, with python canopen: every good slave reaches operational with
-each configured value in place (uploaded and compared), the wrong one stays pre-operational and
+the node-id whose identity the master expects wrong, the node-id of the LSS slave started
+without one, and each slave's configured values (hex bytes by "index:sub"). Checks, with python
+canopen: every good slave reaches operational with each configured value in place (uploaded and compared), the wrong one stays pre-operational and
 its status in the master's 0x5F81 reads 'M' by SDO, the late one is configured when it comes,
-and a slave reset by NMT is configured again. Prints "vcan master: ok" last and exits 0.
+the one without node-id gets its node-id by LSS fastscan and is configured, and a slave reset by
+NMT is configured again. Prints "vcan master: ok" last and exits 0.
 """
 
 from __future__ import annotations
@@ -59,9 +60,10 @@ def wait_for(what: str, check) -> None:
     raise AssertionError(f"not within {DEADLINE:g} s: {what}")
 
 
-def start(exe: str, node_id: int) -> subprocess.Popen[bytes]:
-    return subprocess.Popen([exe, "--iface", CHANNEL, "--node-id", str(node_id)], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE)
+def start(exe: str, node_id: int | None, *extra: str) -> subprocess.Popen[bytes]:
+    """A program on the bus; node_id None: an LSS slave that waits for its node-id."""
+    args = ["--node-id", str(node_id)] if node_id is not None else []
+    return subprocess.Popen([exe, "--iface", CHANNEL, *args, *extra], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
 
 
 def stop(proc: subprocess.Popen[bytes]) -> tuple[bytes, bytes]:
@@ -75,7 +77,7 @@ def main() -> None:
     plan = json.loads(Path(sys.argv[1]).read_text(encoding="utf-8"))
     slaves = {int(k): v for k, v in plan["slaves"].items()}
     values = {int(k): v for k, v in plan["values"].items()}
-    late, wrong = plan["late"], plan["wrong"]
+    late, wrong, unconfigured = plan["late"], plan["wrong"], plan["unconfigured"]
     net = canopen.Network()
     net.NOTIFIER_CYCLE = 0.1
     net.connect(interface="socketcan", channel=CHANNEL)
@@ -85,8 +87,9 @@ def main() -> None:
         remote[node_id] = canopen.RemoteNode(node_id, canopen.ObjectDictionary())
         net.add_node(remote[node_id])
         remote[node_id].sdo.RESPONSE_TIMEOUT = 2.0
-    procs = {node_id: start(exe, node_id) for node_id, exe in slaves.items() if node_id != late}
-    master = start(plan["master"], MASTER_ID)
+    procs = {node_id: start(exe, None if node_id == unconfigured else node_id)
+             for node_id, exe in slaves.items() if node_id != late}
+    master = start(plan["master"], MASTER_ID, "--lss", "assign")
     try:
         def status(node_id: int) -> int:
             return remote[MASTER_ID].sdo.upload(STATUS, node_id)[0]
@@ -100,9 +103,9 @@ def main() -> None:
 
         good = [n for n in slaves if n != wrong]
         wait_for("the master's boot-up", lambda: states.bootups.get(MASTER_ID, 0) > 0)
-        wait_for("the slaves present boot", lambda: all(status(n) == 2 for n in good if n != late))
-        time.sleep(1.5)  # the late slave: the master has retried it by now
-        assert status(late) == ord("B"), f"absent slave status {status(late):#x}"
+        wait_for("the slaves present boot, node-ids by LSS too",
+                 lambda: all(status(n) == 2 for n in good if n != late))
+        wait_for("the absent slave reported", lambda: status(late) == ord("B"))
         procs[late] = start(slaves[late], late)
         wait_for("the late slave boots", lambda: status(late) == 2)
         wait_for("every good slave operational", lambda: all(states.state.get(n) == 5 for n in good))
