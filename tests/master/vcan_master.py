@@ -5,10 +5,11 @@
 PLAN.json names the master program, the slave programs by node-id, the node-id powered up late,
 the node-id whose identity the master expects wrong, the node-id of the LSS slave started
 without one, and each slave's configured values (hex bytes by "index:sub"). Checks, with python
-canopen: every good slave reaches operational with each configured value in place (uploaded and compared), the wrong one stays pre-operational and
-its status in the master's 0x5F81 reads 'M' by SDO, the late one is configured when it comes,
-the one without node-id gets its node-id by LSS fastscan and is configured, and a slave reset by
-NMT is configured again. Prints "vcan master: ok" last and exits 0.
+canopen: every good slave reaches operational with each configured value in place (uploaded and
+compared), the wrong one stays pre-operational and its status in the master's 0x5F81 reads 'M'
+by SDO, the late one is configured when it comes, the one without node-id gets its node-id by
+LSS fastscan and is configured, and a slave reset by NMT is configured again. Prints
+"vcan master: ok" last and exits 0.
 """
 
 from __future__ import annotations
