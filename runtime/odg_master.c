@@ -119,12 +119,13 @@ static void try_later(odg_master_slave_t *s, uint32_t ms)
 
 static void check_network(odg_master_t *m);
 
-/* A check failed: report it. A slave that did not answer (absent, or an SDO timeout) is tried
- * again; a wrong one at its next boot-up. No answer from a slave already in error (lost, or
+/* A check failed: report it. A slave that did not answer (absent, or an SDO timeout in any
+ * step: status B) is tried again; a wrong one at its next boot-up. No answer from a slave already in error (lost, or
  * absent before) keeps that error. */
 static void fail(odg_master_t *m, odg_master_slave_t *s, uint8_t status)
 {
     int silent = status == ODG_SLAVE_NO_ANSWER || s->abort == ODG_ABORT_TIMEOUT;
+    status = silent ? ODG_SLAVE_NO_ANSWER : status;
     if (!silent || !is_error(s->status)) {
         set_status(m, s, status);
     }
@@ -342,17 +343,39 @@ static void step(odg_master_t *m, odg_master_slave_t *s)
     }
 }
 
-/* Error control lost a booted slave: report it, then as 0x1F80 and 0x1F81 say. */
+/* The whole network boots again after an NMT reset node to all nodes (the master's own node
+ * included, whose dictionary, and so the status object, went back to its defaults): every slave
+ * waits for its boot-up as at the master's start, and the slaves are started again once the
+ * network is up. */
+static void reboot_all(odg_master_t *m)
+{
+    unsigned i;
+    m->network_up = 0;
+    for (i = 0; i < m->n_slaves; i++) {
+        odg_master_slave_t *s = &m->slave[i];
+        odg_sdoc_abort(&m->sdo[i], ODG_ABORT_GENERAL);
+        odg_nmtm_unwatch(&m->nmt, s->id);
+        s->status = 0xFFu; /* written again whatever the cache says */
+        set_status(m, s, ODG_SLAVE_BOOTING);
+        s->tried = 0;
+        try_later(s, ODG_MASTER_RETRY_MS);
+    }
+}
+
+/* Error control lost a booted slave: report it, then as 0x1F80 and 0x1F81 say. A mandatory
+ * slave lost stops every node (bit 6; the application decides what follows) or resets them all
+ * (bit 4), else its boot begins again, as an optional slave's does with 0x1F81 bit 2. */
 static void lost(odg_master_t *m, odg_master_slave_t *s)
 {
     int mandatory = (s->assignment & ODG_ASSIGN_MANDATORY) != 0u;
     set_status(m, s, heartbeat_ms(m, s->id) != 0u ? ODG_SLAVE_HEARTBEAT : ODG_SLAVE_GUARDING);
     if (mandatory && (m->startup & ODG_STARTUP_STOP_ALL) != 0u) {
         command(m, ODG_NMT_STOP, 0);
+        s->phase = P_FAILED; /* until its boot-up */
     } else if (mandatory && (m->startup & ODG_STARTUP_RESET_ALL) != 0u) {
         command(m, ODG_NMT_RESET_NODE, 0);
-    }
-    if (mandatory || (s->assignment & ODG_ASSIGN_REBOOT) != 0u) {
+        reboot_all(m);
+    } else if (mandatory || (s->assignment & ODG_ASSIGN_REBOOT) != 0u) {
         try_later(s, 0); /* its boot-up process again, from the next process call */
     } else {
         s->phase = P_FAILED;

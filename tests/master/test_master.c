@@ -183,42 +183,69 @@ static void set_dcf(uint8_t id, const dcf_t *d)
     CHECK_EQ(odg_write(&ref, d->b, d->len), ODG_OK);
 }
 
+/* The master's configuration of this scenario, written into its dictionary at the start and
+ * again after its own node was reset (which brings the dictionary's defaults back). */
+static struct {
+    uint32_t startup, assign[N_SLAVES], wrong_product, wrong_type;
+} setup;
+
+static void apply_setup(void)
+{
+    static const uint32_t types[N_SLAVES] = {0x000E0191, 0x00070191, 0x000F0191, 0x000B0191, 0x00000191};
+    static const uint32_t products[N_SLAVES] = {0x101, 0x102, 0x103, 0x104, 0x00010203};
+    unsigned i;
+    dcf_t d;
+    CHECK_EQ(odg_set_u32(&master, 0x1F80, 0, setup.startup), ODG_OK);
+    CHECK_EQ(odg_set_u32(&master, 0x1F89, 0, boot_time), ODG_OK);
+    for (i = 0; i < N_SLAVES; i++) {
+        uint8_t id = (uint8_t)(i + 2u);
+        CHECK_EQ(odg_set_u32(&master, 0x1F81, id, setup.assign[i]), ODG_OK);
+        CHECK_EQ(odg_set_u32(&master, 0x1F84, id, i == setup.wrong_type ? 0x12345678u : types[i]), ODG_OK);
+        CHECK_EQ(odg_set_u32(&master, 0x1F86, id, products[i] + (i == setup.wrong_product ? 1u : 0u)), ODG_OK);
+        CHECK_EQ(odg_set_u32(&master, 0x1F85, id, i == 4u ? 0x4D2u : 0u), ODG_OK);
+        CHECK_EQ(odg_set_u32(&master, 0x1F87, id, i == 4u ? 0x20001u : 0u), ODG_OK);
+        standard_dcf(&d, id);
+        set_dcf(id, &d);
+        if (i < 3u) {
+            CHECK_EQ(odg_set_u32(&master, 0x1016, (uint8_t)(i + 1u), (uint32_t)id << 16 | 500u), ODG_OK);
+        }
+    }
+}
+
+static void on_master_nmt(void *ctx, uint8_t cs)
+{
+    (void)ctx;
+    if (cs == ODG_NMT_RESET_NODE) {
+        apply_setup();
+    }
+}
+
 /* Power everything up: the master's node, its CiA 302 objects, the slaves (those in `present`). */
 static void start(uint32_t startup, const uint32_t assign[N_SLAVES], unsigned present, uint32_t wrong_product,
                   uint32_t wrong_type)
 {
-    static const uint32_t types[N_SLAVES] = {0x000E0191, 0x00070191, 0x000F0191, 0x000B0191, 0x00000191};
-    static const uint32_t products[N_SLAVES] = {0x101, 0x102, 0x103, 0x104, 0x00010203};
     odg_node_config_t cfg;
     odg_master_config_t mcfg;
     static int me = 0;
     unsigned i;
-    dcf_t d;
     q_head = q_tail = 0;
     n_seen = 0;
     mgr_up = 0;
     n_status = 0;
+    setup.startup = startup;
+    memcpy(setup.assign, assign, sizeof setup.assign);
+    setup.wrong_product = wrong_product;
+    setup.wrong_type = wrong_type;
     memset(&cfg, 0, sizeof cfg);
     cfg.dict = &master;
     cfg.node_id = MASTER_ID;
     cfg.send = bus_send;
     cfg.send_ctx = &me;
+    cfg.on_nmt = on_master_nmt;
     CHECK_EQ(odg_node_init(&mnode, &cfg), ODG_OK);
-    CHECK_EQ(odg_set_u32(&master, 0x1F80, 0, startup), ODG_OK);
-    CHECK_EQ(odg_set_u32(&master, 0x1F89, 0, boot_time), ODG_OK);
+    apply_setup();
     for (i = 0; i < N_SLAVES; i++) {
-        uint8_t id = (uint8_t)(i + 2u);
-        CHECK_EQ(odg_set_u32(&master, 0x1F81, id, assign[i]), ODG_OK);
-        CHECK_EQ(odg_set_u32(&master, 0x1F84, id, i == wrong_type ? 0x12345678u : types[i]), ODG_OK);
-        CHECK_EQ(odg_set_u32(&master, 0x1F86, id, products[i] + (i == wrong_product ? 1u : 0u)), ODG_OK);
-        CHECK_EQ(odg_set_u32(&master, 0x1F85, id, i == 4u ? 0x4D2u : 0u), ODG_OK);
-        CHECK_EQ(odg_set_u32(&master, 0x1F87, id, i == 4u ? 0x20001u : 0u), ODG_OK);
-        standard_dcf(&d, id);
-        set_dcf(id, &d);
         connected[i] = 0;
-        if (i < 3u) {
-            CHECK_EQ(odg_set_u32(&master, 0x1016, (uint8_t)(i + 1u), (uint32_t)id << 16 | 500u), ODG_OK);
-        }
     }
     memset(&mcfg, 0, sizeof mcfg);
     mcfg.dict = &master;
@@ -354,6 +381,37 @@ static void test_mandatory_lost_stops_all(void)
     CHECK_EQ(odg_node_state(&mnode), ODG_NMT_STOPPED);
 }
 
+static void test_mandatory_lost_resets_all(void)
+{
+    const uint32_t assign[N_SLAVES] = {MANDATORY, OPTIONAL, OPTIONAL, 0, 0};
+    unsigned i, bootups = 0;
+    start(ODG_STARTUP_MASTER | ODG_STARTUP_RESET_ALL, assign, 0x7, 99, 99);
+    run(1500);
+    CHECK_EQ(odg_node_state(&slave_nodes[1]), ODG_NMT_OPERATIONAL);
+    connected[0] = 0;
+    run(600);
+    CHECK_EQ(status(2), ODG_SLAVE_BOOTING); /* all reset: booting again */
+    for (i = 0; i < n_seen; i++) {
+        bootups += seen[i].id == 0x700u + MASTER_ID && seen[i].data[0] == 0;
+    }
+    CHECK_EQ(bootups, 2); /* the master's own node reset too */
+    run(1500);
+    CHECK_EQ(status(3), ODG_SLAVE_BOOTED);
+    CHECK_EQ(status(4), ODG_SLAVE_BOOTED);
+    CHECK_EQ(status(2), ODG_SLAVE_NO_ANSWER); /* the lost one is still away */
+    CHECK_EQ(odg_node_state(&slave_nodes[1]), ODG_NMT_PRE_OPERATIONAL); /* it is mandatory */
+    check_configured(1);
+    connected[0] = 1;
+    tool_nmt(ODG_NMT_RESET_NODE, 2); /* it comes back (its reset went unheard while away) */
+    run(1500);
+    CHECK_EQ(status(2), ODG_SLAVE_BOOTED);
+    for (i = 0; i < 3u; i++) {
+        CHECK_EQ_AT(odg_node_state(&slave_nodes[i]), ODG_NMT_OPERATIONAL, i);
+        check_configured(i);
+    }
+    CHECK_EQ(odg_node_state(&mnode), ODG_NMT_OPERATIONAL);
+}
+
 static void test_mandatory_missing_holds_the_start(void)
 {
     const uint32_t assign[N_SLAVES] = {OPTIONAL, MANDATORY, 0, 0, 0};
@@ -468,6 +526,7 @@ int main(void)
     test_boot_reset_and_loss();
     test_late_slave();
     test_mandatory_lost_stops_all();
+    test_mandatory_lost_resets_all();
     test_mandatory_missing_holds_the_start();
     test_failures_and_start_all();
     test_not_a_master();
