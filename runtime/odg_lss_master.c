@@ -46,6 +46,7 @@ void odg_lssm_init(odg_lssm_t *m, odg_send_fn send, void *send_ctx, uint32_t tim
     m->bit = 0;
     m->heard = 0;
     m->known = 0;
+    m->waiting_seen = 0;
 }
 
 /* Send one command and wait for answer `awaited` (0: none, the service is done). */
@@ -127,6 +128,7 @@ odg_abort_t odg_lssm_fastscan_known(odg_lssm_t *m, const uint32_t identity[4], u
     if (ac == ODG_OK) {
         m->scan = SCAN_START;
         m->heard = 0;
+        m->waiting_seen = 0;
         m->known = (uint8_t)(known & 0x0Fu);
         for (i = 0; i < 4u; i++) {
             m->identity[i] = (m->known & 1u << i) != 0u ? identity[i] : 0u;
@@ -149,6 +151,7 @@ static void scan_step(odg_lssm_t *m, int answered)
             m->state = ODG_LSSM_NO_ANSWER;
             return;
         }
+        m->waiting_seen = 1;
         if (m->scan == SCAN_CONFIRM && ++m->sub == 4u) {
             m->state = ODG_LSSM_DONE; /* the slave is in configuration mode */
             return;

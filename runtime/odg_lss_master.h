@@ -52,6 +52,7 @@ typedef struct odg_lssm {
     uint8_t bit;          /* fastscan: the bit being found */
     uint8_t heard;        /* fastscan: an answer came to the question in flight */
     uint8_t known;        /* fastscan: the parts of the identity given (bit k: part k) */
+    uint8_t waiting_seen; /* fastscan: a slave without node-id answered its first question */
 } odg_lssm_t;
 
 /* timeout_ms 0: ODG_LSSM_TIMEOUT_MS. */

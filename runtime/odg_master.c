@@ -405,7 +405,8 @@ static void lss_target(odg_master_t *m)
 {
     uint32_t want[4];
     uint8_t known, k;
-    for (; m->lss_slave < m->n_slaves; m->lss_slave++) {
+    m->lss_tries++;
+    for (; m->lss_slave < m->n_slaves; m->lss_slave++, m->lss_tries = 1) {
         const odg_master_slave_t *s = &m->slave[m->lss_slave];
         for (k = 0, known = 0; k < 4u; k++) {
             want[k] = array_u32(m, (uint16_t)(0x1F85u + k), s->id);
@@ -432,8 +433,11 @@ static void lss_next(odg_master_t *m)
     } else if (m->lss_step == LSS_NODE_ID && m->lss.state == ODG_LSSM_DONE && m->cfg.lss == ODG_MASTER_LSS_STORE) {
         m->lss_step = LSS_STORE;
         (void)odg_lssm_store(&m->lss);
+    } else if (m->lss_step == LSS_SCAN && m->lss.waiting_seen && m->lss_tries < ODG_MASTER_LSS_TRIES) {
+        lss_target(m); /* slaves without node-id answered, but the scan went astray: again */
     } else { /* not found, configured, stored or refused: the next slave */
         m->lss_slave++;
+        m->lss_tries = 0;
         lss_target(m);
     }
 }
@@ -490,6 +494,7 @@ odg_abort_t odg_master_init(odg_master_t *m, const odg_master_config_t *cfg)
     if (cfg->lss != 0u && m->n_slaves > 0u) {
         odg_lssm_init(&m->lss, cfg->send, cfg->send_ctx, 0);
         m->lss_slave = 0;
+        m->lss_tries = 0;
         lss_target(m);
     }
     check_network(m); /* no slave at all: the master starts itself */

@@ -40,6 +40,11 @@ extern "C" {
 #ifndef ODG_MASTER_STATUS_INDEX
 #define ODG_MASTER_STATUS_INDEX 0x5F81u
 #endif
+/* Fastscans for one slave's identity while slaves without node-id answer but none with it is
+ * found (a late answer on a loaded bus spoils a scan). */
+#ifndef ODG_MASTER_LSS_TRIES
+#define ODG_MASTER_LSS_TRIES 3u
+#endif
 /* ms between two attempts to reach an absent slave (CiA 302-2: optional slaves are retried). */
 #ifndef ODG_MASTER_RETRY_MS
 #define ODG_MASTER_RETRY_MS 1000u
@@ -123,6 +128,7 @@ typedef struct odg_master {
     uint8_t network_up;    /* the slaves were started (as 0x1F80 says) once */
     uint8_t lss_step;      /* node-ids by LSS: what the LSS master does (odg_master.c); 0: over */
     uint8_t lss_slave;     /* node-ids by LSS: the slave looked for */
+    uint8_t lss_tries;     /* node-ids by LSS: fastscans for it so far */
 } odg_master_t;
 
 /* Read 0x1F80 and 0x1F81 from cfg->dict, take the first ODG_MASTER_MAX_SLAVES assigned slaves,

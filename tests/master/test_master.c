@@ -186,7 +186,7 @@ static void set_dcf(uint8_t id, const dcf_t *d)
 /* The master's configuration of this scenario, written into its dictionary at the start and
  * again after its own node was reset (which brings the dictionary's defaults back). */
 static struct {
-    uint32_t startup, assign[N_SLAVES], wrong_product, wrong_type;
+    uint32_t startup, assign[N_SLAVES], wrong_product, wrong_type, lss_revision;
 } setup;
 
 static void apply_setup(void)
@@ -203,7 +203,7 @@ static void apply_setup(void)
         CHECK_EQ(odg_set_u32(&master, 0x1F84, id, i == setup.wrong_type ? 0x12345678u : types[i]), ODG_OK);
         CHECK_EQ(odg_set_u32(&master, 0x1F86, id, products[i] + (i == setup.wrong_product ? 1u : 0u)), ODG_OK);
         CHECK_EQ(odg_set_u32(&master, 0x1F85, id, i == 4u ? 0x4D2u : 0u), ODG_OK);
-        CHECK_EQ(odg_set_u32(&master, 0x1F87, id, i == 4u ? 0x20001u : 0u), ODG_OK);
+        CHECK_EQ(odg_set_u32(&master, 0x1F87, id, i == 4u ? setup.lss_revision : 0u), ODG_OK);
         standard_dcf(&d, id);
         set_dcf(id, &d);
         if (i < 3u) {
@@ -236,6 +236,7 @@ static void start(uint32_t startup, const uint32_t assign[N_SLAVES], unsigned pr
     memcpy(setup.assign, assign, sizeof setup.assign);
     setup.wrong_product = wrong_product;
     setup.wrong_type = wrong_type;
+    setup.lss_revision = setup.lss_revision != 0u ? setup.lss_revision : 0x20001u;
     memset(&cfg, 0, sizeof cfg);
     cfg.dict = &master;
     cfg.node_id = MASTER_ID;
@@ -521,6 +522,29 @@ static void test_node_id_by_lss(void)
     CHECK_EQ(odg_node_state(&slave_nodes[3]), ODG_NMT_INITIALISING);
 }
 
+/* The revision the master expects of node 6 is not the one it has: slaves without node-id
+ * answer, none is found, the scan is tried ODG_MASTER_LSS_TRIES times, and node 6 keeps none. */
+static void test_lss_identity_not_found(void)
+{
+    const uint32_t assign[N_SLAVES] = {OPTIONAL, 0, 0, 0, OPTIONAL};
+    unsigned i, scans = 0;
+    lss_mode = ODG_MASTER_LSS;
+    no_node_id = 1u << 4;
+    setup.lss_revision = 0x20002u;
+    start(ODG_STARTUP_MASTER, assign, 0x11, 99, 99);
+    setup.lss_revision = 0;
+    lss_mode = 0;
+    no_node_id = 0;
+    run(3000);
+    for (i = 0; i < n_seen; i++) {
+        scans += seen[i].id == ODG_LSS_MASTER_COB && seen[i].data[0] == 0x51 && seen[i].data[5] == 0x80;
+    }
+    CHECK_EQ(scans, ODG_MASTER_LSS_TRIES);
+    CHECK_EQ(slave_nodes[4].cfg.node_id, ODG_LSS_UNCONFIGURED);
+    CHECK_EQ(status(6), ODG_SLAVE_NO_ANSWER);
+    CHECK_EQ(status(2), ODG_SLAVE_BOOTED);
+}
+
 int main(void)
 {
     test_boot_reset_and_loss();
@@ -531,5 +555,6 @@ int main(void)
     test_failures_and_start_all();
     test_not_a_master();
     test_node_id_by_lss();
+    test_lss_identity_not_found();
     return done();
 }
