@@ -382,6 +382,37 @@ static void test_mandatory_lost_stops_all(void)
     CHECK_EQ(odg_node_state(&mnode), ODG_NMT_STOPPED);
 }
 
+/* Node 5 has no heartbeat consumer entry: the master guards it (0x1F81: guard time 100 ms,
+ * life time factor 3); the node answers the remote frames; silent, it is lost (F). */
+static void test_node_guarding(void)
+{
+    const uint32_t guarded = OPTIONAL | 100u << 16 | 3u << 8;
+    const uint32_t assign[N_SLAVES] = {0, 0, 0, guarded, 0};
+    unsigned i, rtr = 0;
+    dcf_t d;
+    start(ODG_STARTUP_MASTER, assign, 0x8, 99, 99);
+    memset(&d, 0, sizeof d);
+    dcf_add(&d, 0x1017, 0, 0, 2); /* no heartbeat (a node answers guarding only then) */
+    dcf_add(&d, 0x6200, 2, 3, 1);
+    set_dcf(5, &d);
+    run(1000);
+    CHECK_EQ(status(5), ODG_SLAVE_BOOTED);
+    CHECK_EQ(odg_node_state(&slave_nodes[3]), ODG_NMT_OPERATIONAL);
+    for (i = 0; i < n_seen; i++) {
+        rtr += seen[i].id == 0x705u && (seen[i].flags & ODG_FRAME_RTR) != 0u;
+    }
+    CHECK(rtr >= 5u && rtr <= 11u); /* one each 100 ms once booted */
+    connected[3] = 0; /* its last answer was at most 100 ms ago: lost 200..300 ms from now */
+    run(190);
+    CHECK_EQ(status(5), ODG_SLAVE_BOOTED);
+    run(120);
+    CHECK_EQ(status(5), ODG_SLAVE_GUARDING);
+    CHECK(emcy_seen(ODG_MASTER_EMCY_LOST, 'F', 5));
+    connected[3] = 1;
+    run(2000); /* 0x1F81 bit 2: its boot again */
+    CHECK_EQ(status(5), ODG_SLAVE_BOOTED);
+}
+
 static void test_mandatory_lost_resets_all(void)
 {
     const uint32_t assign[N_SLAVES] = {MANDATORY, OPTIONAL, OPTIONAL, 0, 0};
@@ -550,6 +581,7 @@ int main(void)
     test_boot_reset_and_loss();
     test_late_slave();
     test_mandatory_lost_stops_all();
+    test_node_guarding();
     test_mandatory_lost_resets_all();
     test_mandatory_missing_holds_the_start();
     test_failures_and_start_all();
