@@ -18,13 +18,14 @@
 #include "flow.h"
 #include "inv.h"
 #include "lss.h"
+#include "dated.h"
 
 #define N_SLAVES 5u
 #define MASTER_ID 1u
 
 /* participants: 0 the master (node + configuration manager), 1..5 slaves of node-id 2..6; node 6
  * (tests/node/lss-node.eds) boots without node-id in the LSS scenario */
-static const odg_dict_t *const slave_dicts[N_SLAVES] = {&hv, &vac, &flow, &inv, &lss};
+static const odg_dict_t *slave_dicts[N_SLAVES] = {&hv, &vac, &flow, &inv, &lss}; /* [4]: or &dated */
 static odg_node_t slave_nodes[N_SLAVES];
 static uint8_t connected[N_SLAVES];
 static odg_node_t mnode;
@@ -164,9 +165,13 @@ static void dcf_add(dcf_t *d, uint16_t index, uint8_t sub, uint32_t value, uint3
 static void standard_dcf(dcf_t *d, uint8_t id)
 {
     memset(d, 0, sizeof *d);
-    if (id == 6u) { /* the LSS node has neither 0x1800 sub 5 nor 0x6200 */
+    if (id == 6u) { /* the LSS node and the dated node have neither 0x1800 sub 5 nor 0x6200 */
         dcf_add(d, 0x1017, 0, 100, 2);
         dcf_add(d, 0x2000, 0, 0x5A, 1);
+        if (slave_dicts[4] == &dated) { /* the date and time of this configuration */
+            dcf_add(d, 0x1020, 1, 100, 4);
+            dcf_add(d, 0x1020, 2, 200, 4);
+        }
         return;
     }
     dcf_add(d, 0x1017, 0, 100, 2);
@@ -192,9 +197,12 @@ static struct {
 static void apply_setup(void)
 {
     static const uint32_t types[N_SLAVES] = {0x000E0191, 0x00070191, 0x000F0191, 0x000B0191, 0x00000191};
-    static const uint32_t products[N_SLAVES] = {0x101, 0x102, 0x103, 0x104, 0x00010203};
+    uint32_t products[N_SLAVES] = {0x101, 0x102, 0x103, 0x104, 0x00010203};
     unsigned i;
     dcf_t d;
+    if (slave_dicts[4] == &dated) {
+        products[4] = 0x77;
+    }
     CHECK_EQ(odg_set_u32(&master, 0x1F80, 0, setup.startup), ODG_OK);
     CHECK_EQ(odg_set_u32(&master, 0x1F89, 0, boot_time), ODG_OK);
     for (i = 0; i < N_SLAVES; i++) {
@@ -203,7 +211,8 @@ static void apply_setup(void)
         CHECK_EQ(odg_set_u32(&master, 0x1F84, id, i == setup.wrong_type ? 0x12345678u : types[i]), ODG_OK);
         CHECK_EQ(odg_set_u32(&master, 0x1F86, id, products[i] + (i == setup.wrong_product ? 1u : 0u)), ODG_OK);
         CHECK_EQ(odg_set_u32(&master, 0x1F85, id, i == 4u ? 0x4D2u : 0u), ODG_OK);
-        CHECK_EQ(odg_set_u32(&master, 0x1F87, id, i == 4u ? setup.lss_revision : 0u), ODG_OK);
+        CHECK_EQ(odg_set_u32(&master, 0x1F87, id, i != 4u ? 0u : slave_dicts[4] == &dated ? 1u : setup.lss_revision),
+                 ODG_OK);
         standard_dcf(&d, id);
         set_dcf(id, &d);
         if (i < 3u) {
@@ -576,6 +585,39 @@ static void test_lss_identity_not_found(void)
     CHECK_EQ(status(2), ODG_SLAVE_BOOTED);
 }
 
+/* The configuration date and time: 0x1F26/0x1F27 expect 100/200; the first boot downloads the
+ * DCF (which writes them into 0x1020), a boot again with 0x1020 equal skips the download, one
+ * with another expected time downloads it again. */
+static void test_configuration_date(void)
+{
+    const uint32_t assign[N_SLAVES] = {0, 0, 0, 0, OPTIONAL};
+    uint8_t v = 0;
+    uint32_t date = 0;
+    slave_dicts[4] = &dated;
+    start(ODG_STARTUP_MASTER, assign, 0x10, 99, 99);
+    CHECK_EQ(odg_set_u32(&master, 0x1F26, 6, 100), ODG_OK);
+    CHECK_EQ(odg_set_u32(&master, 0x1F27, 6, 200), ODG_OK);
+    run(500);
+    CHECK_EQ(status(6), ODG_SLAVE_BOOTED);
+    CHECK_EQ(odg_get_u8(&dated, 0x2000, 0, &v), ODG_OK);
+    CHECK_EQ(v, 0x5A);
+    CHECK_EQ(odg_get_u32(&dated, 0x1020, 2, &date), ODG_OK);
+    CHECK_EQ(date, 200);
+    CHECK_EQ(odg_set_u8(&dated, 0x2000, 0, 1), ODG_OK); /* changed on the slave */
+    odg_master_reboot(&mgr, 6);
+    run(500);
+    CHECK_EQ(status(6), ODG_SLAVE_BOOTED);
+    CHECK_EQ(odg_get_u8(&dated, 0x2000, 0, &v), ODG_OK);
+    CHECK_EQ(v, 1); /* 0x1020 matched: nothing downloaded */
+    CHECK_EQ(odg_set_u32(&master, 0x1F27, 6, 201), ODG_OK);
+    odg_master_reboot(&mgr, 6);
+    run(500);
+    CHECK_EQ(status(6), ODG_SLAVE_BOOTED);
+    CHECK_EQ(odg_get_u8(&dated, 0x2000, 0, &v), ODG_OK);
+    CHECK_EQ(v, 0x5A);
+    slave_dicts[4] = &lss;
+}
+
 int main(void)
 {
     test_boot_reset_and_loss();
@@ -588,5 +630,6 @@ int main(void)
     test_not_a_master();
     test_node_id_by_lss();
     test_lss_identity_not_found();
+    test_configuration_date();
     return done();
 }
