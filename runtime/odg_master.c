@@ -364,7 +364,8 @@ static void reboot_all(odg_master_t *m)
 
 /* Error control lost a booted slave: report it, then as 0x1F80 and 0x1F81 say. A mandatory
  * slave lost stops every node (bit 6; the application decides what follows) or resets them all
- * (bit 4), else its boot begins again, as an optional slave's does with 0x1F81 bit 2. */
+ * (bit 4); otherwise it is reset alone, and tried again from time to time when it is mandatory
+ * or 0x1F81 bit 2 says so (else its boot-up begins its boot). */
 static void lost(odg_master_t *m, odg_master_slave_t *s)
 {
     int mandatory = (s->assignment & ODG_ASSIGN_MANDATORY) != 0u;
@@ -375,10 +376,14 @@ static void lost(odg_master_t *m, odg_master_slave_t *s)
     } else if (mandatory && (m->startup & ODG_STARTUP_RESET_ALL) != 0u) {
         command(m, ODG_NMT_RESET_NODE, 0);
         reboot_all(m);
-    } else if (mandatory || (s->assignment & ODG_ASSIGN_REBOOT) != 0u) {
-        try_later(s, 0); /* its boot-up process again, from the next process call */
     } else {
-        s->phase = P_FAILED;
+        /* reset it: heard, its boot-up begins its boot; else the retries find it (bit 2) */
+        command(m, ODG_NMT_RESET_NODE, s->id);
+        if (mandatory || (s->assignment & ODG_ASSIGN_REBOOT) != 0u) {
+            try_later(s, ODG_MASTER_RETRY_MS);
+        } else {
+            s->phase = P_FAILED;
+        }
     }
 }
 

@@ -350,6 +350,10 @@ static void test_boot_reset_and_loss(void)
     run(700);
     CHECK_EQ(status(4), ODG_SLAVE_HEARTBEAT);
     CHECK(emcy_seen(ODG_MASTER_EMCY_LOST, 'E', 4));
+    for (i = 0, n = 0; i < n_seen; i++) {
+        n += seen[i].id == 0u && seen[i].data[0] == ODG_NMT_RESET_NODE && seen[i].data[1] == 4u;
+    }
+    CHECK_EQ(n, 1); /* reset alone (unheard: it is away) */
     connected[2] = 1;
     run(1500);
     CHECK_EQ(status(4), ODG_SLAVE_BOOTED);
