@@ -483,7 +483,7 @@ odg_abort_t odg_master_init(odg_master_t *m, const odg_master_config_t *cfg)
             s->tried = 0;
             s->same_date = 0;
             s->abort = 0;
-            odg_sdoc_cobs(cfg->dict, (uint16_t)(0x1280u + m->n_slaves), s->id, &tx, &rx);
+            odg_sdoc_cobs(cfg->dict, s->id, &tx, &rx);
             odg_sdoc_init(&m->sdo[m->n_slaves], s->id, tx, rx, cfg->send, cfg->send_ctx);
             (void)odg_nmtm_watch(&m->nmt, s->id, 0, 0, 0); /* boot-ups and states from now on */
             m->n_slaves++;

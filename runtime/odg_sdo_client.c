@@ -83,17 +83,22 @@ void odg_sdoc_init(odg_sdoc_t *ch, uint8_t node_id, uint32_t cob_tx, uint32_t co
     ch->cob_rx = cob_rx != 0u ? cob_rx : 0x580u + node_id;
 }
 
-void odg_sdoc_cobs(const odg_dict_t *dict, uint16_t index, uint8_t node_id, uint32_t *cob_tx, uint32_t *cob_rx)
+void odg_sdoc_cobs(const odg_dict_t *dict, uint8_t node_id, uint32_t *cob_tx, uint32_t *cob_rx)
 {
-    uint32_t tx = 0, rx = 0;
-    uint8_t server = 0;
+    uint32_t tx, rx, index;
+    uint8_t server;
     *cob_tx = 0x600u + node_id;
     *cob_rx = 0x580u + node_id;
-    if (odg_get_u32(dict, index, 1, &tx) == ODG_OK && odg_get_u32(dict, index, 2, &rx) == ODG_OK &&
-        odg_get_u8(dict, index, 3, &server) == ODG_OK && server == node_id && (tx & 0x80000000u) == 0u &&
-        (rx & 0x80000000u) == 0u) {
-        *cob_tx = tx & 0x7FFu;
-        *cob_rx = rx & 0x7FFu;
+    for (index = 0x1280u; index <= 0x12FFu; index++) {
+        tx = rx = 0x80000000u;
+        server = 0;
+        if (odg_get_u8(dict, (uint16_t)index, 3, &server) == ODG_OK && server == node_id &&
+            odg_get_u32(dict, (uint16_t)index, 1, &tx) == ODG_OK && odg_get_u32(dict, (uint16_t)index, 2, &rx) == ODG_OK &&
+            (tx & 0x80000000u) == 0u && (rx & 0x80000000u) == 0u) {
+            *cob_tx = tx & 0x7FFu;
+            *cob_rx = rx & 0x7FFu;
+            return;
+        }
     }
 }
 

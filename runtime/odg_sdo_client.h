@@ -62,9 +62,10 @@ typedef struct odg_sdoc {
 void odg_sdoc_init(odg_sdoc_t *ch, uint8_t node_id, uint32_t cob_tx, uint32_t cob_rx, odg_send_fn send,
                    void *send_ctx);
 
-/* The COB-IDs of client parameter `index` (0x1280..0x12FF) of `dict` when it exists and is
- * valid (bit 31 clear) for server `node_id` (sub 3), else 0x600 + id / 0x580 + id. */
-void odg_sdoc_cobs(const odg_dict_t *dict, uint16_t index, uint8_t node_id, uint32_t *cob_tx, uint32_t *cob_rx);
+/* The COB-IDs for server `node_id`: those of the first SDO client parameter of `dict`
+ * (0x1280..0x12FF) whose sub 3 names that server and whose COB-IDs are valid (bit 31 clear),
+ * else 0x600 + id / 0x580 + id. */
+void odg_sdoc_cobs(const odg_dict_t *dict, uint8_t node_id, uint32_t *cob_tx, uint32_t *cob_rx);
 
 /* Start a download of `len` bytes (expedited up to 4, else segmented). `data` must stay valid
  * until the transfer ends. ODG_ABORT_DATA_STATE while a transfer is in flight (nothing sent),

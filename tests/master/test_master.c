@@ -520,6 +520,33 @@ static void test_failures_and_start_all(void)
     CHECK_EQ(odg_node_state(&mnode), ODG_NMT_PRE_OPERATIONAL);
 }
 
+/* An SDO client parameter naming node 3 gives its channel's COB-IDs; an invalid one does not. */
+static void test_client_parameter(void)
+{
+    const uint32_t assign[N_SLAVES] = {OPTIONAL, OPTIONAL, 0, 0, 0};
+    odg_master_config_t mcfg;
+    start(ODG_STARTUP_MASTER, assign, 0x3, 99, 99);
+    memset(&mcfg, 0, sizeof mcfg);
+    mcfg.dict = &master;
+    mcfg.send = bus_send;
+    mcfg.send_ctx = &ids[0];
+    CHECK_EQ(odg_set_u8(&master, 0x1280, 3, 3), ODG_OK);
+    CHECK_EQ(odg_set_u32(&master, 0x1280, 1, 0x80000643u), ODG_OK); /* not valid: the defaults */
+    CHECK_EQ(odg_set_u32(&master, 0x1280, 2, 0x5C3u), ODG_OK);
+    CHECK_EQ(odg_master_init(&mgr, &mcfg), ODG_OK);
+    CHECK_EQ(mgr.sdo[1].cob_tx, 0x603);
+    CHECK_EQ(mgr.sdo[1].cob_rx, 0x583);
+    CHECK_EQ(odg_set_u32(&master, 0x1280, 1, 0x643u), ODG_OK);
+    CHECK_EQ(odg_master_init(&mgr, &mcfg), ODG_OK);
+    CHECK_EQ(mgr.sdo[0].cob_tx, 0x602); /* node 2: no parameter */
+    CHECK_EQ(mgr.sdo[1].cob_tx, 0x643);
+    CHECK_EQ(mgr.sdo[1].cob_rx, 0x5C3);
+    CHECK_EQ(odg_set_u8(&master, 0x1280, 3, 0), ODG_OK);
+    CHECK_EQ(odg_set_u32(&master, 0x1280, 1, 0x80000000u), ODG_OK);
+    CHECK_EQ(odg_set_u32(&master, 0x1280, 2, 0x80000000u), ODG_OK);
+    mgr_up = 0;
+}
+
 static void test_not_a_master(void)
 {
     const uint32_t assign[N_SLAVES] = {OPTIONAL, 0, 0, 0, 0};
@@ -631,6 +658,7 @@ int main(void)
     test_mandatory_lost_resets_all();
     test_mandatory_missing_holds_the_start();
     test_failures_and_start_all();
+    test_client_parameter();
     test_not_a_master();
     test_node_id_by_lss();
     test_lss_identity_not_found();
