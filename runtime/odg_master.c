@@ -75,12 +75,16 @@ static void set_status(odg_master_t *m, odg_master_slave_t *s, uint8_t status)
     }
 }
 
-/* An NMT command the master sends, heard by its own node too when it concerns it. */
+/* An NMT command: on the bus unless it is for the master alone, and to the master's own node
+ * when it concerns it. */
 static void command(odg_master_t *m, uint8_t cs, uint8_t node_id)
 {
     odg_frame_t f;
-    (void)odg_nmtm_command(&m->nmt, cs, node_id);
-    if (m->cfg.node != NULL && (node_id == 0u || node_id == m->cfg.dict->state->node_id)) {
+    int own = node_id == m->cfg.dict->state->node_id;
+    if (!own) {
+        (void)odg_nmtm_command(&m->nmt, cs, node_id);
+    }
+    if (m->cfg.node != NULL && (node_id == 0u || own)) {
         f.id = 0;
         f.len = 2;
         f.flags = 0;

@@ -520,6 +520,65 @@ static void test_failures_and_start_all(void)
     CHECK_EQ(odg_node_state(&mnode), ODG_NMT_PRE_OPERATIONAL);
 }
 
+/* 0x1F80 bit 3: the application starts the slaves; the master enters operational (bit 2 clear). */
+static void test_application_starts(void)
+{
+    const uint32_t assign[N_SLAVES] = {MANDATORY, OPTIONAL, 0, 0, 0};
+    unsigned i, starts = 0;
+    start(ODG_STARTUP_MASTER | ODG_STARTUP_NO_START, assign, 0x3, 99, 99);
+    run(1500);
+    CHECK_EQ(status(2), ODG_SLAVE_BOOTED);
+    CHECK_EQ(status(3), ODG_SLAVE_BOOTED);
+    check_configured(0);
+    CHECK_EQ(odg_node_state(&slave_nodes[0]), ODG_NMT_PRE_OPERATIONAL);
+    CHECK_EQ(odg_node_state(&slave_nodes[1]), ODG_NMT_PRE_OPERATIONAL);
+    CHECK_EQ(odg_node_state(&mnode), ODG_NMT_OPERATIONAL);
+    for (i = 0; i < n_seen; i++) {
+        starts += seen[i].id == 0u && seen[i].data[0] == ODG_NMT_START;
+    }
+    CHECK_EQ(starts, 0);
+}
+
+/* A keep-alive slave found operational is neither reset nor configured: status L, no EMCY,
+ * watched from then on. */
+static void test_keep_alive(void)
+{
+    const uint32_t assign[N_SLAVES] = {OPTIONAL | ODG_ASSIGN_KEEP_ALIVE, 0, 0, 0, 0};
+    unsigned i, resets = 0;
+    uint8_t mode = 0xEE;
+    start(ODG_STARTUP_MASTER, assign, 0x1, 99, 99);
+    CHECK_EQ(odg_set_u16(&hv, 0x1017, 0, 100), ODG_OK); /* it runs with a heartbeat */
+    tool_nmt(ODG_NMT_START, 2);
+    run(1500);
+    CHECK_EQ(status(2), ODG_SLAVE_OPERATIONAL);
+    CHECK_EQ(odg_node_state(&slave_nodes[0]), ODG_NMT_OPERATIONAL);
+    CHECK_EQ(odg_get_u8(&hv, 0x6200, 2, &mode), ODG_OK);
+    CHECK_EQ(mode, 0); /* nothing downloaded */
+    for (i = 0; i < n_seen; i++) {
+        resets += seen[i].id == 0u && seen[i].data[0] == ODG_NMT_RESET_COMM;
+    }
+    CHECK_EQ(resets, 0);
+    CHECK(!emcy_seen(ODG_MASTER_EMCY_BOOT, 'L', 2));
+    connected[0] = 0; /* watched: lost */
+    run(700);
+    CHECK_EQ(status(2), ODG_SLAVE_HEARTBEAT);
+}
+
+/* A concise DCF whose last entry says more bytes than follow: J, nothing sent for that entry. */
+static void test_truncated_dcf(void)
+{
+    const uint32_t assign[N_SLAVES] = {OPTIONAL, 0, 0, 0, 0};
+    dcf_t d;
+    start(ODG_STARTUP_MASTER, assign, 0x1, 99, 99);
+    standard_dcf(&d, 2);
+    d.len -= 1; /* the last entry (0x6200 sub 2, 1 byte) loses its byte */
+    set_dcf(2, &d);
+    run(1000);
+    CHECK_EQ(status(2), ODG_SLAVE_DOWNLOAD);
+    CHECK_EQ(odg_master_slave(&mgr, 2)->abort, ODG_ABORT_DATA_LOCAL);
+    CHECK_EQ(odg_node_state(&slave_nodes[0]), ODG_NMT_PRE_OPERATIONAL);
+}
+
 /* An SDO client parameter naming node 3 gives its channel's COB-IDs; an invalid one does not. */
 static void test_client_parameter(void)
 {
@@ -658,6 +717,9 @@ int main(void)
     test_mandatory_lost_resets_all();
     test_mandatory_missing_holds_the_start();
     test_failures_and_start_all();
+    test_application_starts();
+    test_keep_alive();
+    test_truncated_dcf();
     test_client_parameter();
     test_not_a_master();
     test_node_id_by_lss();
