@@ -405,22 +405,30 @@ static void on_nmt_event(void *ctx, uint8_t node_id, uint8_t event)
     }
 }
 
+/* The identity the master expects of `s` (0x1F85..0x1F88) into want[]: bit k of the result set
+ * when part k is non-zero. */
+static uint8_t expected_identity(const odg_master_t *m, const odg_master_slave_t *s, uint32_t want[4])
+{
+    uint8_t known = 0, k;
+    for (k = 0; k < 4u; k++) {
+        want[k] = array_u32(m, (uint16_t)(0x1F85u + k), s->id);
+        known = (uint8_t)(known | (want[k] != 0u ? 1u << k : 0u));
+    }
+    return known;
+}
+
 /* Node-ids by LSS: for each assigned slave whose vendor-ID and product code the master expects
  * (0x1F85, 0x1F86; with 0x1F87, 0x1F88 when non-zero), a fastscan for that identity (the parts
  * known take one question each); the slave found gets its node-id (and stores it) and stays in
- * configuration mode. After the last, every slave goes back to waiting: those configured boot
- * with their node-ids, and their boot-up processes begin. */
+ * configuration mode. After the last (after the one slave of a retry), every slave goes back to
+ * waiting: those configured boot with their node-ids, and their boot-up processes begin. */
 static void lss_target(odg_master_t *m)
 {
     uint32_t want[4];
-    uint8_t known, k;
+    uint8_t known;
     m->lss_tries++;
     for (; m->lss_slave < m->n_slaves; m->lss_slave++, m->lss_tries = 1) {
-        const odg_master_slave_t *s = &m->slave[m->lss_slave];
-        for (k = 0, known = 0; k < 4u; k++) {
-            want[k] = array_u32(m, (uint16_t)(0x1F85u + k), s->id);
-            known = (uint8_t)(known | (want[k] != 0u ? 1u << k : 0u));
-        }
+        known = expected_identity(m, &m->slave[m->lss_slave], want);
         if ((known & 3u) == 3u) {
             m->lss_step = LSS_SCAN;
             (void)odg_lssm_fastscan_known(&m->lss, want, known);
@@ -428,6 +436,7 @@ static void lss_target(odg_master_t *m)
         }
     }
     m->lss_step = LSS_OVER;
+    m->lss_only = 0;
     (void)odg_lssm_switch_global(&m->lss, ODG_LSS_WAITING);
 }
 
@@ -444,11 +453,25 @@ static void lss_next(odg_master_t *m)
         (void)odg_lssm_store(&m->lss);
     } else if (m->lss_step == LSS_SCAN && m->lss.waiting_seen && m->lss_tries < ODG_MASTER_LSS_TRIES) {
         lss_target(m); /* slaves without node-id answered, but the scan went astray: again */
-    } else { /* not found, configured, stored or refused: the next slave */
-        m->lss_slave++;
+    } else { /* not found, configured, stored or refused: the next slave (none after a retry's) */
+        m->lss_slave = m->lss_only ? m->n_slaves : (uint8_t)(m->lss_slave + 1u);
         m->lss_tries = 0;
         lss_target(m);
     }
+}
+
+/* A retry of slave `i` that LSS could give a node-id: a fastscan for it alone first (a slave
+ * without node-id that powered up after the master's start). */
+static void lss_retry(odg_master_t *m, uint8_t i)
+{
+    uint32_t want[4];
+    if (m->cfg.lss == 0u || m->lss_step != LSS_OVER || (expected_identity(m, &m->slave[i], want) & 3u) != 3u) {
+        return;
+    }
+    m->lss_slave = i;
+    m->lss_only = 1;
+    m->lss_tries = 0;
+    lss_target(m);
 }
 
 odg_abort_t odg_master_init(odg_master_t *m, const odg_master_config_t *cfg)
@@ -459,6 +482,7 @@ odg_abort_t odg_master_init(odg_master_t *m, const odg_master_config_t *cfg)
     m->n_slaves = 0;
     m->network_up = 0;
     m->lss_step = LSS_OVER;
+    m->lss_only = 0;
     if (cfg == NULL || cfg->dict == NULL || cfg->send == NULL) {
         return ODG_ABORT_INCOMPATIBLE;
     }
@@ -504,6 +528,7 @@ odg_abort_t odg_master_init(odg_master_t *m, const odg_master_config_t *cfg)
         odg_lssm_init(&m->lss, cfg->send, cfg->send_ctx, 0);
         m->lss_slave = 0;
         m->lss_tries = 0;
+        m->lss_only = 0;
         lss_target(m);
     }
     check_network(m); /* no slave at all: the master starts itself */
@@ -548,6 +573,7 @@ void odg_master_process(odg_master_t *m, uint32_t elapsed_ms)
             s->timer = s->timer > elapsed_ms ? s->timer - elapsed_ms : 0u;
             if (s->timer == 0u) {
                 begin(m, s, 0);
+                lss_retry(m, (uint8_t)i);
             }
         } else if (s->phase >= P_DEVTYPE && s->phase <= P_DCF && m->sdo[i].state != ODG_SDOC_BUSY) {
             step(m, s); /* timed out */

@@ -129,6 +129,7 @@ typedef struct odg_master {
     uint8_t lss_step;      /* node-ids by LSS: what the LSS master does (odg_master.c); 0: over */
     uint8_t lss_slave;     /* node-ids by LSS: the slave looked for */
     uint8_t lss_tries;     /* node-ids by LSS: fastscans for it so far */
+    uint8_t lss_only;      /* node-ids by LSS: for that slave alone (its retry) */
 } odg_master_t;
 
 /* Read 0x1F80 and 0x1F81 from cfg->dict, take the first ODG_MASTER_MAX_SLAVES assigned slaves,

@@ -652,6 +652,24 @@ static void test_node_id_by_lss(void)
     CHECK_EQ(odg_node_state(&slave_nodes[3]), ODG_NMT_INITIALISING);
 }
 
+/* Node 6 without node-id powers up after the master's start: found at a retry of node 6. */
+static void test_lss_slave_late(void)
+{
+    const uint32_t assign[N_SLAVES] = {OPTIONAL, 0, 0, 0, OPTIONAL};
+    lss_mode = ODG_MASTER_LSS;
+    no_node_id = 1u << 4;
+    start(ODG_STARTUP_MASTER, assign, 0x1, 99, 99);
+    lss_mode = 0;
+    run(2000);
+    CHECK_EQ(status(6), ODG_SLAVE_NO_ANSWER);
+    power_up(4);
+    no_node_id = 0;
+    run(3000);
+    CHECK_EQ(slave_nodes[4].cfg.node_id, 6);
+    CHECK_EQ(status(6), ODG_SLAVE_BOOTED);
+    CHECK_EQ(odg_node_state(&slave_nodes[4]), ODG_NMT_OPERATIONAL);
+}
+
 /* The revision the master expects of node 6 is not the one it has: slaves without node-id
  * answer, none is found, the scan is tried ODG_MASTER_LSS_TRIES times, and node 6 keeps none. */
 static void test_lss_identity_not_found(void)
@@ -665,11 +683,16 @@ static void test_lss_identity_not_found(void)
     setup.lss_revision = 0;
     lss_mode = 0;
     no_node_id = 0;
-    run(3000);
+    run(1000);
     for (i = 0; i < n_seen; i++) {
         scans += seen[i].id == ODG_LSS_MASTER_COB && seen[i].data[0] == 0x51 && seen[i].data[5] == 0x80;
     }
     CHECK_EQ(scans, ODG_MASTER_LSS_TRIES);
+    run(2000); /* node 6's retries look for it again, as many times each */
+    for (i = 0, scans = 0; i < n_seen; i++) {
+        scans += seen[i].id == ODG_LSS_MASTER_COB && seen[i].data[0] == 0x51 && seen[i].data[5] == 0x80;
+    }
+    CHECK(scans > ODG_MASTER_LSS_TRIES && scans % ODG_MASTER_LSS_TRIES == 0u);
     CHECK_EQ(slave_nodes[4].cfg.node_id, ODG_LSS_UNCONFIGURED);
     CHECK_EQ(status(6), ODG_SLAVE_NO_ANSWER);
     CHECK_EQ(status(2), ODG_SLAVE_BOOTED);
@@ -724,6 +747,7 @@ int main(void)
     test_not_a_master();
     test_node_id_by_lss();
     test_lss_identity_not_found();
+    test_lss_slave_late();
     test_configuration_date();
     return done();
 }
