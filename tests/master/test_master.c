@@ -564,7 +564,8 @@ static void test_keep_alive(void)
     CHECK_EQ(status(2), ODG_SLAVE_HEARTBEAT);
 }
 
-/* A concise DCF whose last entry says more bytes than follow: J, nothing sent for that entry. */
+/* A concise DCF whose last entry says more bytes than follow, or that counts more entries than
+ * it has, or whose entry size runs past the end: J (DATA_LOCAL), never a read past the DCF. */
 static void test_truncated_dcf(void)
 {
     const uint32_t assign[N_SLAVES] = {OPTIONAL, 0, 0, 0, 0};
@@ -577,6 +578,24 @@ static void test_truncated_dcf(void)
     CHECK_EQ(status(2), ODG_SLAVE_DOWNLOAD);
     CHECK_EQ(odg_master_slave(&mgr, 2)->abort, ODG_ABORT_DATA_LOCAL);
     CHECK_EQ(odg_node_state(&slave_nodes[0]), ODG_NMT_PRE_OPERATIONAL);
+    /* a count larger than the entries there; a size near 2^32 (no wrap past the end) */
+    standard_dcf(&d, 2);
+    d.b[0] = d.b[1] = d.b[2] = d.b[3] = 0xFF;
+    set_dcf(2, &d);
+    odg_master_reboot(&mgr, 2);
+    run(1000);
+    CHECK_EQ(status(2), ODG_SLAVE_DOWNLOAD);
+    CHECK_EQ(odg_master_slave(&mgr, 2)->abort, ODG_ABORT_DATA_LOCAL);
+    check_configured(0); /* the five entries there went */
+    memset(&d, 0, sizeof d);
+    dcf_add(&d, 0x1017, 0, 100, 2);
+    d.b[4 + 3] = 0xF0; /* size 0xFFFFFFF0 | 2 */
+    d.b[4 + 4] = d.b[4 + 5] = d.b[4 + 6] = 0xFF;
+    set_dcf(2, &d);
+    odg_master_reboot(&mgr, 2);
+    run(1000);
+    CHECK_EQ(status(2), ODG_SLAVE_DOWNLOAD);
+    CHECK_EQ(odg_master_slave(&mgr, 2)->abort, ODG_ABORT_DATA_LOCAL);
 }
 
 /* An SDO client parameter naming node 3 gives its channel's COB-IDs; an invalid one does not. */

@@ -245,6 +245,47 @@ static void test_two_in_flight(void)
     CHECK_EQ(a.n, 9);
 }
 
+/* Random answers (a fixed seed) to random transfers: the client never takes more than the upload
+ * buffer holds (AddressSanitizer watches the writes) nor sends more than it was given, and every
+ * transfer ends (DONE or ABORTED, by an answer or the timeout). */
+static void test_random_answers(void)
+{
+    odg_sdoc_t ch;
+    uint8_t buf[12];
+    static const uint8_t data[20] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20};
+    uint32_t seed = 12345u, round, k, limit;
+    uint8_t d[8];
+    unsigned ended = 0;
+    odg_sdoc_init(&ch, 9, 0, 0, fake_send, NULL);
+    for (round = 0; round < 2000u; round++) {
+        seed = seed * 1103515245u + 12345u;
+        if (seed >> 16 & 1u) {
+            limit = sizeof buf;
+            (void)odg_sdoc_upload(&ch, 0x2000, 1, buf, sizeof buf);
+        } else {
+            limit = (seed >> 8) % 21u;
+            (void)odg_sdoc_download(&ch, 0x2000, 1, data, limit);
+        }
+        for (k = 0; k < 6u && ch.state == ODG_SDOC_BUSY; k++) {
+            unsigned b;
+            for (b = 0; b < 8u; b++) {
+                seed = seed * 1103515245u + 12345u;
+                d[b] = (uint8_t)(seed >> 16);
+            }
+            if (k % 2u == 0u) { /* often the right object, so the transfers get going */
+                d[1] = 0x00;
+                d[2] = 0x20;
+                d[3] = 0x01;
+            }
+            (void)answer(&ch, 0x589, d);
+            CHECK(ch.n <= limit);
+        }
+        odg_sdoc_tick(&ch, ODG_SDOC_TIMEOUT_MS);
+        ended += ch.state == ODG_SDOC_DONE || ch.state == ODG_SDOC_ABORTED;
+    }
+    CHECK_EQ(ended, 2000u);
+}
+
 int main(void)
 {
     test_expedited_download();
@@ -253,5 +294,6 @@ int main(void)
     test_uploads();
     test_server_abort_and_timeout();
     test_two_in_flight();
+    test_random_answers();
     return done();
 }
