@@ -350,6 +350,7 @@ static void test_boot_reset_and_loss(void)
     run(700);
     CHECK_EQ(status(4), ODG_SLAVE_HEARTBEAT);
     CHECK(emcy_seen(ODG_MASTER_EMCY_LOST, 'E', 4));
+    CHECK_EQ(odg_node_state(&mnode), ODG_NMT_OPERATIONAL); /* 0x1029 sub 1 = 1 */
     for (i = 0, n = 0; i < n_seen; i++) {
         n += seen[i].id == 0u && seen[i].data[0] == ODG_NMT_RESET_NODE && seen[i].data[1] == 4u;
     }
