@@ -474,6 +474,30 @@ static void lss_retry(odg_master_t *m, uint8_t i)
     lss_target(m);
 }
 
+/* Slave `node_id` of assignment `a`: its channel, tracked by the NMT master, reset (unless kept
+ * alive: first heard, is it operational?); its boot begins at its boot-up, or at the first retry
+ * when none comes. */
+static void add_slave(odg_master_t *m, uint8_t node_id, uint32_t a)
+{
+    odg_master_slave_t *s = &m->slave[m->n_slaves];
+    uint32_t tx, rx;
+    s->assignment = a;
+    s->id = node_id;
+    s->status = 0xFFu; /* set_status below always writes */
+    s->tried = 0;
+    s->same_date = 0;
+    s->abort = 0;
+    odg_sdoc_cobs(m->cfg.dict, node_id, &tx, &rx);
+    odg_sdoc_init(&m->sdo[m->n_slaves], node_id, tx, rx, m->cfg.send, m->cfg.send_ctx);
+    (void)odg_nmtm_watch(&m->nmt, node_id, 0, 0, 0); /* boot-ups and states from now on */
+    m->n_slaves++;
+    set_status(m, s, ODG_SLAVE_BOOTING);
+    try_later(s, ODG_MASTER_RETRY_MS);
+    if ((a & ODG_ASSIGN_KEEP_ALIVE) == 0u) {
+        (void)odg_nmtm_command(&m->nmt, ODG_NMT_RESET_COMM, node_id);
+    }
+}
+
 odg_abort_t odg_master_init(odg_master_t *m, const odg_master_config_t *cfg)
 {
     unsigned i;
@@ -502,27 +526,7 @@ odg_abort_t odg_master_init(odg_master_t *m, const odg_master_config_t *cfg)
             ac = ODG_ABORT_NO_RESOURCE;
             break;
         }
-        {
-            odg_master_slave_t *s = &m->slave[m->n_slaves];
-            uint32_t tx, rx;
-            s->assignment = a;
-            s->id = (uint8_t)i;
-            s->status = 0xFFu; /* set_status below always writes */
-            s->tried = 0;
-            s->same_date = 0;
-            s->abort = 0;
-            odg_sdoc_cobs(cfg->dict, s->id, &tx, &rx);
-            odg_sdoc_init(&m->sdo[m->n_slaves], s->id, tx, rx, cfg->send, cfg->send_ctx);
-            (void)odg_nmtm_watch(&m->nmt, s->id, 0, 0, 0); /* boot-ups and states from now on */
-            m->n_slaves++;
-            set_status(m, s, ODG_SLAVE_BOOTING);
-            /* A slave kept alive is first heard (is it operational?); the others are reset and
-             * begin at their boot-up, or at the first retry when none comes. */
-            try_later(s, ODG_MASTER_RETRY_MS);
-            if ((a & ODG_ASSIGN_KEEP_ALIVE) == 0u) {
-                (void)odg_nmtm_command(&m->nmt, ODG_NMT_RESET_COMM, s->id);
-            }
-        }
+        add_slave(m, (uint8_t)i, a);
     }
     if (cfg->lss != 0u && m->n_slaves > 0u) {
         odg_lssm_init(&m->lss, cfg->send, cfg->send_ctx, 0);
