@@ -6,8 +6,9 @@ profile (where `odgen generate` spends its time), footprint (Cortex-M4 sizes of 
 object file against CANopenNode v4's OD.c), linked (dictionary + runtime linked into a firmware,
 against CANopenNode v4's published figures), lookup (callgrind instructions per lookup, against
 CANopenNode v4's published figures), migration (FLASH and NV cost of the boot migration of
-stored parameters, on and off). Every target of the benchmark
-issue is listed at the top of the results with the ratio this run measured, met or not.
+stored parameters, on and off), master (the CiA 302 master's FLASH and RAM for 4 and 16
+slaves). Every target of the benchmark issue is listed at the top of the results with the ratio
+this run measured, met or not.
 """
 
 from __future__ import annotations
@@ -25,6 +26,7 @@ from pathlib import Path
 import footprint
 import linked
 import lookup_cost
+import master_cost
 import migration_cost
 import profile_generate
 import speed
@@ -33,7 +35,7 @@ from odgen.choices import LOOKUPS
 
 from common import PEER_PYTHON, RESULTS, SYNTH_SIZES, Target, inputs, synth_label, targets_json
 
-PARTS = ("startup", "speed", "profile", "footprint", "linked", "lookup", "migration")
+PARTS = ("startup", "speed", "profile", "footprint", "linked", "lookup", "migration", "master")
 BUDGET_S = 600
 
 
@@ -109,6 +111,8 @@ def main() -> None:
         results["lookup"] = lookup_cost.run(LOOKUPS)
     if "migration" in parts:
         results["migration"] = migration_cost.run(labels)
+    if "master" in parts:
+        results["master"] = master_cost.run()
     wall = time.time() - started
     info["load_average_end"] = os.getloadavg()
     targets: list[Target] = [t for r in results.values() for t in r.get("targets", [])]  # type: ignore[attr-defined]

@@ -10,6 +10,7 @@
 #                               [FIX safe|unsafe])  # generate --fix / --unsafe-fixes
 #   target_link_libraries(firmware PRIVATE my_od)     # the dictionary and odgen::runtime
 #   target_link_libraries(firmware PRIVATE odgen::node) # the CANopen node's services, if wanted
+#   target_link_libraries(firmware PRIVATE odgen::master) # the CiA 302 master (docs/master.md)
 #
 # Each dictionary brings its runtime, built with its NAME_config.h (-DODG_CONFIG, the only
 # define the runtime needs: the switches and the node's limits are in it): my_od_runtime (the
@@ -41,7 +42,8 @@ if(NOT _odgen_status EQUAL 0)
 endif()
 file(WRITE "${CMAKE_BINARY_DIR}/odgen-toolchain.cmake" "${_odgen_toolchain}")
 include("${CMAKE_BINARY_DIR}/odgen-toolchain.cmake")
-# ODGEN_VERSION, ODGEN_RUNTIME_DIR, ODGEN_RUNTIME_SOURCES, ODGEN_NODE_SOURCES, ODGEN_C_WARNINGS
+# ODGEN_VERSION, ODGEN_RUNTIME_DIR, ODGEN_RUNTIME_SOURCES, ODGEN_NODE_SOURCES, ODGEN_MASTER_SOURCES,
+# ODGEN_C_WARNINGS
 
 option(ODGEN_WERROR "compile odgen's targets with -Werror (the warnings are on either way)" OFF)
 
@@ -66,9 +68,14 @@ function(_odgen_add_runtime target name out)
   add_library(${target}_node STATIC ${ODGEN_NODE_SOURCES})
   target_link_libraries(${target}_node PUBLIC ${target}_runtime)
   _odgen_strict(${target}_node)
+  # the CiA 302 master (docs/master.md), above the node
+  add_library(${target}_master STATIC EXCLUDE_FROM_ALL ${ODGEN_MASTER_SOURCES}) # built when linked
+  target_link_libraries(${target}_master PUBLIC ${target}_node)
+  _odgen_strict(${target}_master)
   if(NOT TARGET odgen::runtime)
     add_library(odgen::runtime ALIAS ${target}_runtime)
     add_library(odgen::node ALIAS ${target}_node)
+    add_library(odgen::master ALIAS ${target}_master)
   endif()
 endfunction()
 

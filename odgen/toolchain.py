@@ -23,6 +23,9 @@ CORE_SOURCES = ("odg.c", "odg_persist.c", "odg_persist_slot.c", "odg_persist_fix
 # The node's services (CMake: odgen::node): NMT, SDO server, PDOs, EMCY, SYNC, heartbeat, LSS, TIME.
 SERVICE_SOURCES = ("odg_node.c", "odg_sdo.c", "odg_pdo.c", "odg_err.c", "odg_sync.c", "odg_hb.c", "odg_lss.c",
                    "odg_time.c")
+# The CiA 302 master above the node (CMake: odgen::master): SDO clients, NMT and LSS master, configuration manager.
+MASTER_SOURCES = ("odg_sdo_client.c", "odg_nmt_master.c", "odg_lss_master.c", "odg_master.c")
+MASTER_MAIN = "linux/odg_master_main.c"  # the SocketCAN master program's main()
 HOST_SOURCES = ("odg_nv_file.c", "linux/odg_socketcan.c")  # NV in a file and SocketCAN: POSIX hosts only
 NODE_MAIN = "linux/odg_node_main.c"  # the SocketCAN node program's main(); apps bring their own
 
@@ -40,6 +43,10 @@ def core_sources() -> list[Path]:
 
 def service_sources() -> list[Path]:
     return [runtime_dir() / name for name in SERVICE_SOURCES]
+
+
+def master_sources() -> list[Path]:
+    return [runtime_dir() / name for name in MASTER_SOURCES]
 
 
 def host_sources() -> list[Path]:
@@ -64,6 +71,7 @@ def cmake_script() -> str:
         f'set(ODGEN_RUNTIME_DIR "{runtime_dir().as_posix()}")',
         f"set(ODGEN_RUNTIME_SOURCES {cmake_list([p.as_posix() for p in core_sources()])})",
         f"set(ODGEN_NODE_SOURCES {cmake_list([p.as_posix() for p in service_sources()])})",
+        f"set(ODGEN_MASTER_SOURCES {cmake_list([p.as_posix() for p in master_sources()])})",
         f"set(ODGEN_C_WARNINGS {cmake_list(WARNINGS)})",
         ""])
 
@@ -78,6 +86,7 @@ def make_script() -> str:
         f"ODGEN_RUNTIME_DIR := {runtime_dir().as_posix()}",
         f"ODGEN_RUNTIME_SOURCES := {words(core_sources())}",
         f"ODGEN_NODE_SOURCES := {words(service_sources())}",
+        f"ODGEN_MASTER_SOURCES := {words(master_sources())}",
         f"ODGEN_HOST_SOURCES := {words(host_sources())}",
         f"ODGEN_NODE_MAIN := {(runtime_dir() / NODE_MAIN).as_posix()}",
         f"ODGEN_CFLAGS := {' '.join(CFLAGS)}",

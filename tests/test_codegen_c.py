@@ -98,6 +98,12 @@ def test_cmake_firmware_example_builds_and_runs(tmp_path: Path) -> None:
         assert '-DODG_CONFIG=\\"io_node_config.h\\"' in flags and "-Werror" in flags, flags
         built = {p.name.removesuffix(".o") for p in (tmp_path / "CMakeFiles").glob(f"io_node_od_{target}.dir/**/*.o")}
         assert built == {p.name for p in sources}
+    # odgen::master (the CiA 302 master) is built when linked, or asked for, with -Werror too
+    done = subprocess.run([cmake, "--build", str(tmp_path), "--target", "io_node_od_master"], capture_output=True,
+                          text=True, env=env, check=False)
+    assert done.returncode == 0, done.stdout + done.stderr
+    built = {p.name.removesuffix(".o") for p in (tmp_path / "CMakeFiles").glob("io_node_od_master.dir/**/*.o")}
+    assert built == {p.name for p in toolchain.master_sources()}
     # without ODGEN_WERROR the targets keep the warnings but do not stop on them
     done = subprocess.run([cmake, "-S", str(source), "-B", str(tmp_path / "plain")], capture_output=True, text=True,
                           env=env, check=False)

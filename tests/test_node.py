@@ -176,10 +176,10 @@ def test_node_program_on_vcan(generated: Path, tmp_path: Path, vcan_bus) -> None
 
 def test_toolchain_lists_every_runtime_source() -> None:
     """odgen/toolchain.py is the one list of the runtime's C files (CMake, make, odgen node, the tests):
-    every file under runtime/ is in it, once, and is either the core, a service, a host file or
-    the node program's main (the profiles' glue is the application's)."""
+    every file under runtime/ is in it, once, and is either the core, a service, a host file,
+    the master or a program's main (the profiles' glue is the application's)."""
     listed = [*toolchain.core_sources(), *toolchain.service_sources(), *toolchain.host_sources(),
-              RUNTIME / toolchain.NODE_MAIN]
+              RUNTIME / toolchain.NODE_MAIN, *toolchain.master_sources(), RUNTIME / toolchain.MASTER_MAIN]
     present = {p for p in RUNTIME.rglob("*.c") if "profiles" not in p.parts}
     assert len(listed) == len(set(listed)) and set(listed) == present
     make = dict(line.split(" := ", 1) for line in toolchain.make_script().splitlines())
