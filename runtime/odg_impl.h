@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
- * odg_impl.h - internal helpers shared by odg.c and odg_persist.c. Not part of the API.
+ * odg_impl.h - internal helpers shared by the core (odg.c), its self-check (odg_verify.c) and
+ * the persistence layer (odg_persist*.c). Not part of the API.
  */
 #ifndef ODG_IMPL_H
 #define ODG_IMPL_H
@@ -30,6 +31,12 @@ uint8_t *odg_value_(const odg_dict_t *d, const odg_sub_t *s);
 /* The range check of a write (BOOLEAN 0/1, NaN, limits) for the numeric sub-entry at position
  * `pos` of dict->subs, on its value sign-extended to 64 bits (REAL as its bits). */
 odg_abort_t odg_check_(const odg_dict_t *d, uint16_t pos, odg_num_t v);
+
+/* For the self-check (odg_verify.c): a limit (its 64-bit pattern) as the key the range check
+ * orders values of the sub-entry's type by; the position in dict->limits of the limits of the
+ * sub-entry at `pos`, or -1. */
+odg_num_t odg_limit_key_(const odg_sub_t *s, uint64_t bits);
+int32_t odg_limit_of_(const odg_dict_t *d, uint16_t pos);
 
 /* Element `k` (1..N) of a packed ARRAY whose shared descriptor is `s`: its own descriptor. */
 static inline void odg_element_(const odg_sub_t *s, uint8_t k, odg_sub_t *out)
