@@ -35,7 +35,7 @@
 #define IS_STREAM(s) ((TBIT((s)->type) & T_STREAM) != 0u)
 #define IS_UNICODE(s) (ODG_CFG_UNICODE && (s)->type == ODG_T_UNICODE_STRING)
 #define IS_DOMAIN(s) (ODG_CFG_DOMAINS && (s)->type == ODG_T_DOMAIN)
-#define IS_COMMAND(s) (ODG_CFG_STORE && ODG_S_CLASS((s)->storage) == ODG_S_STORE)
+#define IS_COMMAND(s) (ODG_CFG_COMMAND && ODG_S_CLASS((s)->storage) == ODG_S_COMMAND)
 
 typedef odg_num_t num_t; /* odg_impl.h: 64 bits, or 32 when no type is wider */
 #define NUM_BITS (8u * (uint32_t)sizeof(num_t))
@@ -90,7 +90,7 @@ static void *odg_mut_(const void *p)
     return u.m;
 }
 
-num_t odg_load_(const void *p, uint32_t size)
+num_t odg_num_get_(const void *p, uint32_t size)
 {
     uint8_t b;
     uint16_t h;
@@ -114,7 +114,7 @@ num_t odg_load_(const void *p, uint32_t size)
     return w;
 }
 
-void odg_store_(void *p, uint32_t size, num_t v)
+void odg_num_put_(void *p, uint32_t size, num_t v)
 {
     uint8_t b = (uint8_t)v;
     uint16_t h = (uint16_t)v;
@@ -131,7 +131,7 @@ void odg_store_(void *p, uint32_t size, num_t v)
 }
 
 /* Where the value of `s` lies: `offset` bytes into the block of its storage class. Not for
- * ODG_S_STORE (no value) or DOMAIN (see dom_of). ROM values are only ever read through it. */
+ * ODG_S_COMMAND (no value) or DOMAIN (see dom_of). ROM values are only ever read through it. */
 uint8_t *odg_value_(const odg_dict_t *d, const odg_sub_t *s)
 {
     uint32_t c = ODG_S_CLASS(s->storage);
@@ -157,7 +157,7 @@ static void pack(const odg_ref_t *r, uint8_t *b)
         odg_copy(b, odg_value_(r->dict, s), s->size);
         return;
 #else
-        v = odg_load_(odg_value_(r->dict, s), s->size);
+        v = odg_num_get_(odg_value_(r->dict, s), s->size);
 #endif
     }
     for (i = 0; i < sizeof v; i++, v >>= 8) {
@@ -642,7 +642,7 @@ odg_abort_t odg_write(const odg_ref_t *ref, const void *buf, uint32_t len)
             return ac;
         }
     } else {
-        odg_store_(odg_value_(ref->dict, s), s->size, v);
+        odg_num_put_(odg_value_(ref->dict, s), s->size, v);
         odg_changed(ref->dict, ref);
     }
     return hook(ref, ODG_HOOK_POST_WRITE, NULL, 0);
@@ -734,7 +734,7 @@ static odg_abort_t typed(const odg_dict_t *d, uint16_t index, uint8_t sub, uint3
         return ac;
     }
     n = r->sub->size;
-    if (IS_STREAM(r->sub) || ODG_S_CLASS(r->sub->storage) == ODG_S_STORE ||
+    if (IS_STREAM(r->sub) || ODG_S_CLASS(r->sub->storage) == ODG_S_COMMAND ||
         size != (n <= 2u ? n : (n <= 4u ? 4u : 8u))) {
         return ODG_ABORT_TYPE_LENGTH;
     }

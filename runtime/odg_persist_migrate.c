@@ -309,7 +309,7 @@ static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
         p = odg_value_(d, s);
     }
     if (!(type_bit(s->type) & STREAMS)) {
-        emit(o, odg_load_(p, n), n);
+        emit(o, odg_num_get_(p, n), n);
     } else if (IS(s->type, ODG_T_UNICODE_STRING)) {
         for (i = 0; i < n; i += 2u) {
             uint16_t u;
@@ -571,7 +571,7 @@ static int restore(const odg_dict_t *d, const odg_nv_driver_t *nv, uint32_t pos,
     if (odg_check_(d, (uint16_t)pos, v) != ODG_OK) {
         return DEFAULTED; /* outside the current limits */
     }
-    odg_store_(odg_value_(d, s), s->size, v);
+    odg_num_put_(odg_value_(d, s), s->size, v);
     return s->type == st[3] ? KEPT : CONVERTED;
 }
 

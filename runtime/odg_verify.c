@@ -77,7 +77,7 @@ static int limits_ordered(const odg_sub_t *s, const odg_limit_t *l)
 /* The sign-extended value of a native numeric value at `p`. */
 static odg_num_t native_value(const odg_sub_t *s, const void *p)
 {
-    odg_num_t v = odg_load_(p, s->size), m;
+    odg_num_t v = odg_num_get_(p, s->size), m;
     if (TBIT(s->type) & T_SIGNED) {
         m = (odg_num_t)1u << (8u * s->size - 1u);
         v = (v ^ m) - m;
@@ -94,7 +94,7 @@ static int configured(const odg_sub_t *s)
         (!ODG_CFG_STRINGS && (s->type == ODG_T_VISIBLE_STRING || s->type == ODG_T_OCTET_STRING)) ||
         (!ODG_CFG_UNICODE && s->type == ODG_T_UNICODE_STRING) ||
         (!ODG_CFG_DOMAINS && s->type == ODG_T_DOMAIN) ||
-        (!ODG_CFG_GROUPS && cls == ODG_S_PERSIST) || (!ODG_CFG_STORE && cls == ODG_S_STORE) ||
+        (!ODG_CFG_GROUPS && cls == ODG_S_PERSIST) || (!ODG_CFG_COMMAND && cls == ODG_S_COMMAND) ||
         (!ODG_CFG_HOOKS && (s->attr & ODG_A_HOOK))) {
         return 0;
     }
@@ -114,7 +114,7 @@ static int sub_ok(const odg_ref_t *r)
         !configured(s)) {
         return 0;
     }
-    if (cls == ODG_S_STORE) {
+    if (cls == ODG_S_COMMAND) {
         return s->type == ODG_T_UNSIGNED32 && s->size == 4u && s->offset == 0u &&
                !(s->attr & (ODG_A_NODEID | ODG_A_LIMIT)) && !(s->storage & 0x7Cu);
     }
@@ -226,7 +226,7 @@ static int packed_ok(const odg_dict_t *d, const odg_entry_t *e)
     }
     if (!ODG_CFG_PACKED || e->count != 2u ||
         ((e->code & 0x0Fu) != ODG_OBJ_ARRAY && (e->code & 0x0Fu) != ODG_OBJ_RECORD) ||
-        d->subs[e->first].sub != 0u || s->sub == 0u || ODG_S_CLASS(s->storage) == ODG_S_STORE ||
+        d->subs[e->first].sub != 0u || s->sub == 0u || ODG_S_CLASS(s->storage) == ODG_S_COMMAND ||
         (s->attr & (ODG_A_HOOK | ODG_A_LIMIT | ODG_A_NODEID)) || s->type == ODG_T_VISIBLE_STRING ||
         s->type == ODG_T_OCTET_STRING || s->type == ODG_T_UNICODE_STRING || s->type == ODG_T_DOMAIN) {
         return 0;

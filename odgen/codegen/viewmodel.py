@@ -37,7 +37,7 @@ from .packing import packable
 from ..model.cia301 import RESTORE, STORE
 from ..place.options import PersistOptions
 from ..place.persistence import PersistView, persist_view
-from ..place.placement import Placement, Placements, STORE_CLASS
+from ..place.placement import Placement, Placements, COMMAND_CLASS
 from .lookup import PerfectHash, perfect_hash
 from .runtimecfg import NodeLimit, Switch, node_limits, runtime_config
 
@@ -496,8 +496,8 @@ def _sub(b: _Builder, view: DictView, obj: Obj, sub: Sub, names: _Names) -> None
     nodeid = value is not None and value.nodeid and isinstance(value.parsed, int)
     attr = _attr_flags(sub.access, sub.pdo_mapping and dtype.is_numeric, nodeid, bool(placement.hooks))
     pos = len(view.subs)
-    if placement.storage == STORE_CLASS:
-        storage = "ODG_S_STORE" + (" | ODG_S_RESTORE_FLAG" if obj.index == RESTORE else "")
+    if placement.storage == COMMAND_CLASS:
+        storage = "ODG_S_COMMAND" + (" | ODG_S_RESTORE_FLAG" if obj.index == RESTORE else "")
         view.subs.append(SubView("0", 4, subindex, dtype.code, attr, storage, note))
         return
     target = b.struct_for(placement.storage)
