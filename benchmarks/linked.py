@@ -108,9 +108,11 @@ Where the goals are not met (hash, the default lookup; DS301 unless named; 2026-
   - The store/restore dispatch out of line: +16 B; a byte per group for the two-pass boot:
     -32 B FLASH for 224 B more stack (rejected); two words for its bitmap: -4 B (not worth it).
   - The persisted group's defaults are a FLASH table (DS301 432 B, 33 of its 138 values not 0;
-    demoDevice 728 B). A generated per-group reset (a memset and stores, as the RAM block has)
-    would save an estimated 150-250 B on DS301, but changes `odg_group_t`: `odg_verify` and the
-    "ODG1" limit re-check read single defaults from the table. Not done yet.
+    demoDevice 728 B). A generated per-group reset instead (a memset and the 33 stores, as the
+    sparse RAM block has), tried by hand on DS301: 7404 -> 7108 B, the whole device 18536 ->
+    18240 B (-296 B each). Not done: single defaults are read from the table by `odg_node.c`
+    (the communication values a reset restores), `odg_verify` and the "ODG1" limit re-check, so
+    it needs a per-value default from the generated code first.
 - **Whole device** (18536 B against 14021 B, 85% of 16496 B). The services link 9943 B
   (`odg_pdo.c` 2382, `odg_sdo.c` 2306, `odg_node.c` 2059, `odg_err.c` 1092, `odg_lss.c` 1024,
   `odg_hb.c` 784, `odg_sync.c` 264, `odg_time.c` 32), and `odg_err.c` pulls libc's memmove
