@@ -19,7 +19,8 @@ STANDARD = "-std=c99"
 WARNINGS = ("-Wall", "-Wextra", "-Werror", "-pedantic")
 CFLAGS = (STANDARD, *WARNINGS)
 # the dictionary runtime a firmware links (CMake: odgen::runtime): the core and the persistence layer
-CORE_SOURCES = ("odg.c", "odg_persist.c", "odg_persist_slot.c", "odg_persist_fixed.c", "odg_persist_migrate.c")
+CORE_SOURCES = ("odg.c", "odg_verify.c", "odg_persist.c", "odg_persist_slot.c", "odg_persist_fixed.c",
+                "odg_persist_migrate.c")
 # The node's services (CMake: odgen::node): NMT, SDO server, PDOs, EMCY, SYNC, heartbeat, LSS, TIME.
 SERVICE_SOURCES = ("odg_node.c", "odg_sdo.c", "odg_pdo.c", "odg_err.c", "odg_sync.c", "odg_hb.c", "odg_lss.c",
                    "odg_time.c")

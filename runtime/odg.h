@@ -60,8 +60,14 @@ extern "C" {
 #ifndef ODG_CFG_GROUPS /* persistence groups (ODG_S_PERSIST values) */
 #define ODG_CFG_GROUPS 1
 #endif
-#ifndef ODG_CFG_STORE /* the 0x1010 / 0x1011 store and restore commands (ODG_S_STORE) */
-#define ODG_CFG_STORE 1
+#if !defined(ODG_CFG_COMMAND) && defined(ODG_CFG_STORE)
+#define ODG_CFG_COMMAND ODG_CFG_STORE /* the name before (one release) */
+#endif
+#ifndef ODG_CFG_COMMAND /* the 0x1010 / 0x1011 "save" and "load" commands (ODG_S_COMMAND) */
+#define ODG_CFG_COMMAND 1
+#endif
+#ifndef ODG_CFG_STORE /* the name before, for code that tests it (one release) */
+#define ODG_CFG_STORE ODG_CFG_COMMAND
 #endif
 #ifndef ODG_CFG_PACKED /* ARRAYs and RECORDs whose elements share one descriptor (ODG_E_PACKED) */
 #define ODG_CFG_PACKED 1
@@ -74,6 +80,10 @@ extern "C" {
 #endif
 #ifndef ODG_CFG_PERSIST_ODG1 /* a persistence group without migration ("ODG1" images) */
 #define ODG_CFG_PERSIST_ODG1 1
+#endif
+#if defined(ODG_NO_MIGRATION) /* the name before ODG_CFG_PERSIST_MIGRATION 0 (one release) */
+#undef ODG_CFG_PERSIST_MIGRATION
+#define ODG_CFG_PERSIST_MIGRATION 0
 #endif
 #ifndef ODG_CFG_PERSIST_MIGRATION /* a persistence group migrated at boot ("ODG2" images) */
 #define ODG_CFG_PERSIST_MIGRATION 1
@@ -222,15 +232,16 @@ typedef struct odg_domain {
 #define ODG_S_ROM      0u /* const, FLASH */
 #define ODG_S_RAM      1u /* RAM, reset to defaults at init */
 #define ODG_S_PERSIST  2u /* RAM mirror of a persistence group; group = storage >> 2 */
-#define ODG_S_STORE    3u /* 0x1010 sub: "save" command (value read = capabilities) */
+#define ODG_S_COMMAND  3u /* 0x1010 sub: "save" command (value read = capabilities) */
 #define ODG_S_CLASS(s) ((s) & 3u)
 #define ODG_S_GROUP(s) ((uint8_t)((s) >> 2))
-#define ODG_S_RESTORE_FLAG 0x80u /* with ODG_S_STORE: 0x1011 "load" command instead */
+#define ODG_S_RESTORE_FLAG 0x80u /* with ODG_S_COMMAND: 0x1011 "load" command instead */
+#define ODG_S_STORE ODG_S_COMMAND /* the name before (one release) */
 
 /* 8 bytes per sub-entry: no pointer. The value lies at `offset` bytes into the block of its
  * storage class: dict->rom (ODG_S_ROM), dict->ram (ODG_S_RAM), or the mirror of group
  * ODG_S_GROUP(storage) (ODG_S_PERSIST). For a DOMAIN, `offset` indexes dict->domains instead.
- * ODG_S_STORE entries have no value (offset 0). */
+ * ODG_S_COMMAND entries have no value (offset 0). */
 typedef struct odg_sub {
     uint16_t offset;   /* see above */
     uint16_t size;     /* wire size in bytes; capacity for strings and domains */

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
- * odg_impl.h - internal helpers shared by odg.c and odg_persist.c. Not part of the API.
+ * odg_impl.h - internal helpers shared by the core (odg.c), its self-check (odg_verify.c) and
+ * the persistence layer (odg_persist*.c). Not part of the API.
  */
 #ifndef ODG_IMPL_H
 #define ODG_IMPL_H
@@ -17,19 +18,29 @@ typedef uint32_t odg_num_t;
 /* Native value of a numeric sub-entry of wire size `size` (1..8, 1..4 without ODG_CFG_INT64),
  * zero-extended from its C type (uint8_t, uint16_t, uint32_t for 3..4, uint64_t for 5..8;
  * float/double as bits). */
-odg_num_t odg_load_(const void *p, uint32_t size);
+odg_num_t odg_num_get_(const void *p, uint32_t size);
 
-/* Store the low bytes of `v` into the C type that holds a value of wire size `size`. */
-void odg_store_(void *p, uint32_t size, odg_num_t v);
+/* Put the low bytes of `v` into the C type that holds a value of wire size `size`. */
+void odg_num_put_(void *p, uint32_t size, odg_num_t v);
+
+/* The names before (for one release): "store" and "load" are the 0x1010 / 0x1011 commands. */
+#define odg_load_ odg_num_get_
+#define odg_store_ odg_num_put_
 
 /* Where the value of `s` lies: `s->offset` bytes into dict->rom, dict->ram or the mirror of
- * its group, by its storage class. Not for ODG_S_STORE subs (no value) nor DOMAINs (whose
+ * its group, by its storage class. Not for ODG_S_COMMAND subs (no value) nor DOMAINs (whose
  * offset indexes dict->domains). Writable except for ODG_S_ROM, which is only ever read. */
 uint8_t *odg_value_(const odg_dict_t *d, const odg_sub_t *s);
 
 /* The range check of a write (BOOLEAN 0/1, NaN, limits) for the numeric sub-entry at position
  * `pos` of dict->subs, on its value sign-extended to 64 bits (REAL as its bits). */
 odg_abort_t odg_check_(const odg_dict_t *d, uint16_t pos, odg_num_t v);
+
+/* For the self-check (odg_verify.c): a limit (its 64-bit pattern) as the key the range check
+ * orders values of the sub-entry's type by; the position in dict->limits of the limits of the
+ * sub-entry at `pos`, or -1. */
+odg_num_t odg_limit_key_(const odg_sub_t *s, uint64_t bits);
+int32_t odg_limit_of_(const odg_dict_t *d, uint16_t pos);
 
 /* Element `k` (1..N) of a packed ARRAY whose shared descriptor is `s`: its own descriptor. */
 static inline void odg_element_(const odg_sub_t *s, uint8_t k, odg_sub_t *out)

@@ -34,7 +34,7 @@ void odg_defaults_(const odg_dict_t *d, uint8_t g)
         const odg_sub_t *s = &d->subs[p];
         if ((s->attr & ODG_A_NODEID) && s->storage == (uint8_t)(ODG_S_PERSIST | (unsigned)g << 2)) {
             uint8_t *v = odg_value_(d, s);
-            odg_store_(v, s->size, odg_load_(v, s->size) + d->state->node_id);
+            odg_num_put_(v, s->size, odg_num_get_(v, s->size) + d->state->node_id);
         }
     }
 }

@@ -90,7 +90,7 @@ static uint16_t recheck_one(const odg_dict_t *d, uint8_t g, uint32_t pos, const 
         s->size > sizeof x) {
         return 0; /* a same-layout image holds values of the type; $NODEID ones are not checked */
     }
-    x = odg_load_(v, s->size);
+    x = odg_num_get_(v, s->size);
     if (s->type < 0x20u && (SIGNED >> s->type & 1u) && s->size < sizeof x && ((x >> (8u * s->size - 1u)) & 1u)) {
         x |= ~(odg_num_t)0 << (8u * s->size); /* an INTEGERn: sign-extended */
     }

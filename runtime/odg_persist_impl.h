@@ -10,13 +10,6 @@
 #include "odg_impl.h"
 #include "odg_persist.h"
 
-/* -DODG_NO_MIGRATION, the name before ODG_CFG_PERSIST_MIGRATION 0, still leaves the migration
- * out (for one release). */
-#if defined(ODG_NO_MIGRATION)
-#undef ODG_CFG_PERSIST_MIGRATION
-#define ODG_CFG_PERSIST_MIGRATION 0
-#endif
-
 /* Whether group `g` keeps self-describing images (it has a layout descriptor); a build for
  * dictionaries whose every group migrates (ODG_CFG_PERSIST_ODG1 0) leaves the fixed-layout
  * paths out. */

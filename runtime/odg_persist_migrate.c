@@ -309,7 +309,7 @@ static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
         p = odg_value_(d, s);
     }
     if (!(type_bit(s->type) & STREAMS)) {
-        emit(o, odg_load_(p, n), n);
+        emit(o, odg_num_get_(p, n), n);
     } else if (IS(s->type, ODG_T_UNICODE_STRING)) {
         for (i = 0; i < n; i += 2u) {
             uint16_t u;
@@ -481,8 +481,8 @@ static int widens(uint8_t from, uint8_t to)
 
 /* A string (unit 1, or 2 for UNICODE_STRING): what fits, up to its terminator; converted when
  * the stored content went on past the new capacity. */
-static int resize_string(const odg_nv_driver_t *nv, const odg_sub_t *s, uint8_t *p, uint32_t sl,
-                         uint32_t addr)
+static int read_string(const odg_nv_driver_t *nv, const odg_sub_t *s, uint8_t *p, uint32_t sl,
+                       uint32_t addr)
 {
     uint32_t unit = s->type == ODG_T_UNICODE_STRING ? 2u : 1u, fl = s->size, i;
     uint8_t c[2] = {0, 0};
@@ -511,10 +511,10 @@ static int resize_string(const odg_nv_driver_t *nv, const odg_sub_t *s, uint8_t 
     return c[0] != 0u || c[1] != 0u ? CONVERTED : KEPT;
 }
 
-/* A string or domain of the same type: keep what fits (resize). An OCTET_STRING and a domain
+/* A string or domain of the same type: keep what fits (resized). An OCTET_STRING and a domain
  * keep their first bytes (a domain's used ones, after its used length). */
-static int resize(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_sub_t *s, uint32_t sl,
-                  uint32_t addr)
+static int read_stream(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_sub_t *s, uint32_t sl,
+                       uint32_t addr)
 {
     const odg_domain_t *dm = NULL;
     uint8_t c[4], *p;
@@ -531,7 +531,7 @@ static int resize(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_sub_
     } else {
         p = odg_value_(d, s);
         if (s->type != ODG_T_OCTET_STRING) {
-            return resize_string(nv, s, p, sl, addr);
+            return read_string(nv, s, p, sl, addr);
         }
         memset(p, 0, cap);
     }
@@ -545,16 +545,17 @@ static int resize(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_sub_
     return n < used ? CONVERTED : KEPT;
 }
 
-/* Restore the firmware's sub-entry `s` (at `pos` in dict->subs) from the stored entry `st`,
- * whose value lies at `addr`: kept, converted, or defaulted (the mirror keeps the default). */
-static int restore(const odg_dict_t *d, const odg_nv_driver_t *nv, uint32_t pos,
-                   const odg_sub_t *s, const uint8_t *st, uint32_t addr)
+/* Read the firmware's sub-entry `s` (at `pos` in dict->subs) from the stored entry `st`, whose
+ * value lies at `addr` (emit_value's counterpart): kept, converted, or defaulted (the mirror
+ * keeps the default). */
+static int read_value(const odg_dict_t *d, const odg_nv_driver_t *nv, uint32_t pos,
+                      const odg_sub_t *s, const uint8_t *st, uint32_t addr)
 {
     uint32_t sl = get16(st + 4), i;
     uint8_t c[8];
     odg_num_t v;
     if (s->type == st[3] && (type_bit(s->type) & STREAMS)) {
-        return resize(d, nv, s, sl, addr);
+        return read_stream(d, nv, s, sl, addr);
     }
     /* a number of a type this build serves: no wider than odg_num_t (ODG_CFG_INT64) */
     if ((s->type != st[3] && !widens(st[3], s->type)) || type_bit(st[3]) == 0u ||
@@ -571,7 +572,7 @@ static int restore(const odg_dict_t *d, const odg_nv_driver_t *nv, uint32_t pos,
     if (odg_check_(d, (uint16_t)pos, v) != ODG_OK) {
         return DEFAULTED; /* outside the current limits */
     }
-    odg_store_(odg_value_(d, s), s->size, v);
+    odg_num_put_(odg_value_(d, s), s->size, v);
     return s->type == st[3] ? KEPT : CONVERTED;
 }
 
@@ -645,7 +646,7 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
                     return -1;
                 }
                 r = CONVERTED; /* the count follows the entry: its default */
-            } else if ((r = restore(d, nv, fw.pos - 1u, s, st, vo)) == FAILED) {
+            } else if ((r = read_value(d, nv, fw.pos - 1u, s, st, vo)) == FAILED) {
                 return -1;
             }
             vo += value_size(st);

@@ -229,7 +229,7 @@ def build(vs: list[Version], work: Path) -> tuple[Path, list[Firmware]]:
 
 def runtime_sources() -> list[str]:
     """The runtime's core and persistence sources (the persistence files as runtime/ has them)."""
-    return ["odg.c", *sorted(p.name for p in RUNTIME.glob("odg_persist*.c"))]
+    return ["odg.c", "odg_verify.c", *sorted(p.name for p in RUNTIME.glob("odg_persist*.c"))]
 
 
 # -- sequences ---------------------------------------------------------------------------------

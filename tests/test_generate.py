@@ -228,7 +228,7 @@ def test_placement_rules() -> None:
     assert placements[(0x1018, 1)].storage == "rom"  # ro, not mappable
     assert placements[(0x1001, 0)].storage == "ram"  # ro but PDO-mappable
     assert placements[(0x1200, 1)].storage == "ram"  # $NODEID-relative
-    assert placements[(0x1010, 1)].storage == "store"
+    assert placements[(0x1010, 1)].storage == "command"
     assert placements[(0x1017, 0)].storage == "persist:comm"
     assert placements[(0x2000, 0)].storage == "persist:app"
 

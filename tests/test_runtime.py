@@ -25,7 +25,7 @@ CTESTS = ROOT / "tests" / "runtime"
 CORE = toolchain.CORE_SOURCES
 PROGRAMS: dict[str, tuple[Path, ...]] = {
     # the core alone: persistence is a layer above it, not linked in (0x1010/0x1011 abort)
-    "test_core": (CTESTS / "test_core.c", CTESTS / "td.c", RUNTIME / "odg.c"),
+    "test_core": (CTESTS / "test_core.c", CTESTS / "td.c", RUNTIME / "odg.c", RUNTIME / "odg_verify.c"),
     "test_persist": (CTESTS / "test_persist.c", CTESTS / "td.c", *(RUNTIME / s for s in CORE),
                      RUNTIME / "odg_nv_file.c"),
     "test_faults": (CTESTS / "test_faults.c", CTESTS / "nv_fault.c", CTESTS / "td.c", *(RUNTIME / s for s in CORE)),

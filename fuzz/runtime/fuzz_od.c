@@ -30,7 +30,7 @@ static int is_number(const odg_sub_t *s)
 {
     return s->type != ODG_T_VISIBLE_STRING && s->type != ODG_T_OCTET_STRING &&
            s->type != ODG_T_UNICODE_STRING && s->type != ODG_T_DOMAIN &&
-           ODG_S_CLASS(s->storage) != ODG_S_STORE;
+           ODG_S_CLASS(s->storage) != ODG_S_COMMAND;
 }
 
 static odg_abort_t locate(input_t *in, uint8_t op, odg_ref_t *r)
@@ -59,7 +59,7 @@ static void write_whole(const odg_ref_t *r, input_t *in)
     ac = odg_write(r, d, len);
     ra = odg_read(r, 0, after, sizeof after, &na);
     REQUIRE(nb <= sizeof before && na <= sizeof after);
-    if (rb != ODG_OK || ra != ODG_OK || ODG_S_CLASS(r->sub->storage) == ODG_S_STORE) {
+    if (rb != ODG_OK || ra != ODG_OK || ODG_S_CLASS(r->sub->storage) == ODG_S_COMMAND) {
         return;
     }
     if (ac != ODG_OK && ac != ODG_ABORT_GENERAL) { /* refused: nothing stored */

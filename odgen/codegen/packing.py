@@ -14,7 +14,7 @@ from __future__ import annotations
 from ..model import ObjectDictionary
 from ..model.datatypes import BASIC_TYPES
 from ..model.od import Obj
-from ..place.placement import Placements, STORE_CLASS
+from ..place.placement import Placements, COMMAND_CLASS
 
 ARRAY, RECORD = 8, 9
 
@@ -32,8 +32,8 @@ def packable(od: ObjectDictionary, obj: Obj, placements: Placements) -> bool:
     for sub in elements:
         place = placements.get((obj.index, sub.subindex))
         value = od.value_in_force(sub)
-        if place is None or place.hooks or place.storage == STORE_CLASS or sub.low is not None or sub.high is not None \
-                or (value is not None and value.nodeid):
+        if place is None or place.hooks or place.storage == COMMAND_CLASS or sub.low is not None \
+                or sub.high is not None or (value is not None and value.nodeid):
             return False
         kinds.add((sub.data_type, sub.access, sub.pdo_mapping, place.storage))
     return len(kinds) == 1

@@ -60,7 +60,7 @@ def runtime_config(view: DictView) -> list[Switch]:
         ("ODG_CFG_LIMITS", "limits on integers", [p for p in limited if view.subs[p].type not in REALS]),
         ("ODG_CFG_REAL_LIMITS", "limits on REAL32 / REAL64", [p for p in limited if view.subs[p].type in REALS]),
         ("ODG_CFG_GROUPS", "persistence groups", [p for p, s in subs if "ODG_S_PERSIST" in s.storage]),
-        ("ODG_CFG_STORE", "0x1010 / 0x1011 commands", [p for p, s in subs if "ODG_S_STORE" in s.storage]),
+        ("ODG_CFG_COMMAND", "0x1010 / 0x1011 commands", [p for p, s in subs if "ODG_S_COMMAND" in s.storage]),
         ("ODG_CFG_PACKED", "ARRAYs and RECORDs whose elements share one descriptor",
          [e.first + 1 for e in view.entries if "ODG_E_PACKED" in e.code]),
         ("ODG_CFG_PERSIST_STREAMS", "strings or domains in a migrated persistence group",

@@ -38,7 +38,7 @@ from .packing import packable
 from ..model.cia301 import RESTORE, STORE
 from ..place.options import PersistOptions
 from ..place.persistence import PersistView, persist_view
-from ..place.placement import Placement, Placements, STORE_CLASS
+from ..place.placement import Placement, Placements, COMMAND_CLASS
 from .lookup import PerfectHash, perfect_hash
 from .runtimecfg import NodeLimit, Switch, node_limits, runtime_config
 
@@ -499,8 +499,8 @@ def _sub(b: _Builder, view: DictView, obj: Obj, sub: Sub, names: _Names) -> None
     pdo = (_BOTH if sub.pdo_mapping else b.mapped.get((obj.index, subindex), _NONE)) if dtype.is_numeric else _NONE
     attr = _attr_flags(sub.access, pdo, nodeid, bool(placement.hooks))
     pos = len(view.subs)
-    if placement.storage == STORE_CLASS:
-        storage = "ODG_S_STORE" + (" | ODG_S_RESTORE_FLAG" if obj.index == RESTORE else "")
+    if placement.storage == COMMAND_CLASS:
+        storage = "ODG_S_COMMAND" + (" | ODG_S_RESTORE_FLAG" if obj.index == RESTORE else "")
         view.subs.append(SubView("0", 4, subindex, dtype.code, attr, storage, note))
         return
     target = b.struct_for(placement.storage)

@@ -16,6 +16,7 @@ from .migration import DESCRIPTOR_BYTES, GroupLayout, value_size
 HEADER_BYTES = 24  # slot header: magic, sequence, group id, region size, image length, CRC-32
 COUNT_BYTES = 2  # the image's entry count before the descriptor
 MIN_REGION = 64
+DEFAULT_ALIGN = 8  # the runtime's ODG_PERSIST_ALIGN when the options set none
 FIRST = ("comm", "app")
 
 
@@ -49,23 +50,24 @@ def mirror_bound(layout: GroupLayout) -> int:
     return total
 
 
-def slot_bytes(layout: GroupLayout, align: int = 8) -> int:
+def slot_bytes(layout: GroupLayout, align: int = DEFAULT_ALIGN) -> int:
     return _round_up(HEADER_BYTES + image_bytes(layout), align)
 
 
-def nv_map(layouts: dict[str, GroupLayout], align: int = 8, headroom: int = 50,
+def nv_map(layouts: dict[str, GroupLayout], align: int = DEFAULT_ALIGN, headroom: int = 50,
            pinned: dict[str, int] | None = None, migration: bool = True) -> dict[str, Region]:
     """Regions in NV-map order. `headroom` is the percentage of the need kept free before rounding
     up to a power of two; a `pinned` region keeps its size (`Region.fits` says whether the group
     fits). Without `migration` an image is the group's C struct, bounded by `mirror_bound` (the
-    generated code checks that it fits)."""
+    generated code checks that it fits). Each slot starts on a multiple of `align` (the erase page of
+    a flash NV): a region is at least two of them, and regions follow each other on that multiple."""
     order = [g for g in FIRST if g in layouts] + sorted(g for g in layouts if g not in FIRST)
     regions, offset = {}, 0
     for group in order:
         image = image_bytes(layouts[group]) if migration else mirror_bound(layouts[group])
         need = 2 * _round_up(HEADER_BYTES + image, align)
         grown = need + need * headroom // 100
-        size = (pinned or {}).get(group) or max(MIN_REGION, 1 << (grown - 1).bit_length(), align)
+        size = (pinned or {}).get(group) or max(MIN_REGION, 1 << (grown - 1).bit_length(), 2 * align)
         regions[group] = Region(group, offset, size, need)
         offset = _round_up(offset + size, align)
     return regions

@@ -11,6 +11,7 @@
     migration = true                             # self-describing images, migrated at boot
     headroom = 50                                # % of a region's need kept free for growth
     status_object = 0x2FF0                       # the boot status object (RECORD), absent if unset
+    align = 2048                                 # slot alignment: a flash NV's erase page (ODG_PERSIST_ALIGN)
 
     [[group]]
     name = "app"
@@ -76,6 +77,7 @@ class PersistOptions:
     headroom: int = 50
     status_object: int | None = None
     regions: dict[str, int] = field(default_factory=dict)  # pinned, by group name
+    align: int | None = None  # slot alignment (ODG_PERSIST_ALIGN): the NV's erase page; None: the runtime's 8
 
 
 @dataclass
@@ -230,7 +232,8 @@ def _capacity(entry: OptionEntry, raw: dict, loc: Loc, diags: Diagnostics) -> bo
     return True
 
 
-PERSIST_KEYS = ("migration", "headroom", "status_object")
+PERSIST_KEYS = ("migration", "headroom", "status_object", "align")
+MAX_ALIGN = 0x8000  # two slots of it fill ODG_PERSIST_MAX_REGION
 _GROUP_RE = re.compile(r"^[a-z][a-z0-9_]{0,15}$")
 
 
@@ -239,8 +242,20 @@ def _line_of(text: str, header: str, n: int = 0) -> int:
     return lines[n] if n < len(lines) else 1
 
 
+def _key_line(text: str, key: str) -> int:
+    """The line of `key = ...` in the [persist] table, else that of [persist]."""
+    section = ""
+    for n, line in enumerate(text.splitlines(), start=1):
+        stripped = line.strip()
+        if stripped.startswith("["):
+            section = stripped
+        elif section == "[persist]" and re.match(rf"{re.escape(key)}\s*=", stripped):
+            return n
+    return _line_of(text, "[persist]")
+
+
 def _persist(doc: dict, text: str, source: str, persist: PersistOptions, diags: Diagnostics) -> None:
-    """[persist] and [[group]]: migration on/off, headroom, status object, pinned regions."""
+    """[persist] and [[group]]: migration on/off, headroom, status object, slot alignment, pinned regions."""
     raw = doc.get("persist", {})
     loc = Loc(source, _line_of(text, "[persist]"))
     if not isinstance(raw, dict):
@@ -263,6 +278,13 @@ def _persist(doc: dict, text: str, source: str, persist: PersistOptions, diags: 
         persist.status_object = status
     elif status is not None:
         diags.add(GEN001, loc, f"status_object {status!r} must be an index in 0x2000..0x5FFF (manufacturer area)")
+    align = raw.get("align")
+    if (isinstance(align, int) and not isinstance(align, bool) and 8 <= align <= MAX_ALIGN
+            and align & (align - 1) == 0):
+        persist.align = align
+    elif align is not None:
+        diags.add(GEN001, Loc(source, _key_line(text, "align")),
+                  f"align {align!r} must be a power of two 8..{MAX_ALIGN} (the NV's erase page, in bytes)")
     groups = doc.get("group", [])
     if not isinstance(groups, list):
         diags.add(GEN001, Loc(source, 1), "'group' must be an array of tables ([[group]])")

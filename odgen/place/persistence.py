@@ -18,7 +18,7 @@ from ..model.od import RECORD, Obj, Sub
 from ..model.values import parse_value
 from .layout import group_layouts
 from .migration import GroupLayout
-from .nvmap import Region, nv_map
+from .nvmap import DEFAULT_ALIGN, Region, nv_map
 from .options import Options, PersistOptions
 from .placement import Placements, place
 
@@ -40,6 +40,7 @@ class GroupNv:
 class PersistView:
     migration: bool
     status_object: int | None
+    align: int | None = None  # [persist] align: ODG_PERSIST_ALIGN in NAME_config.h
     groups: dict[str, GroupNv] = field(default_factory=dict)
     size: int = 0  # NV bytes of all regions
 
@@ -69,18 +70,23 @@ def status_object(od: ObjectDictionary, options: Options, diags: Diagnostics) ->
 
 def nv_regions(layouts: dict[str, GroupLayout], persist: PersistOptions) -> dict[str, Region]:
     """The NV region of each group as the options ([persist] headroom, migration, [[group]] region) place it."""
-    return nv_map(layouts, headroom=persist.headroom, pinned=persist.regions, migration=persist.migration)
+    return nv_map(layouts, align=persist.align or DEFAULT_ALIGN, headroom=persist.headroom, pinned=persist.regions,
+                  migration=persist.migration)
 
 
 def persist_view(od: ObjectDictionary, placements: Placements,
                  persist: PersistOptions, diags: Diagnostics) -> PersistView:
     layouts = group_layouts(od, placements)
     regions = nv_regions(layouts, persist)
-    view = PersistView(persist.migration, persist.status_object)
+    view = PersistView(persist.migration, persist.status_object, persist.align if regions else None)
     for name, region in regions.items():
         if not region.fits:
             diags.add(GEN001, Loc(od.source), f"persistence group {name} needs {region.need} bytes of NV, "
                       f"its pinned region has {region.size}; raise region in [[group]] or move entries")
+        elif region.size // 2 % (persist.align or DEFAULT_ALIGN):
+            diags.add(GEN001, Loc(od.source), f"persistence group {name}: half its pinned region ({region.size // 2} "
+                      f"bytes) is not a multiple of [persist] align = {persist.align}; pin a region of "
+                      f"{2 * (persist.align or DEFAULT_ALIGN)} bytes or a multiple of it")
         group = GroupNv(name, region.offset, region.size, zlib.crc32(name.encode("ascii")))
         group.n_layout = len(layouts[name].entries) if persist.migration else 0
         view.groups[name] = group

@@ -23,14 +23,15 @@ from ..cnames import identifier
 from .options import OptionEntry, Options
 
 
-# The storage class of a 0x1010/0x1011 sub-entry: no value, a store/restore command the runtime
-# answers (ODG_S_STORE in C).
-STORE_CLASS = "store"
+# The storage class of a 0x1010/0x1011 sub-entry: no value, a "save" / "load" command the runtime
+# answers (ODG_S_COMMAND in C, a dictionary client's `command` function).
+COMMAND_CLASS = "command"
+STORE_CLASS = COMMAND_CLASS  # the name before, for callers not yet moved
 
 
 @dataclass
 class Placement:
-    storage: str  # rom | ram | persist:<group> | store
+    storage: str  # rom | ram | persist:<group> | command
     storage_from: str
     hooks: tuple[str, ...] = ()
     hooks_from: str = "none"
@@ -60,7 +61,7 @@ def storage_from_description(text: str | None) -> str | None:
 
 def auto_storage(index: int, sub: Sub) -> tuple[str, str]:
     if is_store_command(index, sub.subindex):
-        return STORE_CLASS, "auto: 0x1010/0x1011 store/restore commands"
+        return COMMAND_CLASS, "auto: 0x1010/0x1011 store/restore commands"
     if sub.data_type == 0x000F and sub.access == "const" and sub.default is not None and not sub.default.empty:
         return "rom", "auto: a const DOMAIN whose value is fixed at generation"
     if sub.data_type == 0x000F:
@@ -99,7 +100,7 @@ def _place_one(od: ObjectDictionary, obj: Obj, sub: Sub, entries: list[tuple[Opt
     """The placement of one sub-entry; `entries` are the options' entries with their place (and its text)."""
     storage, why = auto_storage(obj.index, sub)
     described, text, line = _described(obj, sub)
-    if described is not None and storage != STORE_CLASS:
+    if described is not None and storage != COMMAND_CLASS:
         storage, why = described, f"{od.source}:{line}: storage location {text}"
         if storage == "rom" and _unfit_for_rom(sub):  # CANopenNode v1: CO_OD_ROM is RAM that 0x1010 saves
             storage, why = "persist:rom", why + " (CANopenNode v1: kept in RAM, saved by 0x1010)"
@@ -125,7 +126,7 @@ def _described(obj: Obj, sub: Sub) -> tuple[str | None, str, int]:
 
 
 def _apply(placement: Placement, entry: OptionEntry, loc: Loc, origin: str) -> None:
-    if entry.storage is not None and placement.storage != STORE_CLASS:
+    if entry.storage is not None and placement.storage != COMMAND_CLASS:
         storage = "persist:app" if entry.storage == "persist" else entry.storage  # the default group
         placement.storage, placement.storage_from = storage, origin
     if entry.hooks is not None:

@@ -20,7 +20,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..place.placement import STORE_CLASS, Placement, Placements
+from ..place.placement import COMMAND_CLASS, Placement, Placements
 from ..model.expect import expected_bytes, write_cases
 from ..conformance import CHECK_IDS as BATTERY_IDS
 from ..conformance import Selection
@@ -119,7 +119,7 @@ def _entries(od: ObjectDictionary, placements: Placements) -> list[Entry]:
 
 
 def _is_store(e: Entry) -> bool:
-    return e.placement.storage == STORE_CLASS
+    return e.placement.storage == COMMAND_CLASS
 
 
 # ---- the checks ------------------------------------------------------------------------------

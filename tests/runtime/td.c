@@ -157,15 +157,15 @@ ODG_ATTR_ROM static const odg_sub_t td_subs[78] = {
     {offsetof(td_rom_t, x1000), 4, 0, 0x07, ODG_A_READ, ODG_S_ROM},                   /* 0 */
     {offsetof(td_rom_t, x1008), 8, 0, 0x09, ODG_A_READ, ODG_S_ROM},                   /* 1 */
     {offsetof(td_rom_t, x1010_s0), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM},                /* 2 */
-    {0, 4, 1, 0x07, RW, ODG_S_STORE},                                                 /* 3: save all */
-    {0, 4, 2, 0x07, RW, ODG_S_STORE},                                                 /* 4: comm */
-    {0, 4, 3, 0x07, RW, ODG_S_STORE},                                                 /* 5: app */
-    {0, 4, 4, 0x07, RW, ODG_S_STORE},                                                 /* 6: no group */
+    {0, 4, 1, 0x07, RW, ODG_S_COMMAND},                                                 /* 3: save all */
+    {0, 4, 2, 0x07, RW, ODG_S_COMMAND},                                                 /* 4: comm */
+    {0, 4, 3, 0x07, RW, ODG_S_COMMAND},                                                 /* 5: app */
+    {0, 4, 4, 0x07, RW, ODG_S_COMMAND},                                                 /* 6: no group */
     {offsetof(td_rom_t, x1011_s0), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM},                /* 7 */
-    {0, 4, 1, 0x07, RW, ODG_S_STORE | ODG_S_RESTORE_FLAG},                            /* 8 */
-    {0, 4, 2, 0x07, RW, ODG_S_STORE | ODG_S_RESTORE_FLAG},                            /* 9 */
-    {0, 4, 3, 0x07, RW, ODG_S_STORE | ODG_S_RESTORE_FLAG},                            /* 10 */
-    {0, 4, 4, 0x07, RW, ODG_S_STORE | ODG_S_RESTORE_FLAG},                            /* 11 */
+    {0, 4, 1, 0x07, RW, ODG_S_COMMAND | ODG_S_RESTORE_FLAG},                            /* 8 */
+    {0, 4, 2, 0x07, RW, ODG_S_COMMAND | ODG_S_RESTORE_FLAG},                            /* 9 */
+    {0, 4, 3, 0x07, RW, ODG_S_COMMAND | ODG_S_RESTORE_FLAG},                            /* 10 */
+    {0, 4, 4, 0x07, RW, ODG_S_COMMAND | ODG_S_RESTORE_FLAG},                            /* 11 */
     {offsetof(td_ram_t, x1014), 4, 0, 0x07, RW | ODG_A_NODEID, ODG_S_RAM},            /* 12 */
     {offsetof(td_persist_comm_t, x1017), 2, 0, 0x06, RW, COMM},                       /* 13 */
     {offsetof(td_rom_t, x1018_s0), 1, 0, 0x05, ODG_A_READ, ODG_S_ROM},                /* 14 */

@@ -972,7 +972,7 @@ static void test_verify(void)
     BAD(0x1010);
     S[3].attr |= ODG_A_NODEID;
     BAD(0x1010);
-    S[3].storage = ODG_S_STORE | 0x04u;
+    S[3].storage = ODG_S_COMMAND | 0x04u;
     BAD(0x1010);
     S[0].attr |= ODG_A_WRITE;
     BAD(0x1000);

@@ -31,8 +31,8 @@
 #if !ODG_CFG_GROUPS
 #error "alltypes uses persistence groups: build the runtime with ODG_CFG_GROUPS 1 (alltypes_config.h)"
 #endif
-#if !ODG_CFG_STORE
-#error "alltypes uses 0x1010 / 0x1011 commands: build the runtime with ODG_CFG_STORE 1 (alltypes_config.h)"
+#if !ODG_CFG_COMMAND
+#error "alltypes uses 0x1010 / 0x1011 commands: build the runtime with ODG_CFG_COMMAND 1 (alltypes_config.h)"
 #endif
 #if !ODG_CFG_PERSIST_MIGRATION
 #error "alltypes uses persistence groups migrated at boot: build the runtime with ODG_CFG_PERSIST_MIGRATION 1 (alltypes_config.h)"
@@ -148,13 +148,13 @@ ODG_ATTR_ROM static const odg_sub_t alltypes_subs[44] = {
     {.offset = offsetof(alltypes_rom_t, x1000_device_type), .size = 4, .sub = 0, .type = 0x07, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Device type */
     {.offset = offsetof(alltypes_ram_t, x1001_error_register), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ | ODG_A_TPDO, .storage = ODG_S_RAM}, /* Error register */
     {.offset = offsetof(alltypes_rom_t, x1010_store_parameters_s0_highest_sub_index_supported), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Highest sub-index supported */
-    {.offset = 0, .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_STORE}, /* Save all parameters */
-    {.offset = 0, .size = 4, .sub = 2, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_STORE}, /* Save communication parameters */
-    {.offset = 0, .size = 4, .sub = 3, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_STORE}, /* Save application parameters */
+    {.offset = 0, .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_COMMAND}, /* Save all parameters */
+    {.offset = 0, .size = 4, .sub = 2, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_COMMAND}, /* Save communication parameters */
+    {.offset = 0, .size = 4, .sub = 3, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_COMMAND}, /* Save application parameters */
     {.offset = offsetof(alltypes_rom_t, x1011_restore_default_parameters_s0_highest_sub_index_supported), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Highest sub-index supported */
-    {.offset = 0, .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_STORE | ODG_S_RESTORE_FLAG}, /* Restore all parameters */
-    {.offset = 0, .size = 4, .sub = 2, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_STORE | ODG_S_RESTORE_FLAG}, /* Restore communication parameters */
-    {.offset = 0, .size = 4, .sub = 3, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_STORE | ODG_S_RESTORE_FLAG}, /* Restore application parameters */
+    {.offset = 0, .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_COMMAND | ODG_S_RESTORE_FLAG}, /* Restore all parameters */
+    {.offset = 0, .size = 4, .sub = 2, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_COMMAND | ODG_S_RESTORE_FLAG}, /* Restore communication parameters */
+    {.offset = 0, .size = 4, .sub = 3, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_COMMAND | ODG_S_RESTORE_FLAG}, /* Restore application parameters */
     {.offset = offsetof(alltypes_persist_comm_t, x1017_producer_heartbeat_time), .size = 2, .sub = 0, .type = 0x06, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_PERSIST | (ALLTYPES_GROUP_COMM << 2)}, /* Producer heartbeat time */
     {.offset = offsetof(alltypes_rom_t, x1018_identity_s0_highest_sub_index_supported), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Highest sub-index supported */
     {.offset = offsetof(alltypes_rom_t, x1018_identity_s1_vendor_id), .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Vendor-ID */

@@ -16,8 +16,8 @@
 #if !ODG_CFG_GROUPS
 #error "io_node_persist uses persistence groups: build the runtime with ODG_CFG_GROUPS 1 (io_node_persist_config.h)"
 #endif
-#if !ODG_CFG_STORE
-#error "io_node_persist uses 0x1010 / 0x1011 commands: build the runtime with ODG_CFG_STORE 1 (io_node_persist_config.h)"
+#if !ODG_CFG_COMMAND
+#error "io_node_persist uses 0x1010 / 0x1011 commands: build the runtime with ODG_CFG_COMMAND 1 (io_node_persist_config.h)"
 #endif
 #if !ODG_CFG_PACKED
 #error "io_node_persist uses ARRAYs and RECORDs whose elements share one descriptor: build the runtime with ODG_CFG_PACKED 1 (io_node_persist_config.h)"
@@ -100,9 +100,9 @@ ODG_ATTR_ROM static const odg_sub_t io_node_persist_subs[30] = {
     {.offset = offsetof(io_node_persist_rom_t, x1000_device_type), .size = 4, .sub = 0, .type = 0x07, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Device type */
     {.offset = offsetof(io_node_persist_ram_t, x1001_error_register), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ | ODG_A_TPDO, .storage = ODG_S_RAM}, /* Error register */
     {.offset = offsetof(io_node_persist_rom_t, x1010_store_parameters_s0_highest_sub_index_supported), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Highest sub-index supported */
-    {.offset = 0, .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_STORE}, /* Save all parameters */
+    {.offset = 0, .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_COMMAND}, /* Save all parameters */
     {.offset = offsetof(io_node_persist_rom_t, x1011_restore_default_parameters_s0_highest_sub_index_supported), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Highest sub-index supported */
-    {.offset = 0, .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_STORE | ODG_S_RESTORE_FLAG}, /* Restore all default parameters */
+    {.offset = 0, .size = 4, .sub = 1, .type = 0x07, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_COMMAND | ODG_S_RESTORE_FLAG}, /* Restore all default parameters */
     {.offset = offsetof(io_node_persist_persist_comm_t, x1017_producer_heartbeat_time), .size = 2, .sub = 0, .type = 0x06, .attr = ODG_A_READ | ODG_A_WRITE, .storage = ODG_S_PERSIST | (IO_NODE_PERSIST_GROUP_COMM << 2)}, /* Producer heartbeat time */
     {.offset = offsetof(io_node_persist_rom_t, x1018_identity_s0_highest_sub_index_supported), .size = 1, .sub = 0, .type = 0x05, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* Highest sub-index supported */
     {.offset = offsetof(io_node_persist_rom_t, x1018_identity_s1_vendor_id), .size = 4, .sub = 4, .type = 0x07, .attr = ODG_A_READ, .storage = ODG_S_ROM}, /* sub-indices 1..4 (1: Vendor-ID) */

@@ -20,7 +20,7 @@
 #define ODG_CFG_LIMITS 1 /* limits on integers: 0x2000sub0 */
 #define ODG_CFG_REAL_LIMITS 0 /* limits on REAL32 / REAL64 */
 #define ODG_CFG_GROUPS 1 /* persistence groups: 0x1017sub0 */
-#define ODG_CFG_STORE 1 /* 0x1010 / 0x1011 commands: 0x1010sub1 */
+#define ODG_CFG_COMMAND 1 /* 0x1010 / 0x1011 commands: 0x1010sub1 */
 #define ODG_CFG_PACKED 1 /* ARRAYs and RECORDs whose elements share one descriptor: 0x1018sub1..4 */
 #define ODG_CFG_PERSIST_STREAMS 0 /* strings or domains in a migrated persistence group */
 #define ODG_CFG_PERSIST_STATUS 0 /* boot status object */

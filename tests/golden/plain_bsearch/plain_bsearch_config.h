@@ -20,7 +20,7 @@
 #define ODG_CFG_LIMITS 0 /* limits on integers */
 #define ODG_CFG_REAL_LIMITS 0 /* limits on REAL32 / REAL64 */
 #define ODG_CFG_GROUPS 0 /* persistence groups */
-#define ODG_CFG_STORE 0 /* 0x1010 / 0x1011 commands */
+#define ODG_CFG_COMMAND 0 /* 0x1010 / 0x1011 commands */
 #define ODG_CFG_PACKED 0 /* ARRAYs and RECORDs whose elements share one descriptor */
 #define ODG_CFG_PERSIST_STREAMS 0 /* strings or domains in a migrated persistence group */
 #define ODG_CFG_PERSIST_STATUS 0 /* boot status object */
