@@ -9,6 +9,7 @@
 
 from __future__ import annotations
 
+import re
 import shutil
 import subprocess
 from pathlib import Path
@@ -18,6 +19,7 @@ import pytest
 
 from odgen import toolchain
 from odgen.cli import main
+from odgen.pipeline import Request, generate
 
 from .conftest import ROOT
 from .test_concise import _cia306_read
@@ -174,3 +176,45 @@ def test_report_shows_boot_configuration_and_wiring(tmp_path: Path) -> None:
     assert "| controller TPDO1 | hv RPDO1 | 0x201 | HV start/stop → Start/stop," in text
     # the PDOs are those of the network as configured: io's RPDO1 is disabled by the network file
     assert "node 5 RPDO1" not in text
+
+
+def _master_slaves(source: Path, options: str | None, tmp_path: Path) -> tuple[int | None, list[str]]:
+    path = None
+    if options is not None:
+        path = tmp_path / "o.toml"
+        path.write_text(options)
+    result = generate(Request(source, name="m", options=path))
+    found = re.search(r"#define ODG_MASTER_MAX_SLAVES (\d+)u", result.files.get("m_config.h", ""))
+    return (int(found.group(1)) if found else None), [d.text() for d in result.diags.sorted() if "GEN010" in d.rule]
+
+
+def test_master_sized_by_the_slaves_it_assigns(out: Path, tmp_path: Path) -> None:
+    """NAME_config.h sizes the master (ODG_MASTER_MAX_SLAVES) to the slaves 0x1F81 assigns, so that
+    ODG_CONFIG stays the only define (the vcan test of tests/test_master.py builds it so)."""
+    assert "#define ODG_MASTER_MAX_SLAVES 5u" in (out / "controller_config.h").read_text()
+    assert _master_slaves(out / "controller.dcf", None, tmp_path) == (5, [])
+    assert _master_slaves(out / "controller.dcf", "[node]\nslaves = 12\n", tmp_path) == (12, [])
+    got, refused = _master_slaves(out / "controller.dcf", "[node]\nslaves = 4\n", tmp_path)
+    assert got is None and len(refused) == 1 and "0x1F81 assigns 5 slaves" in refused[0]
+    # a master whose 0x1F81 is filled at run time: the runtime's default; a slave: no master at all
+    assert _master_slaves(ROOT / "tests" / "master" / "master.eds", None, tmp_path) == (8, [])
+    assert _master_slaves(ROOT / "examples" / "plasma-equipment" / "hv_supply.eds", None, tmp_path) == (None, [])
+
+
+def test_master_dcf_generates_the_same_dictionary(out: Path, tmp_path: Path) -> None:
+    """`odgen generate controller.dcf` (the CMake route: odgen_add_object_dictionary on the DCF
+    `odgen network` wrote) gives the dictionary `odgen network` gives, but for the header comment
+    (the boot status 0x5F81 in RAM in both: the runtime writes it)."""
+    assert main(["generate", str(out / "controller.dcf"), "--name", "controller", "--node-id", "127",
+                 "-o", str(tmp_path)]) == 0
+
+    def body(path: Path) -> list[str]:  # the file past its leading comments
+        lines = path.read_text().splitlines()
+        while lines and lines[0].startswith(("/*", " *")):
+            lines.pop(0)
+        return lines
+
+    for name in ("controller.c", "controller.h", "controller_config.h"):
+        assert body(tmp_path / name) == body(out / name), name
+    assert "x5F81_slave_boot_status_s1_slave_boot_status_1), .size = 1, .sub = 5, .type = 0x05, " \
+           ".attr = ODG_A_READ | ODG_A_TPDO, .storage = ODG_S_RAM}" in (out / "controller.c").read_text()

@@ -20,21 +20,12 @@ from ..formats.concise import encode, is_pdo_parameter, ordered, communication_o
 from ..formats.eds_writer import write_eds
 from ..lint.driver import RuleFilter
 from ..lint.netconfig import NodeModel
-from ..lint.network import BOOT_STATUS, lint_network_nodes
+from ..lint.network import lint_network_nodes
 from ..lint.passes import LintOptions
 from ..model import ObjectDictionary
 from ..model.od import Section
 from ..pipeline import Request, Result, generate
 from .master import master_model
-
-
-# The boot status is read-only by SDO but the runtime writes it (odg_set): in RAM, where a
-# read-only entry that is not PDO-mappable would be placed in ROM.
-MASTER_OPTIONS = f"""
-[[entry]]
-match = "0x{BOOT_STATUS:04X}"
-storage = "ram"
-"""
 
 
 @dataclass
@@ -67,7 +58,7 @@ def build(path: Path, lookup: str = "hash") -> NetworkOutput:
     # OBJ021 (a DOMAIN with a DefaultValue) is how the concise DCFs travel in the model; the master's
     # own description was linted above, so its OBJ021 findings are already reported.
     result = generate(Request(Path(f"{master.spec.name}.dcf"), name=name, node_id=master.node_id, lookup=lookup,
-                              model=model, rule_filter=RuleFilter(ignore=("OBJ021",)), defaults=MASTER_OPTIONS))
+                              model=model, rule_filter=RuleFilter(ignore=("OBJ021",))))
     seen = {(d.rule, d.index, d.sub, d.message) for d in findings}
     findings += [d for d in result.diags.sorted() if d.severity >= Severity.WARNING and d.rule != "OBJ021"
                  and (d.rule, d.index, d.sub, d.message) not in seen]

@@ -55,6 +55,11 @@ def _objects(master: NodeModel, slaves: list[NodeModel], concise: dict[int, byte
         _array(0x1F22, "Concise DCF", {n: concise[n].hex().upper() for n in ids}, DOMAIN, "const"),
         _array(BOOT_STATUS, "Slave boot status", dict.fromkeys(ids, 0), UNSIGNED8, "ro"),
     ]
+    # The runtime writes the boot status (odg_set) and a TPDO may publish it: PDO-mappable, so that
+    # it is placed in RAM by `odgen network` and by `odgen generate` of the master's DCF alike (a
+    # read-only entry that is not mappable would go to ROM).
+    for sub in objects[-1].subs.values():
+        sub.pdo_mapping = sub.subindex > 0
     objects += [_array(index, name, {s.node_id: expected_identity(s).get(sub, 0) for s in slaves})
                 for index, name, sub in IDENTITY_ARRAYS]
     behaviour = _error_behaviour(master)
