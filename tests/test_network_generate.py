@@ -218,3 +218,19 @@ def test_master_dcf_generates_the_same_dictionary(out: Path, tmp_path: Path) -> 
         assert body(tmp_path / name) == body(out / name), name
     assert "x5F81_slave_boot_status_s1_slave_boot_status_1), .size = 1, .sub = 5, .type = 0x05, " \
            ".attr = ODG_A_READ | ODG_A_TPDO, .storage = ODG_S_RAM}" in (out / "controller.c").read_text()
+
+
+@pytest.mark.parametrize(("master", "values", "expected"), [
+    (ROOT / "examples" / "plasma-equipment" / "master.eds", "", 1),  # no 0x1029: added
+    (ROOT / "tests" / "node" / "pdo-node.eds", "", 1),  # 0x1029 sub 1 = 0 described: set to 1
+    (ROOT / "tests" / "node" / "pdo-node.eds", '[master.values]\n"0x1029sub1" = 2\n', 2),  # the user's choice
+])
+def test_master_error_behaviour(master: Path, values: str, expected: int, tmp_path: Path) -> None:
+    """The master's own node keeps its state when a slave's heartbeat is lost (0x1029 sub 1 = 1),
+    unless the network file configures 0x1029 sub 1: the configuration manager handles the loss."""
+    slave = ROOT / "examples" / "plasma-equipment" / "hv_supply.eds"
+    net = tmp_path / "net.toml"
+    net.write_text(f'[master]\nfile = "{master}"\nnode_id = 127\n{values}\n[[node]]\nfile = "{slave}"\nnode_id = 1\n')
+    assert main(["network", str(net), "-o", str(tmp_path / "out")]) == 0
+    sub = canopen.import_od(str(tmp_path / "out" / "master.dcf"), 127)[0x1029][1]
+    assert (sub.value if sub.value is not None else sub.default) == expected
