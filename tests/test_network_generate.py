@@ -234,3 +234,37 @@ def test_master_error_behaviour(master: Path, values: str, expected: int, tmp_pa
     assert main(["network", str(net), "-o", str(tmp_path / "out")]) == 0
     sub = canopen.import_od(str(tmp_path / "out" / "master.dcf"), 127)[0x1029][1]
     assert (sub.value if sub.value is not None else sub.default) == expected
+
+
+CMAKE_MASTER = """cmake_minimum_required(VERSION 3.16)
+project(network_master C)
+include("{root}/cmake/odgen.cmake")
+odgen_add_object_dictionary(controller_od NAME controller EDS "{dcf}" NODE_ID 127)
+add_executable(master "{root}/runtime/linux/odg_master_main.c" {host})
+target_compile_definitions(master PRIVATE ODG_DICT=controller)
+target_include_directories(master PRIVATE "{root}/runtime/linux")
+target_link_libraries(master PRIVATE controller_od odgen::master)
+"""
+
+
+def test_master_program_built_with_cmake(out: Path, tmp_path: Path) -> None:
+    """docs/network.md's CMake route: the master's DCF as the dictionary, odgen::master linked,
+    built with -Werror and NAME_config.h the only define (it sizes the master: 5 slaves)."""
+    cmake = shutil.which("cmake")
+    if cmake is None:
+        pytest.skip("no cmake")
+    project = tmp_path / "project"
+    project.mkdir()
+    host = " ".join(f'"{p}"' for p in toolchain.host_sources())
+    (project / "CMakeLists.txt").write_text(CMAKE_MASTER.format(root=ROOT, dcf=out / "controller.dcf", host=host))
+    build = tmp_path / "build"
+    for cmd in ([cmake, "-S", str(project), "-B", str(build), "-DODGEN_WERROR=ON"],
+                [cmake, "--build", str(build), "--target", "master"]):
+        done = subprocess.run(cmd, capture_output=True, text=True, check=False)
+        assert done.returncode == 0, done.stdout + done.stderr
+    flags = (build / "CMakeFiles" / "controller_od_master.dir" / "flags.make").read_text()
+    assert '-DODG_CONFIG=\\"controller_config.h\\"' in flags and "-Werror" in flags
+    assert "ODG_MASTER_MAX_SLAVES" not in flags  # from controller_config.h
+    assert "#define ODG_MASTER_MAX_SLAVES 5u" in (build / "odgen" / "controller" / "controller_config.h").read_text()
+    usage = subprocess.run([str(build / "master")], capture_output=True, text=True, check=False)
+    assert usage.returncode == 2 and "--node-id" in usage.stderr
