@@ -53,13 +53,8 @@ def _objects(master: NodeModel, slaves: list[NodeModel], concise: dict[int, byte
         _array(0x1F26, "Expected configuration date", dict.fromkeys(ids, 0)),
         _array(0x1F27, "Expected configuration time", dict.fromkeys(ids, 0)),
         _array(0x1F22, "Concise DCF", {n: concise[n].hex().upper() for n in ids}, DOMAIN, "const"),
-        _array(BOOT_STATUS, "Slave boot status", dict.fromkeys(ids, 0), UNSIGNED8, "ro"),
+        _boot_status(ids),
     ]
-    # The runtime writes the boot status (odg_set) and a TPDO may publish it: PDO-mappable, so that
-    # it is placed in RAM by `odgen network` and by `odgen generate` of the master's DCF alike (a
-    # read-only entry that is not mappable would go to ROM).
-    for sub in objects[-1].subs.values():
-        sub.pdo_mapping = sub.subindex > 0
     objects += [_array(index, name, {s.node_id: expected_identity(s).get(sub, 0) for s in slaves})
                 for index, name, sub in IDENTITY_ARRAYS]
     behaviour = _error_behaviour(master)
@@ -69,6 +64,16 @@ def _objects(master: NodeModel, slaves: list[NodeModel], concise: dict[int, byte
     if heartbeats:
         objects.append(_array(0x1016, "Consumer heartbeat time", dict(enumerate(heartbeats, start=1))))
     return objects
+
+
+def _boot_status(ids: list[int]) -> Obj:
+    """0x5F81, 0 at reset. The runtime writes it (odg_set) and a TPDO may publish it: PDO-mappable,
+    so that `odgen network` and `odgen generate` of the master's DCF alike place it in RAM (a
+    read-only entry that is not mappable goes to ROM)."""
+    obj = _array(BOOT_STATUS, "Slave boot status", dict.fromkeys(ids, 0), UNSIGNED8, "ro")
+    for sub in obj.subs.values():
+        sub.pdo_mapping = sub.subindex > 0
+    return obj
 
 
 def _error_behaviour(master: NodeModel) -> Obj | None:
