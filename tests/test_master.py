@@ -151,8 +151,7 @@ node_id = 6
 "Output" = 0x5A
 """
 # node 3 (the flow meter) is powered up late, node 4 (the inverter) is another product than the
-# master expects, node 6 waits for its node-id
-# node 5 (the I/O node) is reset by NMT once booted
+# master expects, node 6 waits for its node-id, node 5 (the I/O node) is reset by NMT once booted
 LATE, WRONG, UNCONFIGURED, RESET = 3, 4, 6, 5
 
 
