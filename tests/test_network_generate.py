@@ -9,6 +9,7 @@
 
 from __future__ import annotations
 
+import re
 import shutil
 import subprocess
 from pathlib import Path
@@ -18,6 +19,7 @@ import pytest
 
 from odgen import toolchain
 from odgen.cli import main
+from odgen.pipeline import Request, generate
 
 from .conftest import ROOT
 from .test_concise import _cia306_read
@@ -92,8 +94,17 @@ int main(void)
         printf("1F81 %u %08lX\n", node, u32(0x1F81, node));
         printf("1F86 %u %08lX\n", node, u32(0x1F86, node));
         (void)odg_get(&controller, 0x5F81, node, &status, 1);
-        printf("5F81 %u %u\n", node, status);
+        printf("5F81 %u %u", node, status);
+        /* the runtime writes the boot status (odg_set); SDO may not (read-only) */
+        (void)odg_set_u8(&controller, 0x5F81, node, (uint8_t)(0x40u + node));
+        (void)odg_get(&controller, 0x5F81, node, &status, 1);
+        if (odg_find(&controller, 0x5F81, node, &ref) == ODG_OK) {
+            printf(" set=%u sdo=%08lX", status, (unsigned long)odg_write(&ref, &status, 1));
+        }
+        printf("\n");
     }
+    (void)odg_get(&controller, 0x1029, 1, &status, 1);
+    printf("1029 1 %u\n", status);
     (void)odg_get(&controller, 0x1016, 0, &status, 1);
     printf("1F80 %08lX\n1F89 %lu\n1016 %u %08lX %08lX\n", u32(0x1F80, 0), u32(0x1F89, 0),
            status, u32(0x1016, 1), u32(0x1016, 5));
@@ -116,7 +127,7 @@ def test_master_dictionary_compiled_and_read(out: Path, tmp_path: Path) -> None:
         data, write = got[("1F22", str(node))]
         assert bytes.fromhex(data) == (out / f"{slave}.bin").read_bytes()
         assert write == "write=06010002"  # read-only: the bytes are in FLASH
-        assert got[("5F81", str(node))] == ["0"]
+        assert got[("5F81", str(node))] == ["0", f"set={0x40 + node}", "sdo=06010002"]
     assert got[("1F22", "6")] == ["none"]
     # hv and vacuum are mandatory, inverter keeps alive; every slave is booted again after an error
     assert [got[("1F81", str(n))][0] for n in range(1, 6)] == ["0000000D", "0000000D", "00000005", "00000015",
@@ -126,6 +137,9 @@ def test_master_dictionary_compiled_and_read(out: Path, tmp_path: Path) -> None:
         assert int(got[("1F86", str(node))][0], 16) == product != 0
     assert ("1F80", "00000001") in got  # NMT master; starts itself and the slaves one by one
     assert ("1F89", "5000") in got
+    # a slave's lost heartbeat leaves the master's own node as it is: its configuration manager
+    # handles the loss (docs/network.md); the description has no 0x1029, odgen network adds it
+    assert got[("1029", "1")] == ["1"]
     assert got[("1016", "5")] == ["0001012C", "000501F4"]  # 5 consumers: node 1 300 ms ... node 5 500 ms
 
 
@@ -162,3 +176,95 @@ def test_report_shows_boot_configuration_and_wiring(tmp_path: Path) -> None:
     assert "| controller TPDO1 | hv RPDO1 | 0x201 | HV start/stop → Start/stop," in text
     # the PDOs are those of the network as configured: io's RPDO1 is disabled by the network file
     assert "node 5 RPDO1" not in text
+
+
+def _master_slaves(source: Path, options: str | None, tmp_path: Path) -> tuple[int | None, list[str]]:
+    path = None
+    if options is not None:
+        path = tmp_path / "o.toml"
+        path.write_text(options)
+    result = generate(Request(source, name="m", options=path))
+    found = re.search(r"#define ODG_MASTER_MAX_SLAVES (\d+)u", result.files.get("m_config.h", ""))
+    return (int(found.group(1)) if found else None), [d.text() for d in result.diags.sorted() if "GEN010" in d.rule]
+
+
+def test_master_sized_by_the_slaves_it_assigns(out: Path, tmp_path: Path) -> None:
+    """NAME_config.h sizes the master (ODG_MASTER_MAX_SLAVES) to the slaves 0x1F81 assigns, so that
+    ODG_CONFIG stays the only define (the vcan test of tests/test_master.py builds it so)."""
+    assert "#define ODG_MASTER_MAX_SLAVES 5u" in (out / "controller_config.h").read_text()
+    assert _master_slaves(out / "controller.dcf", None, tmp_path) == (5, [])
+    assert _master_slaves(out / "controller.dcf", "[node]\nslaves = 12\n", tmp_path) == (12, [])
+    got, refused = _master_slaves(out / "controller.dcf", "[node]\nslaves = 4\n", tmp_path)
+    assert got is None and len(refused) == 1 and "0x1F81 assigns 5 slaves" in refused[0]
+    # a master whose 0x1F81 is filled at run time: the runtime's default; a slave: no master at all
+    assert _master_slaves(ROOT / "tests" / "master" / "master.eds", None, tmp_path) == (8, [])
+    assert _master_slaves(ROOT / "examples" / "plasma-equipment" / "hv_supply.eds", None, tmp_path) == (None, [])
+
+
+def test_master_dcf_generates_the_same_dictionary(out: Path, tmp_path: Path) -> None:
+    """`odgen generate controller.dcf` (the CMake route: odgen_add_object_dictionary on the DCF
+    `odgen network` wrote) gives the dictionary `odgen network` gives, but for the header comment
+    (the boot status 0x5F81 in RAM in both: the runtime writes it)."""
+    assert main(["generate", str(out / "controller.dcf"), "--name", "controller", "--node-id", "127",
+                 "-o", str(tmp_path)]) == 0
+
+    def body(path: Path) -> list[str]:  # the file past its leading comments
+        lines = path.read_text().splitlines()
+        while lines and lines[0].startswith(("/*", " *")):
+            lines.pop(0)
+        return lines
+
+    for name in ("controller.c", "controller.h", "controller_config.h"):
+        assert body(tmp_path / name) == body(out / name), name
+    assert "x5F81_slave_boot_status_s1_slave_boot_status_1), .size = 1, .sub = 5, .type = 0x05, " \
+           ".attr = ODG_A_READ | ODG_A_TPDO, .storage = ODG_S_RAM}" in (out / "controller.c").read_text()
+
+
+@pytest.mark.parametrize(("master", "values", "expected"), [
+    (ROOT / "examples" / "plasma-equipment" / "master.eds", "", 1),  # no 0x1029: added
+    (ROOT / "tests" / "node" / "pdo-node.eds", "", 1),  # 0x1029 sub 1 = 0 described: set to 1
+    (ROOT / "tests" / "node" / "pdo-node.eds", '[master.values]\n"0x1029sub1" = 2\n', 2),  # the user's choice
+])
+def test_master_error_behaviour(master: Path, values: str, expected: int, tmp_path: Path) -> None:
+    """The master's own node keeps its state when a slave's heartbeat is lost (0x1029 sub 1 = 1),
+    unless the network file configures 0x1029 sub 1: the configuration manager handles the loss."""
+    slave = ROOT / "examples" / "plasma-equipment" / "hv_supply.eds"
+    net = tmp_path / "net.toml"
+    net.write_text(f'[master]\nfile = "{master}"\nnode_id = 127\n{values}\n[[node]]\nfile = "{slave}"\nnode_id = 1\n')
+    assert main(["network", str(net), "-o", str(tmp_path / "out")]) == 0
+    sub = canopen.import_od(str(tmp_path / "out" / "master.dcf"), 127)[0x1029][1]
+    assert (sub.value if sub.value is not None else sub.default) == expected
+
+
+CMAKE_MASTER = """cmake_minimum_required(VERSION 3.16)
+project(network_master C)
+include("{root}/cmake/odgen.cmake")
+odgen_add_object_dictionary(controller_od NAME controller EDS "{dcf}" NODE_ID 127)
+add_executable(master "{root}/runtime/linux/odg_master_main.c" {host})
+target_compile_definitions(master PRIVATE ODG_DICT=controller)
+target_include_directories(master PRIVATE "{root}/runtime/linux")
+target_link_libraries(master PRIVATE controller_od odgen::master)
+"""
+
+
+def test_master_program_built_with_cmake(out: Path, tmp_path: Path) -> None:
+    """docs/network.md's CMake route: the master's DCF as the dictionary, odgen::master linked,
+    built with -Werror and NAME_config.h the only define (it sizes the master: 5 slaves)."""
+    cmake = shutil.which("cmake")
+    if cmake is None:
+        pytest.skip("no cmake")
+    project = tmp_path / "project"
+    project.mkdir()
+    host = " ".join(f'"{p}"' for p in toolchain.host_sources())
+    (project / "CMakeLists.txt").write_text(CMAKE_MASTER.format(root=ROOT, dcf=out / "controller.dcf", host=host))
+    build = tmp_path / "build"
+    for cmd in ([cmake, "-S", str(project), "-B", str(build), "-DODGEN_WERROR=ON"],
+                [cmake, "--build", str(build), "--target", "master"]):
+        done = subprocess.run(cmd, capture_output=True, text=True, check=False)
+        assert done.returncode == 0, done.stdout + done.stderr
+    flags = (build / "CMakeFiles" / "controller_od_master.dir" / "flags.make").read_text()
+    assert '-DODG_CONFIG=\\"controller_config.h\\"' in flags and "-Werror" in flags
+    assert "ODG_MASTER_MAX_SLAVES" not in flags  # from controller_config.h
+    assert "#define ODG_MASTER_MAX_SLAVES 5u" in (build / "odgen" / "controller" / "controller_config.h").read_text()
+    usage = subprocess.run([str(build / "master")], capture_output=True, text=True, check=False)
+    assert usage.returncode == 2 and "--node-id" in usage.stderr

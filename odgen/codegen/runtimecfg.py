@@ -106,6 +106,9 @@ NODE_KEYS = (
     NodeKey("emcy_queue", "ODG_NODE_EMCY_QUEUE", "EMCY frames held back by the inhibit time 0x1015", 1, 255, 4),
 )
 MAX_MAPPING = 64  # CiA 301: a PDO maps at most 64 objects (one bit each)
+# The master's limit (runtime/odg_master.h), in a dictionary with 0x1F81 only
+MASTER_SLAVES = NodeKey("slaves", "ODG_MASTER_MAX_SLAVES", "slaves the master boots (0x1F81 bit 0)", 1, 127, 8)
+SLAVE_ASSIGNMENT = 0x1F81
 
 
 @dataclass
@@ -119,7 +122,7 @@ class NodeLimit:
 def node_options(raw: dict[str, object], source: str, text: str, diags: Diagnostics) -> dict[str, int]:
     """The limit keys of an options file's [node] table (lss is read with the placement options);
     a key odgen does not know, or a value out of its range, is GEN001 at the key's line."""
-    keys = {k.key: k for k in NODE_KEYS}
+    keys = {k.key: k for k in (*NODE_KEYS, MASTER_SLAVES)}
     limits: dict[str, int] = {}
     for name, value in raw.items():
         spec = keys.get(name)
@@ -198,7 +201,34 @@ def node_limits(view: DictView, od: ObjectDictionary, lss: bool, caps: dict[str,
         limits.append(NodeLimit(spec.macro, value, spec.what, why))
     limits.append(NodeLimit("ODG_NODE_LSS", int(lss), "the LSS slave (odg_lss.c)",
                             "LSS_Supported=1 or [node] lss" if lss else "not supported"))
-    return limits
+    return limits + master_limits(od, caps, diags)
+
+
+def master_limits(od: ObjectDictionary, caps: dict[str, int], diags: Diagnostics) -> list[NodeLimit]:
+    """ODG_MASTER_MAX_SLAVES, for a dictionary with 0x1F81 (a master's): the slaves its 0x1F81
+    assigns as generated (bit 0 of a sub-entry's value), as `odgen network` writes it. When none is
+    (0x1F81 filled at run time), the runtime's default; [node] slaves sets it, and one below the
+    slaves assigned is GEN010 (the master would ignore the last ones)."""
+    obj = od.objects.get(SLAVE_ASSIGNMENT)
+    if obj is None:
+        return []
+    assigned = []
+    for sub in obj.subs.values():
+        value = od.value_in_force(sub)
+        number = value.resolve(0) if value is not None else None
+        if 1 <= sub.subindex <= 127 and isinstance(number, int) and number & 1:
+            assigned.append(sub.subindex)
+    spec = MASTER_SLAVES
+    if spec.key in caps:
+        if caps[spec.key] < len(assigned):
+            diags.add(GEN010, Loc(od.source, obj.line),
+                      f"0x1F81 assigns {len(assigned)} slaves, but the options' [node] slaves = {caps[spec.key]} "
+                      "leaves some out: raise slaves", SLAVE_ASSIGNMENT, None)
+        return [NodeLimit(spec.macro, caps[spec.key], spec.what, f"[node] slaves = {caps[spec.key]}")]
+    if not assigned:
+        return [NodeLimit(spec.macro, spec.default or 1, spec.what, "0x1F81 assigns none when generated: default")]
+    return [NodeLimit(spec.macro, len(assigned), spec.what,
+                      f"0x1F81 assigns {len(assigned)} (node {', '.join(map(str, sorted(assigned)))})")]
 
 
 def _widest(mapping: dict[int, int]) -> str:

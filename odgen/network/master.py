@@ -7,6 +7,8 @@ slave, and the runtime reads a missing sub-entry as 0 (not a slave, nothing to c
 
 from __future__ import annotations
 
+import copy
+
 from ..lint.netconfig import NodeModel, expected_identity
 from ..lint.network import BOOT_STATUS
 from ..model import ObjectDictionary
@@ -21,6 +23,7 @@ DOMAIN = BASIC_TYPES[0x000F]  # the concise DCFs
 STARTUP_BITS = ((1, "start_all", True), (2, "start_self", False), (3, "start_slaves", False),
                 (4, "reset_all", True), (6, "stop_all", True))
 # 0x1F81 NMT slave assignment
+ERROR_BEHAVIOUR = 0x1029
 SLAVE, BOOT_AGAIN, MANDATORY, KEEP_ALIVE = 1 << 0, 1 << 2, 1 << 3, 1 << 4
 IDENTITY_ARRAYS = ((0x1F85, "Vendor identification", 1), (0x1F86, "Product code", 2),
                    (0x1F87, "Revision number", 3), (0x1F88, "Serial number", 4))
@@ -50,15 +53,51 @@ def _objects(master: NodeModel, slaves: list[NodeModel], concise: dict[int, byte
         _array(0x1F26, "Expected configuration date", dict.fromkeys(ids, 0)),
         _array(0x1F27, "Expected configuration time", dict.fromkeys(ids, 0)),
         _array(0x1F22, "Concise DCF", {n: concise[n].hex().upper() for n in ids}, DOMAIN, "const"),
-        _array(BOOT_STATUS, "Slave boot status", dict.fromkeys(ids, 0), UNSIGNED8, "ro"),
+        _boot_status(ids),
     ]
     objects += [_array(index, name, {s.node_id: expected_identity(s).get(sub, 0) for s in slaves})
                 for index, name, sub in IDENTITY_ARRAYS]
+    behaviour = _error_behaviour(master)
+    objects += [behaviour] if behaviour is not None else []
     heartbeats = [(s.node_id << 16) | int(s.spec.options.get("heartbeat", 0)) for s in slaves
                   if s.spec.options.get("heartbeat")]
     if heartbeats:
         objects.append(_array(0x1016, "Consumer heartbeat time", dict(enumerate(heartbeats, start=1))))
     return objects
+
+
+def _boot_status(ids: list[int]) -> Obj:
+    """0x5F81, 0 at reset. The runtime writes it (odg_set) and a TPDO may publish it: PDO-mappable,
+    so that `odgen network` and `odgen generate` of the master's DCF alike place it in RAM (a
+    read-only entry that is not mappable goes to ROM)."""
+    obj = _array(BOOT_STATUS, "Slave boot status", dict.fromkeys(ids, 0), UNSIGNED8, "ro")
+    for sub in obj.subs.values():
+        sub.pdo_mapping = sub.subindex > 0
+    return obj
+
+
+def _error_behaviour(master: NodeModel) -> Obj | None:
+    """0x1029 sub 1 = 1 (no state change), unless `[master.values]` sets it: the master's own node
+    is heartbeat consumer of the slaves (0x1016), and a communication error would otherwise take it
+    to pre-operational and stop its PDOs; a lost slave is its configuration manager's to handle, as
+    0x1F80 and 0x1F81 say (docs/network.md)."""
+    if (ERROR_BEHAVIOUR, 1) in master.values:
+        return None
+    old = master.od.objects.get(ERROR_BEHAVIOUR)
+    if old is None or 1 not in old.subs:
+        obj = Obj(ERROR_BEHAVIOUR, "Error behavior", object_code=ARRAY)
+        obj.subs = dict(old.subs) if old is not None else {}
+        obj.subs[0] = Sub(0, "Highest sub-index supported", data_type=UNSIGNED8.code, access="ro",
+                          default=_value(max([1, *obj.subs]), UNSIGNED8))
+        obj.subs[1] = Sub(1, "Communication error", data_type=UNSIGNED8.code, access="rw",
+                          default=_value(1, UNSIGNED8))
+        return obj
+    obj = copy.copy(old)
+    obj.subs = dict(old.subs)
+    obj.subs[1] = copy.copy(old.subs[1])
+    obj.subs[1].default = _value(1, UNSIGNED8)
+    obj.subs[1].parameter_value = None  # a DCF's value in force would win over the default
+    return obj
 
 
 def _assignment(slave: NodeModel) -> int:

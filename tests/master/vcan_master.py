@@ -2,14 +2,16 @@
 
     python tests/master/vcan_master.py PLAN.json        (inside tools/vcan/run.py)
 
-PLAN.json names the master program, the slave programs by node-id, the node-id powered up late,
-the node-id whose identity the master expects wrong, the node-id of the LSS slave started
-without one, and each slave's configured values (hex bytes by "index:sub"). Checks, with python
-canopen: every good slave reaches operational with each configured value in place (uploaded and
-compared), the wrong one stays pre-operational and its status in the master's 0x5F81 reads 'M'
-by SDO, the late one is configured when it comes, the one without node-id gets its node-id by
-LSS fastscan and is configured, and a slave reset by NMT is configured again. Prints
-"vcan master: ok" last and exits 0.
+PLAN.json names the master program and its node-id, the slave programs by node-id, the DCFs
+`odgen network` wrote (the master's and each slave's) by node-id, the PDO wiring ([producer,
+TPDO, consumer, RPDO] each), the node-id powered up late, the node-id reset by NMT, the node-id
+whose identity the master expects wrong and the node-id of the LSS slave started without one.
+Checks, with python canopen: every good slave reaches operational with each value its DCF
+configures (a ParameterValue, read by python canopen) in place (uploaded and compared), with
+status 2 in the master's 0x5F81; the wrong one stays pre-operational and its status reads 'M'
+by SDO; the late one is configured when it comes; the one without node-id gets its node-id by
+LSS fastscan and is configured; data written on one side of each wired PDO reaches the other
+under SYNC; a slave reset by NMT is configured again. Prints "vcan master: ok" last and exits 0.
 """
 
 from __future__ import annotations
@@ -24,12 +26,12 @@ import time
 from pathlib import Path
 
 import canopen
-from canopen.sdo.exceptions import SdoCommunicationError
+from canopen.sdo.exceptions import SdoAbortedError, SdoCommunicationError
 
 CHANNEL = os.environ.get("ODGEN_VCAN_IFACES", "vcan0").split(",")[0]
 DEADLINE = 20.0
-MASTER_ID = 1
 STATUS = 0x5F81
+RPDO_MAPPING, TPDO_MAPPING = 0x1600, 0x1A00
 
 
 class States:
@@ -50,15 +52,57 @@ class States:
 
 
 def wait_for(what: str, check) -> None:
-    end = time.monotonic() + DEADLINE
+    end, last = time.monotonic() + DEADLINE, ""
     while time.monotonic() < end:
         try:
             if check():
                 return
-        except SdoCommunicationError:  # a loaded machine: ask again
-            pass
+        except SdoCommunicationError as e:  # a loaded machine: ask again
+            last = f" (last: {e})"
         time.sleep(0.05)
-    raise AssertionError(f"not within {DEADLINE:g} s: {what}")
+    raise AssertionError(f"not within {DEADLINE:g} s: {what}{last}")
+
+
+def configured_values(dcf: str, node_id: int) -> dict[tuple[int, int], bytes]:
+    """Each entry the DCF configures (a ParameterValue), as the bytes its SDO server holds."""
+    od = canopen.import_od(dcf, node_id)
+    variables = [v for obj in od.values()
+                 for v in (obj.values() if isinstance(obj, (canopen.objectdictionary.Record,
+                                                             canopen.objectdictionary.Array)) else [obj])]
+    return {(v.index, v.subindex): v.encode_raw(v.value) for v in variables if v.value is not None}
+
+
+def mapped(dcf: str, node_id: int, index: int) -> list[tuple[int, int, int]]:
+    """The entries (index, sub, bytes) a PDO mapping object of the DCF maps."""
+    od = canopen.import_od(dcf, node_id)
+    count = od[index][0].value
+    return [((m := od[index][n].value) >> 16, (m >> 8) & 0xFF, (m & 0xFF) // 8) for n in range(1, count + 1)]
+
+
+def check_pdos(net: canopen.Network, remote: dict, plan: dict) -> int:
+    """For each wired PDO, under SYNC: a value written on the producer (or, when its entry is
+    read-only there, the one it holds) reaches the consumer, where a different value was written
+    last by SDO."""
+    dcfs = {int(k): v for k, v in plan["dcfs"].items()}
+    flowed = 0
+    net.sync.start(0.05)
+    try:
+        for producer, tpdo, consumer, rpdo in plan["pdos"]:
+            pairs = zip(mapped(dcfs[producer], producer, TPDO_MAPPING + tpdo - 1),
+                        mapped(dcfs[consumer], consumer, RPDO_MAPPING + rpdo - 1), strict=True)
+            for n, ((pi, ps, size), (ci, cs, _)) in enumerate(pairs, 1):
+                sent = bytes([n] * size)
+                try:
+                    remote[producer].sdo.download(pi, ps, sent)
+                except SdoAbortedError:  # read-only on the producer: the value it holds
+                    sent = remote[producer].sdo.upload(pi, ps)
+                remote[consumer].sdo.download(ci, cs, bytes(b ^ 0xFF for b in sent))
+                where = f"node {producer} 0x{pi:04X}sub{ps} -> node {consumer} 0x{ci:04X}sub{cs}"
+                wait_for(f"{where}: {sent.hex()}", lambda: remote[consumer].sdo.upload(ci, cs) == sent)  # noqa: B023
+                flowed += 1
+    finally:
+        net.sync.stop()
+    return flowed
 
 
 def start(exe: str, node_id: int | None, *extra: str) -> subprocess.Popen[bytes]:
@@ -77,35 +121,36 @@ def stop(proc: subprocess.Popen[bytes]) -> tuple[bytes, bytes]:
 def main() -> None:
     plan = json.loads(Path(sys.argv[1]).read_text(encoding="utf-8"))
     slaves = {int(k): v for k, v in plan["slaves"].items()}
-    values = {int(k): v for k, v in plan["values"].items()}
+    master_id = plan["master_id"]
+    values = {node_id: configured_values(plan["dcfs"][str(node_id)], node_id) for node_id in slaves}
     late, wrong, unconfigured = plan["late"], plan["wrong"], plan["unconfigured"]
-    booted = 0.0
+    booted, flowed = 0.0, 0
     net = canopen.Network()
     net.NOTIFIER_CYCLE = 0.1
     net.connect(interface="socketcan", channel=CHANNEL)
     states = States(net)
     remote = {}
-    for node_id in [MASTER_ID, *slaves]:
+    for node_id in [master_id, *slaves]:
         remote[node_id] = canopen.RemoteNode(node_id, canopen.ObjectDictionary())
         net.add_node(remote[node_id])
         remote[node_id].sdo.RESPONSE_TIMEOUT = 2.0
     procs = {node_id: start(exe, None if node_id == unconfigured else node_id)
              for node_id, exe in slaves.items() if node_id != late}
-    master = start(plan["master"], MASTER_ID, "--lss", "assign")
+    master = start(plan["master"], master_id, "--lss", "assign")
     started = time.monotonic()
     try:
         def status(node_id: int) -> int:
-            return remote[MASTER_ID].sdo.upload(STATUS, node_id)[0]
+            return remote[master_id].sdo.upload(STATUS, node_id)[0]
 
         def configured(node_id: int) -> bool:
-            for key, hexdata in values[node_id].items():
-                index, sub = (int(x, 16) for x in key.split(":"))
+            assert values[node_id], f"node {node_id}: nothing configured"
+            for (index, sub), data in values[node_id].items():
                 got = remote[node_id].sdo.upload(index, sub)
-                assert got == bytes.fromhex(hexdata), f"node {node_id} 0x{index:04X}sub{sub}: {got.hex()} != {hexdata}"
+                assert got == data, f"node {node_id} 0x{index:04X}sub{sub}: {got.hex()} != {data.hex()}"
             return True
 
         good = [n for n in slaves if n != wrong]
-        wait_for("the master's boot-up", lambda: states.bootups.get(MASTER_ID, 0) > 0)
+        wait_for("the master's boot-up", lambda: states.bootups.get(master_id, 0) > 0)
         wait_for("the slaves present boot, node-ids by LSS too",
                  lambda: all(status(n) == 2 for n in good if n != late))
         booted = time.monotonic() - started
@@ -114,20 +159,21 @@ def main() -> None:
         wait_for("the late slave boots", lambda: status(late) == 2)
         wait_for("every good slave operational", lambda: all(states.state.get(n) == 5 for n in good))
         for node_id in good:
-            assert configured(node_id)
+            assert configured(node_id) and status(node_id) == 2
+        flowed = check_pdos(net, remote, plan)
         # the wrong identity: reported by SDO, not started, not configured
         assert status(wrong) == ord("M"), f"wrong identity status {status(wrong):#x}"
         time.sleep(0.3)
         assert states.state.get(wrong) == 0x7F, f"node {wrong} state {states.state.get(wrong)}"
         # a slave reset by NMT comes back with its defaults and is configured again
-        again = good[1]
+        again = plan["reset"]
         remote[again].sdo.download(0x1017, 0, b"\x10\x27")  # so that only a new download restores it
         booted = states.bootups.get(again, 0)
         remote[again].nmt.send_command(0x81)
         wait_for("the reset slave's boot-up", lambda: states.bootups.get(again, 0) > booted)
         wait_for("the reset slave configured again",
                  lambda: status(again) == 2 and states.state.get(again) == 5 and configured(again))
-        assert states.state.get(MASTER_ID) == 5, "the master itself is operational"
+        assert states.state.get(master_id) == 5, "the master itself is operational"
     finally:
         for proc in procs.values():
             if proc.poll() is None:
@@ -140,6 +186,8 @@ def main() -> None:
     assert f"odg-master: node {late} status 0x42" in log, log
     assert err == b"", err
     print(f"vcan master: the slaves present booted {booted:.2f} s after the master's start (LSS included)")
+    print(f"vcan master: {sum(map(len, values.values()))} configured values in place, "
+          f"{flowed} mapped entries carried by {len(plan['pdos'])} wired PDOs")
     print("vcan master: ok")
 
 
