@@ -39,95 +39,22 @@
 
 #include "odg.h"
 #include "odg_persist.h"
+#include "odg_node_io.h"
+#include "odg_time.h"
 #include "odg_lss.h"
+#include "odg_comm.h"
+#include "odg_err.h"
+#include "odg_hb.h"
+#include "odg_pdo.h"
+#include "odg_sync.h"
+#include "odg_sdo.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-/* How many PDOs per direction the node serves (0x1400 + n for n below the limit, 0x1800 + n),
- * and mapped objects per PDO (CiA 301: up to 64). NAME_config.h sets them to what the dictionary
- * has; these defaults serve builds without ODG_CONFIG. */
-#ifndef ODG_NODE_MAX_RPDO
-#define ODG_NODE_MAX_RPDO 4u
-#endif
-#ifndef ODG_NODE_MAX_TPDO
-#define ODG_NODE_MAX_TPDO 4u
-#endif
-#ifndef ODG_NODE_MAX_MAP
-#define ODG_NODE_MAX_MAP 8u
-#endif
-/* EMCY frames held back by the inhibit time (0x1015) at most; more are refused. */
-#ifndef ODG_NODE_EMCY_QUEUE
-#define ODG_NODE_EMCY_QUEUE 4u
-#endif
-/* Errors active at once (odg_node_error_set) at most; more are refused. */
-#ifndef ODG_NODE_MAX_ERRORS
-#define ODG_NODE_MAX_ERRORS 8u
-#endif
-/* Heartbeat consumer: how many 0x1016 entries (sub 1..) the node watches. */
-#ifndef ODG_NODE_MAX_HB
-#define ODG_NODE_MAX_HB 8u
-#endif
-/* Bytes the node keeps of the communication values in force at boot, which reset communication
- * brings back: objects of 0x1000-0x1FFF in index order while they fit whole (the rest keep
- * their values); odg_node_comm_bytes(dict) says how many a dictionary needs. */
-#ifndef ODG_NODE_COMM_BYTES
-#define ODG_NODE_COMM_BYTES 512u
-#endif
-/* SDO: ms of silence within a transfer before it is aborted (0x05040000). */
-#ifndef ODG_NODE_SDO_TIMEOUT_MS
-#define ODG_NODE_SDO_TIMEOUT_MS 1000u
-#endif
-/* SDO block download: segments per sub-block the server asks for (1..127). */
-#ifndef ODG_NODE_SDO_BLKSIZE
-#define ODG_NODE_SDO_BLKSIZE 127u
-#endif
-
 /* EMCY error code sent at boot when stored values were lost (see odg_node_init). */
 #define ODG_NODE_EMCY_STORAGE 0x5530u
-
-/* Error register bits (0x1001, CiA 301). odg_node_error_bits says which an error code sets. */
-#define ODG_ERR_GENERIC 0x01u       /* set while any error is active */
-#define ODG_ERR_CURRENT 0x02u       /* codes 0x2xxx */
-#define ODG_ERR_VOLTAGE 0x04u       /* codes 0x3xxx */
-#define ODG_ERR_TEMPERATURE 0x08u   /* codes 0x4xxx */
-#define ODG_ERR_COMMUNICATION 0x10u /* codes 0x81xx (communication) and 0x82xx (protocol) */
-#define ODG_ERR_PROFILE 0x20u       /* device profile specific: by the caller (bits) */
-#define ODG_ERR_MANUFACTURER 0x80u  /* codes 0xFFxx (device specific) */
-
-/* ---- frames ------------------------------------------------------------------------ */
-
-#define ODG_FRAME_RTR 0x01u /* remote request */
-#define ODG_FRAME_EFF 0x02u /* 29-bit identifier */
-
-typedef struct odg_frame {
-    uint32_t id;     /* 11-bit CAN identifier (COB-ID) */
-    uint8_t len;     /* DLC, 0..8 */
-    uint8_t flags;   /* ODG_FRAME_* */
-    uint8_t data[8];
-} odg_frame_t;
-
-/* Queue one frame for transmission: 0 when queued, non-zero when it could not be (a block
- * upload then resumes from the next tick; other frames are dropped). */
-typedef int (*odg_send_fn)(void *ctx, const odg_frame_t *frame);
-
-/* ---- NMT ----------------------------------------------------------------------------- */
-
-/* The values are the heartbeat state bytes of CiA 301. */
-typedef enum odg_nmt_state {
-    ODG_NMT_INITIALISING = 0x00,
-    ODG_NMT_STOPPED = 0x04,
-    ODG_NMT_OPERATIONAL = 0x05,
-    ODG_NMT_PRE_OPERATIONAL = 0x7F
-} odg_nmt_state_t;
-
-/* NMT command specifiers (byte 0 of a frame to COB-ID 0). */
-#define ODG_NMT_START 0x01u
-#define ODG_NMT_STOP 0x02u
-#define ODG_NMT_ENTER_PREOP 0x80u
-#define ODG_NMT_RESET_NODE 0x81u
-#define ODG_NMT_RESET_COMM 0x82u
 
 /* ---- configuration and state --------------------------------------------------------- */
 
@@ -150,108 +77,29 @@ typedef struct odg_node_config {
     odg_lss_bit_timing_fn on_bit_timing;
 } odg_node_config_t;
 
-/* One PDO as read from its communication and mapping entries (internal). */
-typedef struct odg_pdo {
-    uint32_t cob;                   /* sub1; bit 31 set: PDO not valid */
-    uint32_t map[ODG_NODE_MAX_MAP]; /* mapping entries 1..n_map */
-    uint32_t inhibit_left;          /* TPDO: 100 us units until the next send is allowed */
-    uint16_t inhibit;               /* TPDO sub3, 100 us units */
-    uint16_t event;                 /* TPDO sub5, ms (0: no event timer) */
-    uint16_t event_left;            /* ms until the event timer expires */
-    uint8_t type;                   /* transmission type, sub2 */
-    uint8_t sync_start;             /* TPDO sub6 */
-    uint8_t n_map;                  /* mapped objects; 0: PDO absent or not mapped */
-    uint8_t len;                    /* bytes: mapped length (RPDO), last sent (TPDO) */
-    uint8_t count;                  /* TPDO: SYNCs since the last synchronous send */
-    uint8_t flags;                  /* ODG_PDO_F_* (odg_node_impl.h) */
-    uint8_t data[8];                /* TPDO: last sent; RPDO: received, waiting for SYNC */
-} odg_pdo_t;
-
-/* The SDO server's transfer in progress (internal). */
-typedef struct odg_sdo {
-    odg_ref_t ref;        /* the object being transferred */
-    uint32_t total;       /* size indicated (download) or taken (upload) */
-    uint32_t offset;      /* bytes done: written or collected (down), sent (up) */
-    uint32_t blk_offset;  /* block upload: offset at the start of the sub-block */
-    uint32_t timer;       /* ms since the last frame of this transfer */
-    uint16_t index;
-    uint16_t crc;         /* CRC-16 of the bytes so far */
-    uint16_t blk_crc;     /* block upload: CRC at the start of the sub-block */
-    uint8_t sub;
-    uint8_t state;        /* ODG_SDO_* (odg_node_impl.h) */
-    uint8_t flags;        /* ODG_SDO_F_* */
-    uint8_t toggle;
-    uint8_t blksize;      /* segments per sub-block */
-    uint8_t seq;          /* last good (download) or last sent (upload) segment number */
-    uint8_t n_buf;
-    uint8_t buf[8];       /* a number collected whole (down); the first 8 bytes (up) */
-    uint8_t seg[7];       /* block download: the newest segment, held until the end frame */
-} odg_sdo_t;
-
-/* One watched heartbeat (0x1016 entry, internal). */
-typedef struct odg_hb_watch {
-    uint32_t elapsed; /* ms since its last heartbeat */
-    uint16_t time;    /* ms allowed between heartbeats */
-    uint8_t id;       /* node-id watched; 0: entry unused */
-    uint8_t state;    /* the state its last heartbeat said */
-    uint8_t started;  /* a heartbeat came since the entry was set or timed out */
-    uint8_t lost;     /* timed out, and no heartbeat since (EMCY 0x8130 active) */
-} odg_hb_watch_t;
-
-/* The CAN controller's state, as the CAN driver reports it (odg_node_can_state). */
-typedef enum odg_can_state {
-    ODG_CAN_ERROR_ACTIVE = 0,  /* both error counters below 128: normal */
-    ODG_CAN_ERROR_PASSIVE = 1, /* an error counter above 127 */
-    ODG_CAN_BUS_OFF = 2,       /* the transmit error counter passed 255: off the bus */
-    ODG_CAN_RX_OVERRUN = 3     /* not a state, an event: received frames were lost */
-} odg_can_state_t;
-
-/* EMCY error codes of the CAN controller's states (CiA 301). */
-#define ODG_EMCY_CAN_OVERRUN 0x8110u
-#define ODG_EMCY_CAN_PASSIVE 0x8120u
-#define ODG_EMCY_BUS_OFF_RECOVERED 0x8140u
-
-/* The event odg_node_on_heartbeat reports when a watched node's heartbeat is overdue; other
- * events are the NMT state a heartbeat newly says (odg_nmt_state_t values). */
-#define ODG_HB_TIMEOUT 0xFFu
-
+/* The node: the hub's state (configuration, NMT state, the dictionary client) and one state
+ * struct per service (odg_sdo.h, odg_err.h, ...). Fields other than cfg, persist, state,
+ * error_register, sdo_rx/sdo_tx, rpdo/tpdo and sync_dropped are internal. */
 typedef struct odg_node {
     odg_client_t client;      /* attached to the dictionary: hears every change (internal) */
     odg_persist_t persist;    /* the persistence layer, attached when cfg.nv is given */
     odg_node_config_t cfg;
-    odg_sdo_t sdo;
-    odg_pdo_t rpdo[ODG_NODE_MAX_RPDO];
+    odg_sdo_t sdo;            /* odg_sdo.c */
+    odg_pdo_t rpdo[ODG_NODE_MAX_RPDO]; /* odg_pdo.c */
     odg_pdo_t tpdo[ODG_NODE_MAX_TPDO];
     uint32_t sdo_rx, sdo_tx;  /* COB-IDs from 0x1200 (bit 31: server disabled) */
-    uint32_t sync_cob;        /* 0x1005 */
-    uint32_t emcy_cob;        /* 0x1014 */
-    uint32_t time_cob;        /* 0x1012 (0 when absent) */
-    uint32_t sync_us;         /* us since the last SYNC (saturating), for the window 0x1007 */
+    uint32_t sync_us;         /* odg_pdo.c: us since the last SYNC (saturating), for the window 0x1007 */
     uint32_t sync_dropped;    /* synchronous PDOs dropped by the SYNC window: read it, reset it */
+    odg_sync_t sync;          /* odg_sync.c */
+    odg_time_t time;          /* odg_time.c */
 #if ODG_NODE_LSS
     odg_lss_t lss;            /* odg_lss.c */
 #endif
-    uint32_t hb_timer;        /* ms since the last heartbeat */
-    uint32_t sync_prod_us;    /* SYNC producer: µs since the last SYNC sent (odg_sync.c) */
-    uint8_t sync_counter;     /* SYNC producer: the last counter sent (0: none yet) */
-    odg_hb_watch_t hb_watch[ODG_NODE_MAX_HB]; /* heartbeat consumer (odg_hb.c) */
-    uint32_t guard_elapsed;    /* life guarding: ms since the last remote frame (odg_hb.c) */
-    uint8_t guard_started;     /* life guarding: a remote frame came since boot or the last event */
-    uint8_t guard_toggle;      /* node guarding: the toggle bit of the next answer */
-    uint8_t guard_lost;        /* life guarding: an event, and no remote frame since */
-    uint8_t can_state;         /* odg_can_state_t the CAN driver reported last (odg_hb.c) */
-    uint32_t emcy_inhibit_us;  /* EMCY: µs until the next may be sent (odg_err.c) */
-    uint8_t emcy_queue[ODG_NODE_EMCY_QUEUE][8]; /* EMCY frames waiting for the inhibit time */
-    uint8_t emcy_queued;
-    uint8_t emcy_fresh;        /* EMCY: one was sent since the last tick */
-    void (*on_heartbeat)(void *ctx, uint8_t node_id, uint8_t event);
-    void *on_heartbeat_ctx;
-    uint16_t err_code[ODG_NODE_MAX_ERRORS]; /* the active errors (odg_err.c) */
-    uint8_t err_bits[ODG_NODE_MAX_ERRORS];  /* the error register bits of each */
-    uint8_t err_active;       /* how many */
-    uint8_t comm[ODG_NODE_COMM_BYTES > 0u ? ODG_NODE_COMM_BYTES : 1u]; /* values at boot */
+    odg_hb_t hb;              /* odg_hb.c */
+    odg_err_t err;            /* odg_err.c */
+    uint8_t comm[ODG_NODE_COMM_BYTES > 0u ? ODG_NODE_COMM_BYTES : 1u]; /* odg_comm.c: values at boot */
     uint8_t state;            /* odg_nmt_state_t */
-    uint8_t error_register;   /* of the active errors (and stored in 0x1001) */
+    uint8_t error_register;   /* of the active errors (and stored in 0x1001; odg_err.c) */
 } odg_node_t;
 
 /* ---- API ------------------------------------------------------------------------------ */
