@@ -24,32 +24,6 @@ static uint32_t native_size(uint32_t size)
     return size == 3u ? 4u : (size > 4u ? 8u : size);
 }
 
-/* A number's default with the node-id added, as the generated reset does for $NODEID values. */
-static void add_node_id(uint8_t *v, uint32_t size, uint8_t id)
-{
-    uint8_t u8;
-    uint16_t u16;
-    uint32_t u32;
-    uint64_t u64;
-    if (size == 1u) {
-        memcpy(&u8, v, 1);
-        u8 = (uint8_t)(u8 + id);
-        memcpy(v, &u8, 1);
-    } else if (size == 2u) {
-        memcpy(&u16, v, 2);
-        u16 = (uint16_t)(u16 + id);
-        memcpy(v, &u16, 2);
-    } else if (size == 4u) {
-        memcpy(&u32, v, 4);
-        u32 += id;
-        memcpy(v, &u32, 4);
-    } else {
-        memcpy(&u64, v, 8);
-        u64 += id;
-        memcpy(v, &u64, 8);
-    }
-}
-
 /* One value and its place in node->comm (the bytes of its C type): COMM_KEEP copies the
  * dictionary's value there, COMM_BACK back; COMM_SAVED and COMM_LOADED act on the values of the
  * persistence groups 0x1010/0x1011 sub `sub` named (1: all), which the next boot would load:
@@ -65,8 +39,8 @@ static void comm_copy(odg_node_t *n, const odg_sub_t *s, uint8_t *at, int how, u
         memcpy(odg_value_(d, s), at, size);
     } else if (how == COMM_KEEP || (g != NULL && (sub == 1u || g->store_sub == sub))) {
         memcpy(at, how == COMM_LOADED ? (const uint8_t *)g->defaults + s->offset : odg_value_(d, s), size);
-        if (how == COMM_LOADED && (s->attr & ODG_A_NODEID)) {
-            add_node_id(at, size, n->cfg.node_id);
+        if (how == COMM_LOADED && (s->attr & ODG_A_NODEID)) { /* as the generated reset adds it */
+            odg_store_(at, size, odg_load_(at, size) + n->cfg.node_id);
         }
     }
 }
