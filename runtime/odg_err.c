@@ -73,11 +73,13 @@ static uint8_t active(const odg_node_t *n, uint16_t code)
     return k; /* err_active: not active */
 }
 
+/* The last active error takes the place of error k: their order does not matter (0x1001 is the
+ * union of their bits), and the node then links no memmove. */
 static void forget(odg_node_t *n, uint8_t k)
 {
     n->err.active--;
-    memmove(&n->err.code[k], &n->err.code[k + 1u], (size_t)(n->err.active - k) * sizeof n->err.code[0]);
-    memmove(&n->err.bits[k], &n->err.bits[k + 1u], (size_t)(n->err.active - k));
+    n->err.code[k] = n->err.code[n->err.active];
+    n->err.bits[k] = n->err.bits[n->err.active];
 }
 
 odg_abort_t odg_node_error_set(odg_node_t *node, uint16_t code, uint8_t bits, const uint8_t *vendor,
@@ -196,7 +198,7 @@ static odg_abort_t emcy_send(odg_node_t *n, const uint8_t *data)
     if (n->err.queued >= ODG_NODE_EMCY_QUEUE) {
         return ODG_ABORT_HARDWARE;
     }
-    memcpy(n->err.queue[n->err.queued++], data, 8);
+    odg_copy(n->err.queue[n->err.queued++], data, 8);
     return ODG_OK;
 }
 
@@ -213,13 +215,14 @@ odg_abort_t odg_node_emcy(odg_node_t *node, uint16_t code, uint8_t error_registe
     d[1] = (uint8_t)(code >> 8);
     d[2] = error_register;
     if (vendor != NULL) {
-        memcpy(d + 3, vendor, n_vendor < 5u ? n_vendor : 5u);
+        odg_copy(d + 3, vendor, n_vendor < 5u ? n_vendor : 5u);
     }
     return emcy_send(node, d);
 }
 
 void odg_err_tick_(odg_node_t *n, uint32_t ms)
 {
+    uint8_t k;
     uint32_t us = n->err.fresh ? 0u : ms > 4000000u ? 0xFFFFFFFFu : ms * 1000u;
     n->err.fresh = 0;
     n->err.inhibit_us = n->err.inhibit_us > us ? n->err.inhibit_us - us : 0u;
@@ -229,7 +232,9 @@ void odg_err_tick_(odg_node_t *n, uint32_t ms)
     }
     if (odg_io_send_(n, n->err.cob, n->err.queue[0], 8) == 0) {
         n->err.queued--;
-        memmove(n->err.queue[0], n->err.queue[1], (size_t)n->err.queued * 8u);
+        for (k = 0; k < n->err.queued; k++) { /* the rest move up, row by row (no memmove) */
+            odg_copy(n->err.queue[k], n->err.queue[k + 1u], 8);
+        }
         emcy_sent(n, 0);
     }
 }

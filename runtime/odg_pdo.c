@@ -282,8 +282,14 @@ static int transmit(odg_node_t *n, odg_pdo_t *p, int force)
     if (sample(n, p, d, &len) != ODG_OK) {
         return 1;
     }
-    if (!force && (p->flags & ODG_PDO_F_SENT) && len == p->len && memcmp(d, p->data, len) == 0) {
-        return 0;
+    if (!force && (p->flags & ODG_PDO_F_SENT) && len == p->len) {
+        uint8_t k = 0;
+        while (k < len && d[k] == p->data[k]) { /* a loop, not memcmp: the node then links none */
+            k++;
+        }
+        if (k == len) {
+            return 0;
+        }
     }
     if (odg_io_send_(n, p->cob, d, len) != 0) {
         return 1; /* the event stays pending */
