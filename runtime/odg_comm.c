@@ -3,8 +3,6 @@
  * odg_comm.c - the communication values in force at boot, which reset communication brings
  * back (odg_comm.h). It calls no other file of the node.
  */
-#include <string.h>
-
 #include "odg_impl.h"
 #include "odg_node.h"
 
@@ -36,9 +34,9 @@ static void comm_copy(odg_node_t *n, const odg_sub_t *s, uint8_t *at, int how, u
     const odg_group_t *g = ODG_S_CLASS(s->storage) == ODG_S_PERSIST ? &d->groups[ODG_S_GROUP(s->storage)] : NULL;
     uint32_t size = native_size(s->size);
     if (how == COMM_BACK) {
-        memcpy(odg_value_(d, s), at, size);
+        odg_copy(odg_value_(d, s), at, size);
     } else if (how == COMM_KEEP || (g != NULL && (sub == 1u || g->store_sub == sub))) {
-        memcpy(at, how == COMM_LOADED ? (const uint8_t *)g->defaults + s->offset : odg_value_(d, s), size);
+        odg_copy(at, how == COMM_LOADED ? (const uint8_t *)g->defaults + s->offset : odg_value_(d, s), size);
         if (how == COMM_LOADED && (s->attr & ODG_A_NODEID)) { /* as the generated reset adds it */
             odg_store_(at, size, odg_load_(at, size) + n->cfg.node_id);
         }

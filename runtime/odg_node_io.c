@@ -14,7 +14,7 @@ int odg_io_send_(const odg_node_t *n, uint32_t cob, const uint8_t *data, uint8_t
     f.id = ODG_COB_ID(cob);
     f.len = len;
     if (len > 0u) {
-        memcpy(f.data, data, len);
+        odg_copy(f.data, data, len);
     }
     return n->cfg.send(n->cfg.send_ctx, &f);
 }

@@ -55,7 +55,7 @@ static void respond(odg_node_t *n, uint8_t cmd, const uint8_t *tail, uint32_t ta
     d[2] = (uint8_t)(n->sdo.index >> 8);
     d[3] = n->sdo.sub;
     if (tail_len > 0u) {
-        memcpy(d + 4, tail, tail_len);
+        odg_copy(d + 4, tail, tail_len);
     }
     (void)odg_io_send_(n, n->sdo_tx, d, 8);
 }
@@ -154,7 +154,7 @@ static odg_abort_t take(odg_node_t *n, const uint8_t *data, uint32_t len)
     } else if (len > 8u - s->offset) {
         return ODG_ABORT_OUT_OF_MEMORY;
     } else {
-        memcpy(s->buf + s->offset, data, len);
+        odg_copy(s->buf + s->offset, data, len);
     }
     s->crc = crc16(s->crc, data, len);
     s->offset += len;
@@ -263,7 +263,7 @@ static void block_download_segment(odg_node_t *n, const uint8_t *d)
             fail(n, ac);
             return;
         }
-        memcpy(s->seg, d + 1, 7);
+        odg_copy(s->seg, d + 1, 7);
         s->flags |= (uint8_t)(ODG_SDO_F_HELD | (last ? ODG_SDO_F_LAST : 0u));
         s->seq = seq;
     }
@@ -547,7 +547,7 @@ void odg_sdo_receive_(odg_node_t *n, const odg_frame_t *f)
     odg_sdo_t *s = &n->sdo;
     uint8_t d[8];
     memset(d, 0, sizeof d);
-    memcpy(d, f->data, f->len);
+    odg_copy(d, f->data, f->len);
     s->timer = 0;
     if (f->len > 0u && d[0] == 0x80u) {
         s->state = ODG_SDO_IDLE;
