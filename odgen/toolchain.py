@@ -21,9 +21,11 @@ CFLAGS = (STANDARD, *WARNINGS)
 # the dictionary runtime a firmware links (CMake: odgen::runtime): the core and the persistence layer
 CORE_SOURCES = ("odg.c", "odg_verify.c", "odg_persist.c", "odg_persist_slot.c", "odg_persist_fixed.c",
                 "odg_persist_migrate.c")
-# The node's services (CMake: odgen::node): NMT, SDO server, PDOs, EMCY, SYNC, heartbeat, LSS, TIME.
-SERVICE_SOURCES = ("odg_node.c", "odg_sdo.c", "odg_pdo.c", "odg_err.c", "odg_sync.c", "odg_hb.c", "odg_lss.c",
-                   "odg_time.c")
+# The node (CMake: odgen::node), lowest first (docs/design.md, "The node runtime"): the shared
+# helpers, the services (TIME, LSS, communication values, EMCY, heartbeat, PDOs, SYNC, SDO server)
+# and the hub (NMT, dispatch).
+SERVICE_SOURCES = ("odg_node_io.c", "odg_time.c", "odg_lss.c", "odg_comm.c", "odg_err.c", "odg_hb.c", "odg_pdo.c",
+                   "odg_sync.c", "odg_sdo.c", "odg_node.c")
 # The CiA 302 master above the node (CMake: odgen::master): SDO clients, NMT and LSS master, configuration manager.
 MASTER_SOURCES = ("odg_sdo_client.c", "odg_nmt_master.c", "odg_lss_master.c", "odg_master.c")
 MASTER_MAIN = "linux/odg_master_main.c"  # the SocketCAN master program's main()

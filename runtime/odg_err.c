@@ -25,7 +25,7 @@
 #include <string.h>
 
 #include "odg_impl.h"
-#include "odg_node_impl.h"
+#include "odg_node.h"
 
 #define ERROR_REGISTER 0x1001u
 #define HISTORY 0x1003u
@@ -55,8 +55,8 @@ uint8_t odg_node_error_bits(uint16_t code)
 static void register_update(odg_node_t *n)
 {
     uint8_t k, now, reg = 0;
-    for (k = 0; k < n->err_active; k++) {
-        reg |= n->err_bits[k];
+    for (k = 0; k < n->err.active; k++) {
+        reg |= n->err.bits[k];
     }
     n->error_register = reg;
     if (odg_get_u8(n->cfg.dict, ERROR_REGISTER, 0, &now) == ODG_OK && now != reg) {
@@ -67,17 +67,19 @@ static void register_update(odg_node_t *n)
 static uint8_t active(const odg_node_t *n, uint16_t code)
 {
     uint8_t k = 0;
-    while (k < n->err_active && n->err_code[k] != code) {
+    while (k < n->err.active && n->err.code[k] != code) {
         k++;
     }
     return k; /* err_active: not active */
 }
 
+/* The last active error takes the place of error k: their order does not matter (0x1001 is the
+ * union of their bits), and the node then links no memmove. */
 static void forget(odg_node_t *n, uint8_t k)
 {
-    n->err_active--;
-    memmove(&n->err_code[k], &n->err_code[k + 1u], (size_t)(n->err_active - k) * sizeof n->err_code[0]);
-    memmove(&n->err_bits[k], &n->err_bits[k + 1u], (size_t)(n->err_active - k));
+    n->err.active--;
+    n->err.code[k] = n->err.code[n->err.active];
+    n->err.bits[k] = n->err.bits[n->err.active];
 }
 
 odg_abort_t odg_node_error_set(odg_node_t *node, uint16_t code, uint8_t bits, const uint8_t *vendor,
@@ -86,14 +88,14 @@ odg_abort_t odg_node_error_set(odg_node_t *node, uint16_t code, uint8_t bits, co
     if (code == 0u) {
         return ODG_ABORT_VALUE_RANGE;
     }
-    if (active(node, code) < node->err_active) {
+    if (active(node, code) < node->err.active) {
         return ODG_OK;
     }
-    if (node->err_active >= ODG_NODE_MAX_ERRORS) {
+    if (node->err.active >= ODG_NODE_MAX_ERRORS) {
         return ODG_ABORT_NO_RESOURCE;
     }
-    node->err_code[node->err_active] = code;
-    node->err_bits[node->err_active++] = (uint8_t)(odg_node_error_bits(code) | bits | ODG_ERR_GENERIC);
+    node->err.code[node->err.active] = code;
+    node->err.bits[node->err.active++] = (uint8_t)(odg_node_error_bits(code) | bits | ODG_ERR_GENERIC);
     register_update(node);
     return odg_node_emcy(node, code, node->error_register, vendor, n_vendor);
 }
@@ -101,19 +103,19 @@ odg_abort_t odg_node_error_set(odg_node_t *node, uint16_t code, uint8_t bits, co
 odg_abort_t odg_node_error_clear(odg_node_t *node, uint16_t code)
 {
     uint8_t k = active(node, code);
-    if (k >= node->err_active) {
+    if (k >= node->err.active) {
         return ODG_OK;
     }
     forget(node, k);
     register_update(node);
-    return node->err_active == 0u ? odg_node_emcy(node, 0x0000, node->error_register, NULL, 0) : ODG_OK;
+    return node->err.active == 0u ? odg_node_emcy(node, 0x0000, node->error_register, NULL, 0) : ODG_OK;
 }
 
 void odg_err_reset_(odg_node_t *n, int all)
 {
-    uint8_t k = n->err_active;
+    uint8_t k = n->err.active;
     while (k-- > 0u) {
-        if (all || (n->err_code[k] >> 8) == 0x81u || (n->err_code[k] >> 8) == 0x82u) {
+        if (all || (n->err.code[k] >> 8) == 0x81u || (n->err.code[k] >> 8) == 0x82u) {
             forget(n, k);
         }
     }
@@ -127,14 +129,14 @@ static uint8_t *slot(const odg_node_t *n, uint8_t sub, uint32_t *size)
 {
     odg_ref_t r;
     if (odg_find(n->cfg.dict, HISTORY, sub, &r) != ODG_OK || r.sub->size > 4u ||
-        ODG_S_CLASS(r.sub->storage) == ODG_S_ROM || ODG_S_CLASS(r.sub->storage) == ODG_S_STORE) {
+        ODG_S_CLASS(r.sub->storage) == ODG_S_ROM || ODG_S_CLASS(r.sub->storage) == ODG_S_COMMAND) {
         return NULL;
     }
     *size = r.sub->size;
     return odg_value_(n->cfg.dict, r.sub);
 }
 
-void odg_err_record_(odg_node_t *n, uint16_t code, const uint8_t *vendor, uint8_t n_vendor)
+static void record(odg_node_t *n, uint16_t code, const uint8_t *vendor, uint8_t n_vendor)
 {
     uint32_t size0, size, count, k, entry = code;
     uint8_t *p0 = slot(n, 0, &size0), *p, *q;
@@ -144,25 +146,24 @@ void odg_err_record_(odg_node_t *n, uint16_t code, const uint8_t *vendor, uint8_
     if (vendor != NULL && n_vendor > 0u) {
         entry |= (uint32_t)vendor[0] << 16 | (n_vendor > 1u ? (uint32_t)vendor[1] << 24 : 0u);
     }
-    count = (uint32_t)odg_load_(p0, size0);
+    count = (uint32_t)odg_num_get_(p0, size0);
     for (k = count + 1u; k > 1u; k--) { /* sub k-1 moves to sub k, where there is one */
         p = slot(n, (uint8_t)k, &size);
         q = slot(n, (uint8_t)(k - 1u), &size);
         if (p != NULL && q != NULL) {
-            odg_store_(p, size, odg_load_(q, size));
+            odg_num_put_(p, size, odg_num_get_(q, size));
         } else if (p == NULL) {
             count = k - 2u; /* the oldest falls off the end */
         }
     }
     if ((p = slot(n, 1, &size)) != NULL) {
-        odg_store_(p, size, entry);
-        odg_store_(p0, size0, count + 1u > 254u ? 254u : count + 1u);
+        odg_num_put_(p, size, entry);
+        odg_num_put_(p0, size0, count + 1u > 254u ? 254u : count + 1u);
     }
 }
 
-odg_abort_t odg_err_check_(const odg_node_t *n, uint8_t sub, uint32_t value)
+odg_abort_t odg_err_check_(uint8_t sub, uint32_t value)
 {
-    (void)n;
     return sub == 0u && value != 0u ? ODG_ABORT_VALUE_RANGE : ODG_OK;
 }
 
@@ -170,48 +171,70 @@ void odg_err_written_(odg_node_t *n)
 {
     uint32_t size, k;
     uint8_t *p = slot(n, 0, &size);
-    if (p == NULL || odg_load_(p, size) != 0u) {
+    if (p == NULL || odg_num_get_(p, size) != 0u) {
         return; /* the write was refused: the history stays */
     }
     for (k = 1; k < 255u && (p = slot(n, (uint8_t)k, &size)) != NULL; k++) {
-        odg_store_(p, size, 0);
+        odg_num_put_(p, size, 0);
     }
 }
 
 static void emcy_sent(odg_node_t *n, uint8_t between_ticks)
 {
-    n->emcy_inhibit_us = odg_node_get_or_(n, 0x1015, 0, 0) * 100u;
-    n->emcy_fresh = between_ticks;
+    n->err.inhibit_us = odg_io_get_or_(n, 0x1015, 0, 0) * 100u;
+    n->err.fresh = between_ticks;
 }
 
-odg_abort_t odg_emcy_send_(odg_node_t *n, const uint8_t *data)
+/* Send an EMCY frame now, or when the inhibit time (0x1015) since the last one has passed. */
+static odg_abort_t emcy_send(odg_node_t *n, const uint8_t *data)
 {
-    if (n->emcy_inhibit_us == 0u && n->emcy_queued == 0u) {
-        if (odg_node_send_(n, n->emcy_cob, data, 8) != 0) {
+    if (n->err.inhibit_us == 0u && n->err.queued == 0u) {
+        if (odg_io_send_(n, n->err.cob, data, 8) != 0) {
             return ODG_ABORT_HARDWARE;
         }
         emcy_sent(n, 1);
         return ODG_OK;
     }
-    if (n->emcy_queued >= ODG_NODE_EMCY_QUEUE) {
+    if (n->err.queued >= ODG_NODE_EMCY_QUEUE) {
         return ODG_ABORT_HARDWARE;
     }
-    memcpy(n->emcy_queue[n->emcy_queued++], data, 8);
+    odg_copy(n->err.queue[n->err.queued++], data, 8);
     return ODG_OK;
 }
 
-void odg_emcy_tick_(odg_node_t *n, uint32_t ms)
+odg_abort_t odg_node_emcy(odg_node_t *node, uint16_t code, uint8_t error_register,
+                          const uint8_t *vendor, uint8_t n_vendor)
 {
-    uint32_t us = n->emcy_fresh ? 0u : ms > 4000000u ? 0xFFFFFFFFu : ms * 1000u;
-    n->emcy_fresh = 0;
-    n->emcy_inhibit_us = n->emcy_inhibit_us > us ? n->emcy_inhibit_us - us : 0u;
-    if (n->emcy_inhibit_us != 0u || n->emcy_queued == 0u || (n->emcy_cob & ODG_COB_INVALID) ||
-        (n->state != ODG_NMT_PRE_OPERATIONAL && n->state != ODG_NMT_OPERATIONAL)) {
+    uint8_t d[8];
+    record(node, code, vendor, n_vendor);
+    if (!odg_io_talking_(node) || (node->err.cob & ODG_COB_INVALID)) {
+        return ODG_ABORT_DATA_STATE;
+    }
+    memset(d, 0, sizeof d);
+    d[0] = (uint8_t)code;
+    d[1] = (uint8_t)(code >> 8);
+    d[2] = error_register;
+    if (vendor != NULL) {
+        odg_copy(d + 3, vendor, n_vendor < 5u ? n_vendor : 5u);
+    }
+    return emcy_send(node, d);
+}
+
+void odg_err_tick_(odg_node_t *n, uint32_t ms)
+{
+    uint8_t k;
+    uint32_t us = n->err.fresh ? 0u : ms > 4000000u ? 0xFFFFFFFFu : ms * 1000u;
+    n->err.fresh = 0;
+    n->err.inhibit_us = n->err.inhibit_us > us ? n->err.inhibit_us - us : 0u;
+    if (n->err.inhibit_us != 0u || n->err.queued == 0u || (n->err.cob & ODG_COB_INVALID) ||
+        !odg_io_talking_(n)) {
         return;
     }
-    if (odg_node_send_(n, n->emcy_cob, n->emcy_queue[0], 8) == 0) {
-        n->emcy_queued--;
-        memmove(n->emcy_queue[0], n->emcy_queue[1], (size_t)n->emcy_queued * 8u);
+    if (odg_io_send_(n, n->err.cob, n->err.queue[0], 8) == 0) {
+        n->err.queued--;
+        for (k = 0; k < n->err.queued; k++) { /* the rest move up, row by row (no memmove) */
+            odg_copy(n->err.queue[k], n->err.queue[k + 1u], 8);
+        }
         emcy_sent(n, 0);
     }
 }

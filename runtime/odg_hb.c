@@ -1,14 +1,16 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
- * odg_hb.c - NMT error control: the heartbeat consumer (CiA 301: 0x1016), node guarding and
- * life guarding (0x100C, 0x100D), and what a communication error does (0x1029 sub 1).
+ * odg_hb.c - NMT error control: the heartbeat producer (CiA 301: 0x1017) and consumer (0x1016),
+ * node guarding and life guarding (0x100C, 0x100D), and what a communication error does (0x1029
+ * sub 1). Calls odg_err.c and odg_node_io.c (odg_hb.h).
  *
  * Each 0x1016 entry (node-id in bits 16..23, time in ms in bits 0..15; node-id 0 or time 0:
  * unused) watches one node's heartbeat. Watching starts with the first heartbeat from that
  * node. A new state is reported to the application (odg_node_on_heartbeat); when no heartbeat
  * came within the time, the node sends EMCY 0x8130 (heartbeat error; error register: generic
  * and communication bits), reports ODG_HB_TIMEOUT, reacts as 0x1029 sub 1 says (2: stopped;
- * 1: no change; 0, other values or none: operational -> pre-operational), and watches again
+ * 1: no change; 0, other values or none: operational -> pre-operational; the hub carries the
+ * reaction out after the tick's heartbeat and life guarding events), and watches again
  * from the next heartbeat. Entries are read at boot and after every SDO write to 0x1016; a
  * write naming a node-id that another used entry already watches aborts 0x06040043.
  * Heartbeats are consumed in every state but initialising.
@@ -26,20 +28,47 @@
  */
 #include <string.h>
 
-#include "odg_node_impl.h"
+#include "odg_node.h"
 
 #define EMCY_HEARTBEAT 0x8130u
+
+/* ---- the heartbeat producer --------------------------------------------------------------- */
+
+/* The heartbeat period is read from 0x1017 on every tick, so an SDO write (or an application
+ * change) takes effect at once; 0 or an absent 0x1017 stops the heartbeat. */
+void odg_hb_produce_(odg_node_t *n, uint32_t ms)
+{
+    uint32_t period = odg_io_get_or_(n, 0x1017, 0, 0);
+    uint32_t t = n->hb.timer + ms;
+    if (period == 0u) {
+        n->hb.timer = 0;
+        return;
+    }
+    if (t < ms) {
+        t = 0xFFFFFFFFu;
+    }
+    if (t >= period) {
+        (void)odg_io_send_(n, 0x700u + n->cfg.node_id, &n->state, 1);
+        t -= period; /* keep the phase when ticks do not divide the period ... */
+        if (t >= period) {
+            t = 0; /* ... but never send a burst after a long pause */
+        }
+    }
+    n->hb.timer = t;
+}
+
+/* ---- the heartbeat consumer ---------------------------------------------------------------- */
 
 /* The error 0x8130 is gone when no watched node and no life guarding is in error. */
 static void errors_gone(odg_node_t *n)
 {
     uint32_t k;
     for (k = 0; k < ODG_NODE_MAX_HB; k++) {
-        if (n->hb_watch[k].lost) {
+        if (n->hb.watch[k].lost) {
             return;
         }
     }
-    if (!n->guard_lost) {
+    if (!n->hb.guard_lost) {
         (void)odg_node_error_clear(n, EMCY_HEARTBEAT);
     }
 }
@@ -53,11 +82,11 @@ static uint8_t watched_id(uint32_t entry)
 void odg_hb_load_(odg_node_t *n)
 {
     uint32_t k, entry;
-    memset(n->hb_watch, 0, sizeof n->hb_watch);
+    memset(n->hb.watch, 0, sizeof n->hb.watch);
     for (k = 0; k < ODG_NODE_MAX_HB; k++) {
-        if (odg_node_get_(n, 0x1016, (uint8_t)(k + 1u), &entry) == ODG_OK && watched_id(entry) != 0u) {
-            n->hb_watch[k].id = watched_id(entry);
-            n->hb_watch[k].time = (uint16_t)entry;
+        if (odg_io_get_(n, 0x1016, (uint8_t)(k + 1u), &entry) == ODG_OK && watched_id(entry) != 0u) {
+            n->hb.watch[k].id = watched_id(entry);
+            n->hb.watch[k].time = (uint16_t)entry;
         }
     }
     errors_gone(n); /* entries rewritten: none is in error */
@@ -68,7 +97,7 @@ odg_abort_t odg_hb_check_(const odg_node_t *n, uint8_t sub, uint32_t value)
     uint32_t k, other;
     uint8_t id = watched_id(value);
     for (k = 1; id != 0u && k <= 127u; k++) {
-        if (k != sub && odg_node_get_(n, 0x1016, (uint8_t)k, &other) == ODG_OK && watched_id(other) == id) {
+        if (k != sub && odg_io_get_(n, 0x1016, (uint8_t)k, &other) == ODG_OK && watched_id(other) == id) {
             return ODG_ABORT_INCOMPATIBLE;
         }
     }
@@ -77,8 +106,8 @@ odg_abort_t odg_hb_check_(const odg_node_t *n, uint8_t sub, uint32_t value)
 
 static void report(odg_node_t *n, uint8_t id, uint8_t event)
 {
-    if (n->on_heartbeat != NULL) {
-        n->on_heartbeat(n->on_heartbeat_ctx, id, event);
+    if (n->hb.on_heartbeat != NULL) {
+        n->hb.on_heartbeat(n->hb.on_heartbeat_ctx, id, event);
     }
 }
 
@@ -87,7 +116,7 @@ void odg_hb_receive_(odg_node_t *n, const odg_frame_t *f)
     uint32_t k;
     uint8_t id = (uint8_t)(f->id - 0x700u);
     for (k = 0; k < ODG_NODE_MAX_HB && f->len >= 1u; k++) {
-        odg_hb_watch_t *w = &n->hb_watch[k];
+        odg_hb_watch_t *w = &n->hb.watch[k];
         if (w->id == id) {
             w->elapsed = 0;
             if (!w->started || w->state != f->data[0]) {
@@ -103,59 +132,56 @@ void odg_hb_receive_(odg_node_t *n, const odg_frame_t *f)
     }
 }
 
-/* A communication error: what 0x1029 sub 1 asks for, as if the NMT master had said it. */
-static void communication_error(odg_node_t *n)
+/* A communication error: the NMT command 0x1029 sub 1 asks for (the hub carries it out), or 0. */
+static uint8_t communication_error(const odg_node_t *n)
 {
-    uint32_t behaviour = odg_node_get_or_(n, 0x1029, 1, 0);
-    odg_frame_t f;
+    uint32_t behaviour = odg_io_get_or_(n, 0x1029, 1, 0);
     if (behaviour == 1u || (behaviour != 2u && n->state != ODG_NMT_OPERATIONAL)) {
-        return; /* 0 and the values CiA 301 leaves to manufacturers: as 0 */
+        return 0; /* 0 and the values CiA 301 leaves to manufacturers: as 0 */
     }
-    memset(&f, 0, sizeof f);
-    f.len = 2;
-    f.data[0] = (uint8_t)(behaviour == 2u ? ODG_NMT_STOP : ODG_NMT_ENTER_PREOP);
-    f.data[1] = n->cfg.node_id;
-    odg_node_receive(n, &f);
+    return (uint8_t)(behaviour == 2u ? ODG_NMT_STOP : ODG_NMT_ENTER_PREOP);
 }
 
-void odg_guard_rtr_(odg_node_t *n, const odg_frame_t *f)
+void odg_hb_rtr_(odg_node_t *n, const odg_frame_t *f)
 {
     uint8_t answer;
-    if (f->id != 0x700u + n->cfg.node_id || odg_node_get_or_(n, 0x1017, 0, 0) != 0u) {
+    if (f->id != 0x700u + n->cfg.node_id || odg_io_get_or_(n, 0x1017, 0, 0) != 0u) {
         return;
     }
-    answer = (uint8_t)(n->state | (n->guard_toggle ? 0x80u : 0u));
-    if (odg_node_send_(n, f->id, &answer, 1) == 0) {
-        n->guard_toggle = (uint8_t)!n->guard_toggle;
+    answer = (uint8_t)(n->state | (n->hb.guard_toggle ? 0x80u : 0u));
+    if (odg_io_send_(n, f->id, &answer, 1) == 0) {
+        n->hb.guard_toggle = (uint8_t)!n->hb.guard_toggle;
     }
-    n->guard_elapsed = 0;
-    n->guard_started = 1;
-    if (n->guard_lost) {
-        n->guard_lost = 0;
+    n->hb.guard_elapsed = 0;
+    n->hb.guard_started = 1;
+    if (n->hb.guard_lost) {
+        n->hb.guard_lost = 0;
         errors_gone(n);
     }
 }
 
-static void life_guarding(odg_node_t *n, uint32_t ms)
+static uint8_t life_guarding(odg_node_t *n, uint32_t ms)
 {
-    uint32_t life = odg_node_get_or_(n, 0x100C, 0, 0) * odg_node_get_or_(n, 0x100D, 0, 0);
-    if (!n->guard_started || life == 0u) {
-        return;
+    uint32_t life = odg_io_get_or_(n, 0x100C, 0, 0) * odg_io_get_or_(n, 0x100D, 0, 0);
+    if (!n->hb.guard_started || life == 0u) {
+        return 0;
     }
-    n->guard_elapsed = n->guard_elapsed + ms < ms ? 0xFFFFFFFFu : n->guard_elapsed + ms;
-    if (n->guard_elapsed > life) {
-        n->guard_started = 0; /* watched again from the next remote frame */
-        n->guard_lost = 1;
+    n->hb.guard_elapsed = n->hb.guard_elapsed + ms < ms ? 0xFFFFFFFFu : n->hb.guard_elapsed + ms;
+    if (n->hb.guard_elapsed > life) {
+        n->hb.guard_started = 0; /* watched again from the next remote frame */
+        n->hb.guard_lost = 1;
         (void)odg_node_error_set(n, EMCY_HEARTBEAT, 0, &n->cfg.node_id, 1);
-        communication_error(n);
+        return communication_error(n);
     }
+    return 0;
 }
 
-void odg_hb_tick_(odg_node_t *n, uint32_t ms)
+uint8_t odg_hb_tick_(odg_node_t *n, uint32_t ms)
 {
     uint32_t k;
+    uint8_t cmd = 0;
     for (k = 0; k < ODG_NODE_MAX_HB; k++) {
-        odg_hb_watch_t *w = &n->hb_watch[k];
+        odg_hb_watch_t *w = &n->hb.watch[k];
         if (w->id == 0u || !w->started) {
             continue;
         }
@@ -165,35 +191,34 @@ void odg_hb_tick_(odg_node_t *n, uint32_t ms)
             w->lost = 1;
             (void)odg_node_error_set(n, EMCY_HEARTBEAT, 0, &w->id, 1);
             report(n, w->id, ODG_HB_TIMEOUT);
-            communication_error(n);
+            cmd = communication_error(n);
         }
     }
-    life_guarding(n, ms);
+    return life_guarding(n, ms) | cmd; /* both 0 or the one command 0x1029 asks for */
 }
 
 void odg_node_on_heartbeat(odg_node_t *node, void (*fn)(void *ctx, uint8_t node_id, uint8_t event),
                            void *ctx)
 {
-    node->on_heartbeat = fn;
-    node->on_heartbeat_ctx = ctx;
+    node->hb.on_heartbeat = fn;
+    node->hb.on_heartbeat_ctx = ctx;
 }
 
 /* ---- the CAN controller's state ------------------------------------------------------------ */
 
-void odg_node_can_state(odg_node_t *node, odg_can_state_t state)
+uint8_t odg_hb_can_state_(odg_node_t *node, odg_can_state_t state)
 {
-    uint8_t was = node->can_state;
+    uint8_t was = node->hb.can_state;
     if (state == ODG_CAN_RX_OVERRUN) {
         (void)odg_node_emcy(node, ODG_EMCY_CAN_OVERRUN, node->error_register, NULL, 0);
-        return;
+        return 0;
     }
     if ((uint8_t)state == was || state > ODG_CAN_RX_OVERRUN) {
-        return;
+        return 0;
     }
-    node->can_state = (uint8_t)state;
+    node->hb.can_state = (uint8_t)state;
     if (state == ODG_CAN_BUS_OFF) {
-        communication_error(node);
-        return;
+        return communication_error(node);
     }
     if (was == ODG_CAN_BUS_OFF) {
         (void)odg_node_emcy(node, ODG_EMCY_BUS_OFF_RECOVERED, node->error_register, NULL, 0);
@@ -203,6 +228,7 @@ void odg_node_can_state(odg_node_t *node, odg_can_state_t state)
     } else {
         (void)odg_node_error_clear(node, ODG_EMCY_CAN_PASSIVE);
     }
+    return 0;
 }
 
 uint8_t odg_node_comm_errors(const odg_node_t *node)
@@ -210,22 +236,22 @@ uint8_t odg_node_comm_errors(const odg_node_t *node)
     uint8_t bits = 0;
     uint32_t k;
     for (k = 0; k < ODG_NODE_MAX_HB; k++) {
-        if (node->hb_watch[k].lost) {
+        if (node->hb.watch[k].lost) {
             bits = ODG_COMM_HEARTBEAT;
         }
     }
-    if (node->guard_lost) {
+    if (node->hb.guard_lost) {
         bits |= ODG_COMM_GUARDING;
     }
-    if (node->can_state == ODG_CAN_BUS_OFF) {
+    if (node->hb.can_state == ODG_CAN_BUS_OFF) {
         bits |= ODG_COMM_BUS_OFF;
     }
     return bits;
 }
 
-void odg_can_boot_(odg_node_t *n)
+void odg_hb_boot_(odg_node_t *n)
 {
-    if (n->can_state == ODG_CAN_ERROR_PASSIVE || n->can_state == ODG_CAN_BUS_OFF) {
+    if (n->hb.can_state == ODG_CAN_ERROR_PASSIVE || n->hb.can_state == ODG_CAN_BUS_OFF) {
         (void)odg_node_error_set(n, ODG_EMCY_CAN_PASSIVE, 0, NULL, 0);
     }
 }

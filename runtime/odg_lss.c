@@ -2,11 +2,12 @@
 /*
  * odg_lss.c - LSS slave (CiA 305): switch state global and selective, configure node-id and
  * bit timing, activate bit timing, store configuration, inquire identity and node-id, identify
- * (non-configured) remote slave, fastscan. See odg_lss.h and NODE.md.
+ * (non-configured) remote slave, fastscan. Calls the persistence layer's record functions
+ * and odg_node_io.c. See odg_lss.h and NODE.md.
  */
 #include <string.h>
 
-#include "odg_node_impl.h"
+#include "odg_node.h"
 
 #define SIGNATURE 0x3153534Cu /* "LSS1": the layout of odg_lss_t.record */
 
@@ -65,7 +66,7 @@ int odg_lss_activate_(odg_node_t *n)
 /* 0x1018 sub 1 + part: vendor-ID, product code, revision number, serial number */
 static uint32_t identity(const odg_node_t *n, unsigned part)
 {
-    return odg_node_get_or_(n, 0x1018, (uint8_t)(part + 1u), 0);
+    return odg_io_get_or_(n, 0x1018, (uint8_t)(part + 1u), 0);
 }
 
 static void reply(odg_node_t *n, uint8_t cs, uint32_t value)
@@ -77,7 +78,7 @@ static void reply(odg_node_t *n, uint8_t cs, uint32_t value)
     d[2] = (uint8_t)(value >> 8);
     d[3] = (uint8_t)(value >> 16);
     d[4] = (uint8_t)(value >> 24);
-    (void)odg_node_send_(n, ODG_LSS_SLAVE_COB, d, 8);
+    (void)odg_io_send_(n, ODG_LSS_SLAVE_COB, d, 8);
 }
 
 static uint32_t le32(const uint8_t *p)

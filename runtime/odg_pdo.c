@@ -1,7 +1,9 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
- * odg_pdo.c - SYNC consumer, TPDOs and RPDOs of the node, configured by the dictionary's
- * 0x1400-0x15FF / 0x1600-0x17FF (RPDO) and 0x1800-0x19FF / 0x1A00-0x1BFF (TPDO) entries.
+ * odg_pdo.c - TPDOs and RPDOs of the node, configured by the dictionary's 0x1400-0x15FF /
+ * 0x1600-0x17FF (RPDO) and 0x1800-0x19FF / 0x1A00-0x1BFF (TPDO) entries, and what they do at a
+ * SYNC (odg_sync.c hands each one over) and within the SYNC window. Calls odg_err.c and
+ * odg_node_io.c (odg_pdo.h).
  *
  * Each PDO's parameters are read once into odg_pdo_t (at boot, and again after every SDO
  * write to its entries); mapped values are read and written through the dictionary at each
@@ -15,7 +17,7 @@
  */
 #include <string.h>
 
-#include "odg_node_impl.h"
+#include "odg_node.h"
 
 #define TYPE_SYNC_MAX 240u /* 0: acyclic synchronous, 1..240: every n-th SYNC */
 #define TYPE_RTR_SYNC 252u /* TPDO: sampled at each SYNC, sent on a remote request */
@@ -96,7 +98,7 @@ static odg_abort_t read_mapping(const odg_node_t *n, int tx, uint16_t index, uin
         return ODG_ABORT_PDO_LENGTH;
     }
     for (i = 1; i <= count; i++) {
-        if ((ac = odg_node_get_(n, index, (uint8_t)i, &m)) != ODG_OK) {
+        if ((ac = odg_io_get_(n, index, (uint8_t)i, &m)) != ODG_OK) {
             return ac == ODG_ABORT_NO_SUB ? ODG_ABORT_PDO_LENGTH : ac;
         }
         if ((ac = check_entry(n, tx, m)) != ODG_OK) {
@@ -145,15 +147,15 @@ void odg_pdo_load_(odg_node_t *n, int tx, uint16_t k)
         length_errors_gone(n);
     }
     memset(p, 0, sizeof *p);
-    if (odg_node_get_(n, comm, 1, &p->cob) != ODG_OK) {
+    if (odg_io_get_(n, comm, 1, &p->cob) != ODG_OK) {
         p->cob = ODG_COB_INVALID; /* no such PDO */
         return;
     }
-    p->type = (uint8_t)odg_node_get_or_(n, comm, 2, 255);
-    p->inhibit = (uint16_t)odg_node_get_or_(n, comm, 3, 0);
-    p->event = (uint16_t)odg_node_get_or_(n, comm, 5, 0);
-    p->sync_start = (uint8_t)odg_node_get_or_(n, comm, 6, 0);
-    count = odg_node_get_or_(n, (uint16_t)(comm + 0x200u), 0, 0);
+    p->type = (uint8_t)odg_io_get_or_(n, comm, 2, 255);
+    p->inhibit = (uint16_t)odg_io_get_or_(n, comm, 3, 0);
+    p->event = (uint16_t)odg_io_get_or_(n, comm, 5, 0);
+    p->sync_start = (uint8_t)odg_io_get_or_(n, comm, 6, 0);
+    count = odg_io_get_or_(n, (uint16_t)(comm + 0x200u), 0, 0);
     /* a mapping or type the node cannot serve (only possible in the dictionary's defaults,
      * as SDO writes are checked) leaves the PDO unused */
     if ((p->type > TYPE_SYNC_MAX && p->type < (tx ? TYPE_RTR_SYNC : TYPE_EVENT)) ||
@@ -211,7 +213,7 @@ static odg_abort_t check_cob(uint32_t old, uint32_t v)
  * written (0 clears it), and all of them again when sub 0 = n: 0x06040041 not mappable,
  * 0x06020000/0x06090011 no such object, 0x06040042 more than 64 bits or entries.
  */
-static odg_abort_t check_mapping_write(odg_node_t *n, int tx, uint16_t index, uint8_t sub,
+static odg_abort_t check_mapping_write(const odg_node_t *n, int tx, uint16_t index, uint8_t sub,
                                        uint32_t v, int valid)
 {
     if (valid) {
@@ -220,7 +222,7 @@ static odg_abort_t check_mapping_write(odg_node_t *n, int tx, uint16_t index, ui
     if (sub == 0u) {
         return read_mapping(n, tx, index, v, NULL);
     }
-    if (odg_node_get_or_(n, index, 0, 0) != 0u) {
+    if (odg_io_get_or_(n, index, 0, 0) != 0u) {
         return ODG_ABORT_UNSUPPORTED;
     }
     return v == 0u ? ODG_OK : check_entry(n, tx, v);
@@ -229,10 +231,10 @@ static odg_abort_t check_mapping_write(odg_node_t *n, int tx, uint16_t index, ui
 /* Communication parameters: besides the COB-ID, the transmission types 241..251 (reserved)
  * and, for an RPDO, 252/253 (RTR: TPDOs only), and the inhibit time and SYNC start value of
  * a valid TPDO (CiA 301 forbids changing them while it exists) abort with 0x06090030. */
-odg_abort_t odg_pdo_check_(odg_node_t *n, uint16_t index, uint8_t sub, uint32_t v)
+odg_abort_t odg_pdo_check_(const odg_node_t *n, uint16_t index, uint8_t sub, uint32_t v)
 {
     int tx = index >= 0x1800u;
-    uint32_t cob = odg_node_get_or_(n, (uint16_t)(index & ~0x200u), 1, ODG_COB_INVALID);
+    uint32_t cob = odg_io_get_or_(n, (uint16_t)(index & ~0x200u), 1, ODG_COB_INVALID);
     int valid = !(cob & ODG_COB_INVALID);
     if (index & 0x200u) {
         return check_mapping_write(n, tx, index, sub, v, valid);
@@ -289,10 +291,16 @@ static int transmit(odg_node_t *n, odg_pdo_t *p, int force)
     if (sample(n, p, d, &len) != ODG_OK) {
         return 1;
     }
-    if (!force && (p->flags & ODG_PDO_F_SENT) && len == p->len && memcmp(d, p->data, len) == 0) {
-        return 0;
+    if (!force && (p->flags & ODG_PDO_F_SENT) && len == p->len) {
+        uint8_t k = 0;
+        while (k < len && d[k] == p->data[k]) { /* a loop, not memcmp: the node then links none */
+            k++;
+        }
+        if (k == len) {
+            return 0;
+        }
     }
-    if (odg_node_send_(n, p->cob, d, len) != 0) {
+    if (odg_io_send_(n, p->cob, d, len) != 0) {
         return 1; /* the event stays pending */
     }
     memcpy(p->data, d, sizeof d);
@@ -307,7 +315,7 @@ static int transmit(odg_node_t *n, odg_pdo_t *p, int force)
 
 static int in_window(const odg_node_t *n)
 {
-    uint32_t window = odg_node_get_or_(n, 0x1007, 0, 0);
+    uint32_t window = odg_io_get_or_(n, 0x1007, 0, 0);
     return window == 0u || n->sync_us <= window;
 }
 
@@ -439,7 +447,7 @@ void odg_pdo_receive_(odg_node_t *n, const odg_frame_t *f)
     }
 }
 
-/* ---- SYNC ---------------------------------------------------------------------------------- */
+/* ---- at a SYNC (odg_sync.c) --------------------------------------------------------------------- */
 
 /* RPDO data received since the last SYNC take effect first, then synchronous TPDOs sample; one
  * whose frame could not be sent is tried again within the window (window_tick). */
@@ -496,7 +504,7 @@ void odg_pdo_rtr_(odg_node_t *n, const odg_frame_t *f)
         if (p->type == TYPE_RTR) {
             transmit(n, p, 1);
         } else if (p->type == TYPE_RTR_SYNC && (p->flags & ODG_PDO_F_SAMPLED)) {
-            (void)odg_node_send_(n, p->cob, p->data, p->len);
+            (void)odg_io_send_(n, p->cob, p->data, p->len);
         }
     }
 }

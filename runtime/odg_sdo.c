@@ -9,10 +9,13 @@
  * only that frame says how many of its bytes count; the held bytes complete the value only
  * once the CRC has matched. Uploads take the first 8 bytes with one odg_read at offset 0
  * (which runs the PRE_READ hook once) and the rest at their offsets.
+ *
+ * The topmost service (odg_sdo.h): calls the checks of odg_sync.c, odg_pdo.c, odg_hb.c and
+ * odg_err.c, odg_comm.c after a "save" or "load", and odg_node_io.c.
  */
 #include <string.h>
 
-#include "odg_node_impl.h"
+#include "odg_node.h"
 
 #define SIZE_UNKNOWN 0xFFFFFFFFu
 
@@ -52,9 +55,9 @@ static void respond(odg_node_t *n, uint8_t cmd, const uint8_t *tail, uint32_t ta
     d[2] = (uint8_t)(n->sdo.index >> 8);
     d[3] = n->sdo.sub;
     if (tail_len > 0u) {
-        memcpy(d + 4, tail, tail_len);
+        odg_copy(d + 4, tail, tail_len);
     }
-    (void)odg_node_send_(n, n->sdo_tx, d, 8);
+    (void)odg_io_send_(n, n->sdo_tx, d, 8);
 }
 
 /* Abort the transfer (or the request) with `code`; the server is idle afterwards. */
@@ -74,15 +77,31 @@ static void send3(odg_node_t *n, uint8_t b0, uint8_t b1, uint8_t b2)
     f[0] = b0;
     f[1] = b1;
     f[2] = b2;
-    (void)odg_node_send_(n, n->sdo_tx, f, 8);
-}
-
-void odg_sdo_drop_(odg_node_t *n)
-{
-    n->sdo.state = ODG_SDO_IDLE;
+    (void)odg_io_send_(n, n->sdo_tx, f, 8);
 }
 
 /* ---- download ------------------------------------------------------------------------- */
+
+/* Before a whole value of at most 4 bytes is stored: the rules of CiA 301 the services keep
+ * (0x1003, 0x1016, 0x1019 and the PDO parameters); other entries have none. */
+static odg_abort_t check(const odg_node_t *n, uint16_t index, uint8_t sub, const uint8_t *data, uint32_t len)
+{
+    uint32_t v = 0;
+    if (index == 0x1019u) {
+        return odg_sync_check_(n, data, len);
+    }
+    if ((index != 0x1003u && index != 0x1016u && (index < 0x1400u || index >= 0x1C00u)) || len > 4u) {
+        return ODG_OK;
+    }
+    while (len > 0u) {
+        len--;
+        v = v << 8 | data[len];
+    }
+    if (index == 0x1016u) {
+        return odg_hb_check_(n, sub, v);
+    }
+    return index == 0x1003u ? odg_err_check_(sub, v) : odg_pdo_check_(n, index, sub, v);
+}
 
 /* Store a complete value of at most 8 bytes: PDO rules first, then the dictionary (which
  * tells the node's client what changed); but a read-only entry answers 0x06010002 from the
@@ -91,9 +110,9 @@ static odg_abort_t write_whole(odg_node_t *n, const uint8_t *data, uint32_t len)
 {
     odg_sdo_t *s = &n->sdo;
     uint8_t storage = s->ref.sub->storage;
-    odg_abort_t ac = (s->ref.sub->attr & ODG_A_WRITE) ? odg_node_check_(n, s->index, s->sub, data, len) : ODG_OK;
-    if (ac == ODG_OK && (ac = odg_write(&s->ref, data, len)) == ODG_OK && ODG_S_CLASS(storage) == ODG_S_STORE) {
-        odg_node_stored_(n, s->sub, (storage & ODG_S_RESTORE_FLAG) != 0u); /* a "save" or "load" done */
+    odg_abort_t ac = (s->ref.sub->attr & ODG_A_WRITE) ? check(n, s->index, s->sub, data, len) : ODG_OK;
+    if (ac == ODG_OK && (ac = odg_write(&s->ref, data, len)) == ODG_OK && ODG_S_CLASS(storage) == ODG_S_COMMAND) {
+        odg_comm_stored_(n, s->sub, (storage & ODG_S_RESTORE_FLAG) != 0u); /* a "save" or "load" done */
     }
     return ac;
 }
@@ -135,7 +154,7 @@ static odg_abort_t take(odg_node_t *n, const uint8_t *data, uint32_t len)
     } else if (len > 8u - s->offset) {
         return ODG_ABORT_OUT_OF_MEMORY;
     } else {
-        memcpy(s->buf + s->offset, data, len);
+        odg_copy(s->buf + s->offset, data, len);
     }
     s->crc = crc16(s->crc, data, len);
     s->offset += len;
@@ -244,7 +263,7 @@ static void block_download_segment(odg_node_t *n, const uint8_t *d)
             fail(n, ac);
             return;
         }
-        memcpy(s->seg, d + 1, 7);
+        odg_copy(s->seg, d + 1, 7);
         s->flags |= (uint8_t)(ODG_SDO_F_HELD | (last ? ODG_SDO_F_LAST : 0u));
         s->seq = seq;
     }
@@ -352,7 +371,7 @@ static void upload_segment(odg_node_t *n, const uint8_t *d)
     }
     s->offset += len;
     f[0] = (uint8_t)((unsigned)toggle << 4 | (7u - len) << 1 | (s->offset >= s->total ? 1u : 0u));
-    (void)odg_node_send_(n, n->sdo_tx, f, 8);
+    (void)odg_io_send_(n, n->sdo_tx, f, 8);
     s->toggle ^= 1u;
     if (s->offset >= s->total) {
         s->state = ODG_SDO_IDLE;
@@ -399,7 +418,7 @@ static void block_upload_pump(odg_node_t *n)
             return;
         }
         f[0] = (uint8_t)(last | (s->seq + 1u));
-        if (odg_node_send_(n, n->sdo_tx, f, 8) != 0) {
+        if (odg_io_send_(n, n->sdo_tx, f, 8) != 0) {
             return;
         }
         s->seq++;
@@ -528,7 +547,7 @@ void odg_sdo_receive_(odg_node_t *n, const odg_frame_t *f)
     odg_sdo_t *s = &n->sdo;
     uint8_t d[8];
     memset(d, 0, sizeof d);
-    memcpy(d, f->data, f->len);
+    odg_copy(d, f->data, f->len);
     s->timer = 0;
     if (f->len > 0u && d[0] == 0x80u) {
         s->state = ODG_SDO_IDLE;

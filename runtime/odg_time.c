@@ -2,11 +2,11 @@
 /*
  * odg_time.c - the TIME object (CiA 301 TIME_OF_DAY) of the node: consumed when 0x1012 bit 31
  * is set and handed to cfg.on_time, produced by odg_node_time_send when bit 30 is set. Both
- * in pre-operational and operational. See odg_node.h.
+ * in pre-operational and operational. Calls only odg_node_io.c (odg_time.h). See odg_node.h.
  */
 #include <string.h>
 
-#include "odg_node_impl.h"
+#include "odg_node.h"
 
 void odg_time_receive_(odg_node_t *n, const odg_frame_t *f)
 {
@@ -22,8 +22,8 @@ void odg_time_receive_(odg_node_t *n, const odg_frame_t *f)
 odg_abort_t odg_node_time_send(odg_node_t *node, uint32_t ms, uint16_t days)
 {
     uint8_t d[6];
-    if ((node->state != ODG_NMT_PRE_OPERATIONAL && node->state != ODG_NMT_OPERATIONAL) ||
-        !(node->time_cob & ODG_TIME_PRODUCE) || ms > ODG_TIME_MS_MASK) {
+    if (!odg_io_talking_(node) ||
+        !(node->time.cob & ODG_TIME_PRODUCE) || ms > ODG_TIME_MS_MASK) {
         return ms > ODG_TIME_MS_MASK ? ODG_ABORT_VALUE_RANGE : ODG_ABORT_DATA_STATE;
     }
     d[0] = (uint8_t)ms;
@@ -32,5 +32,5 @@ odg_abort_t odg_node_time_send(odg_node_t *node, uint32_t ms, uint16_t days)
     d[3] = (uint8_t)(ms >> 24); /* the 4 reserved bits are 0 */
     d[4] = (uint8_t)days;
     d[5] = (uint8_t)(days >> 8);
-    return odg_node_send_(node, node->time_cob, d, 6) == 0 ? ODG_OK : ODG_ABORT_HARDWARE;
+    return odg_io_send_(node, node->time.cob, d, 6) == 0 ? ODG_OK : ODG_ABORT_HARDWARE;
 }

@@ -1,20 +1,30 @@
 """The house's floors: docs/design.md ("Floors") says on which floor each package of odgen/ stands;
 no module imports from a floor above its own, and no two packages import each other (directly or
-round a longer cycle). Between the C runtime's files there is no include cycle.
+round a longer cycle). Between the C runtime's files there is no include cycle, and no call cycle:
+docs/design.md ("The runtime's levels") puts each file the firmware links on a level, and a file
+calls only functions of files on lower levels (so no service of the node calls the hub).
 
 Imports are read from the source with `ast` (a module imported only under `if TYPE_CHECKING:` is
-an annotation, not an import). The tests also run against small made-up trees, so that a broken
-checker cannot pass by finding nothing.
+an annotation, not an import). Calls are read from the objects the compiler makes of each file
+(`nm`: the functions a file defines, and those it refers to but another file defines), so that
+macros and conditional code count as the compiler sees them. The tests also run against small
+made-up trees, so that a broken checker cannot pass by finding nothing.
 """
 
 from __future__ import annotations
 
 import ast
+import fnmatch
 import re
-from collections.abc import Iterable, Mapping
+import shutil
+import subprocess
+from collections.abc import Iterable, Mapping, Sequence
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import pytest
+
+from odgen import toolchain
 
 from .conftest import ROOT
 
@@ -139,6 +149,78 @@ def includes(runtime: Path) -> dict[str, set[str]]:
     return found
 
 
+def levels(design: str) -> dict[str, int]:
+    """Runtime file (or pattern, as `odg_persist*.c`) -> level, from the design's table."""
+    section = design.split("## The runtime's levels", 1)[1].split("\n## ", 1)[0]
+    found: dict[str, int] = {}
+    for line in section.splitlines():
+        match = re.match(r"\|\s*(\d+)\s*\|([^|]*)\|", line)
+        if match:
+            for name in re.findall(r"`([\w./*]+\.c)`", match.group(2)):
+                found[name] = int(match.group(1))
+    return found
+
+
+def compile_objects(sources: Sequence[Path], out: Path, flags: Sequence[str]) -> dict[str, Path]:
+    """Each C file compiled on its own: file name relative to its runtime folder -> object."""
+    cc = toolchain.compiler()
+    out.mkdir(parents=True, exist_ok=True)
+
+    def build(source: Path) -> tuple[str, Path]:
+        name = source.relative_to(source.parents[1] if source.parent.name == "linux" else source.parent).as_posix()
+        obj = out / (name.replace("/", "_") + ".o")
+        done = subprocess.run([cc, *flags, "-c", str(source), "-o", str(obj)], capture_output=True, text=True,
+                              check=False)
+        assert done.returncode == 0, f"{source}: {done.stderr}"
+        return name, obj
+
+    with ThreadPoolExecutor(max_workers=4) as pool:
+        return dict(pool.map(build, sources))
+
+
+def calls(objects: Mapping[str, Path]) -> dict[str, set[str]]:
+    """File -> the other files whose functions (or data) it refers to, read from the objects."""
+    nm = shutil.which("nm")
+    assert nm, "nm (binutils) is missing"
+    defined: dict[str, str] = {}
+    wanted: dict[str, set[str]] = {}
+    for name, obj in objects.items():
+        lines = subprocess.run([nm, "-P", "-g", str(obj)], capture_output=True, text=True, check=True).stdout
+        wanted[name] = set()
+        for row in (line.split() for line in lines.splitlines()):
+            if len(row) >= 2 and row[1] == "U":
+                wanted[name].add(row[0])
+            elif len(row) >= 2 and row[1] in "TDRBCGS":
+                defined[row[0]] = name
+    return {name: {defined[s] for s in symbols if s in defined and defined[s] != name}
+            for name, symbols in wanted.items()}
+
+
+def call_violations(graph: Mapping[str, set[str]], level_of: Mapping[str, int]) -> list[str]:
+    """Files on no level, calls to a level not below the caller's, and call cycles. Files that
+    match one pattern (`odg_persist*.c`) are one unit."""
+    def unit(name: str) -> str | None:
+        return next((pattern for pattern in level_of if fnmatch.fnmatchcase(name, pattern)), None)
+
+    problems = [f"{name} is on no level of docs/design.md" for name in sorted(graph) if unit(name) is None]
+    edges: dict[str, set[str]] = {}
+    for name, targets in sorted(graph.items()):
+        for target in sorted(targets):
+            a, b = unit(name), unit(target)
+            if a is None or b is None or a == b:
+                continue
+            edges.setdefault(a, set()).add(b)
+            if level_of[b] >= level_of[a]:
+                problems.append(f"{name} calls {target}: level {level_of[a]} to level {level_of[b]}")
+    problems += [f"call cycle: {' -> '.join(c)}" for c in cycles(edges)]
+    return problems
+
+
+RUNTIME_SOURCES = (*toolchain.CORE_SOURCES, *toolchain.SERVICE_SOURCES, *toolchain.HOST_SOURCES)
+# Every switch on, so that each file's calls are all there (ODG_NODE_LSS is off by default).
+CALL_FLAGS = (*toolchain.CFLAGS, "-DODG_NODE_LSS=1", *(f"-I{d}" for d in toolchain.include_dirs(node=True)))
+
+
 # -- the house ---------------------------------------------------------------------
 
 def test_every_package_is_on_a_floor_and_imports_only_downward() -> None:
@@ -149,6 +231,22 @@ def test_every_package_is_on_a_floor_and_imports_only_downward() -> None:
 
 def test_no_include_cycle_between_runtime_files() -> None:
     assert cycles(includes(ROOT / "runtime")) == []
+
+
+@pytest.fixture(scope="module")
+def runtime_calls(tmp_path_factory: pytest.TempPathFactory) -> dict[str, set[str]]:
+    sources = [ROOT / "runtime" / name for name in RUNTIME_SOURCES]
+    return calls(compile_objects(sources, tmp_path_factory.mktemp("calls"), CALL_FLAGS))
+
+
+def test_runtime_files_call_only_lower_levels(runtime_calls: dict[str, set[str]]) -> None:
+    level_of = levels(DESIGN.read_text(encoding="utf-8"))
+    assert call_violations(runtime_calls, level_of) == []
+    assert runtime_calls["odg_node.c"] >= {"odg_sdo.c", "odg_pdo.c", "odg_hb.c", "odg_err.c", "odg_node_io.c"}
+
+
+def test_no_service_calls_the_hub(runtime_calls: dict[str, set[str]]) -> None:
+    assert [name for name, targets in runtime_calls.items() if "odg_node.c" in targets] == []
 
 
 # -- the checkers find what they must ------------------------------------------------
@@ -187,3 +285,30 @@ def test_include_checker_finds_a_cycle(tmp_path: Path) -> None:
     (tmp_path / "b.h").write_text('#include <stdint.h>\n#include "c.h"\n', encoding="utf-8")
     (tmp_path / "c.h").write_text('#  include "a.h"\n', encoding="utf-8")
     assert cycles(includes(tmp_path)) == [["a.h", "b.h", "c.h", "a.h"]]
+
+
+def _objects(tmp_path: Path, files: dict[str, str]) -> dict[str, Path]:
+    for name, text in files.items():
+        (tmp_path / name).write_text(text, encoding="utf-8")
+    return compile_objects([tmp_path / name for name in files], tmp_path / "obj", toolchain.CFLAGS)
+
+
+def test_call_checker_finds_a_cycle_and_an_upward_call(tmp_path: Path) -> None:
+    files = {"hub.c": "void hub(void);\nvoid svc(void);\nvoid hub(void) { svc(); }\n",
+             "svc.c": "void hub(void);\nvoid low(void);\nvoid svc(void);\nvoid svc(void) { low(); }\n"
+                      "static void (*back)(void) = hub;\nvoid low(void) { back(); }\n",
+             "io.c": "void svc(void);\nvoid io(void);\nvoid io(void) { svc(); }\n"}
+    graph = calls(_objects(tmp_path, files))
+    assert graph == {"hub.c": {"svc.c"}, "svc.c": {"hub.c"}, "io.c": {"svc.c"}}
+    problems = call_violations(graph, {"io.c": 0, "svc.c": 1, "hub.c": 2})
+    assert "svc.c calls hub.c: level 1 to level 2" in problems
+    assert "io.c calls svc.c: level 0 to level 1" in problems
+    assert "call cycle: hub.c -> svc.c -> hub.c" in problems
+
+
+def test_call_checker_takes_a_pattern_as_one_unit_and_finds_strays(tmp_path: Path) -> None:
+    files = {"p_a.c": "void b(void);\nvoid a(void);\nvoid a(void) { b(); }\n",
+             "p_b.c": "void a(void);\nvoid b(void);\nvoid b(void) { a(); }\n",
+             "stray.c": "void a(void);\nvoid s(void);\nvoid s(void) { a(); }\n"}
+    problems = call_violations(calls(_objects(tmp_path, files)), {"p_*.c": 0})
+    assert problems == ["stray.c is on no level of docs/design.md"]

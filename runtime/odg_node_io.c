@@ -1,0 +1,48 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/*
+ * odg_node_io.c - the helpers every service of the node shares: the bottom of the node layer
+ * (odg_node_io.h). It calls nothing of the node's.
+ */
+#include <string.h>
+
+#include "odg_node.h"
+
+int odg_io_send_(const odg_node_t *n, uint32_t cob, const uint8_t *data, uint8_t len)
+{
+    odg_frame_t f;
+    memset(&f, 0, sizeof f);
+    f.id = ODG_COB_ID(cob);
+    f.len = len;
+    if (len > 0u) {
+        odg_copy(f.data, data, len);
+    }
+    return n->cfg.send(n->cfg.send_ctx, &f);
+}
+
+odg_abort_t odg_io_get_(const odg_node_t *n, uint16_t index, uint8_t sub, uint32_t *value)
+{
+    odg_ref_t r;
+    uint8_t b[4];
+    uint32_t got = 0, v = 0;
+    odg_abort_t ac = odg_find(n->cfg.dict, index, sub, &r);
+    if (ac == ODG_OK) {
+        ac = odg_read(&r, 0, b, sizeof b, &got);
+    }
+    while (got > 0u) {
+        got--;
+        v = v << 8 | b[got];
+    }
+    *value = v;
+    return ac;
+}
+
+uint32_t odg_io_get_or_(const odg_node_t *n, uint16_t index, uint8_t sub, uint32_t dflt)
+{
+    uint32_t v;
+    return odg_io_get_(n, index, sub, &v) == ODG_OK ? v : dflt;
+}
+
+int odg_io_talking_(const odg_node_t *n)
+{
+    return n->state == ODG_NMT_PRE_OPERATIONAL || n->state == ODG_NMT_OPERATIONAL;
+}
