@@ -245,7 +245,7 @@ odg_abort_t odg_pdo_check_(const odg_node_t *n, uint16_t index, uint8_t sub, uin
          * writes of mappings are checked): the PDO stays unused, and enabling it is refused */
         if (ac == ODG_OK && !valid && !(v & ODG_COB_INVALID)) {
             uint16_t map = (uint16_t)(index + 0x200u);
-            if (read_mapping(n, tx, map, odg_node_get_or_(n, map, 0, 0), NULL) != ODG_OK) {
+            if (read_mapping(n, tx, map, odg_io_get_or_(n, map, 0, 0), NULL) != ODG_OK) {
                 return ODG_ABORT_INCOMPATIBLE;
             }
         }
