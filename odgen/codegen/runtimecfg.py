@@ -10,13 +10,13 @@ the "ODG1" path of groups without migration, and the boot migration when no grou
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from ..catalogue.gen import GEN001, GEN010
 from ..diagnostics import Diagnostics, Loc
 from ..model import ObjectDictionary
+from ..place.options import table_key_line
 
 if TYPE_CHECKING:  # the view-model calls runtime_config() to finish a view
     from .viewmodel import DictView
@@ -126,7 +126,7 @@ def node_options(raw: dict[str, object], source: str, text: str, diags: Diagnost
     limits: dict[str, int] = {}
     for name, value in raw.items():
         spec = keys.get(name)
-        loc = Loc(source, _key_line(text, name))
+        loc = Loc(source, table_key_line(text, "node", name))
         if spec is None:
             diags.add(GEN001, loc, f"[node] has no key '{name}'; use lss or {', '.join(keys)}")
         elif isinstance(value, bool) or not isinstance(value, int) or not spec.low <= value <= spec.high:
@@ -134,18 +134,6 @@ def node_options(raw: dict[str, object], source: str, text: str, diags: Diagnost
         else:
             limits[name] = value
     return limits
-
-
-def _key_line(text: str, key: str) -> int:
-    """The line of `key = ...` in the [node] table (0 when not found: the file as a whole)."""
-    section = ""
-    for n, line in enumerate(text.splitlines(), start=1):
-        stripped = line.strip()
-        if stripped.startswith("["):
-            section = stripped
-        elif section == "[node]" and re.match(rf"{re.escape(key)}\s*=", stripped):
-            return n
-    return 0
 
 
 def _highest_subs(view: DictView, lo: int, hi: int) -> dict[int, int]:

@@ -242,16 +242,21 @@ def _line_of(text: str, header: str, n: int = 0) -> int:
     return lines[n] if n < len(lines) else 1
 
 
-def _key_line(text: str, key: str) -> int:
-    """The line of `key = ...` in the [persist] table, else that of [persist]."""
+def table_key_line(text: str, table: str, key: str) -> int:
+    """The line of `key = ...` in an options file's `[table]` (0 when it is not there)."""
     section = ""
     for n, line in enumerate(text.splitlines(), start=1):
         stripped = line.strip()
         if stripped.startswith("["):
             section = stripped
-        elif section == "[persist]" and re.match(rf"{re.escape(key)}\s*=", stripped):
+        elif section == f"[{table}]" and re.match(rf"{re.escape(key)}\s*=", stripped):
             return n
-    return _line_of(text, "[persist]")
+    return 0
+
+
+def _key_line(text: str, key: str) -> int:
+    """The line of `key = ...` in the [persist] table, else that of [persist]."""
+    return table_key_line(text, "persist", key) or _line_of(text, "[persist]")
 
 
 def _persist(doc: dict, text: str, source: str, persist: PersistOptions, diags: Diagnostics) -> None:

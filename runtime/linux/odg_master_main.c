@@ -34,30 +34,7 @@
 #include "odg_node.h"
 #include "odg_socketcan.h"
 
-#ifndef ODG_DICT
-#error "define ODG_DICT to the master dictionary's C name, e.g. -DODG_DICT=controller"
-#endif
-#define ODG_STR_(x) #x
-#define ODG_STR(x) ODG_STR_(x)
-#ifndef ODG_DICT_HEADER
-#define ODG_DICT_HEADER ODG_STR(ODG_DICT.h)
-#endif
-#include ODG_DICT_HEADER
-
-static volatile sig_atomic_t stop_requested;
-
-static void on_signal(int sig)
-{
-    (void)sig;
-    stop_requested = 1;
-}
-
-static uint64_t now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (uint64_t)ts.tv_sec * 1000u + (uint64_t)ts.tv_nsec / 1000000u;
-}
+#include "odg_host_main.h"
 
 static void on_status(void *ctx, uint8_t node_id, uint8_t status)
 {
@@ -111,7 +88,6 @@ int main(int argc, char **argv)
     const char *iface = NULL;
     odg_node_config_t cfg;
     odg_master_config_t mcfg;
-    struct sigaction sa;
     long node_id = 0;
     uint8_t lss = 0;
     int i, fd, rc;
@@ -138,11 +114,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "odg-master: %s: %s\n", iface, strerror(errno));
         return 1;
     }
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGTERM, &sa, NULL);
-    sigaction(SIGINT, &sa, NULL);
+    stop_on_signals();
 
     memset(&cfg, 0, sizeof cfg);
     cfg.dict = dict;
