@@ -77,6 +77,26 @@ def test_sync_producer_silences_net015(change: str, warned: tuple[str, bool], tm
         assert found == []
 
 
+@pytest.mark.parametrize(("values", "line"), [
+    ('"0x1800sub2" = 1\n', 5),  # configured synchronous, not wired: at its line
+    ('"0x1A00sub0" = 1\n', 5),  # its mapping configured, synchronous as described (0x1800sub2 = 1 below)
+    ('"0x1800sub2" = 1\n"0x1800sub1" = 0x80000182\n', None),  # switched off
+])
+def test_net015_on_configured_pdos(values: str, line: int | None, tmp_path: Path,
+                                   capsys: pytest.CaptureFixture[str]) -> None:
+    eds = (NET / "slave_a.eds").read_text(encoding="utf-8")
+    (tmp_path / "a.eds").write_text(eds.replace("[1800sub2]\nParameterName=Transmission type\nDataType=0x0005\n"
+                                                "AccessType=rw\nDefaultValue=254",
+                                                "[1800sub2]\nParameterName=Transmission type\nDataType=0x0005\n"
+                                                "AccessType=rw\nDefaultValue=1"), encoding="utf-8")
+    (tmp_path / "net.toml").write_text(f'[[node]]\nfile = "a.eds"\nnode_id = 2\n[node.values]\n{values}',
+                                       encoding="utf-8")
+    assert main(["lint", "--format", "json", "--select", "NET015", "--network", str(tmp_path / "net.toml")]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    found = [(d["line"], d["index"]) for f in doc["files"] for d in f["diagnostics"]]
+    assert found == ([] if line is None else [(line, 0x1800)])
+
+
 def test_node_id_out_of_range(capsys: pytest.CaptureFixture[str]) -> None:
     _, findings = _lint(capsys, "NET002.toml")
     assert ("NET002", "NET002.toml", 9, "error[NET002]: node_id 128 is outside 1..127") in _net(findings)

@@ -367,7 +367,7 @@ def _configured_pdos(node: NodeModel) -> dict[int, list[Loc]]:
     found: dict[int, list[Loc]] = {}
     for (index, _sub), configured in node.values.items():
         for comm in (RPDO_COMM, TPDO_COMM):
-            if comm <= index < comm + 0x200 or comm + 0x200 <= index < comm + 0x400:
+            if comm <= index < comm + 0x400:  # its communication object, or its mapping 0x200 above
                 found.setdefault(comm + (index - comm) % 0x200, []).append(configured.loc)
     return found
 
