@@ -73,7 +73,8 @@ bench:
 	nice -n 10 $(BIN)/python benchmarks/run.py --started $$t0
 
 # bench: peers in their own venv (build/bench-venv), Cortex-M4 compiler and valgrind from apt;
-# results in benchmarks/results/latest.md (benchmarks/README.md). bench-sdo: SDO speed over
+# results in benchmarks/results/latest.md (benchmarks/README.md); the master's boot time runs on
+# vcan (one short User-Mode Linux guest when the host has no vcan). bench-sdo: SDO speed over
 # vcan (boots a User-Mode Linux guest when the host has no vcan).
 bench-sdo: setup
 	bash tools/vcan/setup.sh

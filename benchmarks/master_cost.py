@@ -4,8 +4,7 @@ FLASH: the master's four files (MASTER_SOURCES of odgen/toolchain.py) compiled w
 footprint.py and -DODG_MASTER_MAX_SLAVES=n. RAM: sizeof(odg_master_t) at n slaves, read from an
 object that holds it as a constant (the application's static odg_master_t). The node and the
 dictionary the master runs beside are footprint.py's and linked.py's. The boot time on vcan is
-not measured here (a User-Mode Linux guest does not fit this budget): tests/master/vcan_master.py
-prints it. run.py runs this part (--parts master).
+master_boot.py's. run.py runs this part (--parts master).
 """
 
 from __future__ import annotations

@@ -135,13 +135,12 @@ def test_master_core_has_no_stdio_or_heap() -> None:
 
 EXAMPLES = ROOT / "examples"
 MACHINE = EXAMPLES / "network" / "machine.toml"
-# The example machine as shipped (`odgen network` writes the master's dictionary), and two
-# things for the test: the master's own heartbeat (its state is watched) and a sixth slave, the
-# LSS node, powered up without node-id and given node-id 6 by fastscan at boot.
+# The example machine as shipped (`odgen network` writes the master's dictionary; the master
+# produces SYNC), and two things for the test: the master's own heartbeat (its state is watched)
+# and a sixth slave, the LSS node, powered up without node-id and given node-id 6 by fastscan at boot.
+MASTER_VALUES = '[master.values]\n'
+TEST_HEARTBEAT = '"0x1017" = 200\n'
 TEST_NODES = f"""
-[master.values]
-"0x1017" = 200
-
 [[node]]
 name = "lss"
 file = "{ROOT / 'tests' / 'node' / 'lss-node.eds'}"
@@ -157,7 +156,9 @@ LATE, WRONG, UNCONFIGURED, RESET = 3, 4, 6, 5
 
 def machine_network(out: Path) -> tuple[Path, dict]:
     """The test's network file (the example's, description paths made absolute) and its tables."""
-    text = MACHINE.read_text(encoding="utf-8").replace('file = "../', f'file = "{EXAMPLES}/') + TEST_NODES
+    text = MACHINE.read_text(encoding="utf-8").replace('file = "../', f'file = "{EXAMPLES}/')
+    assert text.count(MASTER_VALUES) == 1, "the example's master has one [master.values] table"
+    text = text.replace(MASTER_VALUES, MASTER_VALUES + TEST_HEARTBEAT) + TEST_NODES
     path = out / "machine.toml"
     path.write_text(text, encoding="utf-8")
     return path, tomllib.loads(text)

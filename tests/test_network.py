@@ -41,12 +41,60 @@ def _net(findings: list[dict]) -> list[tuple[str, str, int, str]]:
                         f"(16 bit) but node 3 TPDO1 ({NET / 'slave_a.eds'}:135) transmits 2 entries (8, 8 bit)")),
     ("NET007.toml", 1, ("NET007", "emcy.eds", 87, "error[NET007]: 0x1800sub1 node 4 TPDO1 uses COB-ID 0x83, "
                         "the EMCY COB-ID of node 3")),
+    ("NET015.toml", 0, ("NET015", "NET015.toml", 25, "warning[NET015]: 0x1800sub2 a: TPDO1 (transmission type 1) "
+                        "transmits only at SYNC, and no node of the network produces SYNC (0x1005 bit 30 and "
+                        "0x1006 > 0)")),
 ])
 def test_each_rule_is_located(toml: str, code: int, expected: tuple[str, str, int, str],
                               capsys: pytest.CaptureFixture[str]) -> None:
     got, findings = _lint(capsys, toml)
     assert got == code
     assert expected in _net(findings)
+
+
+# NET015.toml with one change: the clock produces SYNC (bit 30 and a period), the PDO is event-driven,
+# or the clock is set to generate with no period, or the PDO is wired off
+@pytest.mark.parametrize(("change", "warned"), [
+    ('"0x1006" = 10000\n', ('"0x1005" = 0x40000080\n"0x1006" = 10000\n', False)),
+    ("transmission = 1\n", ("transmission = 254\n", False)),
+    ('"0x1006" = 10000\n', ('"0x1005" = 0x40000080\n"0x1006" = 0\n', True)),
+    ("transmission = 1\n", ("transmission = 252\n", True)),  # a TPDO sampled at SYNC, sent on request
+])
+def test_sync_producer_silences_net015(change: str, warned: tuple[str, bool], tmp_path: Path,
+                                       capsys: pytest.CaptureFixture[str]) -> None:
+    text = (NET / "NET015.toml").read_text(encoding="utf-8").replace('file = "', f'file = "{NET}/')
+    assert change in text
+    text = text.replace(change, warned[0])
+    (tmp_path / "net.toml").write_text(text, encoding="utf-8")
+    line = next(n for n, ln in enumerate(text.splitlines(), 1) if ln.startswith("transmission"))
+    code = main(["lint", "--format", "json", "--network", str(tmp_path / "net.toml")])
+    doc = json.loads(capsys.readouterr().out)
+    found = [(d["line"], d["text"]) for f in doc["files"] for d in f["diagnostics"] if d["rule"] == "NET015"]
+    assert code == 0
+    if warned[1]:
+        assert found and all(at == line for at, _ in found), found
+    else:
+        assert found == []
+
+
+@pytest.mark.parametrize(("values", "line"), [
+    ('"0x1800sub2" = 1\n', 5),  # configured synchronous, not wired: at its line
+    ('"0x1A00sub0" = 1\n', 5),  # its mapping configured, synchronous as described (0x1800sub2 = 1 below)
+    ('"0x1800sub2" = 1\n"0x1800sub1" = 0x80000182\n', None),  # switched off
+])
+def test_net015_on_configured_pdos(values: str, line: int | None, tmp_path: Path,
+                                   capsys: pytest.CaptureFixture[str]) -> None:
+    eds = (NET / "slave_a.eds").read_text(encoding="utf-8")
+    (tmp_path / "a.eds").write_text(eds.replace("[1800sub2]\nParameterName=Transmission type\nDataType=0x0005\n"
+                                                "AccessType=rw\nDefaultValue=254",
+                                                "[1800sub2]\nParameterName=Transmission type\nDataType=0x0005\n"
+                                                "AccessType=rw\nDefaultValue=1"), encoding="utf-8")
+    (tmp_path / "net.toml").write_text(f'[[node]]\nfile = "a.eds"\nnode_id = 2\n[node.values]\n{values}',
+                                       encoding="utf-8")
+    assert main(["lint", "--format", "json", "--select", "NET015", "--network", str(tmp_path / "net.toml")]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    found = [(d["line"], d["index"]) for f in doc["files"] for d in f["diagnostics"]]
+    assert found == ([] if line is None else [(line, 0x1800)])
 
 
 def test_node_id_out_of_range(capsys: pytest.CaptureFixture[str]) -> None:

@@ -78,6 +78,7 @@ class Device:
     rpdos: tuple[Pdo, ...]
     tpdos: tuple[Pdo, ...]
     access: dict[int, str]  # process object -> access type
+    clock: bool = False  # has 0x1006 (communication cycle period, 0: off): can be made the SYNC producer
 
 
 def devices() -> list[Device]:
@@ -85,7 +86,7 @@ def devices() -> list[Device]:
     master = Device("master.eds", "Plasma equipment master", 0x100,
                     tuple(Pdo(f"0x{0x180 + s.node_id:X}", _tagged(s.tag, s.report)) for s in SLAVES),
                     tuple(Pdo(f"0x{0x200 + s.node_id:X}", _tagged(s.tag, s.commands)) for s in SLAVES),
-                    {i: "rww" if i in INPUTS else "rwr" for i in OBJECTS})
+                    {i: "rww" if i in INPUTS else "rwr" for i in OBJECTS}, clock=True)
     slaves = [Device(s.file, s.product, 0x100 + s.node_id, (Pdo("$NODEID+0x200", renumbered(s.commands)),),
                      (Pdo("$NODEID+0x180", renumbered(s.report)),),
                      {i: "ro" if i in INPUTS else "rww" for i in OBJECTS}) for s in SLAVES]
@@ -110,7 +111,7 @@ def renumbered(maps: tuple[Mapped, ...]) -> tuple[Mapped, ...]:
 
 def eds(dev: Device) -> str:
     process = _process_objects(dev)
-    comm = [0x1005, 0x1017, 0x1200] + [0x1400 + n for n in range(len(dev.rpdos))] \
+    comm = [0x1005, *([0x1006] if dev.clock else []), 0x1017, 0x1200] + [0x1400 + n for n in range(len(dev.rpdos))] \
         + [0x1600 + n for n in range(len(dev.rpdos))] + [0x1800 + n for n in range(len(dev.tpdos))] \
         + [0x1A00 + n for n in range(len(dev.tpdos))]
     out = _header(dev)
@@ -120,6 +121,8 @@ def eds(dev: Device) -> str:
     out += _var(0x1000, "Device type", 0x0007, "ro", f"0x{_device_type(process):08X}")
     out += _var(0x1001, "Error register", 0x0005, "ro", "0")
     out += _var(0x1005, "COB-ID SYNC", 0x0007, "rw", "0x00000080")
+    if dev.clock:  # the µs between two SYNCs the node sends once 0x1005 bit 30 is set
+        out += _var(0x1006, "Communication cycle period", 0x0007, "rw", "0")
     out += _var(0x1017, "Producer heartbeat time", 0x0006, "rw", "1000")
     out += _record(0x1018, "Identity", [("Vendor-ID", 0x0007, "ro", "0x00000000"),
                                         ("Product code", 0x0007, "ro", f"0x{dev.product_code:08X}")])

@@ -135,3 +135,13 @@ NET014 = define(
     fix="Move the description's object away from 0x5F81.",
     blocking="Network findings come from `odgen lint --network` and `odgen network`; `generate` reads one file "
     "and never reports them.")
+
+NET015 = define(
+    "NET015", W, "synchronous PDO in a network where no node produces SYNC",
+    why="A PDO of transmission type 0..240 (or 252) is sent, or applied, at SYNC (CiA 301 7.2.2.2); a TPDO of "
+    "such a type never transmits and an RPDO never takes over what it receives unless a node sends SYNC, "
+    "which one does when its 0x1005 has bit 30 (generate) set and its 0x1006 (communication cycle period) "
+    "is not 0. The wiring then moves no data, unless a tool on the bus sends SYNC.",
+    example='[[pdo]]\nfrom = "master"\ntransmission = 1\n(no node with 0x1005 bit 30 and 0x1006 > 0)',
+    fix='Make one node, usually the master, the SYNC producer: `[master.values]` "0x1005" = 0x40000080 and '
+    '"0x1006" = the period in µs; or wire the PDO event-driven (`transmission = 254` or 255).')

@@ -12,7 +12,7 @@ import copy
 import re
 from dataclasses import dataclass, field
 
-from ..catalogue.network import NET001, NET008, NET009, NET010, NET011, NET012, NET013
+from ..catalogue.network import NET001, NET008, NET009, NET010, NET011, NET012, NET013, NET015
 from ..diagnostics import Diagnostics, Loc, where
 from ..model import ObjectDictionary, Sub, Value
 from ..model.cia301 import RPDO_COMM, RPDO_MAPPING, TPDO_COMM, TPDO_MAPPING
@@ -22,6 +22,8 @@ from .netfile import NetworkSpec, NodeSpec, PdoSpec
 
 _ADDRESS_RE = re.compile(r"^0x([0-9A-Fa-f]{1,4})(?:sub(?:0x([0-9A-Fa-f]+)|(\d+)))?$")
 PDO_BITS = 64
+SYNC_GENERATE = 0x40000000  # 0x1005 bit 30: the node produces SYNC
+PDO_OFF = 0x80000000  # COB-ID bit 31: the PDO does not exist
 
 
 @dataclass(frozen=True)
@@ -240,7 +242,8 @@ def _wire(pdo: PdoSpec, by_name: dict[str, NodeModel], source: str, diags: Diagn
         wanted = {(c, 1): cob, (c, 2): pdo.transmission, (m, 0): len(entries)}
         wanted.update({(m, n): w for n, w in enumerate(words, start=1)})
         for (index, sub), value in wanted.items():
-            _wire_value(node, index, sub, value, loc, diags)
+            at = Loc(source, pdo.line("transmission")) if (index, sub) == (c, 2) else loc
+            _wire_value(node, index, sub, value, at, diags)
 
 
 def _wire_value(node: NodeModel, index: int, sub: int, value: int, loc: Loc, diags: Diagnostics) -> None:
@@ -347,3 +350,41 @@ def _heartbeat(network: NetworkSpec, node: NodeModel, diags: Diagnostics) -> Non
     elif consumer <= producer:
         diags.add(NET013, loc, f"{node.spec.name}: heartbeat {consumer} ms is not longer than the slave's "
                   f"producer heartbeat time 0x1017 = {producer} ms", 0x1017)
+
+
+def produces_sync(node: NodeModel) -> bool:
+    """Whether the node, once configured, sends SYNC: 0x1005 bit 30 set and 0x1006 (µs) not 0."""
+    return bool((node.in_force(0x1005, 0) or 0) & SYNC_GENERATE) and (node.in_force(0x1006, 0) or 0) > 0
+
+
+def _synchronous(kind: str, transmission: int) -> bool:
+    """CiA 301 transmission types acted on at SYNC: 0..240, and 252 for a TPDO (sampled at SYNC, sent on RTR)."""
+    return transmission <= 240 or (kind == "TPDO" and transmission == 252)
+
+
+def _configured_pdos(node: NodeModel) -> dict[int, list[Loc]]:
+    """The communication object of each PDO the network file (or a DCF) configures, with the places."""
+    found: dict[int, list[Loc]] = {}
+    for (index, _sub), configured in node.values.items():
+        for comm in (RPDO_COMM, TPDO_COMM):
+            if comm <= index < comm + 0x400:  # its communication object, or its mapping 0x200 above
+                found.setdefault(comm + (index - comm) % 0x200, []).append(configured.loc)
+    return found
+
+
+def check_sync(nodes: list[NodeModel], diags: Diagnostics) -> None:
+    """NET015: a PDO the network wires or configures that waits for SYNC, where no node sends SYNC."""
+    if any(produces_sync(node) for node in nodes):
+        return
+    for node in nodes:
+        for comm, locs in sorted(_configured_pdos(node).items()):
+            kind, number = ("RPDO", comm - RPDO_COMM + 1) if comm < TPDO_COMM else ("TPDO", comm - TPDO_COMM + 1)
+            cob, transmission = node.in_force(comm, 1), node.in_force(comm, 2)
+            if cob is None or cob & PDO_OFF or transmission is None or not _synchronous(kind, transmission):
+                continue
+            given = node.values.get((comm, 2))
+            loc = given.loc if given else min(locs, key=lambda at: (at.file, at.line))
+            acts = "transmits" if kind == "TPDO" else "applies what it receives"
+            diags.add(NET015, loc, f"{node.spec.name}: {kind}{number} (transmission type {transmission}) {acts} "
+                      "only at SYNC, and no node of the network produces SYNC (0x1005 bit 30 and 0x1006 > 0)",
+                      comm, 2)

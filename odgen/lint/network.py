@@ -20,7 +20,7 @@ from ..errors import OdgenError
 from ..formats import load_path
 from ..model import ObjectDictionary
 from .driver import FileResult, RuleFilter, lint_path
-from .netconfig import NodeModel, check_boot, configure
+from .netconfig import NodeModel, check_boot, check_sync, configure
 from .netfile import NetworkSpec, NodeSpec, parse_network
 from .passes import LintOptions
 from .passes.network import Node, check_network
@@ -43,10 +43,12 @@ def read_network(path: Path) -> tuple[str, NetworkSpec, Diagnostics]:
 
 def network_checks(spec: NetworkSpec, nodes: list[NodeModel], dcfs: dict[str, ObjectDictionary | None],
                    diags: Diagnostics) -> None:
-    """Configure the nodes (NET008-NET012), check boot options (NET011, NET013), the master (NET014)
-    and the PDOs of the network as configured (NET004-NET007)."""
+    """Configure the nodes (NET008-NET012), check boot options (NET011, NET013), the master (NET014),
+    SYNC for the synchronous PDOs configured (NET015) and the PDOs of the network as configured
+    (NET004-NET007)."""
     configure(spec, nodes, dcfs, diags)
     check_boot(spec, nodes, diags)
+    check_sync(nodes, diags)
     master = next((n for n in nodes if n.spec.master), None)
     if master is not None and BOOT_STATUS in master.od.objects:
         diags.add(NET014, Loc(master.od.source, master.od.objects[BOOT_STATUS].line),
