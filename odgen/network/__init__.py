@@ -13,6 +13,7 @@ import copy
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from ..catalogue.objects import OBJ021
 from ..cnames import identifier
 from ..diagnostics import Diagnostic, Severity
 from ..errors import OdgenError
@@ -58,9 +59,9 @@ def build(path: Path, lookup: str = "hash") -> NetworkOutput:
     # OBJ021 (a DOMAIN with a DefaultValue) is how the concise DCFs travel in the model; the master's
     # own description was linted above, so its OBJ021 findings are already reported.
     result = generate(Request(Path(f"{master.spec.name}.dcf"), name=name, node_id=master.node_id, lookup=lookup,
-                              model=model, rule_filter=RuleFilter(ignore=("OBJ021",))))
+                              model=model, rule_filter=RuleFilter(ignore=(OBJ021.id,))))
     seen = {(d.rule, d.index, d.sub, d.message) for d in findings}
-    findings += [d for d in result.diags.sorted() if d.severity >= Severity.WARNING and d.rule != "OBJ021"
+    findings += [d for d in result.diags.sorted() if d.severity >= Severity.WARNING and d.rule != OBJ021.id
                  and (d.rule, d.index, d.sub, d.message) not in seen]
     if not result.files:
         return NetworkOutput(findings + _refused(result), refused=True)
