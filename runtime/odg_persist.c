@@ -11,34 +11,6 @@
 
 #include "odg_persist_migrate.h"
 
-uint32_t odg_persist_nv_size(const odg_dict_t *dict)
-{
-    uint32_t end = 0, e;
-    uint8_t g;
-    for (g = 0; g < dict->n_groups; g++) {
-        const odg_group_t *gr = &dict->groups[g];
-        e = gr->nv_addr + (ODG_MIGRATES_(gr) ? gr->region : 2u * ODG_PERSIST_SLOT_SIZE(gr->size));
-        end = e > end ? e : end;
-    }
-    return end;
-}
-
-/* Defaults into the mirror of group `g`, with the node-id added to $NODEID values (what the
- * generated reset does for the whole dictionary). */
-void odg_defaults_(const odg_dict_t *d, uint8_t g)
-{
-    const odg_group_t *gr = &d->groups[g];
-    uint32_t p;
-    odg_copy(gr->mirror, gr->defaults, gr->size);
-    for (p = 0; p < d->n_subs; p++) {
-        const odg_sub_t *s = &d->subs[p];
-        if ((s->attr & ODG_A_NODEID) && s->storage == (uint8_t)(ODG_S_PERSIST | (unsigned)g << 2)) {
-            uint8_t *v = odg_value_(d, s);
-            odg_num_put_(v, s->size, odg_num_get_(v, s->size) + d->state->node_id);
-        }
-    }
-}
-
 /* Store group `g` (restore = 0) in the format of its group, "ODG2" with a layout, else "ODG1";
  * or make its next boot use the defaults (restore = 1). */
 static odg_abort_t act(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, int restore)

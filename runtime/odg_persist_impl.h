@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_persist_impl.h - what the persistence layer's sources share: the slots and CRC-32
- * (odg_persist_slot.c), the fixed-layout images (odg_persist_fixed.c), the defaults of a group
- * (odg_persist.c). Not part of the API.
+ * and the defaults of a group (odg_persist_slot.c), the fixed-layout images (odg_persist_fixed.c).
+ * Not part of the API.
  */
 #ifndef ODG_PERSIST_IMPL_H
 #define ODG_PERSIST_IMPL_H
@@ -23,7 +23,7 @@
 
 #define ODG_PERSIST_CHUNK_ 32u /* bytes read at a time when only checking a slot */
 
-/* ---- slots and CRC-32 (odg_persist_slot.c) ---- */
+/* ---- slots, CRC-32, the groups' NV extent and defaults (odg_persist_slot.c) ---- */
 void odg_put32_(uint8_t *p, uint32_t v);
 uint32_t odg_get32_(const uint8_t *p);
 /* a is newer than b: a - b in 1 .. 2^31 - 1 */
@@ -35,8 +35,6 @@ int odg_slot_blank_(const odg_nv_driver_t *nv, uint32_t addr, uint32_t size);
 int odg_wipe_(const odg_nv_driver_t *nv, uint32_t from, uint32_t to);
 int odg_clear_(const odg_nv_driver_t *nv, uint32_t from, uint32_t to);
 uint8_t odg_add_sat_(uint8_t total, uint16_t n);
-
-/* ---- the layer (odg_persist.c) ---- */
 void odg_defaults_(const odg_dict_t *d, uint8_t g);
 
 /* ---- fixed-layout images (odg_persist_fixed.c) ---- */

@@ -1,8 +1,9 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_persist_slot.c - the slots both image formats share: the CRC-32, header bytes, the
- * sequence order, erased-NV checks and erasures (docs/persistence.md, runtime/README.md).
- * Internal to the persistence layer (odg_persist_impl.h).
+ * sequence order, erased-NV checks and erasures, and what both read of the groups: the NV they
+ * span and their defaults (docs/persistence.md, runtime/README.md). The lowest file of the
+ * persistence layer: it calls only the core. Internal to the layer (odg_persist_impl.h).
  */
 #include "odg_persist_impl.h"
 
@@ -114,3 +115,32 @@ uint8_t odg_add_sat_(uint8_t total, uint16_t n)
     return (uint8_t)(total + n > 255u ? 255u : total + n);
 }
 
+/* ---- the groups: their NV extent and defaults ------------------------------------------ */
+
+uint32_t odg_persist_nv_size(const odg_dict_t *dict)
+{
+    uint32_t end = 0, e;
+    uint8_t g;
+    for (g = 0; g < dict->n_groups; g++) {
+        const odg_group_t *gr = &dict->groups[g];
+        e = gr->nv_addr + (ODG_MIGRATES_(gr) ? gr->region : 2u * ODG_PERSIST_SLOT_SIZE(gr->size));
+        end = e > end ? e : end;
+    }
+    return end;
+}
+
+/* Defaults into the mirror of group `g`, with the node-id added to $NODEID values (what the
+ * generated reset does for the whole dictionary). */
+void odg_defaults_(const odg_dict_t *d, uint8_t g)
+{
+    const odg_group_t *gr = &d->groups[g];
+    uint32_t p;
+    odg_copy(gr->mirror, gr->defaults, gr->size);
+    for (p = 0; p < d->n_subs; p++) {
+        const odg_sub_t *s = &d->subs[p];
+        if ((s->attr & ODG_A_NODEID) && s->storage == (uint8_t)(ODG_S_PERSIST | (unsigned)g << 2)) {
+            uint8_t *v = odg_value_(d, s);
+            odg_num_put_(v, s->size, odg_num_get_(v, s->size) + d->state->node_id);
+        }
+    }
+}
