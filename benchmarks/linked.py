@@ -69,6 +69,13 @@ BUILDS: tuple[tuple[str, str, str, float, float | None, str, str, bool], ...] = 
      "persistence with migration)", "device", 0.85, 0.40, "", "node", True),
 )
 
+# The same builds measured by this file at commit 82bfc34, before the runtime was split into
+# services, odg_verify.c and the persistence levels (DS301, hash lookup, FLASH / RAM in bytes): the
+# structure must not cost firmware bytes, so latest.md sets today's figures beside these.
+BEFORE_STRUCTURE = {"commit": "82bfc34", "input": "ds301_canopennode", "lookup": "hash",
+                    "persist": (4912, None), "migrate": (7420, None), "no_persist": (2568, None),
+                    "device": (18552, 1784)}
+
 # Where the bytes go: each object file of ours, by what it serves.
 PART_OF = {"od.o": "dictionary tables (od.c)", "odg.o": "core access (odg.c)",
            "odg_persist.o": "persistence: layer", "odg_persist_slot.o": "persistence: slots, CRC",
@@ -109,17 +116,19 @@ Where the goals are not met (hash, the default lookup; DS301 unless named; 2026-
     -32 B FLASH for 224 B more stack (rejected); two words for its bitmap: -4 B (not worth it).
   - The persisted group's defaults are a FLASH table (DS301 432 B, 33 of its 138 values not 0;
     demoDevice 728 B). A generated per-group reset instead (a memset and the 33 stores, as the
-    sparse RAM block has), tried by hand on DS301: 7404 -> 7108 B, the whole device 18536 ->
-    18240 B (-296 B each). Not done: single defaults are read from the table by `odg_node.c`
-    (the communication values a reset restores), `odg_verify` and the "ODG1" limit re-check, so
-    it needs a per-value default from the generated code first.
-- **Whole device** (18536 B against 14021 B, 85% of 16496 B). The services link 9943 B
-  (`odg_pdo.c` 2382, `odg_sdo.c` 2306, `odg_node.c` 2059, `odg_err.c` 1092, `odg_lss.c` 1024,
-  `odg_hb.c` 784, `odg_sync.c` 264, `odg_time.c` 32), and `odg_err.c` pulls libc's memmove
-  (256 B). With the dictionary, the core and the persistence as they are (`od.c` 1669,
-  `odg.c` 1168, persistence 4818, the bench's main and NV driver 268, libc 670), 5428 B are left
-  for the services: they must lose about 4515 B (45%), less by what the persistence loses. RAM,
-  1784 B (32%), meets its goal.
+    sparse RAM block has), tried by hand on DS301 before the services split: -296 B on both
+    rows. Not done: single defaults are read from the table by `odg_comm.c` (the communication
+    values a reset restores, without touching the mirror), `odg_verify` and the "ODG1" limit
+    re-check; each needs a per-value default from elsewhere (a scratch the size of the group,
+    generated per-value code, or verify's check moved to generation) that costs what it saves.
+- **Whole device** (18032 B against 14021 B, 85% of 16496 B). The services link 9795 B
+  (`odg_pdo.c` 2444, `odg_sdo.c` 2382, `odg_err.c` 1162, `odg_node.c` 1069, `odg_lss.c` 1010,
+  `odg_hb.c` 810, `odg_comm.c` 484, `odg_sync.c` 252, `odg_node_io.c` 150, `odg_time.c` 32);
+  the split into services took libc's memmove, memcmp and memcpy out of the node (-520 B against
+  the build before it, table above). With the dictionary, the core and the persistence as they
+  are (`od.c` 1669, `odg.c` 1168, persistence 4818, the bench's main and NV driver 268, libc
+  314), 5784 B are left for the services: they must lose about 4011 B (41%), less by what the
+  persistence loses. RAM, 1784 B (32%), meets its goal.
 
 Earlier shrinks, measured the same way (the figures of their day, with an NV driver of three empty
 functions and before the stored-values rule set):
@@ -438,6 +447,23 @@ def _parts_table(rows: list[dict[str, object]], key: str, title: str) -> list[st
     return lines
 
 
+def _structure_table(rows: list[dict[str, object]]) -> list[str]:
+    """Today's FLASH beside BEFORE_STRUCTURE's, build by build."""
+    before = BEFORE_STRUCTURE
+    now = next((r for r in rows if r["input"] == before["input"] and r["lookup"] == before["lookup"]), None)
+    if now is None:
+        return []
+    lines = ["", f"The runtime's structure (services, `odg_verify.c`, persistence levels) against commit "
+             f"{before['commit']}, before it ({before['input']}, {before['lookup']}; FLASH in bytes):", "",
+             "| build | before | now | change |", "|---|---:|---:|---:|"]
+    for key, text, *_ in BUILDS:
+        fig = now.get(key)
+        if key in before and isinstance(fig, dict) and "flash" in fig:
+            was = before[key][0]  # type: ignore[index]
+            lines.append(f"| {text} | {was} | {fig['flash']} | {int(fig['flash']) - was:+d} |")
+    return lines
+
+
 def markdown(rows: list[dict[str, object]], empty: tuple[int, int]) -> str:
     lines = ["## Linked firmware footprint on Cortex-M4 (dictionary + runtime)", "",
              __doc__.split("\n\n", 1)[1].split("run.py")[0].strip(), "",
@@ -464,6 +490,7 @@ def markdown(rows: list[dict[str, object]], empty: tuple[int, int]) -> str:
               "| input | lookup | " + " | ".join(DICT_PARTS) + " |", "|---|---|" + "---:|" * len(DICT_PARTS)]
     lines += [f"| {r['input']} | {r['lookup']} | " + " | ".join(str(v) for v in r["dict_parts"].values()) + " |"  # type: ignore[attr-defined]
               for r in rows if "dict_parts" in r]
+    lines += _structure_table(rows)
     lines += ["", NOT_MET]
     lines += ["", "CANopenNode v4 figures: " + METHOD + ".", ""]
     lines += [f"- {label}: {pub['what']}; odgen generates from `{pub['input']}`." for label, pub in PUBLISHED.items()]
