@@ -195,6 +195,19 @@ def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
             item.add_marker(pytest.mark.xdist_group(group))
 
 
+def pytest_collection_finish(session: pytest.Session) -> None:
+    """On a worker of `--dist loadgroup`: xdist marks a grouped test by its id (`...@vcan`); a test
+    in a group without the mark would run on any worker (two guests, one bus shared by two runs)."""
+    if os.environ.get("PYTEST_XDIST_WORKER") and getattr(session.config.option, "loadgroup", False):
+        lost = [item.nodeid for item in session.items
+                if item.get_closest_marker("xdist_group") is not None and "@" not in item.nodeid]
+        if lost:
+            message = (f"pytest-xdist does not keep the xdist groups with this pytest ({lost[0]} has none): "
+                       "install the versions pyproject.toml's test extra names (make setup)")
+            os.write(2, f"\n{message}\n".encode())  # a worker's own report of it is lost in xdist's
+            pytest.exit(message, returncode=4)
+
+
 def pytest_configure(config: pytest.Config) -> None:
     config.addinivalue_line("markers", "xdist_group(name): run on the pytest-xdist worker of the group's other tests")
 
