@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: setup sysdeps demo test lint-code docs release bench fuzz clean
+.PHONY: setup sysdeps demo test corpus lint-code docs release bench fuzz clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -48,8 +48,17 @@ sysdeps:
 # The CAN tests set up tools/vcan themselves (host vcan, else a User-Mode Linux guest).
 # tests/test_install.py installs the wheel under the oldest Python pyproject.toml declares
 # (tools/oldest-python.sh finds it, or installs it from the package sources).
+# The suite runs on every core (pytest-xdist; what tests share stays on one worker: tests/README.md).
+TEST_WORKERS ?= auto
+PYTEST := $(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist loadgroup
 test: setup lint-code sysdeps
-	oldest=$$(tools/oldest-python.sh) && ODGEN_OLDEST_PYTHON=$$oldest $(BIN)/python -m pytest -q
+	oldest=$$(tools/oldest-python.sh) && ODGEN_OLDEST_PYTHON=$$oldest $(PYTEST)
+
+# The tests that take a sample of the corpus in `make test` (CORPUS_SAMPLE in tests/conftest.py),
+# on every corpus file: a node program of each on the CAN bus (round trip, conformance battery).
+CORPUS_TESTS := tests/test_roundtrip_vcan.py tests/test_conformance.py
+corpus: setup sysdeps
+	ODGEN_CORPUS=all $(PYTEST) $(CORPUS_TESTS)
 
 # docs/rules.md is generated from the rule catalogue (a test checks it is current).
 docs: setup

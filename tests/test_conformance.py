@@ -1,4 +1,5 @@
-"""`odgen conformance` on a CAN bus: every node the round trips build passes the battery, and
+"""`odgen conformance` on a CAN bus: every node the round trips build (the corpus sample in `make
+test`, the whole corpus in `make corpus`: tests/test_roundtrip_vcan.py vcan_files) passes the battery, and
 nodes with an injected defect (tests/conformance/defects.c, one per check family) fail the
 check meant to catch it, so each check is shown able to fail. Nodes that behave as CiA 301
 allows though odgen's own node does not (defects.c's allowed behaviours, descriptions that

@@ -55,7 +55,8 @@ def chromium(page: Path, *args: str) -> str:
     exe = shutil.which("chromium")
     if exe is None:
         pytest.fail("chromium is not installed: `make sysdeps` installs it (Debian package chromium)")
-    profile = OUT / "chromium-profile"
+    # a profile per pytest-xdist worker: two Chromiums running at once must not share one
+    profile = OUT / "-".join(["chromium-profile", *filter(None, [os.environ.get("PYTEST_XDIST_WORKER")])])
     cmd = [exe, "--headless", "--no-sandbox", "--disable-gpu", f"--user-data-dir={profile}", *NO_NETWORK,
            *args, page.resolve().as_uri()]
     done = subprocess.run(cmd, capture_output=True, text=True, timeout=120, check=False)

@@ -1,4 +1,5 @@
-"""odgen roundtrip on a CAN bus: the examples and every corpus file odgen generates, in one vcan session.
+"""odgen roundtrip on a CAN bus: the example and the corpus files odgen generates, in one vcan session
+(a sample of them in `make test`, every one in `make corpus`: CORPUS_SAMPLE in tests/conftest.py).
 
 Node programs are built on the host first (into a cache the guest shares), then one run of
 tools/vcan/run.py checks them all: on the host's vcan when it has one, else inside one
@@ -20,7 +21,7 @@ from odgen.roundtrip.build import build_node
 from odgen.errors import OdgenError
 from odgen.conformance.client import reachable_sdo_server, sdo_server_cob_ids
 
-from .conftest import BUILD, ROOT, corpus_files, generates
+from .conftest import BUILD, CORPUS, CORPUS_SAMPLE, ROOT, corpus_files, corpus_sample, generates
 
 CACHE = ROOT / "build" / "node-cache"
 
@@ -33,10 +34,20 @@ def sdo_reachable(path) -> bool:
 
 def vcan_files() -> list:
     """The descriptions checked on a bus (here and by tests/test_conformance.py): the example and
-    every corpus file `odgen generate` accepts whose SDO server is not disabled by 0x1200 (both
-    tools refuse those: test_disabled_sdo_server_refused)."""
-    return [ROOT / "examples" / "io-node" / "io-node.eds"] + [p for p in corpus_files() if generates(p)
+    the corpus files `odgen generate` accepts whose SDO server is not disabled by 0x1200 (both
+    tools refuse those: test_disabled_sdo_server_refused), those of the sample (CORPUS_SAMPLE in
+    tests/conftest.py) in `make test`, every one in `make corpus`."""
+    return [ROOT / "examples" / "io-node" / "io-node.eds"] + [p for p in corpus_sample(corpus_files()) if generates(p)
                                                              and sdo_reachable(p)]
+
+
+def test_corpus_sample_goes_on_the_bus() -> None:
+    """Every file of the sample is in the corpus and is one the bus tests take: a file renamed, or
+    refused since it was chosen, would shrink the sample without a word."""
+    if not corpus_files():
+        pytest.skip("../shared/corpus is absent")
+    sample = [CORPUS / name for name in CORPUS_SAMPLE]
+    assert [p.name for p in sample if not (p.is_file() and generates(p) and sdo_reachable(p))] == []
 
 
 def test_disabled_sdo_server_refused(tmp_path) -> None:
