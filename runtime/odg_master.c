@@ -294,16 +294,33 @@ static void configure(odg_master_t *m, odg_master_slave_t *s)
     }
 }
 
-/* Its heartbeat time read: a heartbeat comes within it (half again for the jitter); none
- * produced (0, or no 0x1017), no state will come: it is configured at once. */
+/* One node guarding remote frame: its answer tells the slave's NMT state. */
+static void ask_state(odg_master_t *m, const odg_master_slave_t *s)
+{
+    odg_frame_t f;
+    f.id = 0x700u + s->id;
+    f.len = 1;
+    f.flags = ODG_FRAME_RTR;
+    f.data[0] = 0;
+    (void)m->cfg.send(m->cfg.send_ctx, &f);
+}
+
+/* Its heartbeat time read: a heartbeat comes within it (half again for the jitter). It produces
+ * none (0, or no 0x1017): guarded (0x1F81 guard time), it is asked once and has the guard time
+ * to answer; else no state will come and it is configured at once. */
 static void await_state(odg_master_t *m, odg_master_slave_t *s, int ok, uint32_t hb_ms)
 {
-    if (odg_nmtm_state(&m->nmt, s->id) != ODG_NMTM_UNKNOWN || !ok || hb_ms == 0u) {
+    uint32_t guard_ms = s->assignment >> 16, wait_ms = ok ? hb_ms : 0u;
+    if (odg_nmtm_state(&m->nmt, s->id) == ODG_NMTM_UNKNOWN && wait_ms == 0u && guard_ms != 0u) {
+        ask_state(m, s);
+        wait_ms = guard_ms;
+    }
+    if (odg_nmtm_state(&m->nmt, s->id) != ODG_NMTM_UNKNOWN || wait_ms == 0u) {
         keep_alive_configure(m, s);
         return;
     }
     s->phase = P_STATE;
-    s->timer = hb_ms + hb_ms / 2u;
+    s->timer = wait_ms + wait_ms / 2u;
 }
 
 /* The configuration date and time (0x1020) when 0x1F26 and 0x1F27 expect one. */

@@ -606,6 +606,36 @@ static void test_keep_alive_pre_operational(void)
     CHECK_EQ(nmt_sent(ODG_NMT_RESET_COMM, 2) + nmt_sent(ODG_NMT_RESET_COMM, 3) + nmt_sent(ODG_NMT_RESET_COMM, 0), 0);
 }
 
+/* A guarded keep-alive slave (no heartbeat; 0x1F81 guard time 100 ms) is asked its state by one
+ * remote frame: operational, it is left running at once; pre-operational, configured. */
+static void test_keep_alive_guarded(void)
+{
+    const uint32_t guarded = OPTIONAL | ODG_ASSIGN_KEEP_ALIVE | 100u << 16 | 3u << 8;
+    const uint32_t assign[N_SLAVES] = {0, 0, 0, guarded, 0};
+    uint8_t mode = 0xEE;
+    dcf_t d;
+    start(ODG_STARTUP_MASTER, assign, 0x8, 99, 99);
+    memset(&d, 0, sizeof d);
+    dcf_add(&d, 0x6200, 2, 3, 1);
+    set_dcf(5, &d);
+    CHECK_EQ(odg_set_u16(&inv, 0x1017, 0, 0), ODG_OK); /* it answers guarding only then */
+    tool_nmt(ODG_NMT_START, 5);
+    run(60);
+    CHECK_EQ(status(5), ODG_SLAVE_OPERATIONAL);
+    CHECK_EQ(odg_node_state(&mnode), ODG_NMT_OPERATIONAL);
+    CHECK_EQ(odg_get_u8(&inv, 0x6200, 2, &mode), ODG_OK);
+    CHECK_EQ(mode, 0); /* nothing downloaded */
+    start(ODG_STARTUP_MASTER, assign, 0x8, 99, 99);
+    set_dcf(5, &d);
+    CHECK_EQ(odg_set_u16(&inv, 0x1017, 0, 0), ODG_OK);
+    run(60);
+    CHECK_EQ(status(5), ODG_SLAVE_BOOTED);
+    CHECK_EQ(odg_get_u8(&inv, 0x6200, 2, &mode), ODG_OK);
+    CHECK_EQ(mode, 3);
+    CHECK_EQ(odg_node_state(&slave_nodes[3]), ODG_NMT_OPERATIONAL);
+    CHECK_EQ(nmt_sent(ODG_NMT_RESET_COMM, 5) + nmt_sent(ODG_NMT_RESET_COMM, 0), 0);
+}
+
 /* A keep-alive slave absent at the master's start (no answer: B) boots at its first heartbeat
  * when it comes back (pre-operational: configured and started), long before the next retry; one that appears with a boot-up message boots at
  * that. */
@@ -832,6 +862,7 @@ int main(void)
     test_keep_alive_wrong_identity();
     test_keep_alive_pre_operational();
     test_keep_alive_appears();
+    test_keep_alive_guarded();
     test_truncated_dcf();
     test_client_parameter();
     test_not_a_master();
