@@ -4,7 +4,8 @@
  * own node on tests/master/master.eds. Time is simulated in ms steps; each frame reaches every
  * other connected participant. Scenarios: a normal boot with one wrong identity, a slave reset
  * by NMT, a lost heartbeat, a slave powered up late, a mandatory slave lost with "stop all",
- * a failed download, a wrong device type, start all.
+ * a failed download, a wrong device type, start all, keep-alive slaves (operational, pre-operational,
+ * guarded, absent then back).
  */
 #include <string.h>
 
