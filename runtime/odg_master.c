@@ -15,9 +15,11 @@
 #define P_DEVTYPE 2u /* uploading 0x1000 */
 #define P_IDENT 3u   /* uploading 0x1018 sub `step` */
 #define P_DATE 4u    /* uploading 0x1020 sub `step` */
-#define P_DCF 5u     /* downloading concise DCF entries */
-#define P_DONE 6u    /* booted (or found operational): error control runs */
-#define P_FAILED 7u  /* a check failed: boots again at its next boot-up */
+#define P_HBTIME 5u  /* keep-alive, its NMT state unknown: uploading its heartbeat time 0x1017 */
+#define P_DCF 6u     /* downloading concise DCF entries */
+#define P_DONE 7u    /* booted (or found operational): error control runs */
+#define P_FAILED 8u  /* a check failed: boots again at its next boot-up */
+#define P_STATE 9u   /* keep-alive: waiting `timer` ms for its first heartbeat (its NMT state) */
 
 #define DCF_HEADER 7u /* index (2), sub (1), size (4) before each entry's data */
 
@@ -246,7 +248,7 @@ static void next_entry(odg_master_t *m, odg_master_slave_t *s)
     s->dcf_at += DCF_HEADER + size;
 }
 
-static void configure(odg_master_t *m, odg_master_slave_t *s)
+static void download(odg_master_t *m, odg_master_slave_t *s)
 {
     odg_ref_t ref;
     uint8_t c[4];
@@ -262,6 +264,63 @@ static void configure(odg_master_t *m, odg_master_slave_t *s)
         s->dcf_left = odg_sdoc_u32(c, 4);
     }
     next_entry(m, s);
+}
+
+/* A keep-alive slave checked (device type, identity, date) that runs operational is left as it
+ * runs (CiA 302-2 'L'); one known in another state is configured. Its state unknown (no
+ * heartbeat heard yet), the master reads its heartbeat time and waits that long for one. */
+static void keep_alive_configure(odg_master_t *m, odg_master_slave_t *s)
+{
+    uint8_t state = odg_nmtm_state(&m->nmt, s->id);
+    if (state == ODG_NMT_OPERATIONAL) {
+        set_status(m, s, ODG_SLAVE_OPERATIONAL);
+        s->phase = P_DONE;
+        s->tried = 1;
+        start_error_control(m, s);
+        check_network(m);
+    } else if (state == ODG_NMTM_UNKNOWN && s->phase != P_HBTIME && s->phase != P_STATE) {
+        upload(m, s, P_HBTIME, 0x1017u, 0);
+    } else {
+        download(m, s);
+    }
+}
+
+static void configure(odg_master_t *m, odg_master_slave_t *s)
+{
+    if ((s->assignment & ODG_ASSIGN_KEEP_ALIVE) != 0u) {
+        keep_alive_configure(m, s);
+    } else {
+        download(m, s);
+    }
+}
+
+/* One node guarding remote frame: its answer tells the slave's NMT state. */
+static void ask_state(odg_master_t *m, const odg_master_slave_t *s)
+{
+    odg_frame_t f;
+    f.id = 0x700u + s->id;
+    f.len = 1;
+    f.flags = ODG_FRAME_RTR;
+    f.data[0] = 0;
+    (void)m->cfg.send(m->cfg.send_ctx, &f);
+}
+
+/* Its heartbeat time read: a heartbeat comes within it (half again for the jitter). It produces
+ * none (0, or no 0x1017): guarded (0x1F81 guard time), it is asked once and has the guard time
+ * to answer; else no state will come and it is configured at once. */
+static void await_state(odg_master_t *m, odg_master_slave_t *s, int ok, uint32_t hb_ms)
+{
+    uint32_t guard_ms = s->assignment >> 16, wait_ms = ok ? hb_ms : 0u;
+    if (odg_nmtm_state(&m->nmt, s->id) == ODG_NMTM_UNKNOWN && wait_ms == 0u && guard_ms != 0u) {
+        ask_state(m, s);
+        wait_ms = guard_ms;
+    }
+    if (odg_nmtm_state(&m->nmt, s->id) != ODG_NMTM_UNKNOWN || wait_ms == 0u) {
+        keep_alive_configure(m, s);
+        return;
+    }
+    s->phase = P_STATE;
+    s->timer = wait_ms + wait_ms / 2u;
 }
 
 /* The configuration date and time (0x1020) when 0x1F26 and 0x1F27 expect one. */
@@ -308,13 +367,6 @@ static void step(odg_master_t *m, odg_master_slave_t *s)
         set_status(m, s, ODG_SLAVE_BOOTING); /* it answers: a retry's error status ends */
         if (array_u32(m, 0x1F84u, s->id) != 0u && v != array_u32(m, 0x1F84u, s->id)) {
             fail(m, s, ODG_SLAVE_DEVICE_TYPE);
-        } else if ((s->assignment & ODG_ASSIGN_KEEP_ALIVE) != 0u &&
-                   odg_nmtm_state(&m->nmt, s->id) == ODG_NMT_OPERATIONAL) {
-            set_status(m, s, ODG_SLAVE_OPERATIONAL); /* left as it runs (CiA 302-2 'L') */
-            s->phase = P_DONE;
-            s->tried = 1;
-            start_error_control(m, s);
-            check_network(m);
         } else {
             check_identity(m, s, 1);
         }
@@ -334,6 +386,9 @@ static void step(odg_master_t *m, odg_master_slave_t *s)
             s->same_date = 0;
             configure(m, s);
         }
+        break;
+    case P_HBTIME:
+        await_state(m, s, ok, v & 0xFFFFu);
         break;
     case P_DCF:
         if (!ok) {
@@ -400,8 +455,18 @@ static void on_nmt_event(void *ctx, uint8_t node_id, uint8_t event)
     }
     if (event == ODG_NMTM_BOOTUP) {
         begin(m, s, 1); /* a slave that (re)booted is configured again */
-    } else if (event == ODG_HB_TIMEOUT && s->phase == P_DONE) {
-        lost(m, s);
+    } else if (event == ODG_HB_TIMEOUT) {
+        if (s->phase == P_DONE) {
+            lost(m, s);
+        }
+    } else if ((s->assignment & ODG_ASSIGN_KEEP_ALIVE) != 0u) {
+        /* a keep-alive slave's first heartbeat (it sends no boot-up): its boot at once, or the
+         * state its boot waited for */
+        if (s->phase == P_WAIT) {
+            begin(m, s, 0);
+        } else if (s->phase == P_STATE) {
+            keep_alive_configure(m, s);
+        }
     }
 }
 
@@ -474,9 +539,9 @@ static void lss_retry(odg_master_t *m, uint8_t i)
     lss_target(m);
 }
 
-/* Slave `node_id` of assignment `a`: its channel, tracked by the NMT master, reset (unless kept
- * alive: first heard, is it operational?); its boot begins at its boot-up, or at the first retry
- * when none comes. */
+/* Slave `node_id` of assignment `a`: its channel, tracked by the NMT master, reset; its boot
+ * begins at its boot-up, or at the first retry when none comes. A keep-alive slave is not reset
+ * and sends no boot-up: its boot begins at once (CiA 302-2: its state is checked, not reset). */
 static void add_slave(odg_master_t *m, uint8_t node_id, uint32_t a)
 {
     odg_master_slave_t *s = &m->slave[m->n_slaves];
@@ -492,8 +557,10 @@ static void add_slave(odg_master_t *m, uint8_t node_id, uint32_t a)
     (void)odg_nmtm_watch(&m->nmt, node_id, 0, 0, 0); /* boot-ups and states from now on */
     m->n_slaves++;
     set_status(m, s, ODG_SLAVE_BOOTING);
-    try_later(s, ODG_MASTER_RETRY_MS);
-    if ((a & ODG_ASSIGN_KEEP_ALIVE) == 0u) {
+    if ((a & ODG_ASSIGN_KEEP_ALIVE) != 0u) {
+        begin(m, s, 1);
+    } else {
+        try_later(s, ODG_MASTER_RETRY_MS);
         (void)odg_nmtm_command(&m->nmt, ODG_NMT_RESET_COMM, node_id);
     }
 }
@@ -573,12 +640,14 @@ void odg_master_process(odg_master_t *m, uint32_t elapsed_ms)
         if (s->phase == P_WAIT && m->lss_step != LSS_OVER) {
             continue; /* no attempt without a boot-up while node-ids are given */
         }
-        if (s->phase == P_WAIT) {
+        if (s->phase == P_WAIT || s->phase == P_STATE) {
             s->timer = s->timer > elapsed_ms ? s->timer - elapsed_ms : 0u;
-            if (s->timer == 0u) {
-                begin(m, s, 0);
-                lss_retry(m, (uint8_t)i);
-            }
+        }
+        if (s->phase == P_WAIT && s->timer == 0u) {
+            begin(m, s, 0);
+            lss_retry(m, (uint8_t)i);
+        } else if (s->phase == P_STATE && s->timer == 0u) {
+            download(m, s); /* no heartbeat within its time: not operational */
         } else if (s->phase >= P_DEVTYPE && s->phase <= P_DCF && m->sdo[i].state != ODG_SDOC_BUSY) {
             step(m, s); /* timed out */
         }

@@ -4,7 +4,8 @@
  * own node on tests/master/master.eds. Time is simulated in ms steps; each frame reaches every
  * other connected participant. Scenarios: a normal boot with one wrong identity, a slave reset
  * by NMT, a lost heartbeat, a slave powered up late, a mandatory slave lost with "stop all",
- * a failed download, a wrong device type, start all.
+ * a failed download, a wrong device type, start all, keep-alive slaves (operational, pre-operational,
+ * guarded, absent then back).
  */
 #include <string.h>
 
@@ -540,29 +541,126 @@ static void test_application_starts(void)
     CHECK_EQ(starts, 0);
 }
 
-/* A keep-alive slave found operational is neither reset nor configured: status L, no EMCY,
- * watched from then on. */
+static unsigned nmt_sent(uint8_t cs, uint8_t node_id)
+{
+    unsigned i, n = 0;
+    for (i = 0; i < n_seen; i++) {
+        n += seen[i].id == 0u && seen[i].data[0] == cs && seen[i].data[1] == node_id;
+    }
+    return n;
+}
+
+/* A keep-alive slave (no reset, no boot-up) found operational is checked, then neither reset
+ * nor configured: status L, no EMCY, watched from then on. Its boot begins at the master's start
+ * (not at the retry, 1000 ms on): checked by SDO, then its first heartbeat (100 ms) says
+ * operational. */
 static void test_keep_alive(void)
 {
     const uint32_t assign[N_SLAVES] = {OPTIONAL | ODG_ASSIGN_KEEP_ALIVE, 0, 0, 0, 0};
-    unsigned i, resets = 0;
     uint8_t mode = 0xEE;
     start(ODG_STARTUP_MASTER, assign, 0x1, 99, 99);
     CHECK_EQ(odg_set_u16(&hv, 0x1017, 0, 100), ODG_OK); /* it runs with a heartbeat */
     tool_nmt(ODG_NMT_START, 2);
-    run(1500);
+    run(200);
+    CHECK_EQ(status(2), ODG_SLAVE_OPERATIONAL);
+    CHECK_EQ(odg_node_state(&mnode), ODG_NMT_OPERATIONAL); /* the network is up */
+    run(1300);
     CHECK_EQ(status(2), ODG_SLAVE_OPERATIONAL);
     CHECK_EQ(odg_node_state(&slave_nodes[0]), ODG_NMT_OPERATIONAL);
     CHECK_EQ(odg_get_u8(&hv, 0x6200, 2, &mode), ODG_OK);
     CHECK_EQ(mode, 0); /* nothing downloaded */
-    for (i = 0; i < n_seen; i++) {
-        resets += seen[i].id == 0u && seen[i].data[0] == ODG_NMT_RESET_COMM;
-    }
-    CHECK_EQ(resets, 0);
+    CHECK_EQ(nmt_sent(ODG_NMT_RESET_COMM, 2) + nmt_sent(ODG_NMT_RESET_COMM, 0), 0);
     CHECK(!emcy_seen(ODG_MASTER_EMCY_BOOT, 'L', 2));
     connected[0] = 0; /* watched: lost */
     run(700);
     CHECK_EQ(status(2), ODG_SLAVE_HEARTBEAT);
+}
+
+/* An operational keep-alive slave whose identity is wrong is reported, not taken over. */
+static void test_keep_alive_wrong_identity(void)
+{
+    const uint32_t assign[N_SLAVES] = {OPTIONAL | ODG_ASSIGN_KEEP_ALIVE, 0, 0, 0, 0};
+    start(ODG_STARTUP_MASTER, assign, 0x1, 0, 99); /* node 2: product code differs */
+    CHECK_EQ(odg_set_u16(&hv, 0x1017, 0, 100), ODG_OK);
+    tool_nmt(ODG_NMT_START, 2);
+    run(200);
+    CHECK_EQ(status(2), ODG_SLAVE_PRODUCT);
+    CHECK(emcy_seen(ODG_MASTER_EMCY_BOOT, 'M', 2));
+}
+
+/* A keep-alive slave in pre-operational is configured and started without a reset: at its first
+ * heartbeat (here 100 ms: its default of 1000 changed) or, producing none, at once. */
+static void test_keep_alive_pre_operational(void)
+{
+    const uint32_t assign[N_SLAVES] = {OPTIONAL | ODG_ASSIGN_KEEP_ALIVE, OPTIONAL | ODG_ASSIGN_KEEP_ALIVE, 0, 0, 0};
+    start(ODG_STARTUP_MASTER, assign, 0x3, 99, 99);
+    CHECK_EQ(odg_set_u16(&hv, 0x1017, 0, 100), ODG_OK);
+    CHECK_EQ(odg_set_u16(&vac, 0x1017, 0, 0), ODG_OK); /* no heartbeat: its state is never heard */
+    run(60);
+    CHECK_EQ(status(3), ODG_SLAVE_BOOTED); /* configured at once */
+    check_configured(1);
+    run(190);
+    CHECK_EQ(status(2), ODG_SLAVE_BOOTED);
+    check_configured(0);
+    CHECK_EQ(odg_node_state(&slave_nodes[0]), ODG_NMT_OPERATIONAL);
+    CHECK_EQ(odg_node_state(&slave_nodes[1]), ODG_NMT_OPERATIONAL);
+    CHECK_EQ(nmt_sent(ODG_NMT_RESET_COMM, 2) + nmt_sent(ODG_NMT_RESET_COMM, 3) + nmt_sent(ODG_NMT_RESET_COMM, 0), 0);
+}
+
+/* A guarded keep-alive slave (no heartbeat; 0x1F81 guard time 100 ms) is asked its state by one
+ * remote frame: operational, it is left running at once; pre-operational, configured. */
+static void test_keep_alive_guarded(void)
+{
+    const uint32_t guarded = OPTIONAL | ODG_ASSIGN_KEEP_ALIVE | 100u << 16 | 3u << 8;
+    const uint32_t assign[N_SLAVES] = {0, 0, 0, guarded, 0};
+    uint8_t mode = 0xEE;
+    dcf_t d;
+    start(ODG_STARTUP_MASTER, assign, 0x8, 99, 99);
+    memset(&d, 0, sizeof d);
+    dcf_add(&d, 0x6200, 2, 3, 1);
+    set_dcf(5, &d);
+    CHECK_EQ(odg_set_u16(&inv, 0x1017, 0, 0), ODG_OK); /* it answers guarding only then */
+    tool_nmt(ODG_NMT_START, 5);
+    run(60);
+    CHECK_EQ(status(5), ODG_SLAVE_OPERATIONAL);
+    CHECK_EQ(odg_node_state(&mnode), ODG_NMT_OPERATIONAL);
+    CHECK_EQ(odg_get_u8(&inv, 0x6200, 2, &mode), ODG_OK);
+    CHECK_EQ(mode, 0); /* nothing downloaded */
+    start(ODG_STARTUP_MASTER, assign, 0x8, 99, 99);
+    set_dcf(5, &d);
+    CHECK_EQ(odg_set_u16(&inv, 0x1017, 0, 0), ODG_OK);
+    run(60);
+    CHECK_EQ(status(5), ODG_SLAVE_BOOTED);
+    CHECK_EQ(odg_get_u8(&inv, 0x6200, 2, &mode), ODG_OK);
+    CHECK_EQ(mode, 3);
+    CHECK_EQ(odg_node_state(&slave_nodes[3]), ODG_NMT_OPERATIONAL);
+    CHECK_EQ(nmt_sent(ODG_NMT_RESET_COMM, 5) + nmt_sent(ODG_NMT_RESET_COMM, 0), 0);
+}
+
+/* A keep-alive slave absent at the master's start (no answer: B) boots at its first heartbeat
+ * when it comes back (pre-operational: configured and started), long before the next retry; one that appears with a boot-up message boots at
+ * that. */
+static void test_keep_alive_appears(void)
+{
+    const uint32_t assign[N_SLAVES] = {OPTIONAL | ODG_ASSIGN_KEEP_ALIVE, OPTIONAL | ODG_ASSIGN_KEEP_ALIVE, 0, 0, 0};
+    start(ODG_STARTUP_MASTER, assign, 0x1, 99, 99);
+    CHECK_EQ(odg_set_u16(&hv, 0x1017, 0, 100), ODG_OK);
+    connected[0] = 0; /* powered up before the master, but off the bus */
+    run(550); /* the SDO timeout: 500 ms */
+    CHECK_EQ(status(2), ODG_SLAVE_NO_ANSWER);
+    CHECK_EQ(status(3), ODG_SLAVE_NO_ANSWER);
+    CHECK_EQ(odg_node_state(&mnode), ODG_NMT_OPERATIONAL); /* optional slaves: up without them */
+    connected[0] = 1;
+    run(150); /* its first heartbeat within 100 ms; the retry would come 450 ms later */
+    CHECK_EQ(status(2), ODG_SLAVE_BOOTED);
+    check_configured(0);
+    CHECK_EQ(odg_node_state(&slave_nodes[0]), ODG_NMT_OPERATIONAL);
+    power_up(1); /* its boot-up begins its boot */
+    run(100);
+    CHECK_EQ(status(3), ODG_SLAVE_BOOTED);
+    check_configured(1);
+    CHECK_EQ(odg_node_state(&slave_nodes[1]), ODG_NMT_OPERATIONAL);
+    CHECK_EQ(nmt_sent(ODG_NMT_RESET_COMM, 2) + nmt_sent(ODG_NMT_RESET_COMM, 3) + nmt_sent(ODG_NMT_RESET_COMM, 0), 0);
 }
 
 /* A concise DCF whose last entry says more bytes than follow, or that counts more entries than
@@ -762,6 +860,10 @@ int main(void)
     test_failures_and_start_all();
     test_application_starts();
     test_keep_alive();
+    test_keep_alive_wrong_identity();
+    test_keep_alive_pre_operational();
+    test_keep_alive_appears();
+    test_keep_alive_guarded();
     test_truncated_dcf();
     test_client_parameter();
     test_not_a_master();
