@@ -709,15 +709,8 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
     uint32_t at;
     odg_boot_status_t st;
     int k = described_newest(nv, gr, odg_persist_nv_size(d), &at, h), changed;
-    if (k < 0) {
-        st = ODG_BOOT_NV_ERROR;
-    } else if (k == 0) {
-        st = described_no_image(nv, gr);
-    } else if (k == 2) {
-        st = ODG_BOOT_DAMAGED; /* the newest image cannot be read: its values are lost */
-    } else {
-        odg_defaults_(d, g);
-        st = ODG_BOOT_NV_ERROR; /* unless the image reads the same a second time */
+    odg_defaults_(d, g); /* the mirror starts from the defaults (RAM only: no NV access) */
+    if (k == 1) {
         if (migrate(d, nv, g, at, n) == 0 && reads_back(nv, gr, at, h)) {
             /* a migrated image is stored at once, with the A/B commit */
             changed = n[DEFAULTED] || n[DROPPED] || n[CONVERTED] || n[ADDED];
@@ -726,8 +719,11 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
                 return changed ? ODG_BOOT_MIGRATED : ODG_BOOT_LOADED;
             }
         }
+        odg_defaults_(d, g);
+        k = -1; /* unless the image reads the same a second time: the driver failed */
     }
-    odg_defaults_(d, g);
+    /* 2: the newest image cannot be read: its values are lost */
+    st = k < 0 ? ODG_BOOT_NV_ERROR : k == 2 ? ODG_BOOT_DAMAGED : described_no_image(nv, gr);
     if (st != ODG_BOOT_NV_ERROR && (odg_described_store_(d, nv, g) != ODG_OK || scrub(nv, gr) != 0)) {
         st = ODG_BOOT_NV_ERROR;
     }
