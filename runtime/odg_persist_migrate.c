@@ -720,7 +720,7 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
             }
         }
         odg_defaults_(d, g);
-        k = -1; /* unless the image reads the same a second time: the driver failed */
+        k = -1; /* a driver failure, or the image did not read the same a second time */
     }
     /* 2: the newest image cannot be read: its values are lost */
     st = k < 0 ? ODG_BOOT_NV_ERROR : k == 2 ? ODG_BOOT_DAMAGED : described_no_image(nv, gr);
