@@ -16,17 +16,23 @@
 #define DESCRIBED_MAGIC 0x3247444Fu /* "ODG2" */
 #define REC 6u             /* a layout descriptor record: index u16, sub u8, type u8, length u16 */
 
-/* Wire size of the numeric types by CiA 301 code; 0 for strings, domains and unknown codes. */
-static const uint8_t num_size[0x1C] = {0, 1, 1, 2, 4, 1, 2, 4, 4, 0, 0, 0, 6, 6, 0, 0,
-                                       3, 8, 5, 6, 7, 8, 3, 0, 5, 6, 7, 8};
+/* The numeric types by CiA 301 code: wire size in the low nibble (0 for strings, domains and
+ * unknown codes), NUM_INT for UNSIGNEDn and INTEGERn, NUM_SIGNED for INTEGERn. */
+#define NUM_INT 0x10u
+#define NUM_SIGNED 0x20u
+#define NUM_SI (NUM_INT | NUM_SIGNED) /* INTEGERn */
+static const uint8_t num_type[0x1C] = {
+    0, 1, 1 | NUM_SI, 2 | NUM_SI, 4 | NUM_SI, 1 | NUM_INT, 2 | NUM_INT, 4 | NUM_INT, /* 0x00 */
+    4, 0, 0, 0, 6, 6, 0, 0,                                                         /* 0x08 */
+    3 | NUM_SI, 8, 5 | NUM_SI, 6 | NUM_SI, 7 | NUM_SI, 8 | NUM_SI, 3 | NUM_INT, 0,   /* 0x10 */
+    5 | NUM_INT, 6 | NUM_INT, 7 | NUM_INT, 8 | NUM_INT};                            /* 0x18 */
+
+static unsigned num_of(uint8_t t)
+{
+    return t < 0x1Cu ? num_type[t] : 0u;
+}
 
 #define BIT(t) ((uint32_t)1u << (t))
-#define SIGNED_INTS                                                                           \
-    (BIT(ODG_T_INTEGER8) | BIT(ODG_T_INTEGER16) | BIT(ODG_T_INTEGER24) | BIT(ODG_T_INTEGER32) | \
-     BIT(ODG_T_INTEGER40) | BIT(ODG_T_INTEGER48) | BIT(ODG_T_INTEGER56) | BIT(ODG_T_INTEGER64))
-#define UNSIGNED_INTS                                                                            \
-    (BIT(ODG_T_UNSIGNED8) | BIT(ODG_T_UNSIGNED16) | BIT(ODG_T_UNSIGNED24) | BIT(ODG_T_UNSIGNED32) | \
-     BIT(ODG_T_UNSIGNED40) | BIT(ODG_T_UNSIGNED48) | BIT(ODG_T_UNSIGNED56) | BIT(ODG_T_UNSIGNED64))
 /* Strings and domains among the persisted entries this build serves (odg.h: ODG_CFG_*): 0 when
  * none, so that the compiler leaves out their paths. */
 #define STREAMS                                                                          \
@@ -471,12 +477,8 @@ enum { KEPT = 0, DEFAULTED = 1, DROPPED = 2, CONVERTED = 3, ADDED = 4, FAILED = 
 /* UNSIGNEDn -> UNSIGNEDm, INTEGERn -> INTEGERm, UNSIGNEDn -> INTEGERm with m > n. */
 static int widens(uint8_t from, uint8_t to)
 {
-    uint32_t a = type_bit(from), b = type_bit(to);
-    if (!(a & (SIGNED_INTS | UNSIGNED_INTS)) || !(b & (SIGNED_INTS | UNSIGNED_INTS)) ||
-        num_size[to] <= num_size[from]) {
-        return 0;
-    }
-    return (a & SIGNED_INTS) ? (b & SIGNED_INTS) != 0u : 1;
+    unsigned a = num_of(from), b = num_of(to);
+    return (a & b & NUM_INT) && (b & 0xFu) > (a & 0xFu) && (!(a & NUM_SIGNED) || (b & NUM_SIGNED));
 }
 
 /* A string (unit 1, or 2 for UNICODE_STRING): what fits, up to its terminator; converted when
@@ -558,14 +560,13 @@ static int read_value(const odg_dict_t *d, const odg_nv_driver_t *nv, uint32_t p
         return read_stream(d, nv, s, sl, addr);
     }
     /* a number of a type this build serves: no wider than odg_num_t (ODG_CFG_INT64) */
-    if ((s->type != st[3] && !widens(st[3], s->type)) || type_bit(st[3]) == 0u ||
-        sl == 0u || sl != num_size[st[3]]) {
+    if ((s->type != st[3] && !widens(st[3], s->type)) || sl == 0u || sl != (num_of(st[3]) & 0xFu)) {
         return DEFAULTED; /* narrowed, retyped, or a length that does not fit its type */
     }
     if (nv->read(nv->ctx, addr, c, sl) != 0) {
         return FAILED;
     }
-    v = (type_bit(st[3]) & SIGNED_INTS) && (c[sl - 1u] & 0x80u) ? ~(odg_num_t)0 : 0u;
+    v = (num_of(st[3]) & NUM_SIGNED) && (c[sl - 1u] & 0x80u) ? ~(odg_num_t)0 : 0u;
     for (i = sl; i-- > 0u;) {
         v = v << 8 | c[i];
     }
@@ -576,15 +577,14 @@ static int read_value(const odg_dict_t *d, const odg_nv_driver_t *nv, uint32_t p
     return s->type == st[3] ? KEPT : CONVERTED;
 }
 
-/* The highest sub-index of `index` among the records j.. of the image at `base` (cnt records),
- * 0 when none; -1 when the driver failed. */
-static long stored_highest(const odg_nv_driver_t *nv, uint32_t base, uint32_t j, uint32_t cnt,
-                           uint16_t index)
+/* The highest sub-index of `index` among the records from `ra` up to `rend` (addresses: the
+ * records of one image), 0 when none; -1 when the driver failed. */
+static long stored_highest(const odg_nv_driver_t *nv, uint32_t ra, uint32_t rend, uint16_t index)
 {
     uint8_t st[REC];
     long high = 0;
-    for (; j < cnt; j++) {
-        if (nv->read(nv->ctx, base + 2u + REC * j, st, REC) != 0) {
+    for (; ra != rend; ra += REC) {
+        if (nv->read(nv->ctx, ra, st, REC) != 0) {
             return -1;
         }
         if (get16(st) != index) {
@@ -616,20 +616,20 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
                    uint16_t n[5])
 {
     uint8_t st[REC];
-    uint32_t base = at + DESCRIBED_HDR, cnt, j = 0, vo, key;
+    uint32_t ra = at + DESCRIBED_HDR + 2u, rend, vo, key; /* ra: the next record's address */
     const odg_sub_t *s;
     recs_t fw;
     long high;
     int have = 0, r;
-    if (nv->read(nv->ctx, base, st, 2) != 0) {
+    if (nv->read(nv->ctx, ra - 2u, st, 2) != 0) {
         return -1;
     }
-    cnt = get16(st);
-    vo = base + 2u + REC * cnt;
+    rend = ra + REC * (uint32_t)get16(st); /* past the records, where the values start */
+    vo = rend;
     for (recs_start(&fw, d, g); (s = recs_next(&fw)) != NULL;) {
         r = ADDED;
-        while (j < cnt) { /* stored entries before this key are no longer in the group */
-            if (!have && nv->read(nv->ctx, base + 2u + REC * j, st, REC) != 0) {
+        while (ra != rend) { /* stored entries before this key are no longer in the group */
+            if (!have && nv->read(nv->ctx, ra, st, REC) != 0) {
                 return -1;
             }
             have = 1;
@@ -640,7 +640,7 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
             if (key < fw.key) {
                 n[DROPPED]++;
             } else if ((fw.key & 0xFFu) == 0u &&
-                       (high = stored_highest(nv, base, j + 1u, cnt, fw.e->index)) !=
+                       (high = stored_highest(nv, ra + REC, rend, fw.e->index)) !=
                            (long)fw_highest(d, fw.e)) {
                 if (high < 0) {
                     return -1;
@@ -650,7 +650,7 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
                 return -1;
             }
             vo += value_size(st);
-            j++;
+            ra += REC;
             have = 0;
             if (key == fw.key) {
                 break;
@@ -658,7 +658,7 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
         }
         n[r]++;
     }
-    n[DROPPED] = (uint16_t)(n[DROPPED] + (cnt - j));
+    n[DROPPED] = (uint16_t)(n[DROPPED] + (rend - ra) / REC);
     return 0;
 }
 
@@ -709,15 +709,8 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
     uint32_t at;
     odg_boot_status_t st;
     int k = described_newest(nv, gr, odg_persist_nv_size(d), &at, h), changed;
-    if (k < 0) {
-        st = ODG_BOOT_NV_ERROR;
-    } else if (k == 0) {
-        st = described_no_image(nv, gr);
-    } else if (k == 2) {
-        st = ODG_BOOT_DAMAGED; /* the newest image cannot be read: its values are lost */
-    } else {
-        odg_defaults_(d, g);
-        st = ODG_BOOT_NV_ERROR; /* unless the image reads the same a second time */
+    odg_defaults_(d, g); /* the mirror starts from the defaults (RAM only: no NV access) */
+    if (k == 1) {
         if (migrate(d, nv, g, at, n) == 0 && reads_back(nv, gr, at, h)) {
             /* a migrated image is stored at once, with the A/B commit */
             changed = n[DEFAULTED] || n[DROPPED] || n[CONVERTED] || n[ADDED];
@@ -726,8 +719,11 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
                 return changed ? ODG_BOOT_MIGRATED : ODG_BOOT_LOADED;
             }
         }
+        odg_defaults_(d, g);
+        k = -1; /* a driver failure, or the image did not read the same a second time */
     }
-    odg_defaults_(d, g);
+    /* 2: the newest image cannot be read: its values are lost */
+    st = k < 0 ? ODG_BOOT_NV_ERROR : k == 2 ? ODG_BOOT_DAMAGED : described_no_image(nv, gr);
     if (st != ODG_BOOT_NV_ERROR && (odg_described_store_(d, nv, g) != ODG_OK || scrub(nv, gr) != 0)) {
         st = ODG_BOOT_NV_ERROR;
     }
