@@ -171,6 +171,13 @@ static odg_abort_t finish_download(odg_node_t *n)
     return write_whole(n, s->buf, s->offset);
 }
 
+/* Take the next bytes, and with `last` (not 0) finish the download. */
+static odg_abort_t take_more(odg_node_t *n, const uint8_t *data, uint32_t len, unsigned last)
+{
+    odg_abort_t ac = take(n, data, len);
+    return ac == ODG_OK && last ? finish_download(n) : ac;
+}
+
 static void download_initiate(odg_node_t *n, const uint8_t *d)
 {
     odg_sdo_t *s = &n->sdo;
@@ -209,11 +216,7 @@ static void download_segment(odg_node_t *n, const uint8_t *d)
         fail(n, ODG_ABORT_TOGGLE);
         return;
     }
-    ac = take(n, d + 1, 7u - (d[0] >> 1 & 7u));
-    if (ac == ODG_OK && (d[0] & 0x01u)) {
-        ac = finish_download(n);
-    }
-    if (ac != ODG_OK) {
+    if ((ac = take_more(n, d + 1, 7u - (d[0] >> 1 & 7u), d[0] & 0x01u)) != ODG_OK) {
         fail(n, ac);
         return;
     }
@@ -286,11 +289,7 @@ static void block_download_end(odg_node_t *n, const uint8_t *d)
         fail(n, ODG_ABORT_CRC);
         return;
     }
-    ac = take(n, s->seg, len);
-    if (ac == ODG_OK) {
-        ac = finish_download(n);
-    }
-    if (ac != ODG_OK) {
+    if ((ac = take_more(n, s->seg, len, 1)) != ODG_OK) {
         fail(n, ac);
         return;
     }
