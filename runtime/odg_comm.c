@@ -28,11 +28,10 @@ static uint32_t native_size(uint32_t size)
  * the value saved, or the group's default. */
 enum { COMM_KEEP, COMM_BACK, COMM_SAVED, COMM_LOADED };
 
-static void comm_copy(odg_node_t *n, const odg_sub_t *s, uint8_t *at, int how, uint8_t sub)
+static void comm_copy(odg_node_t *n, const odg_sub_t *s, uint32_t size, uint8_t *at, int how, uint8_t sub)
 {
     const odg_dict_t *d = n->cfg.dict;
     const odg_group_t *g = ODG_S_CLASS(s->storage) == ODG_S_PERSIST ? &d->groups[ODG_S_GROUP(s->storage)] : NULL;
-    uint32_t size = native_size(s->size);
     if (how == COMM_BACK) {
         odg_copy(odg_value_(d, s), at, size);
     } else if (how == COMM_KEEP || (g != NULL && (sub == 1u || g->store_sub == sub))) {
@@ -54,10 +53,11 @@ static uint32_t comm_object(const odg_dict_t *d, odg_node_t *n, const odg_entry_
     odg_ref_t r;
     do {
         if (odg_find(d, en->index, k, &r) == ODG_OK && comm_value(en->index, r.sub)) {
+            uint32_t size = native_size(r.sub->size);
             if (n != NULL) {
-                comm_copy(n, r.sub, at + bytes, how, sub);
+                comm_copy(n, r.sub, size, at + bytes, how, sub);
             }
-            bytes += native_size(r.sub->size);
+            bytes += size;
         }
     } while (k++ < last);
     return bytes;

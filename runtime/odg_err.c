@@ -34,21 +34,20 @@
 
 uint8_t odg_node_error_bits(uint16_t code)
 {
-    switch (code >> 12) {
-    case 0x0u:
-        return 0; /* error reset / no error */
-    case 0x2u:
-        return ODG_ERR_GENERIC | ODG_ERR_CURRENT;
-    case 0x3u:
-        return ODG_ERR_GENERIC | ODG_ERR_VOLTAGE;
-    case 0x4u:
-        return ODG_ERR_GENERIC | ODG_ERR_TEMPERATURE;
-    case 0x8u: /* monitoring: only 0x81xx and 0x82xx are communication, the rest device profiles' */
-        return (code >> 8) == 0x81u || (code >> 8) == 0x82u ? ODG_ERR_GENERIC | ODG_ERR_COMMUNICATION
-                                                            : ODG_ERR_GENERIC;
-    default:
-        return (code >> 8) == 0xFFu ? ODG_ERR_GENERIC | ODG_ERR_MANUFACTURER : ODG_ERR_GENERIC;
+    /* by the code's first digit: 0 error reset / no error, 2 current, 3 voltage, 4 temperature */
+    static const uint8_t by_digit[16] = {
+        0, ODG_ERR_GENERIC, ODG_ERR_GENERIC | ODG_ERR_CURRENT, ODG_ERR_GENERIC | ODG_ERR_VOLTAGE,
+        ODG_ERR_GENERIC | ODG_ERR_TEMPERATURE, ODG_ERR_GENERIC, ODG_ERR_GENERIC, ODG_ERR_GENERIC,
+        ODG_ERR_GENERIC, ODG_ERR_GENERIC, ODG_ERR_GENERIC, ODG_ERR_GENERIC,
+        ODG_ERR_GENERIC, ODG_ERR_GENERIC, ODG_ERR_GENERIC, ODG_ERR_GENERIC};
+    unsigned group = code >> 8;
+    uint8_t bits = by_digit[code >> 12];
+    if (group == 0x81u || group == 0x82u) {
+        bits |= ODG_ERR_COMMUNICATION; /* monitoring: only these are communication, the rest device profiles' */
+    } else if (group == 0xFFu) {
+        bits |= ODG_ERR_MANUFACTURER;
     }
+    return bits;
 }
 
 /* 0x1001 from the active errors; read-only for SDO, so set as the application would. */

@@ -107,7 +107,7 @@ static void selective(odg_node_t *n, unsigned part, uint32_t v)
  * after the last, answer 0x4F when all six checks passed. */
 static void identify(odg_node_t *n, unsigned part, uint32_t v)
 {
-    uint32_t id = identity(n, part < 2u ? part : (part < 4u ? 2u : 3u));
+    uint32_t id = identity(n, part < 2u ? part : (part + 2u) >> 1); /* 2, 3: revision; 4, 5: serial */
     int ok = part < 2u ? v == id : ((part & 1u) == 0u ? id >= v : id <= v);
     if (part == 0u) {
         n->lss.identify = 0;

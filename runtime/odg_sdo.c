@@ -45,39 +45,33 @@ static uint16_t crc16(uint16_t crc, const uint8_t *p, uint32_t len)
     return crc;
 }
 
-/* An 8-byte response: command byte, then index and sub-index of the transfer, then zeros. */
-static void respond(odg_node_t *n, uint8_t cmd, const uint8_t *tail, uint32_t tail_len)
+/* An 8-byte frame: byte 0, bytes 1..3 from `mid` and bytes 4..7 from `tail` (little-endian). */
+static void send8(odg_node_t *n, uint8_t b0, uint32_t mid, uint32_t tail)
 {
     uint8_t d[8];
-    memset(d, 0, sizeof d);
-    d[0] = cmd;
-    d[1] = (uint8_t)n->sdo.index;
-    d[2] = (uint8_t)(n->sdo.index >> 8);
-    d[3] = n->sdo.sub;
-    if (tail_len > 0u) {
-        odg_copy(d + 4, tail, tail_len);
-    }
+    put32(d, mid << 8 | b0);
+    put32(d + 4, tail);
     (void)odg_io_send_(n, n->sdo_tx, d, 8);
+}
+
+/* A response: command byte, index and sub-index of the transfer, then `tail` in bytes 4..7
+ * (0 for none). */
+static void respond(odg_node_t *n, uint8_t cmd, uint32_t tail)
+{
+    send8(n, cmd, n->sdo.index | (uint32_t)n->sdo.sub << 16, tail);
 }
 
 /* Abort the transfer (or the request) with `code`; the server is idle afterwards. */
 static void fail(odg_node_t *n, odg_abort_t code)
 {
-    uint8_t c[4];
-    put32(c, code);
-    respond(n, 0x80, c, 4);
+    respond(n, 0x80, code);
     n->sdo.state = ODG_SDO_IDLE;
 }
 
 /* A frame whose bytes 1..7 are not index and sub-index (segment and block responses). */
 static void send3(odg_node_t *n, uint8_t b0, uint8_t b1, uint8_t b2)
 {
-    uint8_t f[8];
-    memset(f, 0, sizeof f);
-    f[0] = b0;
-    f[1] = b1;
-    f[2] = b2;
-    (void)odg_io_send_(n, n->sdo_tx, f, 8);
+    send8(n, b0, b1 | (uint32_t)b2 << 8, 0);
 }
 
 /* ---- download ------------------------------------------------------------------------- */
@@ -117,7 +111,16 @@ static odg_abort_t write_whole(odg_node_t *n, const uint8_t *data, uint32_t len)
     return ac;
 }
 
-static void begin_download(odg_node_t *n, uint32_t total)
+/* Strings and domains are streamed; every other type is a number of at most 8 bytes. */
+static int variable_length(uint8_t type)
+{
+    return type == ODG_T_VISIBLE_STRING || type == ODG_T_OCTET_STRING || type == ODG_T_UNICODE_STRING ||
+           type == ODG_T_DOMAIN;
+}
+
+/* Start a segmented or block download of `total` bytes (SIZE_UNKNOWN: not indicated); a
+ * number announced longer than 8 bytes is refused. */
+static odg_abort_t begin_download(odg_node_t *n, uint32_t total)
 {
     odg_sdo_t *s = &n->sdo;
     s->total = total;
@@ -128,13 +131,7 @@ static void begin_download(odg_node_t *n, uint32_t total)
     if (total != SIZE_UNKNOWN && total > 8u) {
         s->flags |= ODG_SDO_F_STREAM;
     }
-}
-
-/* Strings and domains are streamed; every other type is a number of at most 8 bytes. */
-static int variable_length(uint8_t type)
-{
-    return type == ODG_T_VISIBLE_STRING || type == ODG_T_OCTET_STRING || type == ODG_T_UNICODE_STRING ||
-           type == ODG_T_DOMAIN;
+    return (s->flags & ODG_SDO_F_STREAM) && !variable_length(s->ref.sub->type) ? ODG_ABORT_TOO_LONG : ODG_OK;
 }
 
 /* Take the next `len` bytes of a download. Without an indicated size the bytes are
@@ -174,6 +171,13 @@ static odg_abort_t finish_download(odg_node_t *n)
     return write_whole(n, s->buf, s->offset);
 }
 
+/* Take the next bytes, and with `last` (not 0) finish the download. */
+static odg_abort_t take_more(odg_node_t *n, const uint8_t *data, uint32_t len, unsigned last)
+{
+    odg_abort_t ac = take(n, data, len);
+    return ac == ODG_OK && last ? finish_download(n) : ac;
+}
+
 static void download_initiate(odg_node_t *n, const uint8_t *d)
 {
     odg_sdo_t *s = &n->sdo;
@@ -188,15 +192,14 @@ static void download_initiate(odg_node_t *n, const uint8_t *d)
             fail(n, ac);
             return;
         }
-        respond(n, 0x60, NULL, 0);
+        respond(n, 0x60, 0);
         return;
     }
-    begin_download(n, (d[0] & 0x01u) ? get32(d + 4) : SIZE_UNKNOWN);
-    if ((s->flags & ODG_SDO_F_STREAM) && !variable_length(s->ref.sub->type)) {
-        fail(n, ODG_ABORT_TOO_LONG); /* a number announced longer than 8 bytes */
+    if ((ac = begin_download(n, (d[0] & 0x01u) ? get32(d + 4) : SIZE_UNKNOWN)) != ODG_OK) {
+        fail(n, ac);
         return;
     }
-    respond(n, 0x60, NULL, 0);
+    respond(n, 0x60, 0);
     s->state = ODG_SDO_DN_SEG;
 }
 
@@ -213,11 +216,7 @@ static void download_segment(odg_node_t *n, const uint8_t *d)
         fail(n, ODG_ABORT_TOGGLE);
         return;
     }
-    ac = take(n, d + 1, 7u - (d[0] >> 1 & 7u));
-    if (ac == ODG_OK && (d[0] & 0x01u)) {
-        ac = finish_download(n);
-    }
-    if (ac != ODG_OK) {
+    if ((ac = take_more(n, d + 1, 7u - (d[0] >> 1 & 7u), d[0] & 0x01u)) != ODG_OK) {
         fail(n, ac);
         return;
     }
@@ -232,9 +231,9 @@ static void block_download_initiate(odg_node_t *n, const uint8_t *d)
 {
     odg_sdo_t *s = &n->sdo;
     uint8_t blksize = ODG_NODE_SDO_BLKSIZE;
-    begin_download(n, (d[0] & 0x02u) ? get32(d + 4) : SIZE_UNKNOWN);
-    if ((s->flags & ODG_SDO_F_STREAM) && !variable_length(s->ref.sub->type)) {
-        fail(n, ODG_ABORT_TOO_LONG);
+    odg_abort_t ac = begin_download(n, (d[0] & 0x02u) ? get32(d + 4) : SIZE_UNKNOWN);
+    if (ac != ODG_OK) {
+        fail(n, ac);
         return;
     }
     if (d[0] & 0x04u) {
@@ -242,7 +241,7 @@ static void block_download_initiate(odg_node_t *n, const uint8_t *d)
     }
     s->blksize = blksize;
     s->seq = 0;
-    respond(n, 0xA4, &blksize, 1); /* sc = 1: the server checks the CRC */
+    respond(n, 0xA4, blksize); /* sc = 1: the server checks the CRC */
     s->state = ODG_SDO_BLK_DN;
 }
 
@@ -290,11 +289,7 @@ static void block_download_end(odg_node_t *n, const uint8_t *d)
         fail(n, ODG_ABORT_CRC);
         return;
     }
-    ac = take(n, s->seg, len);
-    if (ac == ODG_OK) {
-        ac = finish_download(n);
-    }
-    if (ac != ODG_OK) {
+    if ((ac = take_more(n, s->seg, len, 1)) != ODG_OK) {
         fail(n, ac);
         return;
     }
@@ -339,14 +334,16 @@ static odg_abort_t upload_begin(odg_node_t *n)
 static void upload_respond(odg_node_t *n)
 {
     odg_sdo_t *s = &n->sdo;
-    uint8_t size[4];
+    uint32_t k, v = 0;
     if (s->total >= 1u && s->total <= 4u) {
-        respond(n, (uint8_t)(0x43u | (4u - s->total) << 2), s->buf, s->total);
+        for (k = s->total; k > 0u; k--) {
+            v = v << 8 | s->buf[k - 1u]; /* the bytes read; those after them are 0 */
+        }
+        respond(n, (uint8_t)(0x43u | (4u - s->total) << 2), v);
         s->state = ODG_SDO_IDLE;
         return;
     }
-    put32(size, s->total);
-    respond(n, 0x41, size, 4);
+    respond(n, 0x41, s->total);
     s->state = ODG_SDO_UP_SEG;
 }
 
@@ -381,7 +378,6 @@ static void upload_segment(odg_node_t *n, const uint8_t *d)
 static void block_upload_initiate(odg_node_t *n, const uint8_t *d)
 {
     odg_sdo_t *s = &n->sdo;
-    uint8_t size[4];
     odg_abort_t ac;
     if (d[4] == 0u || d[4] > 127u) {
         fail(n, ODG_ABORT_BLOCK_SIZE);
@@ -397,8 +393,7 @@ static void block_upload_initiate(odg_node_t *n, const uint8_t *d)
     }
     s->blksize = d[4];
     s->flags = (d[0] & 0x04u) ? ODG_SDO_F_CRC : 0u;
-    put32(size, s->total);
-    respond(n, 0xC6, size, 4); /* sc = 1 (CRC supported), s = 1 (size indicated) */
+    respond(n, 0xC6, s->total); /* sc = 1 (CRC supported), s = 1 (size indicated) */
     s->state = ODG_SDO_BLK_UP_START;
 }
 
