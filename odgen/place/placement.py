@@ -26,7 +26,6 @@ from .options import OptionEntry, Options
 # The storage class of a 0x1010/0x1011 sub-entry: no value, a "save" / "load" command the runtime
 # answers (ODG_S_COMMAND in C, a dictionary client's `command` function).
 COMMAND_CLASS = "command"
-STORE_CLASS = COMMAND_CLASS  # the name before, for callers not yet moved
 
 
 @dataclass
