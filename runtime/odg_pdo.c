@@ -71,7 +71,7 @@ static odg_abort_t map_ref(const odg_dict_t *d, uint32_t m, uint8_t dir, odg_ref
 {
     odg_abort_t ac = odg_check_mapping(d, m, dir, r);
     if (ac == ODG_ABORT_NOT_MAPPABLE && (m & 0xFFu) == 32u &&
-        odg_check_mapping(d, (m & ~0xFFu) | 64u, dir, r) == ODG_OK && short64(r, m)) {
+        odg_check_mapping(d, m + 32u, dir, r) == ODG_OK && short64(r, m)) { /* length 64 */
         return ODG_OK;
     }
     return ac;
