@@ -405,13 +405,16 @@ static void apply(odg_node_t *n, const odg_pdo_t *p, const uint8_t *data)
         odg_ref_t r;
         uint8_t v[8];
         if ((m >> 16) > 7u && map_ref(n->cfg.dict, m, ODG_A_RPDO, &r) == ODG_OK) {
-            uint32_t got = 0;
+            uint32_t got = 0, len = (bits + 7u) / 8u;
             memset(v, 0, sizeof v);
-            if (short64(&r, m) && odg_read(&r, 0, v, sizeof v, &got) != ODG_OK) {
-                memset(v, 0, sizeof v); /* write-only: the high-order bytes become 0 */
+            if (short64(&r, m)) {
+                len = 8u;
+                if (odg_read(&r, 0, v, sizeof v, &got) != ODG_OK) {
+                    memset(v, 0, sizeof v); /* write-only: the high-order bytes become 0 */
+                }
             }
             copy_bits(v, 0, data, pos, bits);
-            (void)odg_write(&r, v, short64(&r, m) ? 8u : (bits + 7u) / 8u);
+            (void)odg_write(&r, v, len);
         }
         pos += bits;
     }
