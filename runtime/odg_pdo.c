@@ -275,7 +275,7 @@ static odg_abort_t sample(odg_node_t *n, const odg_pdo_t *p, uint8_t *out, uint8
     for (i = 0; i < p->n_map; i++) {
         odg_ref_t r;
         uint8_t v[8];
-        uint32_t got = 0, bits = p->map[i] & 0xFFu;
+        uint32_t got, bits = p->map[i] & 0xFFu;
         odg_abort_t ac = map_ref(n->cfg.dict, p->map[i], ODG_A_TPDO, &r);
         memset(v, 0, sizeof v); /* odg_read writes `got` bytes: the rest stay 0 */
         if (ac == ODG_OK) {
@@ -300,11 +300,11 @@ static int transmit(odg_node_t *n, odg_pdo_t *p, int force)
         return 1;
     }
     if (!force && (p->flags & ODG_PDO_F_SENT) && len == p->len) {
-        uint8_t k = 0;
-        while (k < len && d[k] == p->data[k]) { /* a loop, not memcmp: the node then links none */
-            k++;
+        uint8_t k = len;
+        while (k > 0u && d[k - 1u] == p->data[k - 1u]) { /* a loop, not memcmp: the node then links none */
+            k--;
         }
-        if (k == len) {
+        if (k == 0u) {
             return 0;
         }
     }
@@ -405,7 +405,7 @@ static void apply(odg_node_t *n, const odg_pdo_t *p, const uint8_t *data)
         odg_ref_t r;
         uint8_t v[8];
         if ((m >> 16) > 7u && map_ref(n->cfg.dict, m, ODG_A_RPDO, &r) == ODG_OK) {
-            uint32_t got = 0, len = (bits + 7u) / 8u;
+            uint32_t got, len = (bits + 7u) / 8u;
             memset(v, 0, sizeof v);
             if (short64(&r, m)) {
                 len = 8u;
