@@ -35,6 +35,12 @@ static uint16_t comm_index(int tx, uint16_t k)
     return (uint16_t)((tx ? 0x1800u : 0x1400u) + k);
 }
 
+/* Transmission types CiA 301 reserves: 241..251, and for an RPDO also 252/253 (RTR). */
+static int reserved_type(int tx, uint32_t type)
+{
+    return type > TYPE_SYNC_MAX && type < (tx ? TYPE_RTR_SYNC : TYPE_EVENT);
+}
+
 static int active(const odg_pdo_t *p)
 {
     return p->n_map > 0u && !(p->cob & ODG_COB_INVALID);
@@ -43,10 +49,9 @@ static int active(const odg_pdo_t *p)
 /* Copy `n` bits, LSB first (CiA 301 PDO mapping order), from bit `spos` of `src` to `dpos`. */
 static void copy_bits(uint8_t *dst, uint32_t dpos, const uint8_t *src, uint32_t spos, uint32_t n)
 {
-    for (; n > 0u; n--, dpos++, spos++) {
-        unsigned bit = (unsigned)src[spos >> 3] >> (spos & 7u) & 1u;
-        unsigned mask = 1u << (dpos & 7u);
-        dst[dpos >> 3] = (uint8_t)(bit ? dst[dpos >> 3] | mask : dst[dpos >> 3] & ~mask);
+    for (; n > 0u; n--, dpos++, spos++) { /* flip the destination bit where the two differ */
+        unsigned d = dst[dpos >> 3], differ = ((unsigned)src[spos >> 3] >> (spos & 7u) ^ d >> (dpos & 7u)) & 1u;
+        dst[dpos >> 3] = (uint8_t)(d ^ differ << (dpos & 7u));
     }
 }
 
@@ -66,7 +71,7 @@ static odg_abort_t map_ref(const odg_dict_t *d, uint32_t m, uint8_t dir, odg_ref
 {
     odg_abort_t ac = odg_check_mapping(d, m, dir, r);
     if (ac == ODG_ABORT_NOT_MAPPABLE && (m & 0xFFu) == 32u &&
-        odg_check_mapping(d, (m & ~0xFFu) | 64u, dir, r) == ODG_OK && short64(r, m)) {
+        odg_check_mapping(d, m + 32u, dir, r) == ODG_OK && short64(r, m)) { /* length 64 */
         return ODG_OK;
     }
     return ac;
@@ -88,9 +93,10 @@ static odg_abort_t check_entry(const odg_node_t *n, int tx, uint32_t m)
 }
 
 /* Entries 1..count of mapping entry `index` as the dictionary holds them: each mappable, and
- * together at most 64 bits (else PDO_LENGTH, as for a count beyond the entries there are). */
+ * together at most 64 bits (else PDO_LENGTH, as for a count beyond the entries there are).
+ * With `p`, the entries go to p->map and, when all are served, an RPDO's length to p->len. */
 static odg_abort_t read_mapping(const odg_node_t *n, int tx, uint16_t index, uint32_t count,
-                                uint32_t *map)
+                                odg_pdo_t *p)
 {
     uint32_t i, m, bits = 0;
     odg_abort_t ac;
@@ -105,11 +111,17 @@ static odg_abort_t read_mapping(const odg_node_t *n, int tx, uint16_t index, uin
             return ac;
         }
         bits += m & 0xFFu;
-        if (map != NULL) {
-            map[i - 1u] = m;
+        if (p != NULL) {
+            p->map[i - 1u] = m;
         }
     }
-    return bits > 64u ? ODG_ABORT_PDO_LENGTH : ODG_OK;
+    if (bits > 64u) {
+        return ODG_ABORT_PDO_LENGTH;
+    }
+    if (p != NULL && !tx) {
+        p->len = (uint8_t)((bits + 7u) / 8u);
+    }
+    return ODG_OK;
 }
 
 /* A TPDO starts afresh (entering operational, or reconfigured): send at the first chance. */
@@ -136,12 +148,12 @@ static void length_errors_gone(odg_node_t *n)
 void odg_pdo_load_(odg_node_t *n, int tx, uint16_t k)
 {
     uint16_t comm = comm_index(tx, k);
-    uint32_t count, i, bits = 0;
-    odg_pdo_t *p;
+    uint32_t count;
+    odg_pdo_t *p = tx ? n->tpdo : n->rpdo;
     if (k >= (tx ? ODG_NODE_MAX_TPDO : ODG_NODE_MAX_RPDO)) {
         return;
     }
-    p = tx ? &n->tpdo[k] : &n->rpdo[k];
+    p += k;
     if (p->flags & ODG_PDO_F_LEN_ERR) { /* an RPDO reconfigured: its length error is moot */
         p->flags = 0;
         length_errors_gone(n);
@@ -157,16 +169,12 @@ void odg_pdo_load_(odg_node_t *n, int tx, uint16_t k)
     p->sync_start = (uint8_t)odg_io_get_or_(n, comm, 6, 0);
     count = odg_io_get_or_(n, (uint16_t)(comm + 0x200u), 0, 0);
     /* a mapping or type the node cannot serve (only possible in the dictionary's defaults,
-     * as SDO writes are checked) leaves the PDO unused */
-    if ((p->type > TYPE_SYNC_MAX && p->type < (tx ? TYPE_RTR_SYNC : TYPE_EVENT)) ||
-        read_mapping(n, tx, (uint16_t)(comm + 0x200u), count, p->map) != ODG_OK) {
+     * as SDO writes are checked) leaves the PDO unused (n_map and len 0) */
+    if (reserved_type(tx, p->type) ||
+        read_mapping(n, tx, (uint16_t)(comm + 0x200u), count, p) != ODG_OK) {
         count = 0;
     }
-    for (i = 0; i < count; i++) {
-        bits += p->map[i] & 0xFFu;
-    }
     p->n_map = (uint8_t)count;
-    p->len = tx ? 0u : (uint8_t)((bits + 7u) / 8u);
     if (tx && n->state == ODG_NMT_OPERATIONAL) {
         restart(p);
     }
@@ -252,7 +260,7 @@ odg_abort_t odg_pdo_check_(const odg_node_t *n, uint16_t index, uint8_t sub, uin
         return ac;
     }
     if (sub == 2u) {
-        return v > TYPE_SYNC_MAX && v < (tx ? TYPE_RTR_SYNC : TYPE_EVENT) ? ODG_ABORT_VALUE_RANGE : ODG_OK;
+        return reserved_type(tx, v) ? ODG_ABORT_VALUE_RANGE : ODG_OK;
     }
     return tx && valid && (sub == 3u || sub == 6u) ? ODG_ABORT_VALUE_RANGE : ODG_OK;
 }
@@ -267,15 +275,15 @@ static odg_abort_t sample(odg_node_t *n, const odg_pdo_t *p, uint8_t *out, uint8
     for (i = 0; i < p->n_map; i++) {
         odg_ref_t r;
         uint8_t v[8];
-        uint32_t got = 0, bits = p->map[i] & 0xFFu;
+        uint32_t got, bits = p->map[i] & 0xFFu;
         odg_abort_t ac = map_ref(n->cfg.dict, p->map[i], ODG_A_TPDO, &r);
+        memset(v, 0, sizeof v); /* odg_read writes `got` bytes: the rest stay 0 */
         if (ac == ODG_OK) {
             ac = odg_read(&r, 0, v, sizeof v, &got);
         }
         if (ac != ODG_OK) {
             return ac;
         }
-        memset(v + got, 0, sizeof v - got);
         copy_bits(out, pos, v, 0, bits);
         pos += bits;
     }
@@ -292,11 +300,11 @@ static int transmit(odg_node_t *n, odg_pdo_t *p, int force)
         return 1;
     }
     if (!force && (p->flags & ODG_PDO_F_SENT) && len == p->len) {
-        uint8_t k = 0;
-        while (k < len && d[k] == p->data[k]) { /* a loop, not memcmp: the node then links none */
-            k++;
+        uint8_t k = len;
+        while (k > 0u && d[k - 1u] == p->data[k - 1u]) { /* a loop, not memcmp: the node then links none */
+            k--;
         }
-        if (k == len) {
+        if (k == 0u) {
             return 0;
         }
     }
@@ -327,12 +335,14 @@ static void window_tick(odg_node_t *n, uint32_t ms)
     n->sync_us = ms > (0xFFFFFFFFu - n->sync_us) / 1000u ? 0xFFFFFFFFu : n->sync_us + ms * 1000u;
     for (k = 0; k < ODG_NODE_MAX_TPDO; k++) {
         odg_pdo_t *p = &n->tpdo[k];
+        int sync;
         if (!(p->flags & ODG_PDO_F_DUE)) {
             continue;
         }
-        if (active(p) && p->type <= TYPE_SYNC_MAX && !in_window(n)) {
+        sync = active(p) && p->type <= TYPE_SYNC_MAX;
+        if (sync && !in_window(n)) {
             n->sync_dropped++;
-        } else if (active(p) && p->type <= TYPE_SYNC_MAX && transmit(n, p, 1)) {
+        } else if (sync && transmit(n, p, 1)) {
             continue; /* still due */
         }
         p->flags &= (uint8_t)~(ODG_PDO_F_DUE | ODG_PDO_F_REQUEST);
@@ -395,13 +405,16 @@ static void apply(odg_node_t *n, const odg_pdo_t *p, const uint8_t *data)
         odg_ref_t r;
         uint8_t v[8];
         if ((m >> 16) > 7u && map_ref(n->cfg.dict, m, ODG_A_RPDO, &r) == ODG_OK) {
-            uint32_t got = 0;
+            uint32_t got, len = (bits + 7u) / 8u;
             memset(v, 0, sizeof v);
-            if (short64(&r, m) && odg_read(&r, 0, v, sizeof v, &got) != ODG_OK) {
-                memset(v, 0, sizeof v); /* write-only: the high-order bytes become 0 */
+            if (short64(&r, m)) {
+                len = 8u;
+                if (odg_read(&r, 0, v, sizeof v, &got) != ODG_OK) {
+                    memset(v, 0, sizeof v); /* write-only: the high-order bytes become 0 */
+                }
             }
             copy_bits(v, 0, data, pos, bits);
-            (void)odg_write(&r, v, short64(&r, m) ? 8u : (bits + 7u) / 8u);
+            (void)odg_write(&r, v, len);
         }
         pos += bits;
     }
@@ -425,25 +438,25 @@ static void length_error(odg_node_t *n, odg_pdo_t *p, int error)
 
 void odg_pdo_receive_(odg_node_t *n, const odg_frame_t *f)
 {
-    uint16_t k;
-    for (k = 0; k < ODG_NODE_MAX_RPDO; k++) {
-        odg_pdo_t *p = &n->rpdo[k];
-        if (!active(p) || ODG_COB_ID(p->cob) != f->id) {
-            continue;
+    odg_pdo_t *p = n->rpdo, *end = n->rpdo + ODG_NODE_MAX_RPDO; /* the limits are >= 1 */
+    int too_short;
+    while (!active(p) || ODG_COB_ID(p->cob) != f->id) {
+        if (++p == end) {
+            return; /* none of ours */
         }
-        length_error(n, p, f->len < p->len);
-        if (f->len < p->len) {
-            return;
-        }
-        if (p->type <= TYPE_SYNC_MAX && !in_window(n)) {
-            n->sync_dropped++; /* CiA 301: synchronous data outside the window are discarded */
-        } else if (p->type <= TYPE_SYNC_MAX) {
-            memcpy(p->data, f->data, sizeof p->data); /* applied at the next SYNC */
-            p->flags |= ODG_PDO_F_RECEIVED;
-        } else {
-            apply(n, p, f->data);
-        }
+    }
+    too_short = f->len < p->len;
+    length_error(n, p, too_short);
+    if (too_short) {
         return;
+    }
+    if (p->type <= TYPE_SYNC_MAX && !in_window(n)) {
+        n->sync_dropped++; /* CiA 301: synchronous data outside the window are discarded */
+    } else if (p->type <= TYPE_SYNC_MAX) {
+        memcpy(p->data, f->data, sizeof p->data); /* applied at the next SYNC */
+        p->flags |= ODG_PDO_F_RECEIVED;
+    } else {
+        apply(n, p, f->data);
     }
 }
 
@@ -470,10 +483,13 @@ void odg_pdo_sync_(odg_node_t *n, const odg_frame_t *f)
     }
     for (k = 0; k < ODG_NODE_MAX_TPDO; k++) {
         odg_pdo_t *p = &n->tpdo[k];
-        if (active(p) && p->type == TYPE_RTR_SYNC && sample(n, p, p->data, &p->len) == ODG_OK) {
+        if (!active(p)) {
+            continue;
+        }
+        if (p->type == TYPE_RTR_SYNC && sample(n, p, p->data, &p->len) == ODG_OK) {
             p->flags |= ODG_PDO_F_SAMPLED; /* sent when a remote request comes */
         }
-        if (!active(p) || p->type > TYPE_SYNC_MAX) {
+        if (p->type > TYPE_SYNC_MAX) {
             continue;
         }
         if (p->type == 0u) {

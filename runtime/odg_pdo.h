@@ -27,21 +27,22 @@ extern "C" {
 #define ODG_NODE_MAX_MAP 8u
 #endif
 
-/* One PDO as read from its communication and mapping entries (internal). */
+/* One PDO as read from its communication and mapping entries (internal). The members used
+ * most come first, at offsets that Thumb's short load and store instructions reach. */
 typedef struct odg_pdo {
     uint32_t cob;                   /* sub1; bit 31 set: PDO not valid */
-    uint32_t map[ODG_NODE_MAX_MAP]; /* mapping entries 1..n_map */
-    uint32_t inhibit_left;          /* TPDO: 100 us units until the next send is allowed */
-    uint16_t inhibit;               /* TPDO sub3, 100 us units */
-    uint16_t event;                 /* TPDO sub5, ms (0: no event timer) */
-    uint16_t event_left;            /* ms until the event timer expires */
     uint8_t type;                   /* transmission type, sub2 */
     uint8_t sync_start;             /* TPDO sub6 */
     uint8_t n_map;                  /* mapped objects; 0: PDO absent or not mapped */
     uint8_t len;                    /* bytes: mapped length (RPDO), last sent (TPDO) */
     uint8_t count;                  /* TPDO: SYNCs since the last synchronous send */
     uint8_t flags;                  /* ODG_PDO_F_* */
+    uint16_t inhibit;               /* TPDO sub3, 100 us units */
+    uint16_t event;                 /* TPDO sub5, ms (0: no event timer) */
+    uint16_t event_left;            /* ms until the event timer expires */
+    uint32_t inhibit_left;          /* TPDO: 100 us units until the next send is allowed */
     uint8_t data[8];                /* TPDO: last sent; RPDO: received, waiting for SYNC */
+    uint32_t map[ODG_NODE_MAX_MAP]; /* mapping entries 1..n_map */
 } odg_pdo_t;
 
 /* odg_pdo_t.flags */
