@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ..conformance.arguments import add_conformance_arguments
+from .battery import add_conformance_arguments
 from .common import node_id_type
 
 
@@ -19,6 +19,6 @@ def add_parser(commands: argparse._SubParsersAction[argparse.ArgumentParser]) ->
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..conformance.arguments import command
+    from .battery import command
 
     return command(args)

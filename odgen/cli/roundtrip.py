@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ..conformance.arguments import add_arguments
+from .battery import add_arguments
 from ..errors import OdgenError
 from .common import add_input_format, existing_file, node_id_type
 
@@ -27,7 +27,7 @@ def run(args: argparse.Namespace) -> int:
 
     require_can_extra("roundtrip")
     require_socketcan(args.iface)
-    from ..conformance.arguments import selection
+    from .battery import selection
     from ..roundtrip import FileOutcome, roundtrip_file, summary_lines, write_report
     from ..roundtrip.checks import CHECK_IDS
 

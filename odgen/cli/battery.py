@@ -1,5 +1,8 @@
 """The arguments `odgen conformance` and `odgen roundtrip` share, and what `odgen conformance` does with them.
 
+The battery itself (odgen/conformance) is imported only when a command runs it, so that building
+the command line (and `odgen --version`) stays quick.
+
 Each check's verdict is printed as soon as it is known, and `--junit` is rewritten after each,
 so a run against a slow device shows progress and an interrupted one keeps what it found.
 """
@@ -14,7 +17,7 @@ from typing import TYPE_CHECKING
 from ..errors import OdgenError
 
 if TYPE_CHECKING:
-    from . import Selection
+    from ..conformance import Selection
 
 ALLOW = ("destructive",)
 
@@ -42,7 +45,7 @@ def _ids(text: str) -> list[str]:
 
 def selection(args: argparse.Namespace, known: Sequence[str] | None = None) -> Selection:
     """--select/--ignore as given, every id checked against the known check ids (the battery's)."""
-    from . import CHECK_IDS, Selection, check_selectors
+    from ..conformance import CHECK_IDS, Selection, check_selectors
 
     for ids, origin in ((args.select, "--select"), (args.ignore, "--ignore")):
         check_selectors(ids, origin, known or CHECK_IDS)
@@ -62,8 +65,8 @@ def stored_entries(path: Path, options: Path | None, node_id: int, defaults: str
 
 def command(args: argparse.Namespace) -> int:
     """`odgen conformance` (odgen/cli/conformance.py defines its arguments)."""
-    from . import header_line, read_description, result_lines, run, summary_line, write_junit
-    from .client import Settings, reachable_sdo_server
+    from ..conformance import header_line, read_description, result_lines, run, summary_line, write_junit
+    from ..conformance.client import Settings, reachable_sdo_server
 
     from ..hostneeds import require_can_extra, require_socketcan
 
