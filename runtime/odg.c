@@ -20,19 +20,6 @@
 #include "odg_impl.h"
 #include "odg_persist.h" /* odg_init marks the groups NV_ERROR until the persistence layer boots them */
 
-/* Type classes as bit masks over the type code (all codes are below 32). */
-#define TBIT(t) ((uint32_t)1u << ((uint32_t)(t) & 31u))
-#define T_SIGNED                                                                           \
-    (TBIT(ODG_T_INTEGER8) | TBIT(ODG_T_INTEGER16) | TBIT(ODG_T_INTEGER32) |                \
-     TBIT(ODG_T_INTEGER24) | TBIT(ODG_T_INTEGER40) | TBIT(ODG_T_INTEGER48) |               \
-     TBIT(ODG_T_INTEGER56) | TBIT(ODG_T_INTEGER64))
-#define T_REAL (TBIT(ODG_T_REAL32) | TBIT(ODG_T_REAL64))
-/* Strings and domains of the types this build serves: 0 when it serves none, so that the
- * compiler drops their code. */
-#define T_STREAM                                                                           \
-    ((ODG_CFG_STRINGS ? TBIT(ODG_T_VISIBLE_STRING) | TBIT(ODG_T_OCTET_STRING) : 0u) |       \
-     (ODG_CFG_UNICODE ? TBIT(ODG_T_UNICODE_STRING) : 0u) | (ODG_CFG_DOMAINS ? TBIT(ODG_T_DOMAIN) : 0u))
-#define IS_STREAM(s) ((TBIT((s)->type) & T_STREAM) != 0u)
 #define IS_UNICODE(s) (ODG_CFG_UNICODE && (s)->type == ODG_T_UNICODE_STRING)
 #define IS_DOMAIN(s) (ODG_CFG_DOMAINS && (s)->type == ODG_T_DOMAIN)
 #define IS_COMMAND(s) (ODG_CFG_COMMAND && ODG_S_CLASS((s)->storage) == ODG_S_COMMAND)
@@ -259,9 +246,6 @@ uint32_t odg_length(const odg_ref_t *ref)
 }
 
 /* ---- hooks ------------------------------------------------------------------------ */
-
-/* The layout of a table for bsearch16: row size, and where in a row its uint16_t key lies. */
-#define KEYED(type, member) ((uint32_t)(sizeof(type) | offsetof(type, member) << 8))
 
 /* Binary search of `n` rows laid out as KEYED says, sorted by that key: the row holding `key`,
  * or -1. `base` is only used when n > 0 (a table may be NULL when empty). */

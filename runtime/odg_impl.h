@@ -15,6 +15,23 @@ typedef uint64_t odg_num_t;
 typedef uint32_t odg_num_t;
 #endif
 
+/* Type classes as bit masks over the type code (all codes are below 32), for the core and its
+ * self-check. */
+#define TBIT(t) ((uint32_t)1u << ((uint32_t)(t) & 31u))
+#define T_SIGNED                                                                           \
+    (TBIT(ODG_T_INTEGER8) | TBIT(ODG_T_INTEGER16) | TBIT(ODG_T_INTEGER32) |                \
+     TBIT(ODG_T_INTEGER24) | TBIT(ODG_T_INTEGER40) | TBIT(ODG_T_INTEGER48) |               \
+     TBIT(ODG_T_INTEGER56) | TBIT(ODG_T_INTEGER64))
+#define T_REAL (TBIT(ODG_T_REAL32) | TBIT(ODG_T_REAL64))
+/* Strings and domains of the types this build serves: 0 when it serves none, so that the
+ * compiler drops their code. */
+#define T_STREAM                                                                           \
+    ((ODG_CFG_STRINGS ? TBIT(ODG_T_VISIBLE_STRING) | TBIT(ODG_T_OCTET_STRING) : 0u) |       \
+     (ODG_CFG_UNICODE ? TBIT(ODG_T_UNICODE_STRING) : 0u) | (ODG_CFG_DOMAINS ? TBIT(ODG_T_DOMAIN) : 0u))
+#define IS_STREAM(s) ((TBIT((s)->type) & T_STREAM) != 0u)
+/* A key packing a table row's size and the offset of its 16-bit key member (bsearch16 in odg.c). */
+#define KEYED(type, member) ((uint32_t)(sizeof(type) | offsetof(type, member) << 8))
+
 /* Native value of a numeric sub-entry of wire size `size` (1..8, 1..4 without ODG_CFG_INT64),
  * zero-extended from its C type (uint8_t, uint16_t, uint32_t for 3..4, uint64_t for 5..8;
  * float/double as bits). */

@@ -11,19 +11,6 @@
 #include "odg_impl.h"
 #include "odg_persist.h" /* the groups' NV regions are checked against its slot sizes */
 
-/* Type classes as bit masks over the type code (all codes are below 32), as odg.c has them. */
-#define TBIT(t) ((uint32_t)1u << ((uint32_t)(t) & 31u))
-#define T_SIGNED                                                                           \
-    (TBIT(ODG_T_INTEGER8) | TBIT(ODG_T_INTEGER16) | TBIT(ODG_T_INTEGER32) |                \
-     TBIT(ODG_T_INTEGER24) | TBIT(ODG_T_INTEGER40) | TBIT(ODG_T_INTEGER48) |               \
-     TBIT(ODG_T_INTEGER56) | TBIT(ODG_T_INTEGER64))
-#define T_REAL (TBIT(ODG_T_REAL32) | TBIT(ODG_T_REAL64))
-/* Strings and domains of the types this build serves. */
-#define T_STREAM                                                                           \
-    ((ODG_CFG_STRINGS ? TBIT(ODG_T_VISIBLE_STRING) | TBIT(ODG_T_OCTET_STRING) : 0u) |       \
-     (ODG_CFG_UNICODE ? TBIT(ODG_T_UNICODE_STRING) : 0u) | (ODG_CFG_DOMAINS ? TBIT(ODG_T_DOMAIN) : 0u))
-#define IS_STREAM(s) ((TBIT((s)->type) & T_STREAM) != 0u)
-#define KEYED(type, member) ((uint32_t)(sizeof(type) | offsetof(type, member) << 8))
 
 /* Wire size by type code; 0 for strings and domains, 0xFF for codes that are not basic types. */
 static const uint8_t wire_size[0x1C] = {

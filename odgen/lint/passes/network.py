@@ -15,11 +15,10 @@ from ...diagnostics import Diagnostics, Loc
 from ...model import ObjectDictionary
 from ...model.cia301 import (
     EMCY_BASE, HEARTBEAT, RPDO_COMM, RPDO_MAPPING, SDO_REQUEST, SDO_RESPONSE, TPDO_COMM, TPDO_MAPPING)
+from ...model.pdo import MPDO
 from ...model.values import number
 from .common import at, value_in_force, value_line
-from ...model.pdo import MPDO
 from .pdo import mapping_entries
-
 
 
 FIXED = ((EMCY_BASE, "EMCY"), (SDO_RESPONSE, "SDO response"), (SDO_REQUEST, "SDO request"), (HEARTBEAT, "heartbeat"))
