@@ -179,9 +179,12 @@ functions and before the stored-values rule set):
 
 EMPTY_MAIN = "volatile int v;\nint main(void);\nint main(void) { return v; }\n"
 
-# An NV driver of byte loops over a RAM array, as the notes' CO_eeprom_* functions.
+# An NV driver of byte loops over a RAM array, as the notes' CO_eeprom_* functions. The array is
+# volatile, as the registers of an EEPROM or a flash controller are, so that its loops stay
+# loops: GCC would otherwise make them calls of libc's memcpy (308 B), which CANopenNode's
+# figures carry anyway (its dictionary access copies with memcpy) and odgen's runtime does not use.
 NV_DRIVER = f"""
-static uint8_t nv_mem[{NV_ARRAY}];
+static volatile uint8_t nv_mem[{NV_ARRAY}];
 static int nv_read(void *c, uint32_t a, void *b, uint32_t l)
 {{
     uint8_t *p = (uint8_t *)b;

@@ -88,6 +88,9 @@ extern "C" {
 #ifndef ODG_CFG_PERSIST_MIGRATION /* a persistence group migrated at boot ("ODG2" images) */
 #define ODG_CFG_PERSIST_MIGRATION 1
 #endif
+#ifndef ODG_CFG_PERSIST_TWO_PASS /* the two-pass boot: a migrated group among two or more */
+#define ODG_CFG_PERSIST_TWO_PASS ODG_CFG_PERSIST_MIGRATION
+#endif
 #ifndef ODG_CFG_HASH /* lookup by a generated perfect hash (odgen --lookup hash) */
 #define ODG_CFG_HASH 1
 #endif

@@ -125,7 +125,7 @@ static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_
     odg_state_t *s = dict->state;
     uint8_t g;
     int fits, pass;
-#if ODG_CFG_PERSIST_MIGRATION
+#if ODG_CFG_PERSIST_TWO_PASS
     uint8_t done[32]; /* the groups booted in the first pass */
 #endif
     if (nv != NULL) {
@@ -139,10 +139,11 @@ static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_
     s->boot_counts[0] = s->boot_counts[1] = s->boot_counts[2] = 0;
 #endif
     fits = nv_fits(dict, nv);
-#if ODG_CFG_PERSIST_MIGRATION
+#if ODG_CFG_PERSIST_TWO_PASS
     /* two passes: first the groups whose newest image lies outside their region (in a region
      * of another group, after the NV map changed), which move it home before that group's
-     * boot writes over it; then the others */
+     * boot writes over it; then the others. With one group (ODG_CFG_PERSIST_TWO_PASS 0) no
+     * other boot writes over its image: one pass. */
     memset(done, 0, sizeof done);
     for (pass = fits ? 0 : 1; pass < 2; pass++) {
 #else
@@ -150,7 +151,7 @@ static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_
 #endif
         for (g = 0; g < dict->n_groups; g++) {
             odg_boot_t b = {ODG_BOOT_NV_ERROR, 0, 0, 0, 0, 0};
-#if ODG_CFG_PERSIST_MIGRATION
+#if ODG_CFG_PERSIST_TWO_PASS
             if ((done[g >> 3] >> (g & 7u)) & 1u || (pass == 0 && !odg_described_displaced_(dict, nv, g))) {
                 continue;
             }

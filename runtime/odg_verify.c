@@ -328,6 +328,9 @@ odg_abort_t odg_verify(const odg_dict_t *dict, uint16_t *bad_index)
     if (!ODG_CFG_PERSIST_STATUS && d->persist_status != 0u) {
         return ODG_ABORT_INTERNAL; /* a boot status object this build would not set */
     }
+    if (!ODG_CFG_PERSIST_TWO_PASS && ODG_CFG_PERSIST_MIGRATION && d->n_groups > 1u) {
+        return ODG_ABORT_INTERNAL; /* groups this build would boot in one pass */
+    }
     for (i = 0; i < d->n_entries; i++) {
         const odg_entry_t *e = &d->entries[i];
         *bad_index = e->index;

@@ -70,6 +70,9 @@ def runtime_config(view: DictView) -> list[Switch]:
           for p in range(e.first, e.first + e.count)]),
         ("ODG_CFG_PERSIST_ODG1", "persistence groups without migration", persisted[:1] if not migration else []),
         ("ODG_CFG_PERSIST_MIGRATION", "persistence groups migrated at boot", persisted[:1] if migration else []),
+        # with one group no other group's boot can write over its image before it moves home
+        ("ODG_CFG_PERSIST_TWO_PASS", "a migrated group among two or more (the two-pass boot)",
+         persisted[:1] if migration and len(view.groups) > 1 else []),
     ]
     switches = [Switch(macro, what, bool(where), _first(view, where)) for macro, what, where in needs]
     for switch in switches:  # a packed descriptor's sub is the last element's: name them all
