@@ -220,11 +220,12 @@ static uint32_t next_place(const odg_group_t *gr, uint32_t half)
     return half <= ODG_PERSIST_MAX_REGION / 2u ? half : 0u;
 }
 
-/* The newest valid image of group `gr` at any of its places inside the dictionary's NV (up to
- * `end`, NAME_NV_SIZE) and at the place slot A's header names past it (the slot B of a larger
- * region a later firmware used); address in *at, header in h. 1 found, 0 none, 2 the newest is
- * an image of ours that cannot be read (described_read -2), -1 the driver failed (a failing
- * read past the region means no NV there). */
+/* The bytes a slot's image takes, rounded up to the slot alignment. */
+static uint32_t extent(const uint8_t *h)
+{
+    return (DESCRIBED_HDR + odg_get32_(h + 16) + ODG_PERSIST_ALIGN - 1u) & ~((uint32_t)ODG_PERSIST_ALIGN - 1u);
+}
+
 /* Whether the place `half` of group `gr` is looked at: inside the dictionary's NV (up to `end`,
  * NAME_NV_SIZE), or the place slot A's header (`a`, read, not checked) names past it. */
 static int looked_at(const odg_group_t *gr, uint32_t end, uint32_t half, const uint8_t *a)
@@ -233,37 +234,61 @@ static int looked_at(const odg_group_t *gr, uint32_t end, uint32_t half, const u
            (odg_get32_(a) == DESCRIBED_MAGIC && our_id(gr, odg_get32_(a + 8)) && odg_get32_(a + 12) / 2u == half);
 }
 
-static int described_newest(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t end, uint32_t *at,
-                            uint8_t *h)
+#define PLACES 14u /* slot A, the region's slot B, and slot B of every power of two up to 64 KiB */
+
+/* What one walk over the places of a group found: its images (valid, or headers of ours whose
+ * image cannot be read: described_read -2) in address order, and the newest of them. Store,
+ * erase, scrub and boot each act on one walk. */
+typedef struct found {
+    uint32_t lo[PLACES], hi[PLACES]; /* an image's first byte and the end of its slot extent (for
+                                      * one that cannot be read, at most the region's end) */
+    unsigned n;
+    int newest;                      /* 1 valid, 2 cannot be read, 0 no image */
+    uint32_t at;                     /* the newest's address (nv_addr when none) */
+    uint8_t h[DESCRIBED_HDR];        /* the newest's header */
+} found_t;
+
+/* Walk the places of group `gr` inside the dictionary's NV (up to `end`, NAME_NV_SIZE) and the
+ * place slot A's header names past it (the slot B of a larger region a later firmware used).
+ * 0, or -1 when the driver failed inside the region (a failing read past it means no NV there). */
+static int walk(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t end, found_t *f)
 {
     uint8_t t[DESCRIBED_HDR], a[DESCRIBED_HDR];
-    uint32_t half = 0u;
-    int v, found = 0;
-    *at = gr->nv_addr;
+    uint32_t half = 0u, addr, e, rend = gr->nv_addr + gr->region;
+    unsigned i;
+    int v;
+    f->n = 0;
+    f->newest = 0;
+    f->at = gr->nv_addr;
     do {
         if (!looked_at(gr, end, half, a)) {
             continue;
         }
-        v = described_read(nv, gr, gr->nv_addr + half, t, 1);
+        addr = gr->nv_addr + half;
+        v = described_read(nv, gr, addr, t, 1);
         if (v == -1 && half < gr->region) {
             return -1;
         }
         if (half == 0u) {
             odg_copy(a, t, DESCRIBED_HDR); /* slot A's header, whatever it holds */
         }
-        if ((v == 1 || v == -2) && (!found || odg_newer_(odg_get32_(t + 4), odg_get32_(h + 4)))) {
-            found = v == 1 ? 1 : 2;
-            *at = gr->nv_addr + half;
-            odg_copy(h, t, DESCRIBED_HDR);
+        if (v != 1 && v != -2) {
+            continue;
         }
+        if (!f->newest || odg_newer_(odg_get32_(t + 4), odg_get32_(f->h + 4))) {
+            f->newest = v == 1 ? 1 : 2;
+            f->at = addr;
+            odg_copy(f->h, t, DESCRIBED_HDR);
+        }
+        e = addr + extent(t);
+        for (i = f->n++; i > 0u && f->lo[i - 1u] > addr; i--) { /* in address order */
+            f->lo[i] = f->lo[i - 1u];
+            f->hi[i] = f->hi[i - 1u];
+        }
+        f->lo[i] = addr;
+        f->hi[i] = v == -2 && e > rend ? rend : e;
     } while ((half = next_place(gr, half)) != 0u);
-    return found;
-}
-
-/* The bytes a slot's image takes, rounded up to the slot alignment. */
-static uint32_t extent(const uint8_t *h)
-{
-    return (DESCRIBED_HDR + odg_get32_(h + 16) + ODG_PERSIST_ALIGN - 1u) & ~((uint32_t)ODG_PERSIST_ALIGN - 1u);
+    return 0;
 }
 
 /* Image bytes on their way to NV, CRC-32 on the fly. */
@@ -338,21 +363,21 @@ static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
 odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
 {
     const odg_group_t *gr = &d->groups[g];
-    uint8_t h[DESCRIBED_HDR], t[DESCRIBED_HDR];
-    uint32_t at, seq = 1, half = gr->region / 2u, addr = gr->nv_addr, size = image_size(d, g);
+    uint8_t h[DESCRIBED_HDR];
+    uint32_t seq = 1, half = gr->region / 2u, addr = gr->nv_addr, size = image_size(d, g);
     const odg_sub_t *s;
     recs_t r;
     out_t o;
-    int k = described_newest(nv, gr, odg_persist_nv_size(d), &at, t);
-    if (k < 0) {
+    found_t f;
+    if (walk(nv, gr, odg_persist_nv_size(d), &f) < 0) {
         return ODG_ABORT_HARDWARE;
     }
-    if (k > 0) {
+    if (f.newest) {
         /* the slot beside the newest; should the newest be an image of a larger region that
          * reaches into it (after a rollback), it is written over: it was read (and migrated) at
          * boot, and keeping it would refuse every store for good */
-        seq = odg_get32_(t + 4) + 1u;
-        addr = at == gr->nv_addr + half ? gr->nv_addr : gr->nv_addr + half;
+        seq = odg_get32_(f.h + 4) + 1u;
+        addr = f.at == gr->nv_addr + half ? gr->nv_addr : gr->nv_addr + half;
     }
     if (DESCRIBED_HDR + size > half) {
         return ODG_ABORT_DATA_STORE; /* odg_verify: never for a generated dictionary */
@@ -385,51 +410,30 @@ odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv,
     return ODG_OK;
 }
 
-/* The image of ours at `addr` (0 when none): its end in `*end`, at most `limit` when it cannot
- * be read past there. -1 when the driver failed. */
-static int image_at(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t addr, uint32_t limit,
-                    uint32_t *end)
-{
-    uint8_t h[DESCRIBED_HDR];
-    int v = described_read(nv, gr, addr, h, 1);
-    *end = addr + extent(h);
-    if (v == -2 && *end > limit) {
-        *end = limit;
-    }
-    return v == -1 ? -1 : v != 0;
-}
-
 /* Make the next boot of group `g` use the defaults: erase its images at every place (those past
  * the region first), then the region but the newest image, then the newest, so that a power
  * cut in between leaves the newest (as if nothing happened), never an older one. */
 odg_abort_t odg_described_erase_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
 {
     const odg_group_t *gr = &d->groups[g];
-    uint8_t h[DESCRIBED_HDR], a[DESCRIBED_HDR];
-    uint32_t at, start = gr->nv_addr, end = gr->nv_addr + gr->region, half = 0u, e, lo = end, hi = end;
-    uint32_t nv_end = odg_persist_nv_size(d);
-    int found = described_newest(nv, gr, nv_end, &at, h), fail = found < 0, v;
-    fail = fail || (odg_hdr_read_(nv, start, a, DESCRIBED_HDR, DESCRIBED_MAGIC) < 0);
-    while (!fail && (half = next_place(gr, half)) != 0u) {
-        if (start + half >= end && start + half != at && looked_at(gr, nv_end, half, a)) {
-            v = image_at(nv, gr, start + half, end, &e);
-            fail = v > 0 && odg_wipe_(nv, start + half, e);
-        }
+    uint32_t start = gr->nv_addr, end = gr->nv_addr + gr->region, e = 0u, lo = end, hi = end;
+    unsigned i;
+    found_t f;
+    int fail = walk(nv, gr, odg_persist_nv_size(d), &f) < 0;
+    for (i = 0; !fail && i < f.n; i++) { /* past the region (one that cannot be read: hi <= lo) */
+        fail = f.lo[i] >= end && f.lo[i] != f.at && odg_wipe_(nv, f.lo[i], f.hi[i]);
     }
-    if (found > 0) {
-        v = image_at(nv, gr, at, at < end ? end : 0xFFFFFFFFu, &e);
-        e = found == 2 && at < end && e > end ? end : e;
-        if (at < end) { /* the header is what counts */
-            lo = at;
+    if (f.newest) {
+        e = f.at + extent(f.h);
+        e = f.newest == 2 && f.at < end && e > end ? end : e;
+        if (f.at < end) { /* the header is what counts */
+            lo = f.at;
             hi = e > end ? end : e;
         }
-        fail = fail || v < 0;
     }
-    fail = fail || odg_wipe_(nv, start, lo) || odg_wipe_(nv, hi, end) || (found > 0 && odg_wipe_(nv, at, e));
+    fail = fail || odg_wipe_(nv, start, lo) || odg_wipe_(nv, hi, end) || (f.newest && odg_wipe_(nv, f.at, e));
     return fail ? ODG_ABORT_HARDWARE : ODG_OK;
 }
-
-#define PLACES 14u /* slot A, the region's slot B, and slot B of every power of two up to 64 KiB */
 
 /* After a boot of group `gr`: erase what its region holds besides its own images (at its
  * places): images of other groups or of this one written at another place, and bytes of
@@ -437,35 +441,21 @@ odg_abort_t odg_described_erase_(const odg_dict_t *d, const odg_nv_driver_t *nv,
  * group's values when the map changes again. Its own older images stay: a rollback firmware
  * that cannot see the newest one (past its NV) finds the one the newest was migrated from.
  * -1 when the driver failed. */
-static int scrub(const odg_nv_driver_t *nv, const odg_group_t *gr)
+static int scrub(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t nv_end)
 {
-    uint32_t lo[PLACES], hi[PLACES], end = gr->nv_addr + gr->region, pos = gr->nv_addr, half = 0u, e, t;
-    unsigned n = 0, i, j;
-    int v;
-    do {
-        if (gr->nv_addr + half < end) {
-            if ((v = image_at(nv, gr, gr->nv_addr + half, end, &e)) < 0) {
-                return -1;
-            }
-            for (i = n; v > 0 && i > 0u && lo[i - 1u] > gr->nv_addr + half; i--) { /* sorted by place */
-                lo[i] = lo[i - 1u];
-                hi[i] = hi[i - 1u];
-            }
-            if (v > 0) {
-                lo[i] = gr->nv_addr + half;
-                hi[i] = e < end ? e : end;
-                n++;
-            }
-        }
-    } while ((half = next_place(gr, half)) != 0u && n < PLACES);
-    for (j = 0; j < n; j++) {
-        t = lo[j];
-        if (t > pos && odg_clear_(nv, pos, t)) {
+    uint32_t end = gr->nv_addr + gr->region, pos = gr->nv_addr;
+    unsigned i;
+    found_t f;
+    if (walk(nv, gr, nv_end, &f) < 0) {
+        return -1;
+    }
+    for (i = 0; i < f.n && f.lo[i] < end; i++) {
+        if (f.lo[i] > pos && odg_clear_(nv, pos, f.lo[i])) {
             return -1;
         }
-        pos = hi[j] > pos ? hi[j] : pos;
+        pos = f.hi[i] > pos ? f.hi[i] : pos;
     }
-    return odg_clear_(nv, pos, end) ? -1 : 0;
+    return odg_clear_(nv, pos < end ? pos : end, end) ? -1 : 0;
 }
 
 /* ---- boot migration: docs/persistence.md section 3, odgen/persist/migration.py ----------- */
@@ -704,17 +694,17 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
                                odg_boot_t *b)
 {
     const odg_group_t *gr = &d->groups[g];
-    uint8_t h[DESCRIBED_HDR];
     uint16_t n[5] = {0, 0, 0, 0, 0}; /* entries KEPT, DEFAULTED, DROPPED, CONVERTED, ADDED */
-    uint32_t at;
+    uint32_t nv_end = odg_persist_nv_size(d);
     odg_boot_status_t st;
-    int k = described_newest(nv, gr, odg_persist_nv_size(d), &at, h), changed;
+    found_t f;
+    int k = walk(nv, gr, nv_end, &f) < 0 ? -1 : f.newest, changed;
     odg_defaults_(d, g); /* the mirror starts from the defaults (RAM only: no NV access) */
     if (k == 1) {
-        if (migrate(d, nv, g, at, n) == 0 && reads_back(nv, gr, at, h)) {
+        if (migrate(d, nv, g, f.at, n) == 0 && reads_back(nv, gr, f.at, f.h)) {
             /* a migrated image is stored at once, with the A/B commit */
             changed = n[DEFAULTED] || n[DROPPED] || n[CONVERTED] || n[ADDED];
-            if ((!changed || odg_described_store_(d, nv, g) == ODG_OK) && scrub(nv, gr) == 0) {
+            if ((!changed || odg_described_store_(d, nv, g) == ODG_OK) && scrub(nv, gr, nv_end) == 0) {
                 count(d->state, b, n);
                 return changed ? ODG_BOOT_MIGRATED : ODG_BOOT_LOADED;
             }
@@ -724,7 +714,7 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
     }
     /* 2: the newest image cannot be read: its values are lost */
     st = k < 0 ? ODG_BOOT_NV_ERROR : k == 2 ? ODG_BOOT_DAMAGED : described_no_image(nv, gr);
-    if (st != ODG_BOOT_NV_ERROR && (odg_described_store_(d, nv, g) != ODG_OK || scrub(nv, gr) != 0)) {
+    if (st != ODG_BOOT_NV_ERROR && (odg_described_store_(d, nv, g) != ODG_OK || scrub(nv, gr, nv_end) != 0)) {
         st = ODG_BOOT_NV_ERROR;
     }
     return st;
@@ -735,9 +725,9 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
 int odg_described_displaced_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
 {
     const odg_group_t *gr = &d->groups[g];
-    uint8_t h[DESCRIBED_HDR];
-    uint32_t at;
-    return ODG_MIGRATES_(gr) && described_newest(nv, gr, odg_persist_nv_size(d), &at, h) == 1 && at - gr->nv_addr >= gr->region;
+    found_t f;
+    return ODG_MIGRATES_(gr) && walk(nv, gr, odg_persist_nv_size(d), &f) == 0 && f.newest == 1 &&
+           f.at - gr->nv_addr >= gr->region;
 }
 
 #else
