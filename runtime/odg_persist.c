@@ -90,9 +90,10 @@ static odg_boot_status_t boot_group(const odg_dict_t *d, const odg_nv_driver_t *
 /* The boot status object: sub g + 1 = status | converted << 8 | defaulted << 16 | dropped << 24 */
 static void report(const odg_dict_t *d, uint8_t g, const odg_boot_t *b)
 {
-    uint32_t v = (uint32_t)b->status | (uint32_t)odg_add_sat_(0, b->converted) << 8 |
-                 (uint32_t)odg_add_sat_(0, b->defaulted) << 16 | (uint32_t)odg_add_sat_(0, b->dropped) << 24;
-    if (ODG_CFG_PERSIST_STATUS && d->persist_status != 0u) {
+    uint32_t v;
+    if (ODG_CFG_PERSIST_STATUS && d->persist_status != 0u) { /* the counts only then: calls stay */
+        v = (uint32_t)b->status | (uint32_t)odg_add_sat_(0, b->converted) << 8 |
+            (uint32_t)odg_add_sat_(0, b->defaulted) << 16 | (uint32_t)odg_add_sat_(0, b->dropped) << 24;
         (void)odg_set(d, d->persist_status, (uint8_t)(g + 1u), &v, (uint32_t)sizeof v);
     }
 }
