@@ -537,6 +537,15 @@ static int read_stream(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg
     return n < used ? CONVERTED : KEPT;
 }
 
+/* Whether the stored entry `st` is a number the firmware's sub-entry `s` keeps or converts: the
+ * same type, or an integer widened, with its type's length (migration.py: KEEP or CONVERT).
+ * Else it is narrowed, retyped, or of a length that does not fit its type: defaulted. */
+static int carried(const odg_sub_t *s, const uint8_t *st)
+{
+    uint32_t sl = get16(st + 4);
+    return (s->type == st[3] || widens(st[3], s->type)) && sl != 0u && sl == (num_of(st[3]) & 0xFu);
+}
+
 /* Read the firmware's sub-entry `s` (at `pos` in dict->subs) from the stored entry `st`, whose
  * value lies at `addr` (emit_value's counterpart): kept, converted, or defaulted (the mirror
  * keeps the default). */
@@ -550,8 +559,8 @@ static int read_value(const odg_dict_t *d, const odg_nv_driver_t *nv, uint32_t p
         return read_stream(d, nv, s, sl, addr);
     }
     /* a number of a type this build serves: no wider than odg_num_t (ODG_CFG_INT64) */
-    if ((s->type != st[3] && !widens(st[3], s->type)) || sl == 0u || sl != (num_of(st[3]) & 0xFu)) {
-        return DEFAULTED; /* narrowed, retyped, or a length that does not fit its type */
+    if (!carried(s, st)) {
+        return DEFAULTED;
     }
     if (nv->read(nv->ctx, addr, c, sl) != 0) {
         return FAILED;
@@ -583,6 +592,17 @@ static long stored_highest(const odg_nv_driver_t *nv, uint32_t ra, uint32_t rend
         high = st[2];
     }
     return high;
+}
+
+/* Whether sub 0 stored as `st` follows the firmware's entry when its highest sub-index changed:
+ * only a value kept as it is (a string of the same capacity too) or widened follows; one
+ * narrowed or retyped is defaulted, one resized is resized (migration.py: plan). */
+static int follows(const odg_sub_t *s, const uint8_t *st)
+{
+    if (s->type == st[3] && (type_bit(s->type) & STREAMS)) {
+        return get16(st + 4) == s->size;
+    }
+    return carried(s, st);
 }
 
 /* The highest sub-index of the firmware's entry `e` persisted in the same group as its sub 0. */
@@ -629,7 +649,7 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
             }
             if (key < fw.key) {
                 n[DROPPED]++;
-            } else if ((fw.key & 0xFFu) == 0u &&
+            } else if ((fw.key & 0xFFu) == 0u && follows(s, st) &&
                        (high = stored_highest(nv, ra + REC, rend, fw.e->index)) !=
                            (long)fw_highest(d, fw.e)) {
                 if (high < 0) {

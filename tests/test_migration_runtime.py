@@ -201,6 +201,12 @@ CASES = {
                                 {(0x2020, 2): "3412", (0x2020, 3): "0100"}),
     "array_shrunk": Case((Param(0x2020, U8, "5", elements=6), *BASE), (*BASE, Param(0x2020, U8, "5", elements=2)),
                          {**BASE_VALUES, (0x2020, 1): "11", (0x2020, 2): "22", (0x2020, 6): "66"}),
+    # a VAR that becomes an ARRAY: its value sits where the array's sub 0 (UNSIGNED8) goes. Of the
+    # same type sub 0 follows the new count (converted); narrowed, the value is lost (defaulted)
+    "var_becomes_array": Case((Param(0x2030, U8, "7"), *BASE), (Param(0x2030, U16, "5", elements=3), *BASE),
+                              {**BASE_VALUES, 0x2030: "09"}),
+    "var_becomes_array_narrowed": Case((Param(0x2030, U16, "7"), *BASE), (Param(0x2030, U16, "5", elements=3), *BASE),
+                                       {**BASE_VALUES, 0x2030: "0900"}),
     "downgrade": Case((Param(0x2000, U32, "7"), *BASE[1:], Param(0x2003, U32, "42")), BASE,
                       {**BASE_VALUES, 0x2000: "FA000000", 0x2003: "01020304"}),
 }
