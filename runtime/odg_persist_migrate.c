@@ -236,16 +236,20 @@ static int looked_at(const odg_group_t *gr, uint32_t end, uint32_t half, const u
 
 #define PLACES 14u /* slot A, the region's slot B, and slot B of every power of two up to 64 KiB */
 
-/* What one walk over the places of a group found: its images (valid, or headers of ours whose
- * image cannot be read: described_read -2) in address order, and the newest of them. Store,
- * erase, scrub and boot each act on one walk. */
-typedef struct found {
+/* What one walk over the places of a group found: the newest of its images (valid, or headers
+ * of ours whose image cannot be read: described_read -2), and with `spans` all of them in
+ * address order. Store, erase, scrub and boot each act on one walk. */
+typedef struct spans {
     uint32_t lo[PLACES], hi[PLACES]; /* an image's first byte and the end of its slot extent (for
                                       * one that cannot be read, at most the region's end) */
     unsigned n;
-    int newest;                      /* 1 valid, 2 cannot be read, 0 no image */
-    uint32_t at;                     /* the newest's address (nv_addr when none) */
-    uint8_t h[DESCRIBED_HDR];        /* the newest's header */
+} spans_t;
+
+typedef struct found {
+    int newest;               /* 1 valid, 2 cannot be read, 0 no image */
+    uint32_t at;              /* the newest's address (nv_addr when none) */
+    uint8_t h[DESCRIBED_HDR]; /* the newest's header */
+    spans_t *spans;           /* or NULL: the newest alone */
 } found_t;
 
 /* Walk the places of group `gr` inside the dictionary's NV (up to `end`, NAME_NV_SIZE) and the
@@ -257,7 +261,10 @@ static int walk(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t end, 
     uint32_t half = 0u, addr, e, rend = gr->nv_addr + gr->region;
     unsigned i;
     int v;
-    f->n = 0;
+    spans_t *sp = f->spans;
+    if (sp != NULL) {
+        sp->n = 0;
+    }
     f->newest = 0;
     f->at = gr->nv_addr;
     do {
@@ -281,14 +288,31 @@ static int walk(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t end, 
             odg_copy(f->h, t, DESCRIBED_HDR);
         }
         e = addr + extent(t);
-        for (i = f->n++; i > 0u && f->lo[i - 1u] > addr; i--) { /* in address order */
-            f->lo[i] = f->lo[i - 1u];
-            f->hi[i] = f->hi[i - 1u];
+        for (i = sp != NULL ? sp->n++ : 0u; i > 0u && sp->lo[i - 1u] > addr; i--) { /* in address order */
+            sp->lo[i] = sp->lo[i - 1u];
+            sp->hi[i] = sp->hi[i - 1u];
         }
-        f->lo[i] = addr;
-        f->hi[i] = v == -2 && e > rend ? rend : e;
+        if (sp != NULL) {
+            sp->lo[i] = addr;
+            sp->hi[i] = v == -2 && e > rend ? rend : e;
+        }
     } while ((half = next_place(gr, half)) != 0u);
     return 0;
+}
+
+/* The newest image of group `gr` (walk): 1 valid, 2 cannot be read, 0 none, -1 the driver
+ * failed; its address in *at (nv_addr when none) and its header in h. The walk's list lives in
+ * this frame only, so that the store a boot calls does not stack a second one on it. */
+static int newest(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t end, uint32_t *at, uint8_t *h)
+{
+    found_t f;
+    f.spans = NULL;
+    if (walk(nv, gr, end, &f) < 0) {
+        return -1;
+    }
+    *at = f.at;
+    odg_copy(h, f.h, DESCRIBED_HDR);
+    return f.newest;
 }
 
 /* Image bytes on their way to NV, CRC-32 on the fly. */
@@ -363,21 +387,21 @@ static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
 odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
 {
     const odg_group_t *gr = &d->groups[g];
-    uint8_t h[DESCRIBED_HDR];
-    uint32_t seq = 1, half = gr->region / 2u, addr = gr->nv_addr, size = image_size(d, g);
+    uint8_t h[DESCRIBED_HDR], t[DESCRIBED_HDR];
+    uint32_t at, seq = 1, half = gr->region / 2u, addr = gr->nv_addr, size = image_size(d, g);
     const odg_sub_t *s;
     recs_t r;
     out_t o;
-    found_t f;
-    if (walk(nv, gr, odg_persist_nv_size(d), &f) < 0) {
+    int k = newest(nv, gr, odg_persist_nv_size(d), &at, t);
+    if (k < 0) {
         return ODG_ABORT_HARDWARE;
     }
-    if (f.newest) {
+    if (k > 0) {
         /* the slot beside the newest; should the newest be an image of a larger region that
          * reaches into it (after a rollback), it is written over: it was read (and migrated) at
          * boot, and keeping it would refuse every store for good */
-        seq = odg_get32_(f.h + 4) + 1u;
-        addr = f.at == gr->nv_addr + half ? gr->nv_addr : gr->nv_addr + half;
+        seq = odg_get32_(t + 4) + 1u;
+        addr = at == gr->nv_addr + half ? gr->nv_addr : gr->nv_addr + half;
     }
     if (DESCRIBED_HDR + size > half) {
         return ODG_ABORT_DATA_STORE; /* odg_verify: never for a generated dictionary */
@@ -418,10 +442,13 @@ odg_abort_t odg_described_erase_(const odg_dict_t *d, const odg_nv_driver_t *nv,
     const odg_group_t *gr = &d->groups[g];
     uint32_t start = gr->nv_addr, end = gr->nv_addr + gr->region, e = 0u, lo = end, hi = end;
     unsigned i;
+    spans_t sp;
     found_t f;
-    int fail = walk(nv, gr, odg_persist_nv_size(d), &f) < 0;
-    for (i = 0; !fail && i < f.n; i++) { /* past the region (one that cannot be read: hi <= lo) */
-        fail = f.lo[i] >= end && f.lo[i] != f.at && odg_wipe_(nv, f.lo[i], f.hi[i]);
+    int fail;
+    f.spans = &sp;
+    fail = walk(nv, gr, odg_persist_nv_size(d), &f) < 0;
+    for (i = 0; !fail && i < sp.n; i++) { /* past the region (one that cannot be read: hi <= lo) */
+        fail = sp.lo[i] >= end && sp.lo[i] != f.at && odg_wipe_(nv, sp.lo[i], sp.hi[i]);
     }
     if (f.newest) {
         e = f.at + extent(f.h);
@@ -445,15 +472,17 @@ static int scrub(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t nv_e
 {
     uint32_t end = gr->nv_addr + gr->region, pos = gr->nv_addr;
     unsigned i;
+    spans_t sp;
     found_t f;
+    f.spans = &sp;
     if (walk(nv, gr, nv_end, &f) < 0) {
         return -1;
     }
-    for (i = 0; i < f.n && f.lo[i] < end; i++) {
-        if (f.lo[i] > pos && odg_clear_(nv, pos, f.lo[i])) {
+    for (i = 0; i < sp.n && sp.lo[i] < end; i++) {
+        if (sp.lo[i] > pos && odg_clear_(nv, pos, sp.lo[i])) {
             return -1;
         }
-        pos = f.hi[i] > pos ? f.hi[i] : pos;
+        pos = sp.hi[i] > pos ? sp.hi[i] : pos;
     }
     return odg_clear_(nv, pos < end ? pos : end, end) ? -1 : 0;
 }
@@ -714,14 +743,14 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
                                odg_boot_t *b)
 {
     const odg_group_t *gr = &d->groups[g];
+    uint8_t h[DESCRIBED_HDR];
     uint16_t n[5] = {0, 0, 0, 0, 0}; /* entries KEPT, DEFAULTED, DROPPED, CONVERTED, ADDED */
-    uint32_t nv_end = odg_persist_nv_size(d);
+    uint32_t at, nv_end = odg_persist_nv_size(d);
     odg_boot_status_t st;
-    found_t f;
-    int k = walk(nv, gr, nv_end, &f) < 0 ? -1 : f.newest, changed;
+    int k = newest(nv, gr, nv_end, &at, h), changed;
     odg_defaults_(d, g); /* the mirror starts from the defaults (RAM only: no NV access) */
     if (k == 1) {
-        if (migrate(d, nv, g, f.at, n) == 0 && reads_back(nv, gr, f.at, f.h)) {
+        if (migrate(d, nv, g, at, n) == 0 && reads_back(nv, gr, at, h)) {
             /* a migrated image is stored at once, with the A/B commit */
             changed = n[DEFAULTED] || n[DROPPED] || n[CONVERTED] || n[ADDED];
             if ((!changed || odg_described_store_(d, nv, g) == ODG_OK) && scrub(nv, gr, nv_end) == 0) {
@@ -745,9 +774,9 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
 int odg_described_displaced_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
 {
     const odg_group_t *gr = &d->groups[g];
-    found_t f;
-    return ODG_MIGRATES_(gr) && walk(nv, gr, odg_persist_nv_size(d), &f) == 0 && f.newest == 1 &&
-           f.at - gr->nv_addr >= gr->region;
+    uint8_t h[DESCRIBED_HDR];
+    uint32_t at;
+    return ODG_MIGRATES_(gr) && newest(nv, gr, odg_persist_nv_size(d), &at, h) == 1 && at - gr->nv_addr >= gr->region;
 }
 
 #else
