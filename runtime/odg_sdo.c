@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
- * odg_sdo.c - the node's SDO server: expedited, segmented and block
- * transfers in both directions, over odg_read / odg_write / odg_write_part.
+ * odg_sdo.c - the node's SDO server: expedited, segmented and (ODG_NODE_SDO_BLOCK) block
+ * transfers in both directions, over odg_read / odg_write / odg_write_part. Without block
+ * transfer a block initiate is answered with abort 0x05040001, as for any unknown command.
  *
  * Downloads of at most 8 bytes (every number) are collected in sdo.buf and written whole
  * with odg_write when complete; longer ones (strings, domains) go to odg_write_part segment
@@ -32,6 +33,7 @@ static void put32(uint8_t *p, uint32_t v)
     p[3] = (uint8_t)(v >> 24);
 }
 
+#if ODG_NODE_SDO_BLOCK
 /* CRC-16-CCITT of CiA 301 block transfers: polynomial 0x1021, initial value 0, MSB first. */
 static uint16_t crc16(uint16_t crc, const uint8_t *p, uint32_t len)
 {
@@ -44,6 +46,7 @@ static uint16_t crc16(uint16_t crc, const uint8_t *p, uint32_t len)
     }
     return crc;
 }
+#endif
 
 /* An 8-byte frame: byte 0, bytes 1..3 from `mid` and bytes 4..7 from `tail` (little-endian). */
 static void send8(odg_node_t *n, uint8_t b0, uint32_t mid, uint32_t tail)
@@ -125,7 +128,6 @@ static odg_abort_t begin_download(odg_node_t *n, uint32_t total)
     odg_sdo_t *s = &n->sdo;
     s->total = total;
     s->offset = 0;
-    s->crc = 0;
     s->toggle = 0;
     s->flags = (uint8_t)(total == SIZE_UNKNOWN ? 0u : ODG_SDO_F_SIZED);
     if (total != SIZE_UNKNOWN && total > 8u) {
@@ -153,7 +155,9 @@ static odg_abort_t take(odg_node_t *n, const uint8_t *data, uint32_t len)
     } else {
         odg_copy(s->buf + s->offset, data, len);
     }
+#if ODG_NODE_SDO_BLOCK
     s->crc = crc16(s->crc, data, len);
+#endif
     s->offset += len;
     return ODG_OK;
 }
@@ -227,6 +231,7 @@ static void download_segment(odg_node_t *n, const uint8_t *d)
     }
 }
 
+#if ODG_NODE_SDO_BLOCK
 static void block_download_initiate(odg_node_t *n, const uint8_t *d)
 {
     odg_sdo_t *s = &n->sdo;
@@ -296,6 +301,7 @@ static void block_download_end(odg_node_t *n, const uint8_t *d)
     send3(n, 0xA1, 0, 0);
     s->state = ODG_SDO_IDLE;
 }
+#endif /* ODG_NODE_SDO_BLOCK */
 
 /* ---- upload ----------------------------------------------------------------------------- */
 
@@ -326,7 +332,6 @@ static odg_abort_t upload_begin(odg_node_t *n)
     s->total = got < sizeof s->buf ? got : odg_length(&s->ref);
     s->offset = 0;
     s->toggle = 0;
-    s->crc = 0;
     return ac;
 }
 
@@ -375,6 +380,7 @@ static void upload_segment(odg_node_t *n, const uint8_t *d)
     }
 }
 
+#if ODG_NODE_SDO_BLOCK
 static void block_upload_initiate(odg_node_t *n, const uint8_t *d)
 {
     odg_sdo_t *s = &n->sdo;
@@ -494,6 +500,7 @@ static void block_upload(odg_node_t *n, const uint8_t *d)
         s->state = ODG_SDO_IDLE; /* the client confirmed the end */
     }
 }
+#endif /* ODG_NODE_SDO_BLOCK */
 
 /* ---- dispatch ------------------------------------------------------------------------------ */
 
@@ -506,8 +513,11 @@ static void initiate(odg_node_t *n, const uint8_t *d)
     s->sub = d[3];
     s->flags = 0;
     s->n_buf = 0;
-    if (!(ccs == 1u || ccs == 2u || (ccs == 5u && (d[0] & 3u) == 0u) ||
-          (ccs == 6u && (d[0] & 1u) == 0u))) {
+#if ODG_NODE_SDO_BLOCK
+    s->crc = 0;
+#endif
+    if (!(ccs == 1u || ccs == 2u ||
+          (ODG_NODE_SDO_BLOCK && ((ccs == 5u && (d[0] & 3u) == 0u) || (ccs == 6u && (d[0] & 1u) == 0u))))) {
         fail(n, ODG_ABORT_COMMAND);
         return;
     }
@@ -517,16 +527,16 @@ static void initiate(odg_node_t *n, const uint8_t *d)
     }
     if (ccs == 1u) {
         download_initiate(n, d);
-    } else if (ccs == 2u) {
-        if ((ac = upload_begin(n)) != ODG_OK) {
-            fail(n, ac);
-            return;
-        }
-        upload_respond(n);
+#if ODG_NODE_SDO_BLOCK
     } else if (ccs == 5u) {
         block_upload_initiate(n, d);
-    } else {
+    } else if (ccs == 6u) {
         block_download_initiate(n, d);
+#endif
+    } else if ((ac = upload_begin(n)) != ODG_OK) {
+        fail(n, ac);
+    } else {
+        upload_respond(n);
     }
 }
 
@@ -566,6 +576,7 @@ void odg_sdo_receive_(odg_node_t *n, const odg_frame_t *f)
     case ODG_SDO_UP_SEG:
         upload_segment(n, d);
         break;
+#if ODG_NODE_SDO_BLOCK
     case ODG_SDO_BLK_DN:
         block_download_segment(n, d);
         break;
@@ -575,6 +586,10 @@ void odg_sdo_receive_(odg_node_t *n, const odg_frame_t *f)
     default:
         block_upload(n, d);
         break;
+#else
+    default:
+        break;
+#endif
     }
 }
 
@@ -584,7 +599,9 @@ void odg_sdo_tick_(odg_node_t *n, uint32_t ms)
     if (s->state == ODG_SDO_IDLE) {
         return;
     }
+#if ODG_NODE_SDO_BLOCK
     block_upload_pump(n);
+#endif
     s->timer = s->timer + ms < s->timer ? 0xFFFFFFFFu : s->timer + ms;
     if (s->timer >= ODG_NODE_SDO_TIMEOUT_MS) {
         fail(n, ODG_ABORT_TIMEOUT);
