@@ -44,7 +44,7 @@ typedef struct odg_sdo {
     uint8_t sub;
     uint8_t state;        /* ODG_SDO_* */
     uint8_t flags;        /* ODG_SDO_F_* */
-    uint8_t toggle;
+    uint8_t toggle;       /* segmented: the toggle bit expected next, as bit 4 of byte 0 */
     uint8_t n_buf;
     uint8_t buf[8];       /* a number collected whole (down); the first 8 bytes (up) */
 #if ODG_NODE_SDO_BLOCK
