@@ -20,10 +20,8 @@
 
 #define SIZE_UNKNOWN 0xFFFFFFFFu
 
-static uint32_t get32(const uint8_t *p)
-{
-    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
-}
+/* Bytes p[0..3], little-endian (a macro: a function would be called, not inlined, at -Os). */
+#define GET32(p) ((uint32_t)(p)[0] | (uint32_t)(p)[1] << 8 | (uint32_t)(p)[2] << 16 | (uint32_t)(p)[3] << 24)
 
 static void put32(uint8_t *p, uint32_t v)
 {
@@ -69,12 +67,6 @@ static void fail(odg_node_t *n, odg_abort_t code)
 {
     respond(n, 0x80, code);
     n->sdo.state = ODG_SDO_IDLE;
-}
-
-/* A frame whose bytes 1..7 are not index and sub-index (segment and block responses). */
-static void send3(odg_node_t *n, uint8_t b0, uint8_t b1, uint8_t b2)
-{
-    send8(n, b0, b1 | (uint32_t)b2 << 8, 0);
 }
 
 /* ---- download ------------------------------------------------------------------------- */
@@ -129,11 +121,10 @@ static odg_abort_t begin_download(odg_node_t *n, uint32_t total)
     s->total = total;
     s->offset = 0;
     s->toggle = 0;
-    s->flags = (uint8_t)(total == SIZE_UNKNOWN ? 0u : ODG_SDO_F_SIZED);
-    if (total != SIZE_UNKNOWN && total > 8u) {
-        s->flags |= ODG_SDO_F_STREAM;
-    }
-    return (s->flags & ODG_SDO_F_STREAM) && !variable_length(s->ref.sub->type) ? ODG_ABORT_TOO_LONG : ODG_OK;
+    s->flags = (uint8_t)(total == SIZE_UNKNOWN ? 0u
+                         : total > 8u        ? ODG_SDO_F_SIZED | ODG_SDO_F_STREAM
+                                             : ODG_SDO_F_SIZED);
+    return total != SIZE_UNKNOWN && total > 8u && !variable_length(s->ref.sub->type) ? ODG_ABORT_TOO_LONG : ODG_OK;
 }
 
 /* Take the next `len` bytes of a download. Without an indicated size the bytes are
@@ -196,7 +187,7 @@ static odg_abort_t download_initiate(odg_node_t *n, const uint8_t *d)
             ac = write_whole(n, d + 4, len); /* size not indicated: a short number */
         }
     } else {
-        ac = begin_download(n, (d[0] & 0x01u) ? get32(d + 4) : SIZE_UNKNOWN);
+        ac = begin_download(n, (d[0] & 0x01u) ? GET32(d + 4) : SIZE_UNKNOWN);
         s->state = ODG_SDO_DN_SEG;
     }
     if (ac == ODG_OK) {
@@ -219,7 +210,7 @@ static odg_abort_t download_segment(odg_node_t *n, const uint8_t *d)
     if ((ac = take_more(n, d + 1, 7u - (d[0] >> 1 & 7u), d[0] & 0x01u)) != ODG_OK) {
         return ac;
     }
-    send3(n, (uint8_t)(0x20u | toggle), 0, 0); /* bytes 1..7 reserved */
+    send8(n, (uint8_t)(0x20u | toggle), 0, 0); /* bytes 1..7 reserved */
     s->toggle ^= 0x10u;
     if (d[0] & 0x01u) {
         s->state = ODG_SDO_IDLE;
@@ -232,7 +223,7 @@ static odg_abort_t block_download_initiate(odg_node_t *n, const uint8_t *d)
 {
     odg_sdo_t *s = &n->sdo;
     uint8_t blksize = ODG_NODE_SDO_BLKSIZE;
-    odg_abort_t ac = begin_download(n, (d[0] & 0x02u) ? get32(d + 4) : SIZE_UNKNOWN);
+    odg_abort_t ac = begin_download(n, (d[0] & 0x02u) ? GET32(d + 4) : SIZE_UNKNOWN);
     if (ac != ODG_OK) {
         return ac;
     }
@@ -267,7 +258,7 @@ static odg_abort_t block_download_segment(odg_node_t *n, const uint8_t *d)
         s->seq = seq;
     }
     if (seq == s->blksize || last) {
-        send3(n, 0xA2, s->seq, s->blksize); /* ackseq, blksize for the next sub-block */
+        send8(n, 0xA2, s->seq | (uint32_t)s->blksize << 8, 0); /* ackseq, blksize for the next sub-block */
         s->seq = 0;
         if (s->flags & ODG_SDO_F_LAST) {
             s->state = ODG_SDO_BLK_DN_END;
@@ -291,7 +282,7 @@ static odg_abort_t block_download_end(odg_node_t *n, const uint8_t *d)
     if ((ac = take_more(n, s->seg, len, 1)) != ODG_OK) {
         return ac;
     }
-    send3(n, 0xA1, 0, 0);
+    send8(n, 0xA1, 0, 0);
     s->state = ODG_SDO_IDLE;
     return ODG_OK;
 }
@@ -320,8 +311,10 @@ static odg_abort_t upload_data(odg_node_t *n, uint32_t off, uint8_t *out, uint32
 static odg_abort_t upload_begin(odg_node_t *n)
 {
     odg_sdo_t *s = &n->sdo;
-    uint32_t got = 0;
-    odg_abort_t ac = odg_read(&s->ref, 0, s->buf, sizeof s->buf, &got);
+    uint32_t got;
+    odg_abort_t ac;
+    memset(s->buf, 0, sizeof s->buf); /* an expedited upload sends 4 bytes: those not read are 0 */
+    ac = odg_read(&s->ref, 0, s->buf, sizeof s->buf, &got);
     s->n_buf = (uint8_t)got;
     s->total = got < sizeof s->buf ? got : odg_length(&s->ref);
     s->offset = 0;
@@ -333,12 +326,8 @@ static odg_abort_t upload_begin(odg_node_t *n)
 static void upload_respond(odg_node_t *n)
 {
     odg_sdo_t *s = &n->sdo;
-    uint32_t k, v = 0;
     if (s->total >= 1u && s->total <= 4u) {
-        for (k = s->total; k > 0u; k--) {
-            v = v << 8 | s->buf[k - 1u]; /* the bytes read; those after them are 0 */
-        }
-        respond(n, (uint8_t)(0x43u | (4u - s->total) << 2), v);
+        respond(n, (uint8_t)(0x43u | (4u - s->total) << 2), GET32(s->buf));
         s->state = ODG_SDO_IDLE;
         return;
     }
@@ -470,7 +459,7 @@ static odg_abort_t block_upload_ack(odg_node_t *n, const uint8_t *d)
     if (s->flags & ODG_SDO_F_LAST) {
         /* n: bytes of the last segment that hold no data (an empty value sent one empty one) */
         uint32_t used = s->total == 0u ? 0u : (s->total - 1u) % 7u + 1u;
-        send3(n, (uint8_t)(0xC1u | (7u - used) << 2), (uint8_t)s->crc, (uint8_t)(s->crc >> 8));
+        send8(n, (uint8_t)(0xC1u | (7u - used) << 2), s->crc, 0); /* the CRC in bytes 1..2 */
         s->state = ODG_SDO_BLK_UP_END;
         return ODG_OK;
     }
@@ -544,7 +533,7 @@ void odg_sdo_receive_(odg_node_t *n, const odg_frame_t *f)
     memset(d, 0, sizeof d);
     odg_copy(d, f->data, f->len);
     s->timer = 0;
-    if (f->len > 0u && d[0] == 0x80u) {
+    if (d[0] == 0x80u) { /* an empty frame has d[0] = 0 */
         s->state = ODG_SDO_IDLE;
         return;
     }
@@ -587,8 +576,9 @@ void odg_sdo_tick_(odg_node_t *n, uint32_t ms)
         }
     }
 #endif
-    s->timer = s->timer + ms < s->timer ? 0xFFFFFFFFu : s->timer + ms;
-    if (s->timer >= ODG_NODE_SDO_TIMEOUT_MS) {
+    if (ms >= ODG_NODE_SDO_TIMEOUT_MS - s->timer) { /* a transfer under way has timer < the timeout */
         fail(n, ODG_ABORT_TIMEOUT);
+    } else {
+        s->timer += ms;
     }
 }
