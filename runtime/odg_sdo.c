@@ -435,7 +435,7 @@ static odg_abort_t crc_range(odg_node_t *n, uint32_t from, uint32_t to)
 static odg_abort_t block_upload_ack(odg_node_t *n, const uint8_t *d)
 {
     odg_sdo_t *s = &n->sdo;
-    uint32_t acked;
+    uint32_t sent, acked;
     odg_abort_t ac;
     if (d[1] > s->seq) {
         return ODG_ABORT_SEQUENCE;
@@ -443,8 +443,8 @@ static odg_abort_t block_upload_ack(odg_node_t *n, const uint8_t *d)
     if (d[2] == 0u || d[2] > 127u) {
         return ODG_ABORT_BLOCK_SIZE;
     }
-    acked = s->blk_offset + 7u * d[1];
-    acked = acked < s->total ? acked : s->total;
+    sent = s->blk_offset + 7u * d[1]; /* 7 bytes a segment, the last one padded */
+    acked = sent < s->total ? sent : s->total;
     s->crc = s->blk_crc;
     if ((ac = crc_range(n, s->blk_offset, acked)) != ODG_OK) {
         return ac;
@@ -457,9 +457,9 @@ static odg_abort_t block_upload_ack(odg_node_t *n, const uint8_t *d)
     s->blksize = d[2];
     s->seq = 0;
     if (s->flags & ODG_SDO_F_LAST) {
-        /* n: bytes of the last segment that hold no data (an empty value sent one empty one) */
-        uint32_t used = s->total == 0u ? 0u : (s->total - 1u) % 7u + 1u;
-        send8(n, (uint8_t)(0xC1u | (7u - used) << 2), s->crc, 0); /* the CRC in bytes 1..2 */
+        /* n: the last segment's padding (all 7 bytes of an empty value's one segment); the CRC in
+         * bytes 1..2 */
+        send8(n, (uint8_t)(0xC1u | (sent - acked) << 2), s->crc, 0);
         s->state = ODG_SDO_BLK_UP_END;
         return ODG_OK;
     }
@@ -565,20 +565,18 @@ void odg_sdo_receive_(odg_node_t *n, const odg_frame_t *f)
 void odg_sdo_tick_(odg_node_t *n, uint32_t ms)
 {
     odg_sdo_t *s = &n->sdo;
+    odg_abort_t ac = ODG_OK;
     if (s->state == ODG_SDO_IDLE) {
         return;
     }
 #if ODG_NODE_SDO_BLOCK
-    {
-        odg_abort_t ac = block_upload_pump(n);
-        if (ac != ODG_OK) {
-            fail(n, ac);
-        }
-    }
+    ac = block_upload_pump(n);
 #endif
-    if (ms >= ODG_NODE_SDO_TIMEOUT_MS - s->timer) { /* a transfer under way has timer < the timeout */
-        fail(n, ODG_ABORT_TIMEOUT);
-    } else {
-        s->timer += ms;
+    if (ac == ODG_OK && ms >= ODG_NODE_SDO_TIMEOUT_MS - s->timer) { /* under way, timer < the timeout */
+        ac = ODG_ABORT_TIMEOUT;
     }
+    if (ac != ODG_OK) {
+        fail(n, ac);
+    }
+    s->timer += ms;
 }
