@@ -150,7 +150,7 @@ def view(loaded: Loaded, where: Placed, request: Request, diags: Diagnostics) ->
     assert loaded.od is not None
     return build(loaded.od, where.placements, where.persist, _name(request), version=__version__,
                  digest=loaded.identity(), lookup=request.lookup, diags=diags, lss=loaded.lss,
-                 node_caps=loaded.node_caps)
+                 node_caps=loaded.node_caps, sdo_block=loaded.options.node_sdo_block)
 
 
 def render(dict_view: DictView, request: Request, diags: Diagnostics, repairs: list[Repair] | None = None
@@ -251,6 +251,7 @@ def _options(request: Request, diags: Diagnostics, h: hashlib._Hash) -> Options:
     options.entries += user.entries
     options.persist = user.persist
     options.node_lss = options.node_lss or user.node_lss
+    options.node_sdo_block = options.node_sdo_block and user.node_sdo_block
     options.node = {**options.node, **user.node}
     options.source, options.text = user.source, user.text
     return options

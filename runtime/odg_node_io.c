@@ -13,26 +13,20 @@ int odg_io_send_(const odg_node_t *n, uint32_t cob, const uint8_t *data, uint8_t
     memset(&f, 0, sizeof f);
     f.id = ODG_COB_ID(cob);
     f.len = len;
-    if (len > 0u) {
-        odg_copy(f.data, data, len);
-    }
+    odg_copy(f.data, data, len); /* nothing with len 0 (data may be NULL then) */
     return n->cfg.send(n->cfg.send_ctx, &f);
 }
 
 odg_abort_t odg_io_get_(const odg_node_t *n, uint16_t index, uint8_t sub, uint32_t *value)
 {
     odg_ref_t r;
-    uint8_t b[4];
-    uint32_t got = 0, v = 0;
+    uint8_t b[4] = {0, 0, 0, 0}; /* a shorter value leaves the high bytes 0 */
+    uint32_t got;
     odg_abort_t ac = odg_find(n->cfg.dict, index, sub, &r);
     if (ac == ODG_OK) {
         ac = odg_read(&r, 0, b, sizeof b, &got);
     }
-    while (got > 0u) {
-        got--;
-        v = v << 8 | b[got];
-    }
-    *value = v;
+    *value = (uint32_t)b[0] | (uint32_t)b[1] << 8 | (uint32_t)b[2] << 16 | (uint32_t)b[3] << 24;
     return ac;
 }
 

@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
- * odg_sdo.c - the node's SDO server: expedited, segmented and block
- * transfers in both directions, over odg_read / odg_write / odg_write_part.
+ * odg_sdo.c - the node's SDO server: expedited, segmented and (ODG_NODE_SDO_BLOCK) block
+ * transfers in both directions, over odg_read / odg_write / odg_write_part. Without block
+ * transfer a block initiate is answered with abort 0x05040001, as for any unknown command.
  *
  * Downloads of at most 8 bytes (every number) are collected in sdo.buf and written whole
  * with odg_write when complete; longer ones (strings, domains) go to odg_write_part segment
@@ -19,10 +20,8 @@
 
 #define SIZE_UNKNOWN 0xFFFFFFFFu
 
-static uint32_t get32(const uint8_t *p)
-{
-    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
-}
+/* Bytes p[0..3], little-endian (a macro: a function would be called, not inlined, at -Os). */
+#define GET32(p) ((uint32_t)(p)[0] | (uint32_t)(p)[1] << 8 | (uint32_t)(p)[2] << 16 | (uint32_t)(p)[3] << 24)
 
 static void put32(uint8_t *p, uint32_t v)
 {
@@ -32,6 +31,7 @@ static void put32(uint8_t *p, uint32_t v)
     p[3] = (uint8_t)(v >> 24);
 }
 
+#if ODG_NODE_SDO_BLOCK
 /* CRC-16-CCITT of CiA 301 block transfers: polynomial 0x1021, initial value 0, MSB first. */
 static uint16_t crc16(uint16_t crc, const uint8_t *p, uint32_t len)
 {
@@ -44,6 +44,7 @@ static uint16_t crc16(uint16_t crc, const uint8_t *p, uint32_t len)
     }
     return crc;
 }
+#endif
 
 /* An 8-byte frame: byte 0, bytes 1..3 from `mid` and bytes 4..7 from `tail` (little-endian). */
 static void send8(odg_node_t *n, uint8_t b0, uint32_t mid, uint32_t tail)
@@ -66,12 +67,6 @@ static void fail(odg_node_t *n, odg_abort_t code)
 {
     respond(n, 0x80, code);
     n->sdo.state = ODG_SDO_IDLE;
-}
-
-/* A frame whose bytes 1..7 are not index and sub-index (segment and block responses). */
-static void send3(odg_node_t *n, uint8_t b0, uint8_t b1, uint8_t b2)
-{
-    send8(n, b0, b1 | (uint32_t)b2 << 8, 0);
 }
 
 /* ---- download ------------------------------------------------------------------------- */
@@ -125,13 +120,11 @@ static odg_abort_t begin_download(odg_node_t *n, uint32_t total)
     odg_sdo_t *s = &n->sdo;
     s->total = total;
     s->offset = 0;
-    s->crc = 0;
     s->toggle = 0;
-    s->flags = (uint8_t)(total == SIZE_UNKNOWN ? 0u : ODG_SDO_F_SIZED);
-    if (total != SIZE_UNKNOWN && total > 8u) {
-        s->flags |= ODG_SDO_F_STREAM;
-    }
-    return (s->flags & ODG_SDO_F_STREAM) && !variable_length(s->ref.sub->type) ? ODG_ABORT_TOO_LONG : ODG_OK;
+    s->flags = (uint8_t)(total == SIZE_UNKNOWN ? 0u
+                         : total > 8u        ? ODG_SDO_F_SIZED | ODG_SDO_F_STREAM
+                                             : ODG_SDO_F_SIZED);
+    return total != SIZE_UNKNOWN && total > 8u && !variable_length(s->ref.sub->type) ? ODG_ABORT_TOO_LONG : ODG_OK;
 }
 
 /* Take the next `len` bytes of a download. Without an indicated size the bytes are
@@ -141,7 +134,7 @@ static odg_abort_t take(odg_node_t *n, const uint8_t *data, uint32_t len)
 {
     odg_sdo_t *s = &n->sdo;
     odg_abort_t ac;
-    if ((s->flags & ODG_SDO_F_SIZED) && len > s->total - s->offset) {
+    if (len > s->total - s->offset) { /* without a size total is SIZE_UNKNOWN: never */
         return ODG_ABORT_TOO_LONG;
     }
     if (s->flags & ODG_SDO_F_STREAM) {
@@ -153,7 +146,9 @@ static odg_abort_t take(odg_node_t *n, const uint8_t *data, uint32_t len)
     } else {
         odg_copy(s->buf + s->offset, data, len);
     }
+#if ODG_NODE_SDO_BLOCK
     s->crc = crc16(s->crc, data, len);
+#endif
     s->offset += len;
     return ODG_OK;
 }
@@ -178,124 +173,120 @@ static odg_abort_t take_more(odg_node_t *n, const uint8_t *data, uint32_t len, u
     return ac == ODG_OK && last ? finish_download(n) : ac;
 }
 
-static void download_initiate(odg_node_t *n, const uint8_t *d)
+/* Each step below answers the client itself and returns ODG_OK, or returns the abort code
+ * that odg_sdo_receive_ then sends (fail), which ends the transfer. */
+
+static odg_abort_t download_initiate(odg_node_t *n, const uint8_t *d)
 {
     odg_sdo_t *s = &n->sdo;
     odg_abort_t ac;
     if (d[0] & 0x02u) { /* expedited */
         uint32_t len = (d[0] & 0x01u) ? 4u - (d[0] >> 2 & 3u) : 4u;
         ac = write_whole(n, d + 4, len);
-        if (ac == ODG_ABORT_TOO_LONG && !(d[0] & 0x01u) && odg_length(&s->ref) < 4u) {
-            ac = write_whole(n, d + 4, odg_length(&s->ref)); /* size not indicated: a short number */
+        if (ac == ODG_ABORT_TOO_LONG && !(d[0] & 0x01u) && (len = odg_length(&s->ref)) < 4u) {
+            ac = write_whole(n, d + 4, len); /* size not indicated: a short number */
         }
-        if (ac != ODG_OK) {
-            fail(n, ac);
-            return;
-        }
+    } else {
+        ac = begin_download(n, (d[0] & 0x01u) ? GET32(d + 4) : SIZE_UNKNOWN);
+        s->state = ODG_SDO_DN_SEG;
+    }
+    if (ac == ODG_OK) {
         respond(n, 0x60, 0);
-        return;
     }
-    if ((ac = begin_download(n, (d[0] & 0x01u) ? get32(d + 4) : SIZE_UNKNOWN)) != ODG_OK) {
-        fail(n, ac);
-        return;
-    }
-    respond(n, 0x60, 0);
-    s->state = ODG_SDO_DN_SEG;
+    return ac;
 }
 
-static void download_segment(odg_node_t *n, const uint8_t *d)
+static odg_abort_t download_segment(odg_node_t *n, const uint8_t *d)
 {
     odg_sdo_t *s = &n->sdo;
     odg_abort_t ac;
-    uint8_t toggle = (uint8_t)(d[0] >> 4 & 1u);
+    uint8_t toggle = d[0] & 0x10u;
     if ((d[0] >> 5) != 0u) {
-        fail(n, ODG_ABORT_COMMAND);
-        return;
+        return ODG_ABORT_COMMAND;
     }
     if (toggle != s->toggle) {
-        fail(n, ODG_ABORT_TOGGLE);
-        return;
+        return ODG_ABORT_TOGGLE;
     }
     if ((ac = take_more(n, d + 1, 7u - (d[0] >> 1 & 7u), d[0] & 0x01u)) != ODG_OK) {
-        fail(n, ac);
-        return;
+        return ac;
     }
-    send3(n, (uint8_t)(0x20u | (unsigned)toggle << 4), 0, 0); /* bytes 1..7 reserved */
-    s->toggle ^= 1u;
+    send8(n, (uint8_t)(0x20u | toggle), 0, 0); /* bytes 1..7 reserved */
+    s->toggle ^= 0x10u;
     if (d[0] & 0x01u) {
         s->state = ODG_SDO_IDLE;
     }
+    return ODG_OK;
 }
 
-static void block_download_initiate(odg_node_t *n, const uint8_t *d)
+#if ODG_NODE_SDO_BLOCK
+static odg_abort_t block_download_initiate(odg_node_t *n, const uint8_t *d)
 {
     odg_sdo_t *s = &n->sdo;
     uint8_t blksize = ODG_NODE_SDO_BLKSIZE;
-    odg_abort_t ac = begin_download(n, (d[0] & 0x02u) ? get32(d + 4) : SIZE_UNKNOWN);
+    odg_abort_t ac = begin_download(n, (d[0] & 0x02u) ? GET32(d + 4) : SIZE_UNKNOWN);
     if (ac != ODG_OK) {
-        fail(n, ac);
-        return;
+        return ac;
     }
     if (d[0] & 0x04u) {
         s->flags |= ODG_SDO_F_CRC;
     }
+    s->crc = 0;
     s->blksize = blksize;
     s->seq = 0;
     respond(n, 0xA4, blksize); /* sc = 1: the server checks the CRC */
     s->state = ODG_SDO_BLK_DN;
+    return ODG_OK;
 }
 
 /* A segment of a sub-block: byte 0 is c (last) << 7 | sequence number. A segment out of
  * order (one was lost) is ignored; the ack then names the last good one, and the client
  * repeats the rest in the next sub-block. */
-static void block_download_segment(odg_node_t *n, const uint8_t *d)
+static odg_abort_t block_download_segment(odg_node_t *n, const uint8_t *d)
 {
     odg_sdo_t *s = &n->sdo;
     uint8_t seq = d[0] & 0x7Fu, last = d[0] & 0x80u;
     odg_abort_t ac;
     if (seq == 0u || seq > s->blksize) {
-        fail(n, ODG_ABORT_SEQUENCE);
-        return;
+        return ODG_ABORT_SEQUENCE;
     }
     if (seq == s->seq + 1u && !(s->flags & ODG_SDO_F_LAST)) {
         if ((s->flags & ODG_SDO_F_HELD) && (ac = take(n, s->seg, 7)) != ODG_OK) {
-            fail(n, ac);
-            return;
+            return ac;
         }
         odg_copy(s->seg, d + 1, 7);
         s->flags |= (uint8_t)(ODG_SDO_F_HELD | (last ? ODG_SDO_F_LAST : 0u));
         s->seq = seq;
     }
     if (seq == s->blksize || last) {
-        send3(n, 0xA2, s->seq, s->blksize); /* ackseq, blksize for the next sub-block */
+        send8(n, 0xA2, s->seq | (uint32_t)s->blksize << 8, 0); /* ackseq, blksize for the next sub-block */
         s->seq = 0;
         if (s->flags & ODG_SDO_F_LAST) {
             s->state = ODG_SDO_BLK_DN_END;
         }
     }
+    return ODG_OK;
 }
 
-static void block_download_end(odg_node_t *n, const uint8_t *d)
+static odg_abort_t block_download_end(odg_node_t *n, const uint8_t *d)
 {
     odg_sdo_t *s = &n->sdo;
     uint32_t len = 7u - (d[0] >> 2 & 7u);
     odg_abort_t ac;
     if ((d[0] & 0xE3u) != 0xC1u) {
-        fail(n, ODG_ABORT_COMMAND);
-        return;
+        return ODG_ABORT_COMMAND;
     }
     if ((s->flags & ODG_SDO_F_CRC) &&
         crc16(s->crc, s->seg, len) != (uint16_t)(d[1] | (unsigned)d[2] << 8)) {
-        fail(n, ODG_ABORT_CRC);
-        return;
+        return ODG_ABORT_CRC;
     }
     if ((ac = take_more(n, s->seg, len, 1)) != ODG_OK) {
-        fail(n, ac);
-        return;
+        return ac;
     }
-    send3(n, 0xA1, 0, 0);
+    send8(n, 0xA1, 0, 0);
     s->state = ODG_SDO_IDLE;
+    return ODG_OK;
 }
+#endif /* ODG_NODE_SDO_BLOCK */
 
 /* ---- upload ----------------------------------------------------------------------------- */
 
@@ -320,13 +311,14 @@ static odg_abort_t upload_data(odg_node_t *n, uint32_t off, uint8_t *out, uint32
 static odg_abort_t upload_begin(odg_node_t *n)
 {
     odg_sdo_t *s = &n->sdo;
-    uint32_t got = 0;
-    odg_abort_t ac = odg_read(&s->ref, 0, s->buf, sizeof s->buf, &got);
+    uint32_t got;
+    odg_abort_t ac;
+    memset(s->buf, 0, sizeof s->buf); /* an expedited upload sends 4 bytes: those not read are 0 */
+    ac = odg_read(&s->ref, 0, s->buf, sizeof s->buf, &got);
     s->n_buf = (uint8_t)got;
     s->total = got < sizeof s->buf ? got : odg_length(&s->ref);
     s->offset = 0;
     s->toggle = 0;
-    s->crc = 0;
     return ac;
 }
 
@@ -334,12 +326,8 @@ static odg_abort_t upload_begin(odg_node_t *n)
 static void upload_respond(odg_node_t *n)
 {
     odg_sdo_t *s = &n->sdo;
-    uint32_t k, v = 0;
     if (s->total >= 1u && s->total <= 4u) {
-        for (k = s->total; k > 0u; k--) {
-            v = v << 8 | s->buf[k - 1u]; /* the bytes read; those after them are 0 */
-        }
-        respond(n, (uint8_t)(0x43u | (4u - s->total) << 2), v);
+        respond(n, (uint8_t)(0x43u | (4u - s->total) << 2), GET32(s->buf));
         s->state = ODG_SDO_IDLE;
         return;
     }
@@ -347,59 +335,66 @@ static void upload_respond(odg_node_t *n)
     s->state = ODG_SDO_UP_SEG;
 }
 
-static void upload_segment(odg_node_t *n, const uint8_t *d)
+static odg_abort_t upload_initiate(odg_node_t *n)
+{
+    odg_abort_t ac = upload_begin(n);
+    if (ac == ODG_OK) {
+        upload_respond(n);
+    }
+    return ac;
+}
+
+static odg_abort_t upload_segment(odg_node_t *n, const uint8_t *d)
 {
     odg_sdo_t *s = &n->sdo;
-    uint8_t f[8], toggle = (uint8_t)(d[0] >> 4 & 1u);
+    uint8_t f[8], toggle = d[0] & 0x10u;
     uint32_t len = s->total - s->offset < 7u ? s->total - s->offset : 7u;
     odg_abort_t ac;
     if ((d[0] & 0xEFu) != 0x60u) {
-        fail(n, ODG_ABORT_COMMAND);
-        return;
+        return ODG_ABORT_COMMAND;
     }
     if (toggle != s->toggle) {
-        fail(n, ODG_ABORT_TOGGLE);
-        return;
+        return ODG_ABORT_TOGGLE;
     }
     memset(f, 0, sizeof f);
     if ((ac = upload_data(n, s->offset, f + 1, len)) != ODG_OK) {
-        fail(n, ac);
-        return;
+        return ac;
     }
     s->offset += len;
-    f[0] = (uint8_t)((unsigned)toggle << 4 | (7u - len) << 1 | (s->offset >= s->total ? 1u : 0u));
+    f[0] = (uint8_t)(toggle | (7u - len) << 1 | (s->offset >= s->total ? 1u : 0u));
     (void)odg_io_send_(n, n->sdo_tx, f, 8);
-    s->toggle ^= 1u;
+    s->toggle ^= 0x10u;
     if (s->offset >= s->total) {
         s->state = ODG_SDO_IDLE;
     }
+    return ODG_OK;
 }
 
-static void block_upload_initiate(odg_node_t *n, const uint8_t *d)
+#if ODG_NODE_SDO_BLOCK
+static odg_abort_t block_upload_initiate(odg_node_t *n, const uint8_t *d)
 {
     odg_sdo_t *s = &n->sdo;
     odg_abort_t ac;
     if (d[4] == 0u || d[4] > 127u) {
-        fail(n, ODG_ABORT_BLOCK_SIZE);
-        return;
+        return ODG_ABORT_BLOCK_SIZE;
     }
     if ((ac = upload_begin(n)) != ODG_OK) {
-        fail(n, ac);
-        return;
+        return ac;
     }
     if (d[5] != 0u && s->total <= d[5]) {
         upload_respond(n); /* protocol switch threshold: a plain upload is cheaper */
-        return;
+        return ODG_OK;
     }
     s->blksize = d[4];
     s->flags = (d[0] & 0x04u) ? ODG_SDO_F_CRC : 0u;
     respond(n, 0xC6, s->total); /* sc = 1 (CRC supported), s = 1 (size indicated) */
     s->state = ODG_SDO_BLK_UP_START;
+    return ODG_OK;
 }
 
 /* Send the segments of the sub-block not yet sent; stops early when `send` is busy (the
  * next tick resumes). The last segment carries c = 1, and an empty value one empty segment. */
-static void block_upload_pump(odg_node_t *n)
+static odg_abort_t block_upload_pump(odg_node_t *n)
 {
     odg_sdo_t *s = &n->sdo;
     uint8_t f[8];
@@ -409,17 +404,17 @@ static void block_upload_pump(odg_node_t *n)
         odg_abort_t ac;
         memset(f, 0, sizeof f);
         if ((ac = upload_data(n, s->offset, f + 1, len)) != ODG_OK) {
-            fail(n, ac);
-            return;
+            return ac;
         }
         f[0] = (uint8_t)(last | (s->seq + 1u));
         if (odg_io_send_(n, n->sdo_tx, f, 8) != 0) {
-            return;
+            break;
         }
         s->seq++;
         s->offset += len;
         s->flags |= last ? ODG_SDO_F_LAST : 0u;
     }
+    return ODG_OK;
 }
 
 /* CRC of the acknowledged bytes [from, to), read again: cheaper in RAM than keeping a CRC
@@ -437,25 +432,22 @@ static odg_abort_t crc_range(odg_node_t *n, uint32_t from, uint32_t to)
     return ac;
 }
 
-static void block_upload_ack(odg_node_t *n, const uint8_t *d)
+static odg_abort_t block_upload_ack(odg_node_t *n, const uint8_t *d)
 {
     odg_sdo_t *s = &n->sdo;
-    uint32_t acked;
+    uint32_t sent, acked;
     odg_abort_t ac;
     if (d[1] > s->seq) {
-        fail(n, ODG_ABORT_SEQUENCE);
-        return;
+        return ODG_ABORT_SEQUENCE;
     }
     if (d[2] == 0u || d[2] > 127u) {
-        fail(n, ODG_ABORT_BLOCK_SIZE);
-        return;
+        return ODG_ABORT_BLOCK_SIZE;
     }
-    acked = s->blk_offset + 7u * d[1];
-    acked = acked < s->total ? acked : s->total;
+    sent = s->blk_offset + 7u * d[1]; /* 7 bytes a segment, the last one padded */
+    acked = sent < s->total ? sent : s->total;
     s->crc = s->blk_crc;
     if ((ac = crc_range(n, s->blk_offset, acked)) != ODG_OK) {
-        fail(n, ac);
-        return;
+        return ac;
     }
     if (d[1] < s->seq) {
         s->flags &= (uint8_t)~ODG_SDO_F_LAST; /* repeat from the first segment not acked */
@@ -465,69 +457,65 @@ static void block_upload_ack(odg_node_t *n, const uint8_t *d)
     s->blksize = d[2];
     s->seq = 0;
     if (s->flags & ODG_SDO_F_LAST) {
-        /* n: bytes of the last segment that hold no data (an empty value sent one empty one) */
-        uint32_t used = s->total == 0u ? 0u : (s->total - 1u) % 7u + 1u;
-        send3(n, (uint8_t)(0xC1u | (7u - used) << 2), (uint8_t)s->crc, (uint8_t)(s->crc >> 8));
+        /* n: the last segment's padding (all 7 bytes of an empty value's one segment); the CRC in
+         * bytes 1..2 */
+        send8(n, (uint8_t)(0xC1u | (sent - acked) << 2), s->crc, 0);
         s->state = ODG_SDO_BLK_UP_END;
-        return;
+        return ODG_OK;
     }
-    block_upload_pump(n);
+    return block_upload_pump(n);
 }
 
-static void block_upload(odg_node_t *n, const uint8_t *d)
+static odg_abort_t block_upload(odg_node_t *n, const uint8_t *d)
 {
     odg_sdo_t *s = &n->sdo;
-    uint8_t want = s->state == ODG_SDO_BLK_UP_START ? 0xA3u
-                   : s->state == ODG_SDO_BLK_UP     ? 0xA2u
-                                                     : 0xA1u;
-    if (d[0] != want) {
-        fail(n, ODG_ABORT_COMMAND);
-    } else if (s->state == ODG_SDO_BLK_UP_START) {
+    /* start 0xA3 (BLK_UP_START), ack 0xA2 (BLK_UP), end 0xA1 (BLK_UP_END): the states in order */
+    if (d[0] != 0xA3u - (unsigned)(s->state - ODG_SDO_BLK_UP_START)) {
+        return ODG_ABORT_COMMAND;
+    }
+    if (s->state == ODG_SDO_BLK_UP_START) {
         s->state = ODG_SDO_BLK_UP;
         s->blk_offset = s->offset = 0;
         s->blk_crc = 0;
         s->seq = 0;
-        block_upload_pump(n);
-    } else if (s->state == ODG_SDO_BLK_UP) {
-        block_upload_ack(n, d);
-    } else {
-        s->state = ODG_SDO_IDLE; /* the client confirmed the end */
+        return block_upload_pump(n);
     }
+    if (s->state == ODG_SDO_BLK_UP) {
+        return block_upload_ack(n, d);
+    }
+    s->state = ODG_SDO_IDLE; /* the client confirmed the end */
+    return ODG_OK;
 }
+#endif /* ODG_NODE_SDO_BLOCK */
 
 /* ---- dispatch ------------------------------------------------------------------------------ */
 
-static void initiate(odg_node_t *n, const uint8_t *d)
+static odg_abort_t initiate(odg_node_t *n, const uint8_t *d)
 {
     odg_sdo_t *s = &n->sdo;
     odg_abort_t ac;
     unsigned ccs = d[0] >> 5;
     s->index = (uint16_t)(d[1] | (unsigned)d[2] << 8);
     s->sub = d[3];
-    s->flags = 0;
-    s->n_buf = 0;
-    if (!(ccs == 1u || ccs == 2u || (ccs == 5u && (d[0] & 3u) == 0u) ||
-          (ccs == 6u && (d[0] & 1u) == 0u))) {
-        fail(n, ODG_ABORT_COMMAND);
-        return;
+    if (!(ccs == 1u || ccs == 2u ||
+          (ODG_NODE_SDO_BLOCK && ((ccs == 5u && (d[0] & 3u) == 0u) || (ccs == 6u && (d[0] & 1u) == 0u))))) {
+        return ODG_ABORT_COMMAND;
     }
     if ((ac = odg_find(n->cfg.dict, s->index, s->sub, &s->ref)) != ODG_OK) {
-        fail(n, ac);
-        return;
+        return ac;
     }
     if (ccs == 1u) {
-        download_initiate(n, d);
-    } else if (ccs == 2u) {
-        if ((ac = upload_begin(n)) != ODG_OK) {
-            fail(n, ac);
-            return;
-        }
-        upload_respond(n);
-    } else if (ccs == 5u) {
-        block_upload_initiate(n, d);
-    } else {
-        block_download_initiate(n, d);
+        return download_initiate(n, d);
     }
+#if ODG_NODE_SDO_BLOCK
+    if (ccs == 5u) {
+        return block_upload_initiate(n, d);
+    }
+    if (ccs == 6u) {
+        return block_download_initiate(n, d);
+    }
+#endif
+    return upload_initiate(n);
 }
 
 /*
@@ -541,10 +529,11 @@ void odg_sdo_receive_(odg_node_t *n, const odg_frame_t *f)
 {
     odg_sdo_t *s = &n->sdo;
     uint8_t d[8];
+    odg_abort_t ac = ODG_ABORT_COMMAND;
     memset(d, 0, sizeof d);
     odg_copy(d, f->data, f->len);
     s->timer = 0;
-    if (f->len > 0u && d[0] == 0x80u) {
+    if (d[0] == 0x80u) { /* an empty frame has d[0] = 0 */
         s->state = ODG_SDO_IDLE;
         return;
     }
@@ -553,40 +542,41 @@ void odg_sdo_receive_(odg_node_t *n, const odg_frame_t *f)
             s->index = (uint16_t)(d[1] | (unsigned)d[2] << 8);
             s->sub = d[3];
         }
-        fail(n, ODG_ABORT_COMMAND);
-        return;
+    } else if (s->state == ODG_SDO_IDLE) {
+        ac = initiate(n, d);
+    } else if (s->state == ODG_SDO_DN_SEG) {
+        ac = download_segment(n, d);
+    } else if (s->state == ODG_SDO_UP_SEG) {
+        ac = upload_segment(n, d);
+#if ODG_NODE_SDO_BLOCK
+    } else if (s->state == ODG_SDO_BLK_DN) {
+        ac = block_download_segment(n, d);
+    } else if (s->state == ODG_SDO_BLK_DN_END) {
+        ac = block_download_end(n, d);
+    } else {
+        ac = block_upload(n, d);
+#endif
     }
-    switch (s->state) {
-    case ODG_SDO_IDLE:
-        initiate(n, d);
-        break;
-    case ODG_SDO_DN_SEG:
-        download_segment(n, d);
-        break;
-    case ODG_SDO_UP_SEG:
-        upload_segment(n, d);
-        break;
-    case ODG_SDO_BLK_DN:
-        block_download_segment(n, d);
-        break;
-    case ODG_SDO_BLK_DN_END:
-        block_download_end(n, d);
-        break;
-    default:
-        block_upload(n, d);
-        break;
+    if (ac != ODG_OK) {
+        fail(n, ac);
     }
 }
 
 void odg_sdo_tick_(odg_node_t *n, uint32_t ms)
 {
     odg_sdo_t *s = &n->sdo;
+    odg_abort_t ac = ODG_OK;
     if (s->state == ODG_SDO_IDLE) {
         return;
     }
-    block_upload_pump(n);
-    s->timer = s->timer + ms < s->timer ? 0xFFFFFFFFu : s->timer + ms;
-    if (s->timer >= ODG_NODE_SDO_TIMEOUT_MS) {
-        fail(n, ODG_ABORT_TIMEOUT);
+#if ODG_NODE_SDO_BLOCK
+    ac = block_upload_pump(n);
+#endif
+    if (ac == ODG_OK && ms >= ODG_NODE_SDO_TIMEOUT_MS - s->timer) { /* under way, timer < the timeout */
+        ac = ODG_ABORT_TIMEOUT;
     }
+    if (ac != ODG_OK) {
+        fail(n, ac);
+    }
+    s->timer += ms;
 }

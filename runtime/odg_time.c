@@ -22,9 +22,11 @@ void odg_time_receive_(odg_node_t *n, const odg_frame_t *f)
 odg_abort_t odg_node_time_send(odg_node_t *node, uint32_t ms, uint16_t days)
 {
     uint8_t d[6];
-    if (!odg_io_talking_(node) ||
-        !(node->time.cob & ODG_TIME_PRODUCE) || ms > ODG_TIME_MS_MASK) {
-        return ms > ODG_TIME_MS_MASK ? ODG_ABORT_VALUE_RANGE : ODG_ABORT_DATA_STATE;
+    if (ms > ODG_TIME_MS_MASK) {
+        return ODG_ABORT_VALUE_RANGE;
+    }
+    if (!odg_io_talking_(node) || !(node->time.cob & ODG_TIME_PRODUCE)) {
+        return ODG_ABORT_DATA_STATE;
     }
     d[0] = (uint8_t)ms;
     d[1] = (uint8_t)(ms >> 8);

@@ -46,3 +46,18 @@ def test_replay_corpus(harness: str, cc: str, tmp_path: Path) -> None:
     assert done.returncode == 0, (done.stdout + done.stderr)[-6000:]
     assert done.stdout.strip() == f"replayed {len(files)} inputs"
 
+
+
+def test_replay_sdo_without_block_transfer(tmp_path: Path) -> None:
+    """The SDO corpus (block transfers among it) against a server built without block transfer
+    (ODG_NODE_SDO_BLOCK 0): every block frame is then a command it refuses, and the harness's
+    properties hold as with it."""
+    gen = generate("alltypes", tmp_path / "alltypes")
+    exe = tmp_path / "replay_sdo_noblock"
+    build("gcc", (*SANITIZE, "-DODG_NODE_SDO_BLOCK=0"),
+          (FUZZ / "fuzz_sdo.c", FUZZ / "replay.c", gen / "alltypes.c", *NODE_SOURCES), (gen, RUNTIME, FUZZ), exe)
+    files = corpus("sdo")
+    done = subprocess.run([str(exe), *map(str, files)], capture_output=True, text=True, check=False, timeout=300,
+                          env={**os.environ, "UBSAN_OPTIONS": "print_stacktrace=1"})
+    assert done.returncode == 0, (done.stdout + done.stderr)[-6000:]
+    assert done.stdout.strip() == f"replayed {len(files)} inputs"

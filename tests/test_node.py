@@ -41,6 +41,7 @@ DICTS: dict[str, tuple[Path, Path | None]] = {
     "pdo_node": (NODE_TESTS / "pdo-node.eds", None),
     "lss_node": (NODE_TESTS / "lss-node.eds", NODE_TESTS / "lss-node.toml"),
     "wide_node": (NODE_TESTS / "wide-node.eds", None),
+    "noblock_node": (FIXTURES / "generate" / "alltypes.eds", NODE_TESTS / "noblock-node.toml"),
 }
 # test program -> (dictionary, extra runtime sources)
 PROGRAMS: dict[str, tuple[str, tuple[Path, ...]]] = {
@@ -54,17 +55,20 @@ PROGRAMS: dict[str, tuple[str, tuple[Path, ...]]] = {
     "test_node_window": ("lss_node", ()),
     "test_node_wide": ("wide_node", ()),
     "test_node_can": ("pdo_node", ()),
+    "test_node_noblock": ("noblock_node", ()),  # [node] sdo_block = false: no SDO block transfer
 }
 LSS = ("-DODG_NODE_LSS=1",)  # the node and the program are built with the LSS slave
+NO_BLOCK = ("-DODG_NODE_SDO_BLOCK=0",)  # the SDO server without block transfer
 # test_node_wide: sized by the dictionary alone (8 + 8 PDOs, 32 mapping entries), no other define
-DEFINES: dict[str, tuple[str, ...]] = {"test_node_lss": LSS, "test_node_wide": ('-DODG_CONFIG="wide_node_config.h"',)}
+DEFINES: dict[str, tuple[str, ...]] = {"test_node_lss": LSS, "test_node_wide": ('-DODG_CONFIG="wide_node_config.h"',),
+                                       "test_node_noblock": ('-DODG_CONFIG="noblock_node_config.h"',)}
 
 
 
 def generate(name: str, out: Path, with_options: bool = True) -> Path:
     eds, options = DICTS[name]
     out.mkdir(parents=True, exist_ok=True)
-    cmd = [sys.executable, "-m", "odgen", "generate", str(eds), "-o", str(out)]
+    cmd = [sys.executable, "-m", "odgen", "generate", str(eds), "-o", str(out), "--name", name]
     if options is not None and with_options:
         cmd += ["--options", str(options)]
     done = subprocess.run(cmd, capture_output=True, text=True, check=False)
@@ -121,13 +125,28 @@ def test_small_communication_copy(size: int, generated: Path, tmp_path: Path) ->
 
 @pytest.mark.parametrize("cc", ["gcc", "clang"])
 def test_node_sources_warning_free(cc: str, tmp_path: Path) -> None:
-    """The node sources compile alone, -Wconversion clean, with and without the LSS slave; the
-    Linux ones too."""
-    for source, defines in [(s, d) for s in (*NODE, LINUX / "odg_socketcan.c") for d in ((), LSS)]:
+    """The node sources compile alone, -Wconversion clean, with and without the LSS slave and SDO
+    block transfer; the Linux ones too."""
+    for source, defines in [(s, d) for s in (*NODE, LINUX / "odg_socketcan.c") for d in ((), LSS, NO_BLOCK)]:
         cmd = [compiler(cc), *STRICT, *EXTRA, *defines, "-Os", f"-I{RUNTIME}", f"-I{LINUX}", "-c", str(source),
                "-o", str(tmp_path / (source.name + ".o"))]
         done = subprocess.run(cmd, capture_output=True, text=True, check=False)
         assert done.returncode == 0, f"{' '.join(cmd)}\n{done.stderr}"
+
+
+def test_no_block_code_without_sdo_block(tmp_path: Path) -> None:
+    """Without ODG_NODE_SDO_BLOCK the SDO server has no block transfer code at all (unoptimised,
+    so that every static function would show), with it the same names are there."""
+    def names(*defines: str) -> set[str]:
+        obj = tmp_path / f"odg_sdo{len(defines)}.o"
+        subprocess.run([compiler("gcc"), *STRICT, *defines, "-O0", f"-I{RUNTIME}", "-c", str(RUNTIME / "odg_sdo.c"),
+                        "-o", str(obj)], check=True)
+        out = subprocess.run(["nm", str(obj)], capture_output=True, text=True, check=True).stdout
+        return {line.split()[-1] for line in out.splitlines() if line.strip()}
+
+    block = {n for n in names() if "block" in n or "crc" in n}
+    assert {"block_download_initiate", "block_upload_initiate", "crc16"} <= block
+    assert not names(*NO_BLOCK) & block
 
 
 def test_node_core_has_no_stdio_or_heap() -> None:

@@ -53,7 +53,8 @@ def test_node_options_mistakes(text: str, tmp_path: Path, capsys: pytest.Capture
     assert cli.main(["generate", str(NODE_TESTS / "lss-node.eds"), "--options", str(opts), "-o",
                      str(tmp_path / "out")]) != 0
     err = capsys.readouterr().err
-    assert "error[GEN001]" in err and ("[node] takes lss = true or false" in err or "[node] has no key 'lsss'" in err)
+    assert "error[GEN001]" in err
+    assert "[node] takes lss and sdo_block = true or false" in err or "[node] has no key 'lsss'" in err
 
 
 @pytest.mark.parametrize(("eds", "args", "node_args"), [

@@ -14,6 +14,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 from odgen import toolchain
 from odgen.pipeline import Request, generate
 
@@ -42,7 +44,7 @@ def test_the_dictionary_decides_every_limit(tmp_path: Path) -> None:
     got, _ = config_of(WIDE, None, tmp_path)
     assert got == {"ODG_NODE_MAX_RPDO": 8, "ODG_NODE_MAX_TPDO": 8, "ODG_NODE_MAX_MAP": 32, "ODG_NODE_MAX_HB": 1,
                    "ODG_NODE_COMM_BYTES": got["ODG_NODE_COMM_BYTES"], "ODG_NODE_MAX_ERRORS": 8,
-                   "ODG_NODE_EMCY_QUEUE": 4, "ODG_NODE_LSS": 0}
+                   "ODG_NODE_EMCY_QUEUE": 4, "ODG_NODE_LSS": 0, "ODG_NODE_SDO_BLOCK": 1}
     lss, _ = config_of(NODE_TESTS / "lss-node.eds", None, tmp_path)
     assert lss["ODG_NODE_LSS"] == 1 and lss["ODG_NODE_MAX_HB"] >= 1
 
@@ -53,6 +55,24 @@ def test_options_lower_limits_the_description_does_not_need(tmp_path: Path) -> N
     assert not diags
     assert (got["ODG_NODE_MAX_ERRORS"], got["ODG_NODE_EMCY_QUEUE"], got["ODG_NODE_COMM_BYTES"]) == (2, 1, 0)
     assert (got["ODG_NODE_MAX_TPDO"], got["ODG_NODE_MAX_RPDO"]) == (8, 8)  # more than the description: no use
+
+
+@pytest.mark.parametrize(("options", "block"), [
+    (None, 1), ("[node]\nsdo_block = true\n", 1), ("[node]\nsdo_block = false\n", 0),
+    ("[node]\nsdo_block = false\nlss = true\nerrors = 2\n", 0),
+])
+def test_sdo_block_switch_reaches_the_config(options: str | None, block: int, tmp_path: Path) -> None:
+    got, diags = config_of(WIDE, options, tmp_path)
+    assert not diags
+    assert got["ODG_NODE_SDO_BLOCK"] == block
+    assert got["ODG_NODE_MAX_RPDO"] == 8  # nothing else changes
+
+
+@pytest.mark.parametrize("value", ["0", '"no"', "[]"])
+def test_sdo_block_takes_true_or_false(value: str, tmp_path: Path) -> None:
+    got, diags = config_of(WIDE, f"[node]\nsdo_block = {value}\n", tmp_path)
+    assert got == {}, "refused: nothing generated"
+    assert any("GEN001" in d and "sdo_block = true or false" in d for d in diags), diags
 
 
 def test_what_a_lowered_limit_leaves_out_is_refused(tmp_path: Path) -> None:
@@ -68,7 +88,7 @@ def test_bad_node_keys_are_gen001_at_their_line(tmp_path: Path) -> None:
     _, diags = config_of(WIDE, "[node]\nlss = false\ntpdos = 4\nmapping = 65\nerrors = true\n", tmp_path)
     assert [d.split(": ", 1)[0].rsplit("/", 1)[1] for d in diags] == ["node.toml:3", "node.toml:4", "node.toml:5"]
     assert all("error[GEN001]" in d for d in diags)
-    assert "use lss or rpdo, tpdo" in diags[0] and "0..64" in diags[1] and "1..255" in diags[2]
+    assert "use lss, sdo_block or rpdo, tpdo" in diags[0] and "0..64" in diags[1] and "1..255" in diags[2]
 
 
 def test_the_cli_refuses_and_writes_nothing(tmp_path: Path) -> None:

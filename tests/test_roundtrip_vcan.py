@@ -107,3 +107,25 @@ def test_roundtrip_runs_the_battery(vcan_bus, tmp_path) -> None:
     for checks, ran in ((example, "store.save-load"), (example, "nmt.boot-up"), (example, "nmt.reset-comm"),
                         (example, "sdo.upload"), (pdo, "nmt.hb-consumer"), (pdo, "emcy.error-register")):
         assert not checks[ran]["skipped"] and checks[ran]["passed"] and not checks[ran]["failed"], checks[ran]
+
+
+def test_roundtrip_without_block_transfer(vcan_bus, tmp_path) -> None:
+    """A node built with `[node] sdo_block = false` answers block initiates with abort 0x05040001, as
+    CiA 301 allows: the round trip's strings check notes that block transfer is not supported and
+    still checks the segmented transfers, and the battery's SDO checks pass."""
+    options = tmp_path / "noblock.toml"
+    options.write_text("[node]\nsdo_block = false\n", encoding="utf-8")
+    report = tmp_path / "report.json"
+    cmd = [sys.executable, "-m", "odgen", "roundtrip", "--report", str(report), "--options", str(options),
+           "--select", "roundtrip.strings,sdo", str(ROOT / "tests" / "fixtures" / "generate" / "alltypes.eds")]
+    run = vcan_bus.run(cmd, env=dict(os.environ, ODGEN_CACHE=str(CACHE)), cwd=ROOT, timeout=600)
+    assert report.is_file(), run.stdout[-3000:] + run.stderr[-3000:]
+    assert run.returncode == 0, run.stdout[-4000:]
+    checks = {c["id"]: c for c in json.loads(report.read_text())["files"][0]["checks"]}
+    strings = checks["roundtrip.strings"]
+    assert strings["passed"] and not strings["failed"] and not strings["skipped"], strings
+    assert [n.split(":")[0] for n in strings["notes"]] == ["block download not supported",
+                                                           "block upload not supported"], strings
+    assert "note: block download not supported" in run.stdout
+    assert {"sdo.upload", "sdo.limits", "sdo.lengths"} <= set(checks)
+    assert all(not c["failed"] for c in checks.values()), checks

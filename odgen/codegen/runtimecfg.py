@@ -123,7 +123,7 @@ class NodeLimit:
 
 
 def node_options(raw: dict[str, object], source: str, text: str, diags: Diagnostics) -> dict[str, int]:
-    """The limit keys of an options file's [node] table (lss is read with the placement options);
+    """The limit keys of an options file's [node] table (lss and sdo_block are read with the placement options);
     a key odgen does not know, or a value out of its range, is GEN001 at the key's line."""
     keys = {k.key: k for k in (*NODE_KEYS, MASTER_SLAVES)}
     limits: dict[str, int] = {}
@@ -131,7 +131,7 @@ def node_options(raw: dict[str, object], source: str, text: str, diags: Diagnost
         spec = keys.get(name)
         loc = Loc(source, table_key_line(text, "node", name))
         if spec is None:
-            diags.add(GEN001, loc, f"[node] has no key '{name}'; use lss or {', '.join(keys)}")
+            diags.add(GEN001, loc, f"[node] has no key '{name}'; use lss, sdo_block or {', '.join(keys)}")
         elif isinstance(value, bool) or not isinstance(value, int) or not spec.low <= value <= spec.high:
             diags.add(GEN001, loc, f"[node] {name} = {value!r}: give a whole number {spec.low}..{spec.high}")
         else:
@@ -164,7 +164,7 @@ def comm_bytes(view: DictView) -> int:
 
 
 def node_limits(view: DictView, od: ObjectDictionary, lss: bool, caps: dict[str, int],
-                diags: Diagnostics) -> list[NodeLimit]:
+                diags: Diagnostics, sdo_block: bool = True) -> list[NodeLimit]:
     """The ODG_NODE_* limits the dictionary needs, lowered where the options' [node] keys say; a PDO,
     mapping entry or heartbeat entry beyond a lowered limit is GEN010 (the node could not serve it)."""
     rpdo = sorted(e.index - 0x1400 for e in view.entries if 0x1400 <= e.index <= 0x15FF)
@@ -192,6 +192,8 @@ def node_limits(view: DictView, od: ObjectDictionary, lss: bool, caps: dict[str,
         limits.append(NodeLimit(spec.macro, value, spec.what, why))
     limits.append(NodeLimit("ODG_NODE_LSS", int(lss), "the LSS slave (odg_lss.c)",
                             "LSS_Supported=1 or [node] lss" if lss else "not supported"))
+    limits.append(NodeLimit("ODG_NODE_SDO_BLOCK", int(sdo_block), "SDO block transfer (odg_sdo.c)",
+                            "served unless [node] sdo_block = false" if sdo_block else "[node] sdo_block = false"))
     return limits + master_limits(od, caps, diags)
 
 

@@ -335,7 +335,7 @@ class _Builder:
 
 def build(od: ObjectDictionary, placements: Placements, persist: PersistOptions, name: str,
           *, version: str, digest: str, lookup: str, diags: Diagnostics, lss: bool = False,
-          node_caps: Mapping[str, int] | None = None) -> DictView:
+          node_caps: Mapping[str, int] | None = None, sdo_block: bool = True) -> DictView:
     """The finished view of a placed dictionary: tables, values, persistence, runtime switches, lookup."""
     b = _Builder(od, placements, name, diags)
     view = DictView(name=name, upper=name.upper(), version=version, digest=digest,
@@ -356,7 +356,7 @@ def build(od: ObjectDictionary, placements: Placements, persist: PersistOptions,
         _check_block_size(b, block)
     view.persist = persist_view(od, placements, persist, diags)
     view.config = runtime_config(view)
-    view.node = node_limits(view, od, lss, dict(node_caps or {}), diags)
+    view.node = node_limits(view, od, lss, dict(node_caps or {}), diags, sdo_block)
     if lookup == "hash":
         view.hash = perfect_hash([e.index for e in view.entries])
     return view

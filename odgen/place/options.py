@@ -19,6 +19,7 @@
 
     [node]
     lss = true      # build the node with the LSS slave even when the description has no LSS_Supported=1
+    sdo_block = false  # build the SDO server without block transfer (a block initiate is refused)
     tpdo = 4        # and lower limits of the node layer (docs/generate.md)
 
 Entries apply in file order; for each key, the last entry that sets it wins.
@@ -80,6 +81,9 @@ class PersistOptions:
     align: int | None = None  # slot alignment (ODG_PERSIST_ALIGN): the NV's erase page; None: the runtime's 8
 
 
+SWITCHES = ("lss", "sdo_block")  # the [node] keys that are true or false; the rest are limits
+
+
 @dataclass
 class Options:
     source: str = ""
@@ -87,6 +91,7 @@ class Options:
     entries: list[OptionEntry] = field(default_factory=list)
     persist: PersistOptions = field(default_factory=PersistOptions)
     node_lss: bool = False  # [node] lss
+    node_sdo_block: bool = True  # [node] sdo_block
     node: dict[str, object] = field(default_factory=dict)  # the other [node] keys: codegen.runtimecfg reads them
 
 
@@ -137,11 +142,12 @@ def parse_options(text: str, source: str, diags: Diagnostics) -> Options:
                   f"unknown top-level key(s) {', '.join(unknown)}; only [[entry]], [persist], [[group]] and [node]")
     _persist(doc, text, source, options.persist, diags)
     node = doc.get("node", {})
-    if not isinstance(node, dict) or not isinstance(node.get("lss", False), bool):
-        diags.add(GEN001, Loc(source, 1), "[node] takes lss = true or false, and the node's limits")
+    if not isinstance(node, dict) or not all(isinstance(node.get(key, False), bool) for key in SWITCHES):
+        diags.add(GEN001, Loc(source, 1), "[node] takes lss and sdo_block = true or false, and the node's limits")
     else:
         options.node_lss = node.get("lss", False)
-        options.node = {key: value for key, value in node.items() if key != "lss"}
+        options.node_sdo_block = node.get("sdo_block", True)
+        options.node = {key: value for key, value in node.items() if key not in SWITCHES}
     lines = [n for n, line in enumerate(text.splitlines(), start=1) if line.strip().startswith("[[entry]]")]
     raw_entries = doc.get("entry", [])
     if not isinstance(raw_entries, list):

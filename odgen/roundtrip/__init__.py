@@ -60,6 +60,7 @@ def summary_lines(outcome: FileOutcome) -> list[str]:
         state = f"skipped ({c['skipped']})" if c["skipped"] else f"{c['passed']} passed, {c['failed']} failed"
         lines.append(f"  {c['id']}: {c['name']}: {state}")
         lines.extend(f"    FAIL {f}" for f in list(c["failures"])[:10])  # type: ignore[call-overload]
+        lines.extend(f"    note: {n}" for n in list(c["notes"]))  # type: ignore[call-overload]
     return lines
 
 

@@ -269,6 +269,17 @@ static void test_block(void)
     /* at or below the protocol switch threshold the node answers with a plain upload */
     CHECK_EQ(block_upload(0x2007, 0, b, sizeof b, &n, 4, 4, 0), 0x40);
     CHECK_EQ(le32(b), 0x180u + NID);
+    /* the end frame's n: all 7 bytes of an empty value's one segment, none after a multiple of 7 */
+    CHECK_EQ(download(0x2009, 0, "", 0), 0);
+    CHECK_EQ(block_upload(0x2009, 0, b, sizeof b, &n, 4, 0, 0), 0);
+    CHECK_EQ(n, 0);
+    CHECK_EQ(download(0x2009, 0, "seven!!", 7), 0);
+    CHECK_EQ(block_upload(0x2009, 0, b, sizeof b, &n, 4, 0, 0), 0);
+    CHECK_EQ(n, 7);
+    CHECK_EQ(download(0x2009, 0, "fourteen chars", 14), 0);
+    CHECK_EQ(block_upload(0x2009, 0, b, sizeof b, &n, 2, 0, 1), 0); /* the second segment repeated */
+    CHECK_EQ(n, 14);
+    CHECK(memcmp(b, "fourteen chars", 14) == 0);
 
     /* download: strings, numbers, and a lost segment that the client repeats */
     CHECK_EQ(block_download(0x2009, 0, (const uint8_t *)"blockwise", 9, 0, 0), 0);

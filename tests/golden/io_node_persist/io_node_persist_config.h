@@ -39,5 +39,6 @@
 #define ODG_NODE_MAX_ERRORS 8u /* errors active at once: default */
 #define ODG_NODE_EMCY_QUEUE 4u /* EMCY frames held back by the inhibit time 0x1015: default */
 #define ODG_NODE_LSS 0 /* the LSS slave (odg_lss.c): not supported */
+#define ODG_NODE_SDO_BLOCK 1 /* SDO block transfer (odg_sdo.c): served unless [node] sdo_block = false */
 
 #endif /* IO_NODE_PERSIST_CONFIG_H */
