@@ -8,7 +8,7 @@ dictionary, finds one entry (index and sub-index from volatile variables), reads
 it back through the generic access API; the figures of an ELF whose `main` only returns a
 volatile int are subtracted. FLASH = .text + .rodata + .data, RAM = .data + .bss.
 
-odgen's side is measured live, in each lookup mode (the default is hash), in four builds: with
+odgen's side is measured live, in each lookup mode (the default is hash), in five builds: with
 the persistence layer (`odg_persist_init` with an NV driver of byte loops over a 4096-byte RAM
 array, as the notes' CANopenNode build with CO_storageEeprom has; the array is taken out of RAM)
 for the dictionary generated with `[persist] migration = false`, the same with boot migration
@@ -16,9 +16,11 @@ for the dictionary generated with `[persist] migration = false`, the same with b
 offer), without persistence, and the whole device (`odg_node_init`, `odg_node_receive` and
 `odg_node_tick` with every service: NMT, heartbeat producer and consumer, SDO server, 4 + 4
 PDOs, SYNC, EMCY, TIME, LSS slave, persistence with migration; a CAN send that does nothing and
-the same NV driver). The runtime is compiled with the dictionary's generated configuration
-(NAME_config.h) and `-DODG_NO_ABORT_TEXT`. CANopenNode's code is not part of this project: its
-figures are the published ones below. run.py runs this part (`--parts linked`).
+the same NV driver), once with the SDO server CANopenNode's figure has (expedited and segmented:
+its default CO_CONFIG_SDO_SRV has no block transfer; `[node] sdo_block = false`) and once as
+odgen generates it by default, with block transfer. The runtime is compiled with the
+dictionary's generated configuration (NAME_config.h) and `-DODG_NO_ABORT_TEXT`. CANopenNode's
+code is not part of this project: its figures are the published ones below. run.py runs this part (`--parts linked`).
 """
 
 from __future__ import annotations
@@ -57,24 +59,25 @@ METHOD = ("published in ../shared/notes/peer-measurements.md sections 6 and 7 (a
           "CO_storageEeprom_auto_process over a 4096-byte RAM EEPROM; the whole device: CANopenNode's "
           "example/ with its blank driver and CO_USE_GLOBALS; empty main subtracted)")
 
-# The builds: key, what the row says, which CANopenNode figure it compares with, FLASH goal
-# (RAM goal or None), options file, main, whether the services are linked.
-BUILDS: tuple[tuple[str, str, str, float, float | None, str, str, bool], ...] = (
+NO_MIGRATION = "[persist]\nmigration = false\n"
+NO_BLOCK = "[node]\nsdo_block = false\n"
+# each options file's dictionary in a folder of its own
+OPTION_DIRS = {"": ".", NO_MIGRATION: "no-migration", NO_BLOCK: "no-block"}
+
+# The builds: key, what the row says, which CANopenNode figure it compares with, FLASH goal (None:
+# shown, not a target), RAM goal or None, options file, main, whether the services are linked.
+BUILDS: tuple[tuple[str, str, str, float | None, float | None, str, str, bool], ...] = (
     ("persist", "dictionary + access, persistence without migration (`[persist] migration = false`)",
-     "storage", 1.0, None, "[persist]\nmigration = false\n", "use", False),
+     "storage", 1.0, None, NO_MIGRATION, "use", False),
     ("migrate", "dictionary + access, persistence with boot migration (the default)",
      "storage", 1.0, None, "", "use", False),
     ("no_persist", "dictionary + access, without persistence", "access", 0.75, None, "", "access", False),
-    ("device", "whole device (NMT, HB producer + consumer, SDO server, 4 + 4 PDOs, SYNC, EMCY, TIME, LSS, "
-     "persistence with migration)", "device", 0.85, 0.40, "", "node", True),
+    ("device", "whole device (NMT, HB producer + consumer, SDO server expedited and segmented as CANopenNode's "
+     "(`[node] sdo_block = false`), 4 + 4 PDOs, SYNC, EMCY, TIME, LSS, persistence with migration)",
+     "device", 0.85, 0.40, NO_BLOCK, "node", True),
+    ("device_block", "whole device, odgen's default: the same with SDO block transfer", "device", None, None, "",
+     "node", True),
 )
-
-# The same builds measured by this file at commit 82bfc34, before the runtime was split into
-# services, odg_verify.c and the persistence levels (DS301, hash lookup, FLASH / RAM in bytes): the
-# structure must not cost firmware bytes, so latest.md sets today's figures beside these.
-BEFORE_STRUCTURE = {"commit": "82bfc34", "input": "ds301_canopennode", "lookup": "hash",
-                    "persist": (4912, None), "migrate": (7420, None), "no_persist": (2568, None),
-                    "device": (18552, 1784)}
 
 # Where the bytes go: each object file of ours, by what it serves.
 PART_OF = {"od.o": "dictionary tables (od.c)", "odg.o": "core access (odg.c)",
@@ -367,7 +370,7 @@ def measure(label: str, source: Path, lookup: str, empty: tuple[int, int]) -> di
     published = PUBLISHED[label]
 
     def work(options: str) -> Path:
-        return base / "no-migration" if options else base
+        return base / OPTION_DIRS[options]
 
     for options in dict.fromkeys(b[5] for b in BUILDS):  # one dictionary per options file
         refused = generate(source, work(options), lookup, options)
@@ -420,7 +423,7 @@ def targets(rows: list[dict[str, object]]) -> list[Target]:
             out.append(Target(f"linked FLASH vs CANopenNode v4, {label}", "<= 100%", why, "-", None))
             continue
         for key, text, ref, goal, ram_goal, _, _, _ in BUILDS:
-            if ref in published:
+            if ref in published and goal is not None:
                 out += _goal_target(label, key, text, published[ref], goal, ram_goal, mine)  # type: ignore[arg-type]
     ds301 = [r for r in rows if r["input"] == "ds301_canopennode" and int(r.get("core", -1)) > 0]  # type: ignore[call-overload]
     if ds301:
@@ -447,25 +450,8 @@ def _parts_table(rows: list[dict[str, object]], key: str, title: str) -> list[st
     for n in names:
         what = PART_OF.get(n, "service" if n.startswith("odg_") else "")
         lines.append(f"| {n} | {what} | " + " | ".join(str(r[key]["parts"].get(n, 0)) for r in mine) + " |")  # type: ignore[index]
-    lines.append("| libc (beyond the empty main) | memcpy (GCC makes it of the NV driver's byte loops), memmove | "
+    lines.append("| libc (beyond the empty main) | alignment, and what libc the build calls | "
                  + " | ".join(str(r[key]["libc"]) for r in mine) + " |")  # type: ignore[index]
-    return lines
-
-
-def _structure_table(rows: list[dict[str, object]]) -> list[str]:
-    """Today's FLASH beside BEFORE_STRUCTURE's, build by build."""
-    before = BEFORE_STRUCTURE
-    now = next((r for r in rows if r["input"] == before["input"] and r["lookup"] == before["lookup"]), None)
-    if now is None:
-        return []
-    lines = ["", f"The runtime's structure (services, `odg_verify.c`, persistence levels) against commit "
-             f"{before['commit']}, before it ({before['input']}, {before['lookup']}; FLASH in bytes):", "",
-             "| build | before | now | change |", "|---|---:|---:|---:|"]
-    for key, text, *_ in BUILDS:
-        fig = now.get(key)
-        if key in before and isinstance(fig, dict) and "flash" in fig:
-            was = before[key][0]  # type: ignore[index]
-            lines.append(f"| {text} | {was} | {fig['flash']} | {int(fig['flash']) - was:+d} |")
     return lines
 
 
@@ -475,27 +461,26 @@ def markdown(rows: list[dict[str, object]], empty: tuple[int, int]) -> str:
              f"Empty `main` (subtracted): FLASH {empty[0]} B, RAM {empty[1]} B. Lookup: `{DEFAULT_LOOKUP}` is "
              "odgen's default; every mode is measured.", "",
              "| input | odgen lookup | FLASH / RAM with persistence, no migration | ... with boot migration "
-             "| without persistence | whole device | core find/read/write "
-             "| CANopenNode v4 FLASH / RAM (published): access; with storage; whole device |",
-             "|---|---|---:|---:|---:|---:|---:|---:|"]
+             "| without persistence | whole device (SDO as CANopenNode's) | ... with SDO block transfer "
+             "| core find/read/write | CANopenNode v4 FLASH / RAM (published): access; with storage; whole device |",
+             "|---|---|---:|---:|---:|---:|---:|---:|---:|"]
     for r in rows:
         pub = PUBLISHED[str(r["input"])]
         refs = "; ".join(f"{pub[k][0]} / {pub[k][1]}" for k in ("access", "storage", "device") if k in pub)  # type: ignore[index]
         if "refused" in r:
-            lines.append(f"| {r['input']} | {r['lookup']} | refused: {r['refused']} | | | | | |")
+            lines.append(f"| {r['input']} | {r['lookup']} | refused: {r['refused']} | | | | | | |")
             continue
         cells = [_cell(r.get(key)) for key, *_ in BUILDS]  # type: ignore[arg-type]
         lines.append(f"| {r['input']} | {r['lookup']} | " + " | ".join(cells) + f" | {r['core']} B | {refs} |")
     lines += _parts_table(rows, "migrate", "Where the FLASH goes, dictionary + access with persistence and boot "
                           "migration (bytes each object file puts into the linked ELF):")
-    lines += _parts_table(rows, "device", "Where the FLASH goes, whole device (bytes each object file puts into "
-                          "the linked ELF):")
+    lines += _parts_table(rows, "device", "Where the FLASH goes, whole device with the SDO server CANopenNode's "
+                          "figure has (bytes each object file puts into the linked ELF):")
     lines += ["", "The dictionary's tables, with persistence and boot migration (symbols of od.c in the linked ELF):",
               "",
               "| input | lookup | " + " | ".join(DICT_PARTS) + " |", "|---|---|" + "---:|" * len(DICT_PARTS)]
     lines += [f"| {r['input']} | {r['lookup']} | " + " | ".join(str(v) for v in r["dict_parts"].values()) + " |"  # type: ignore[attr-defined]
               for r in rows if "dict_parts" in r]
-    lines += _structure_table(rows)
     lines += ["", NOT_MET]
     lines += ["", "CANopenNode v4 figures: " + METHOD + ".", ""]
     lines += [f"- {label}: {pub['what']}; odgen generates from `{pub['input']}`." for label, pub in PUBLISHED.items()]
