@@ -60,17 +60,17 @@ static void copy_bits(uint8_t *dst, uint32_t dpos, const uint8_t *src, uint32_t 
 /* A short mapping, served as CANopenNode serves it: a 64-bit integer entry mapped with 32 bits
  * carries its low-order four bytes (the first four on the wire, which is little-endian); an
  * RPDO writes them and keeps the entry's high-order bytes. odgen lint warns of it (PDO003).
- * Other lengths are checked by odg_check_mapping. */
+ * Other lengths are checked by odg_check_mapping. A build without 64-bit types has none. */
 static int short64(const odg_ref_t *r, uint32_t m)
 {
-    return (m & 0xFFu) == 32u && r->sub->size == 8u &&
+    return ODG_CFG_INT64 && (m & 0xFFu) == 32u && r->sub->size == 8u &&
            (r->sub->type == ODG_T_INTEGER64 || r->sub->type == ODG_T_UNSIGNED64);
 }
 
 static odg_abort_t map_ref(const odg_dict_t *d, uint32_t m, uint8_t dir, odg_ref_t *r)
 {
     odg_abort_t ac = odg_check_mapping(d, m, dir, r);
-    if (ac == ODG_ABORT_NOT_MAPPABLE && (m & 0xFFu) == 32u &&
+    if (ODG_CFG_INT64 && ac == ODG_ABORT_NOT_MAPPABLE && (m & 0xFFu) == 32u &&
         odg_check_mapping(d, m + 32u, dir, r) == ODG_OK && short64(r, m)) { /* length 64 */
         return ODG_OK;
     }
