@@ -12,8 +12,7 @@ static int comm_value(uint16_t index, const odg_sub_t *s)
 {
     uint32_t cls = ODG_S_CLASS(s->storage);
     return index != 0x1003u && (s->attr & ODG_A_WRITE) != 0u && (cls == ODG_S_RAM || cls == ODG_S_PERSIST) &&
-           s->size <= 8u && s->type != ODG_T_VISIBLE_STRING && s->type != ODG_T_OCTET_STRING &&
-           s->type != ODG_T_UNICODE_STRING && s->type != ODG_T_DOMAIN;
+           s->size <= 8u && !IS_STREAM(s); /* IS_STREAM: the stream types this build serves */
 }
 
 /* Bytes of the C type holding a number of wire size `size`: the copy keeps values as stored. */
