@@ -63,7 +63,7 @@ static void register_update(odg_node_t *n)
     }
 }
 
-static uint8_t active(const odg_node_t *n, uint16_t code)
+ODG_NODE_OUTLINE_ static uint8_t active(const odg_node_t *n, uint16_t code)
 {
     uint8_t k = 0;
     while (k < n->err.active && n->err.code[k] != code) {
@@ -74,7 +74,7 @@ static uint8_t active(const odg_node_t *n, uint16_t code)
 
 /* The last active error takes the place of error k: their order does not matter (0x1001 is the
  * union of their bits), and the node then links no memmove. */
-static void forget(odg_node_t *n, uint8_t k)
+ODG_NODE_OUTLINE_ static void forget(odg_node_t *n, uint8_t k)
 {
     n->err.active--;
     n->err.code[k] = n->err.code[n->err.active];

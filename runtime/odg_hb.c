@@ -74,7 +74,7 @@ static void errors_gone(odg_node_t *n)
 }
 
 /* A heartbeat (a remote frame, for life guarding) came: watched again from now. */
-static void heard(odg_node_t *n, odg_hb_watch_t *w)
+ODG_NODE_OUTLINE_ static void heard(odg_node_t *n, odg_hb_watch_t *w)
 {
     w->elapsed = 0;
     w->started = 1;

@@ -26,7 +26,7 @@ uint32_t odg_lss_nv_size(const odg_dict_t *dict)
 }
 
 /* The stored configuration as a persistence record (odg_persist_store_record). */
-static void record(odg_node_t *n, odg_group_t *r)
+ODG_NODE_OUTLINE_ static void record(odg_node_t *n, odg_group_t *r)
 {
     memset(r, 0, sizeof *r);
     r->mirror = n->lss.record;
