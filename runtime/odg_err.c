@@ -50,16 +50,31 @@ uint8_t odg_node_error_bits(uint16_t code)
     return bits;
 }
 
-/* 0x1001 from the active errors; read-only for SDO, so set as the application would. */
+/* The storage of a numeric sub the node may write (0x1001, 0x1003: RAM or a group's mirror, at
+ * most 4 bytes), found into `r`; NULL when there is none. */
+static uint8_t *slot(const odg_node_t *n, uint16_t index, uint8_t sub, odg_ref_t *r)
+{
+    if (odg_find(n->cfg.dict, index, sub, r) != ODG_OK || r->sub->size > 4u ||
+        ODG_S_CLASS(r->sub->storage) == ODG_S_ROM || ODG_S_CLASS(r->sub->storage) == ODG_S_COMMAND) {
+        return NULL;
+    }
+    return odg_value_(n->cfg.dict, r->sub);
+}
+
+/* 0x1001 from the active errors; read-only for SDO, so set as the application would (odg_set,
+ * which the node then need not link). */
 static void register_update(odg_node_t *n)
 {
-    uint8_t k, now, reg = 0;
+    uint8_t k, *p, reg = 0;
+    odg_ref_t r;
     for (k = 0; k < n->err.active; k++) {
         reg |= n->err.bits[k];
     }
     n->error_register = reg;
-    if (odg_get_u8(n->cfg.dict, ERROR_REGISTER, 0, &now) == ODG_OK && now != reg) {
-        (void)odg_set_u8(n->cfg.dict, ERROR_REGISTER, 0, reg); /* the clients hear of changes only */
+    p = slot(n, ERROR_REGISTER, 0, &r);
+    if (p != NULL && odg_num_get_(p, r.sub->size) != reg) {
+        odg_num_put_(p, r.sub->size, reg);
+        odg_changed(n->cfg.dict, &r); /* the clients hear of changes only */
     }
 }
 
@@ -123,38 +138,27 @@ void odg_err_reset_(odg_node_t *n, int all)
 
 /* ---- the pre-defined error field --------------------------------------------------------- */
 
-/* The storage of a numeric 0x1003 sub, or NULL when it has none the node may write. */
-static uint8_t *slot(const odg_node_t *n, uint8_t sub, uint32_t *size)
-{
-    odg_ref_t r;
-    if (odg_find(n->cfg.dict, HISTORY, sub, &r) != ODG_OK || r.sub->size > 4u ||
-        ODG_S_CLASS(r.sub->storage) == ODG_S_ROM || ODG_S_CLASS(r.sub->storage) == ODG_S_COMMAND) {
-        return NULL;
-    }
-    *size = r.sub->size;
-    return odg_value_(n->cfg.dict, r.sub);
-}
-
 /* The newest entry goes to sub 1, each older one a sub further (which costs one lookup of each
  * sub), up to one past the count or the last sub there is; sub 0 counts those written. */
 static void record(odg_node_t *n, uint16_t code, const uint8_t *vendor, uint8_t n_vendor)
 {
-    uint32_t size0, size, count, k, old, carry = code;
-    uint8_t *p0 = slot(n, 0, &size0), *p;
+    uint32_t count, k, old, carry = code;
+    odg_ref_t r0, r;
+    uint8_t *p0 = slot(n, HISTORY, 0, &r0), *p;
     if (p0 == NULL || code == 0u) {
         return; /* no history kept, or an error reset (not an error) */
     }
     if (vendor != NULL && n_vendor > 0u) {
         carry |= (uint32_t)vendor[0] << 16 | (n_vendor > 1u ? (uint32_t)vendor[1] << 24 : 0u);
     }
-    count = (uint32_t)odg_num_get_(p0, size0);
-    for (k = 1; k <= count + 1u && k <= 254u && (p = slot(n, (uint8_t)k, &size)) != NULL; k++) {
-        old = (uint32_t)odg_num_get_(p, size);
-        odg_num_put_(p, size, carry);
+    count = (uint32_t)odg_num_get_(p0, r0.sub->size);
+    for (k = 1; k <= count + 1u && k <= 254u && (p = slot(n, HISTORY, (uint8_t)k, &r)) != NULL; k++) {
+        old = (uint32_t)odg_num_get_(p, r.sub->size);
+        odg_num_put_(p, r.sub->size, carry);
         carry = old;
     }
     if (k > 1u) {
-        odg_num_put_(p0, size0, k - 1u);
+        odg_num_put_(p0, r0.sub->size, k - 1u);
     }
 }
 
@@ -165,13 +169,14 @@ odg_abort_t odg_err_check_(uint8_t sub, uint32_t value)
 
 void odg_err_written_(odg_node_t *n)
 {
-    uint32_t size, k;
-    uint8_t *p = slot(n, 0, &size);
-    if (p == NULL || odg_num_get_(p, size) != 0u) {
+    uint32_t k;
+    odg_ref_t r;
+    uint8_t *p = slot(n, HISTORY, 0, &r);
+    if (p == NULL || odg_num_get_(p, r.sub->size) != 0u) {
         return; /* the write was refused: the history stays */
     }
-    for (k = 1; k < 255u && (p = slot(n, (uint8_t)k, &size)) != NULL; k++) {
-        odg_num_put_(p, size, 0);
+    for (k = 1; k < 255u && (p = slot(n, HISTORY, (uint8_t)k, &r)) != NULL; k++) {
+        odg_num_put_(p, r.sub->size, 0);
     }
 }
 
