@@ -129,20 +129,16 @@ static void fastscan(odg_node_t *n, const uint8_t *d)
     }
     if (bit == 0x80u) {
         n->lss.fastscan = 0;
-        reply(n, 0x4F, 0);
+    } else if (bit > 31u || sub > 3u || next > 3u || sub != n->lss.fastscan ||
+               ((id ^ identity(n, sub)) & (0xFFFFFFFFu << bit)) != 0u) {
         return;
-    }
-    if (bit > 31u || sub > 3u || next > 3u || sub != n->lss.fastscan ||
-        ((id ^ identity(n, sub)) & (0xFFFFFFFFu << bit)) != 0u) {
-        return;
-    }
-    reply(n, 0x4F, 0);
-    if (bit == 0u) {
+    } else if (bit == 0u) {
         n->lss.fastscan = next;
         if (next < sub) { /* back to the vendor-ID: all four parts matched */
             n->lss.mode = ODG_LSS_CONFIGURATION;
         }
     }
+    reply(n, 0x4F, 0);
 }
 
 /* Commands of configuration mode; others are ignored. */
