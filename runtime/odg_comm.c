@@ -12,8 +12,7 @@ static int comm_value(uint16_t index, const odg_sub_t *s)
 {
     uint32_t cls = ODG_S_CLASS(s->storage);
     return index != 0x1003u && (s->attr & ODG_A_WRITE) != 0u && (cls == ODG_S_RAM || cls == ODG_S_PERSIST) &&
-           s->size <= 8u && s->type != ODG_T_VISIBLE_STRING && s->type != ODG_T_OCTET_STRING &&
-           s->type != ODG_T_UNICODE_STRING && s->type != ODG_T_DOMAIN;
+           s->size <= 8u && !IS_STREAM(s); /* IS_STREAM: the stream types this build serves */
 }
 
 /* Bytes of the C type holding a number of wire size `size`: the copy keeps values as stored. */
@@ -32,13 +31,19 @@ static void comm_copy(odg_node_t *n, const odg_sub_t *s, uint32_t size, uint8_t 
 {
     const odg_dict_t *d = n->cfg.dict;
     const odg_group_t *g = ODG_S_CLASS(s->storage) == ODG_S_PERSIST ? &d->groups[ODG_S_GROUP(s->storage)] : NULL;
+    uint8_t *value = odg_value_(d, s), *to = at;
+    const uint8_t *from = value;
     if (how == COMM_BACK) {
-        odg_copy(odg_value_(d, s), at, size);
-    } else if (how == COMM_KEEP || (g != NULL && (sub == 1u || g->store_sub == sub))) {
-        odg_copy(at, how == COMM_LOADED ? (const uint8_t *)g->defaults + s->offset : odg_value_(d, s), size);
-        if (how == COMM_LOADED && (s->attr & ODG_A_NODEID)) { /* as the generated reset adds it */
-            odg_num_put_(at, size, odg_num_get_(at, size) + n->cfg.node_id);
-        }
+        to = value;
+        from = at;
+    } else if (how != COMM_KEEP && (g == NULL || (sub != 1u && g->store_sub != sub))) {
+        return; /* not of the groups named */
+    } else if (how == COMM_LOADED) {
+        from = (const uint8_t *)g->defaults + s->offset;
+    }
+    odg_copy(to, from, size);
+    if (how == COMM_LOADED && (s->attr & ODG_A_NODEID)) { /* as the generated reset adds it */
+        odg_num_put_(at, size, odg_num_get_(at, size) + n->cfg.node_id);
     }
 }
 

@@ -50,20 +50,35 @@ uint8_t odg_node_error_bits(uint16_t code)
     return bits;
 }
 
-/* 0x1001 from the active errors; read-only for SDO, so set as the application would. */
+/* The storage of a numeric sub the node may write (0x1001, 0x1003: RAM or a group's mirror, at
+ * most 4 bytes), found into `r`; NULL when there is none. */
+static uint8_t *slot(const odg_node_t *n, uint16_t index, uint8_t sub, odg_ref_t *r)
+{
+    if (odg_find(n->cfg.dict, index, sub, r) != ODG_OK || r->sub->size > 4u ||
+        ODG_S_CLASS(r->sub->storage) == ODG_S_ROM || ODG_S_CLASS(r->sub->storage) == ODG_S_COMMAND) {
+        return NULL;
+    }
+    return odg_value_(n->cfg.dict, r->sub);
+}
+
+/* 0x1001 from the active errors; read-only for SDO, so set as the application would (odg_set,
+ * which the node then need not link). */
 static void register_update(odg_node_t *n)
 {
-    uint8_t k, now, reg = 0;
+    uint8_t k, *p, reg = 0;
+    odg_ref_t r;
     for (k = 0; k < n->err.active; k++) {
         reg |= n->err.bits[k];
     }
     n->error_register = reg;
-    if (odg_get_u8(n->cfg.dict, ERROR_REGISTER, 0, &now) == ODG_OK && now != reg) {
-        (void)odg_set_u8(n->cfg.dict, ERROR_REGISTER, 0, reg); /* the clients hear of changes only */
+    p = slot(n, ERROR_REGISTER, 0, &r);
+    if (p != NULL && odg_num_get_(p, r.sub->size) != reg) {
+        odg_num_put_(p, r.sub->size, reg);
+        odg_changed(n->cfg.dict, &r); /* the clients hear of changes only */
     }
 }
 
-static uint8_t active(const odg_node_t *n, uint16_t code)
+ODG_NODE_OUTLINE_ static uint8_t active(const odg_node_t *n, uint16_t code)
 {
     uint8_t k = 0;
     while (k < n->err.active && n->err.code[k] != code) {
@@ -74,7 +89,7 @@ static uint8_t active(const odg_node_t *n, uint16_t code)
 
 /* The last active error takes the place of error k: their order does not matter (0x1001 is the
  * union of their bits), and the node then links no memmove. */
-static void forget(odg_node_t *n, uint8_t k)
+ODG_NODE_OUTLINE_ static void forget(odg_node_t *n, uint8_t k)
 {
     n->err.active--;
     n->err.code[k] = n->err.code[n->err.active];
@@ -123,41 +138,27 @@ void odg_err_reset_(odg_node_t *n, int all)
 
 /* ---- the pre-defined error field --------------------------------------------------------- */
 
-/* The storage of a numeric 0x1003 sub, or NULL when it has none the node may write. */
-static uint8_t *slot(const odg_node_t *n, uint8_t sub, uint32_t *size)
-{
-    odg_ref_t r;
-    if (odg_find(n->cfg.dict, HISTORY, sub, &r) != ODG_OK || r.sub->size > 4u ||
-        ODG_S_CLASS(r.sub->storage) == ODG_S_ROM || ODG_S_CLASS(r.sub->storage) == ODG_S_COMMAND) {
-        return NULL;
-    }
-    *size = r.sub->size;
-    return odg_value_(n->cfg.dict, r.sub);
-}
-
+/* The newest entry goes to sub 1, each older one a sub further (which costs one lookup of each
+ * sub), up to one past the count or the last sub there is; sub 0 counts those written. */
 static void record(odg_node_t *n, uint16_t code, const uint8_t *vendor, uint8_t n_vendor)
 {
-    uint32_t size0, size, count, k, entry = code;
-    uint8_t *p0 = slot(n, 0, &size0), *p, *q;
+    uint32_t count, k, old, carry = code;
+    odg_ref_t r0, r;
+    uint8_t *p0 = slot(n, HISTORY, 0, &r0), *p;
     if (p0 == NULL || code == 0u) {
         return; /* no history kept, or an error reset (not an error) */
     }
     if (vendor != NULL && n_vendor > 0u) {
-        entry |= (uint32_t)vendor[0] << 16 | (n_vendor > 1u ? (uint32_t)vendor[1] << 24 : 0u);
+        carry |= (uint32_t)vendor[0] << 16 | (n_vendor > 1u ? (uint32_t)vendor[1] << 24 : 0u);
     }
-    count = (uint32_t)odg_num_get_(p0, size0);
-    for (k = count + 1u; k > 1u; k--) { /* sub k-1 moves to sub k, where there is one */
-        p = slot(n, (uint8_t)k, &size);
-        q = slot(n, (uint8_t)(k - 1u), &size);
-        if (p != NULL && q != NULL) {
-            odg_num_put_(p, size, odg_num_get_(q, size));
-        } else if (p == NULL) {
-            count = k - 2u; /* the oldest falls off the end */
-        }
+    count = (uint32_t)odg_num_get_(p0, r0.sub->size);
+    for (k = 1; k <= count + 1u && k <= 254u && (p = slot(n, HISTORY, (uint8_t)k, &r)) != NULL; k++) {
+        old = (uint32_t)odg_num_get_(p, r.sub->size);
+        odg_num_put_(p, r.sub->size, carry);
+        carry = old;
     }
-    if ((p = slot(n, 1, &size)) != NULL) {
-        odg_num_put_(p, size, entry);
-        odg_num_put_(p0, size0, count + 1u > 254u ? 254u : count + 1u);
+    if (k > 1u) {
+        odg_num_put_(p0, r0.sub->size, k - 1u);
     }
 }
 
@@ -168,36 +169,40 @@ odg_abort_t odg_err_check_(uint8_t sub, uint32_t value)
 
 void odg_err_written_(odg_node_t *n)
 {
-    uint32_t size, k;
-    uint8_t *p = slot(n, 0, &size);
-    if (p == NULL || odg_num_get_(p, size) != 0u) {
+    uint32_t k;
+    odg_ref_t r;
+    uint8_t *p = slot(n, HISTORY, 0, &r);
+    if (p == NULL || odg_num_get_(p, r.sub->size) != 0u) {
         return; /* the write was refused: the history stays */
     }
-    for (k = 1; k < 255u && (p = slot(n, (uint8_t)k, &size)) != NULL; k++) {
-        odg_num_put_(p, size, 0);
+    for (k = 1; k < 255u && (p = slot(n, HISTORY, (uint8_t)k, &r)) != NULL; k++) {
+        odg_num_put_(p, r.sub->size, 0);
     }
 }
 
-static void emcy_sent(odg_node_t *n, uint8_t between_ticks)
+/* Send an EMCY frame; the inhibit time (0x1015) starts. The time of the first tick after one
+ * sent between ticks does not count. Non-zero when `send` failed. */
+static int emcy_out(odg_node_t *n, const uint8_t *data, uint8_t between_ticks)
 {
+    if (odg_io_send_(n, n->err.cob, data, 8) != 0) {
+        return 1;
+    }
     n->err.inhibit_us = odg_io_get_or_(n, 0x1015, 0, 0) * 100u;
     n->err.fresh = between_ticks;
+    return 0;
 }
 
-/* Send an EMCY frame now, or when the inhibit time (0x1015) since the last one has passed. */
+/* Send an EMCY frame now, or when the inhibit time since the last one has passed. */
 static odg_abort_t emcy_send(odg_node_t *n, const uint8_t *data)
 {
-    if (n->err.inhibit_us == 0u && n->err.queued == 0u) {
-        if (odg_io_send_(n, n->err.cob, data, 8) != 0) {
-            return ODG_ABORT_HARDWARE;
-        }
-        emcy_sent(n, 1);
-        return ODG_OK;
+    odg_err_t *e = &n->err;
+    if (e->inhibit_us == 0u && e->queued == 0u) {
+        return emcy_out(n, data, 1) ? ODG_ABORT_HARDWARE : ODG_OK;
     }
-    if (n->err.queued >= ODG_NODE_EMCY_QUEUE) {
+    if (e->queued >= ODG_NODE_EMCY_QUEUE) {
         return ODG_ABORT_HARDWARE;
     }
-    odg_copy(n->err.queue[n->err.queued++], data, 8);
+    odg_copy(e->queue[e->queued++], data, 8);
     return ODG_OK;
 }
 
@@ -221,19 +226,18 @@ odg_abort_t odg_node_emcy(odg_node_t *node, uint16_t code, uint8_t error_registe
 
 void odg_err_tick_(odg_node_t *n, uint32_t ms)
 {
+    odg_err_t *e = &n->err;
     uint8_t k;
-    uint32_t us = n->err.fresh ? 0u : ms > 4000000u ? 0xFFFFFFFFu : ms * 1000u;
-    n->err.fresh = 0;
-    n->err.inhibit_us = n->err.inhibit_us > us ? n->err.inhibit_us - us : 0u;
-    if (n->err.inhibit_us != 0u || n->err.queued == 0u || (n->err.cob & ODG_COB_INVALID) ||
-        !odg_io_talking_(n)) {
+    uint32_t us = e->fresh ? 0u : ms > 4000000u ? 0xFFFFFFFFu : ms * 1000u;
+    e->fresh = 0;
+    e->inhibit_us = e->inhibit_us > us ? e->inhibit_us - us : 0u;
+    if (e->inhibit_us != 0u || e->queued == 0u || (e->cob & ODG_COB_INVALID) || !odg_io_talking_(n)) {
         return;
     }
-    if (odg_io_send_(n, n->err.cob, n->err.queue[0], 8) == 0) {
-        n->err.queued--;
-        for (k = 0; k < n->err.queued; k++) { /* the rest move up, row by row (no memmove) */
-            odg_copy(n->err.queue[k], n->err.queue[k + 1u], 8);
+    if (emcy_out(n, e->queue[0], 0) == 0) {
+        e->queued--;
+        for (k = 0; k < e->queued; k++) { /* the rest move up, row by row (no memmove) */
+            odg_copy(e->queue[k], e->queue[k + 1u], 8);
         }
-        emcy_sent(n, 0);
     }
 }

@@ -59,17 +59,28 @@ void odg_hb_produce_(odg_node_t *n, uint32_t ms)
 
 /* ---- the heartbeat consumer ---------------------------------------------------------------- */
 
+#define GUARD ODG_NODE_MAX_HB /* watch[GUARD]: life guarding */
+
 /* The error 0x8130 is gone when no watched node and no life guarding is in error. */
 static void errors_gone(odg_node_t *n)
 {
     uint32_t k;
-    for (k = 0; k < ODG_NODE_MAX_HB; k++) {
+    for (k = 0; k <= GUARD; k++) {
         if (n->hb.watch[k].lost) {
             return;
         }
     }
-    if (!n->hb.guard_lost) {
-        (void)odg_node_error_clear(n, EMCY_HEARTBEAT);
+    (void)odg_node_error_clear(n, EMCY_HEARTBEAT);
+}
+
+/* A heartbeat (a remote frame, for life guarding) came: watched again from now. */
+ODG_NODE_OUTLINE_ static void heard(odg_node_t *n, odg_hb_watch_t *w)
+{
+    w->elapsed = 0;
+    w->started = 1;
+    if (w->lost) {
+        w->lost = 0;
+        errors_gone(n);
     }
 }
 
@@ -82,11 +93,12 @@ static uint8_t watched_id(uint32_t entry)
 void odg_hb_load_(odg_node_t *n)
 {
     uint32_t k, entry;
-    memset(n->hb.watch, 0, sizeof n->hb.watch);
-    for (k = 0; k < ODG_NODE_MAX_HB; k++) {
+    odg_hb_watch_t *w = n->hb.watch;
+    memset(w, 0, ODG_NODE_MAX_HB * sizeof *w); /* life guarding (watch[GUARD]) goes on */
+    for (k = 0; k < ODG_NODE_MAX_HB; k++, w++) {
         if (odg_io_get_(n, 0x1016, (uint8_t)(k + 1u), &entry) == ODG_OK && watched_id(entry) != 0u) {
-            n->hb.watch[k].id = watched_id(entry);
-            n->hb.watch[k].time = (uint16_t)entry;
+            w->id = watched_id(entry);
+            w->time = (uint16_t)entry;
         }
     }
     errors_gone(n); /* entries rewritten: none is in error */
@@ -118,16 +130,11 @@ void odg_hb_receive_(odg_node_t *n, const odg_frame_t *f)
     for (k = 0; k < ODG_NODE_MAX_HB && f->len >= 1u; k++) {
         odg_hb_watch_t *w = &n->hb.watch[k];
         if (w->id == id) {
-            w->elapsed = 0;
             if (!w->started || w->state != f->data[0]) {
                 w->state = f->data[0];
                 report(n, id, w->state);
             }
-            w->started = 1;
-            if (w->lost) {
-                w->lost = 0;
-                errors_gone(n);
-            }
+            heard(n, w);
         }
     }
 }
@@ -152,37 +159,21 @@ void odg_hb_rtr_(odg_node_t *n, const odg_frame_t *f)
     if (odg_io_send_(n, f->id, &answer, 1) == 0) {
         n->hb.guard_toggle = (uint8_t)!n->hb.guard_toggle;
     }
-    n->hb.guard_elapsed = 0;
-    n->hb.guard_started = 1;
-    if (n->hb.guard_lost) {
-        n->hb.guard_lost = 0;
-        errors_gone(n);
-    }
+    heard(n, &n->hb.watch[GUARD]);
 }
 
-static uint8_t life_guarding(odg_node_t *n, uint32_t ms)
-{
-    uint32_t life = odg_io_get_or_(n, 0x100C, 0, 0) * odg_io_get_or_(n, 0x100D, 0, 0);
-    if (!n->hb.guard_started || life == 0u) {
-        return 0;
-    }
-    n->hb.guard_elapsed = n->hb.guard_elapsed + ms < ms ? 0xFFFFFFFFu : n->hb.guard_elapsed + ms;
-    if (n->hb.guard_elapsed > life) {
-        n->hb.guard_started = 0; /* watched again from the next remote frame */
-        n->hb.guard_lost = 1;
-        (void)odg_node_error_set(n, EMCY_HEARTBEAT, 0, &n->cfg.node_id, 1);
-        return communication_error(n);
-    }
-    return 0;
-}
-
+/* The watched heartbeats, then life guarding (its time the product of 0x100C and 0x100D, read at
+ * each tick): one overdue is an error 0x8130 (EMCY byte 3: the node-id watched, for life
+ * guarding the node's own) and a communication error; a heartbeat's is also reported. */
 uint8_t odg_hb_tick_(odg_node_t *n, uint32_t ms)
 {
     uint32_t k;
     uint8_t cmd = 0;
-    for (k = 0; k < ODG_NODE_MAX_HB; k++) {
-        odg_hb_watch_t *w = &n->hb.watch[k];
-        if (w->id == 0u || !w->started) {
+    odg_hb_watch_t *w = n->hb.watch;
+    w[GUARD].id = n->cfg.node_id;
+    w[GUARD].time = odg_io_get_or_(n, 0x100C, 0, 0) * odg_io_get_or_(n, 0x100D, 0, 0);
+    for (k = 0; k <= GUARD; k++, w++) {
+        if (w->time == 0u || !w->started) {
             continue;
         }
         w->elapsed = w->elapsed + ms < w->elapsed ? 0xFFFFFFFFu : w->elapsed + ms;
@@ -190,11 +181,13 @@ uint8_t odg_hb_tick_(odg_node_t *n, uint32_t ms)
             w->started = 0; /* watched again from its next heartbeat */
             w->lost = 1;
             (void)odg_node_error_set(n, EMCY_HEARTBEAT, 0, &w->id, 1);
-            report(n, w->id, ODG_HB_TIMEOUT);
-            cmd = communication_error(n);
+            if (k < GUARD) {
+                report(n, w->id, ODG_HB_TIMEOUT);
+            }
+            cmd = communication_error(n); /* the same for each: 0 or the one command 0x1029 asks for */
         }
     }
-    return life_guarding(n, ms) | cmd; /* both 0 or the one command 0x1029 asks for */
+    return cmd;
 }
 
 void odg_node_on_heartbeat(odg_node_t *node, void (*fn)(void *ctx, uint8_t node_id, uint8_t event),
@@ -235,12 +228,12 @@ uint8_t odg_node_comm_errors(const odg_node_t *node)
 {
     uint8_t bits = 0;
     uint32_t k;
-    for (k = 0; k < ODG_NODE_MAX_HB; k++) {
+    for (k = 0; k < GUARD; k++) {
         if (node->hb.watch[k].lost) {
             bits = ODG_COMM_HEARTBEAT;
         }
     }
-    if (node->hb.guard_lost) {
+    if (node->hb.watch[GUARD].lost) {
         bits |= ODG_COMM_GUARDING;
     }
     if (node->hb.can_state == ODG_CAN_BUS_OFF) {
@@ -251,6 +244,10 @@ uint8_t odg_node_comm_errors(const odg_node_t *node)
 
 void odg_hb_boot_(odg_node_t *n)
 {
+    n->hb.timer = 0;
+    n->hb.guard_toggle = 0;
+    n->hb.watch[GUARD].started = 0; /* life guarding from the first remote frame */
+    n->hb.watch[GUARD].lost = 0;
     if (n->hb.can_state == ODG_CAN_ERROR_PASSIVE || n->hb.can_state == ODG_CAN_BUS_OFF) {
         (void)odg_node_error_set(n, ODG_EMCY_CAN_PASSIVE, 0, NULL, 0);
     }

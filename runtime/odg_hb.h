@@ -39,26 +39,24 @@ typedef enum odg_can_state {
 #define ODG_EMCY_CAN_PASSIVE 0x8120u
 #define ODG_EMCY_BUS_OFF_RECOVERED 0x8140u
 
-/* One watched heartbeat (0x1016 entry, internal). */
+/* One watched heartbeat (0x1016 entry), or life guarding (internal). */
 typedef struct odg_hb_watch {
-    uint32_t elapsed; /* ms since its last heartbeat */
-    uint16_t time;    /* ms allowed between heartbeats */
-    uint8_t id;       /* node-id watched; 0: entry unused */
+    uint32_t elapsed; /* ms since its last heartbeat (remote frame) */
+    uint32_t time;    /* ms allowed between them; 0: not watched */
+    uint8_t id;       /* node-id watched (life guarding: the node's own) */
     uint8_t state;    /* the state its last heartbeat said */
     uint8_t started;  /* a heartbeat came since the entry was set or timed out */
-    uint8_t lost;     /* timed out, and no heartbeat since (EMCY 0x8130 active) */
+    uint8_t lost;     /* timed out, and none since (EMCY 0x8130 active) */
 } odg_hb_watch_t;
 
 /* The NMT error control service's state (odg_node_t.hb, internal). */
 typedef struct odg_hb {
     uint32_t timer;          /* producer: ms since the last heartbeat */
-    uint32_t guard_elapsed;  /* life guarding: ms since the last remote frame */
     void (*on_heartbeat)(void *ctx, uint8_t node_id, uint8_t event);
     void *on_heartbeat_ctx;
-    odg_hb_watch_t watch[ODG_NODE_MAX_HB]; /* consumer */
-    uint8_t guard_started;   /* life guarding: a remote frame came since boot or the last event */
+    /* the consumer's entries, then life guarding, which times out as they do */
+    odg_hb_watch_t watch[ODG_NODE_MAX_HB + 1u];
     uint8_t guard_toggle;    /* node guarding: the toggle bit of the next answer */
-    uint8_t guard_lost;      /* life guarding: an event, and no remote frame since */
     uint8_t can_state;       /* odg_can_state_t the CAN driver reported last */
 } odg_hb_t;
 
@@ -71,7 +69,7 @@ void odg_hb_produce_(struct odg_node *n, uint32_t ms); /* the heartbeat producer
 uint8_t odg_hb_tick_(struct odg_node *n, uint32_t ms);  /* the consumer, life guarding */
 void odg_hb_rtr_(struct odg_node *n, const odg_frame_t *f); /* a remote frame: node guarding */
 uint8_t odg_hb_can_state_(struct odg_node *n, odg_can_state_t state);
-void odg_hb_boot_(struct odg_node *n); /* after the boot-up */
+void odg_hb_boot_(struct odg_node *n); /* after the boot-up: timers start afresh */
 
 #ifdef __cplusplus
 }

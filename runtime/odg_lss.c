@@ -26,15 +26,13 @@ uint32_t odg_lss_nv_size(const odg_dict_t *dict)
 }
 
 /* The stored configuration as a persistence record (odg_persist_store_record). */
-static odg_group_t record(odg_node_t *n)
+ODG_NODE_OUTLINE_ static void record(odg_node_t *n, odg_group_t *r)
 {
-    odg_group_t r;
-    memset(&r, 0, sizeof r);
-    r.mirror = n->lss.record;
-    r.size = sizeof n->lss.record;
-    r.signature = SIGNATURE;
-    r.nv_addr = odg_lss_nv_size(n->cfg.dict) - 2u * ODG_PERSIST_SLOT_SIZE(r.size);
-    return r;
+    memset(r, 0, sizeof *r);
+    r->mirror = n->lss.record;
+    r->size = sizeof n->lss.record;
+    r->signature = SIGNATURE;
+    r->nv_addr = odg_lss_nv_size(n->cfg.dict) - 2u * ODG_PERSIST_SLOT_SIZE(sizeof n->lss.record);
 }
 
 static int valid_id(uint8_t id)
@@ -44,7 +42,8 @@ static int valid_id(uint8_t id)
 
 void odg_lss_init_(odg_node_t *n)
 {
-    odg_group_t r = record(n);
+    odg_group_t r;
+    record(n, &r);
     n->lss.mode = ODG_LSS_WAITING;
     n->lss.pending = n->cfg.node_id;
     n->lss.bit_index = ODG_LSS_NO_BIT_TIMING;
@@ -90,12 +89,8 @@ static uint32_t le32(const uint8_t *p)
  * starts over. All four matched: configuration mode, answered with 0x44. */
 static void selective(odg_node_t *n, unsigned part, uint32_t v)
 {
-    int match = v == identity(n, part);
-    if (part == 0u) {
-        n->lss.selective = (uint8_t)match;
-    } else {
-        n->lss.selective = (uint8_t)(match && n->lss.selective == part ? part + 1u : 0u);
-    }
+    int next = part == 0u || n->lss.selective == part; /* the vendor-ID (re)starts it */
+    n->lss.selective = (uint8_t)(next && v == identity(n, part) ? part + 1u : 0u);
     if (n->lss.selective == 4u) {
         n->lss.selective = 0;
         n->lss.mode = ODG_LSS_CONFIGURATION;
@@ -134,20 +129,16 @@ static void fastscan(odg_node_t *n, const uint8_t *d)
     }
     if (bit == 0x80u) {
         n->lss.fastscan = 0;
-        reply(n, 0x4F, 0);
+    } else if (bit > 31u || sub > 3u || next > 3u || sub != n->lss.fastscan ||
+               ((id ^ identity(n, sub)) & (0xFFFFFFFFu << bit)) != 0u) {
         return;
-    }
-    if (bit > 31u || sub > 3u || next > 3u || sub != n->lss.fastscan ||
-        ((id ^ identity(n, sub)) & (0xFFFFFFFFu << bit)) != 0u) {
-        return;
-    }
-    reply(n, 0x4F, 0);
-    if (bit == 0u) {
+    } else if (bit == 0u) {
         n->lss.fastscan = next;
         if (next < sub) { /* back to the vendor-ID: all four parts matched */
             n->lss.mode = ODG_LSS_CONFIGURATION;
         }
     }
+    reply(n, 0x4F, 0);
 }
 
 /* Commands of configuration mode; others are ignored. */
@@ -172,20 +163,17 @@ static void configure(odg_node_t *n, const uint8_t *d)
         }
         return;
     case 0x17: /* store configuration: 1 no NV, 2 the NV failed */
-        r = record(n);
+        record(n, &r);
         memset(n->lss.record, 0, sizeof n->lss.record);
         n->lss.record[0] = n->lss.pending;
         n->lss.record[1] = n->lss.bit_index;
         ac = odg_persist_store_record(n->cfg.nv, &r);
         err = (uint8_t)(ac == ODG_OK ? 0u : (ac == ODG_ABORT_DATA_STORE ? 1u : 2u));
         break;
-    case 0x5A: case 0x5B: case 0x5C: case 0x5D: /* inquire identity */
-        reply(n, d[0], identity(n, d[0] - 0x5Au));
-        return;
-    case 0x5E: /* inquire node-id: the active one */
-        reply(n, 0x5E, n->cfg.node_id);
-        return;
     default:
+        if (d[0] >= 0x5Au && d[0] <= 0x5Eu) { /* inquire identity (0x5A..0x5D), node-id (the active one) */
+            reply(n, d[0], d[0] < 0x5Eu ? identity(n, d[0] - 0x5Au) : n->cfg.node_id);
+        }
         return;
     }
     reply(n, d[0], err);

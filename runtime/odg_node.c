@@ -146,10 +146,6 @@ static odg_abort_t boot(odg_node_t *n, int what)
         odg_node_reload(n);
     }
     /* the services' timers and queues start afresh */
-    n->hb.timer = 0;
-    n->hb.guard_started = 0;
-    n->hb.guard_toggle = 0;
-    n->hb.guard_lost = 0;
     n->sync.prod_us = 0;
     n->sync.counter = 0;
     n->err.queued = 0;

@@ -60,17 +60,17 @@ static void copy_bits(uint8_t *dst, uint32_t dpos, const uint8_t *src, uint32_t 
 /* A short mapping, served as CANopenNode serves it: a 64-bit integer entry mapped with 32 bits
  * carries its low-order four bytes (the first four on the wire, which is little-endian); an
  * RPDO writes them and keeps the entry's high-order bytes. odgen lint warns of it (PDO003).
- * Other lengths are checked by odg_check_mapping. */
+ * Other lengths are checked by odg_check_mapping. A build without 64-bit types has none. */
 static int short64(const odg_ref_t *r, uint32_t m)
 {
-    return (m & 0xFFu) == 32u && r->sub->size == 8u &&
+    return ODG_CFG_INT64 && (m & 0xFFu) == 32u && r->sub->size == 8u &&
            (r->sub->type == ODG_T_INTEGER64 || r->sub->type == ODG_T_UNSIGNED64);
 }
 
 static odg_abort_t map_ref(const odg_dict_t *d, uint32_t m, uint8_t dir, odg_ref_t *r)
 {
     odg_abort_t ac = odg_check_mapping(d, m, dir, r);
-    if (ac == ODG_ABORT_NOT_MAPPABLE && (m & 0xFFu) == 32u &&
+    if (ODG_CFG_INT64 && ac == ODG_ABORT_NOT_MAPPABLE && (m & 0xFFu) == 32u &&
         odg_check_mapping(d, m + 32u, dir, r) == ODG_OK && short64(r, m)) { /* length 64 */
         return ODG_OK;
     }
@@ -265,38 +265,58 @@ odg_abort_t odg_pdo_check_(const odg_node_t *n, uint16_t index, uint8_t sub, uin
     return tx && valid && (sub == 3u || sub == 6u) ? ODG_ABORT_VALUE_RANGE : ODG_OK;
 }
 
-/* ---- TPDO ---------------------------------------------------------------------------------- */
+/* ---- mapped values --------------------------------------------------------------------- */
 
-/* Read the mapped values now (PRE_READ hooks run) into a frame. */
-static odg_abort_t sample(odg_node_t *n, const odg_pdo_t *p, uint8_t *out, uint8_t *len)
+/* Move the mapped values between the dictionary and a frame. A TPDO (`tx`) reads them now
+ * (PRE_READ hooks run) into `frame`, and its length into `len`; the first value it cannot read
+ * stops it. An RPDO writes them from `frame`: a value the dictionary refuses (limits, a hook's
+ * veto) is dropped, as a PDO has no answer, and dummy entries only take their bits. */
+static odg_abort_t move(odg_node_t *n, const odg_pdo_t *p, int tx, uint8_t *frame, uint8_t *len)
 {
     uint32_t i, pos = 0;
-    memset(out, 0, 8);
-    for (i = 0; i < p->n_map; i++) {
+    if (tx) {
+        memset(frame, 0, 8);
+    }
+    for (i = 0; i < p->n_map; pos += p->map[i++] & 0xFFu) {
+        uint32_t m = p->map[i], bits = m & 0xFFu, got, size = (bits + 7u) / 8u;
         odg_ref_t r;
         uint8_t v[8];
-        uint32_t got, bits = p->map[i] & 0xFFu;
-        odg_abort_t ac = map_ref(n->cfg.dict, p->map[i], ODG_A_TPDO, &r);
+        odg_abort_t ac;
         memset(v, 0, sizeof v); /* odg_read writes `got` bytes: the rest stay 0 */
-        if (ac == ODG_OK) {
-            ac = odg_read(&r, 0, v, sizeof v, &got);
+        if (!tx && (m >> 16) <= 7u) {
+            continue; /* a dummy */
         }
-        if (ac != ODG_OK) {
-            return ac;
+        ac = map_ref(n->cfg.dict, m, tx ? ODG_A_TPDO : ODG_A_RPDO, &r);
+        if (tx) {
+            if (ac != ODG_OK || (ac = odg_read(&r, 0, v, sizeof v, &got)) != ODG_OK) {
+                return ac;
+            }
+            copy_bits(frame, pos, v, 0, bits);
+        } else if (ac == ODG_OK) {
+            if (short64(&r, m)) {
+                size = 8u;
+                if (odg_read(&r, 0, v, sizeof v, &got) != ODG_OK) {
+                    memset(v, 0, sizeof v); /* write-only: the high-order bytes become 0 */
+                }
+            }
+            copy_bits(v, 0, frame, pos, bits);
+            (void)odg_write(&r, v, size);
         }
-        copy_bits(out, pos, v, 0, bits);
-        pos += bits;
     }
-    *len = (uint8_t)((pos + 7u) / 8u);
+    if (tx) {
+        *len = (uint8_t)((pos + 7u) / 8u);
+    }
     return ODG_OK;
 }
+
+/* ---- TPDO ---------------------------------------------------------------------------------- */
 
 /* Sample and send; unless `force`, only when the data differ from the last frame sent.
  * Non-zero when a frame was due but could not be sent. */
 static int transmit(odg_node_t *n, odg_pdo_t *p, int force)
 {
     uint8_t d[8], len;
-    if (sample(n, p, d, &len) != ODG_OK) {
+    if (move(n, p, 1, d, &len) != ODG_OK) {
         return 1;
     }
     if (!force && (p->flags & ODG_PDO_F_SENT) && len == p->len) {
@@ -395,31 +415,6 @@ static int sync_started(odg_pdo_t *p, const odg_frame_t *f)
 
 /* ---- RPDO -------------------------------------------------------------------------------- */
 
-/* Write the mapped values of a received frame. A value the dictionary refuses (limits, a
- * hook's veto) is dropped: a PDO has no answer. */
-static void apply(odg_node_t *n, const odg_pdo_t *p, const uint8_t *data)
-{
-    uint32_t i, pos = 0;
-    for (i = 0; i < p->n_map; i++) {
-        uint32_t m = p->map[i], bits = m & 0xFFu;
-        odg_ref_t r;
-        uint8_t v[8];
-        if ((m >> 16) > 7u && map_ref(n->cfg.dict, m, ODG_A_RPDO, &r) == ODG_OK) {
-            uint32_t got, len = (bits + 7u) / 8u;
-            memset(v, 0, sizeof v);
-            if (short64(&r, m)) {
-                len = 8u;
-                if (odg_read(&r, 0, v, sizeof v, &got) != ODG_OK) {
-                    memset(v, 0, sizeof v); /* write-only: the high-order bytes become 0 */
-                }
-            }
-            copy_bits(v, 0, data, pos, bits);
-            (void)odg_write(&r, v, len);
-        }
-        pos += bits;
-    }
-}
-
 /* A frame shorter than the mapping is not processed: the error 0x8210 (PDO length) is active
  * until every RPDO's last frame had the right length again, or the RPDO was reconfigured.
  * Longer frames are processed. */
@@ -452,11 +447,13 @@ void odg_pdo_receive_(odg_node_t *n, const odg_frame_t *f)
     }
     if (p->type <= TYPE_SYNC_MAX && !in_window(n)) {
         n->sync_dropped++; /* CiA 301: synchronous data outside the window are discarded */
-    } else if (p->type <= TYPE_SYNC_MAX) {
-        memcpy(p->data, f->data, sizeof p->data); /* applied at the next SYNC */
-        p->flags |= ODG_PDO_F_RECEIVED;
     } else {
-        apply(n, p, f->data);
+        memcpy(p->data, f->data, sizeof p->data);
+        if (p->type <= TYPE_SYNC_MAX) {
+            p->flags |= ODG_PDO_F_RECEIVED; /* applied at the next SYNC */
+        } else {
+            (void)move(n, p, 0, p->data, NULL);
+        }
     }
 }
 
@@ -478,7 +475,7 @@ void odg_pdo_sync_(odg_node_t *n, const odg_frame_t *f)
         odg_pdo_t *p = &n->rpdo[k];
         if (active(p) && (p->flags & ODG_PDO_F_RECEIVED)) {
             p->flags &= (uint8_t)~ODG_PDO_F_RECEIVED;
-            apply(n, p, p->data);
+            (void)move(n, p, 0, p->data, NULL);
         }
     }
     for (k = 0; k < ODG_NODE_MAX_TPDO; k++) {
@@ -486,7 +483,7 @@ void odg_pdo_sync_(odg_node_t *n, const odg_frame_t *f)
         if (!active(p)) {
             continue;
         }
-        if (p->type == TYPE_RTR_SYNC && sample(n, p, p->data, &p->len) == ODG_OK) {
+        if (p->type == TYPE_RTR_SYNC && move(n, p, 1, p->data, &p->len) == ODG_OK) {
             p->flags |= ODG_PDO_F_SAMPLED; /* sent when a remote request comes */
         }
         if (p->type > TYPE_SYNC_MAX) {
