@@ -92,48 +92,59 @@ DICT_PARTS = {"sub-entry descriptors": "od_subs", "entries": "od_entries", "rese
 NOT_MET = """\
 Where the goals are not met (hash, the default lookup; DS301 unless named; 2026-11-27):
 
-- **Dictionary + access with persistence and boot migration** (DS301 7348 B against 5308 B,
-  demoDevice 9116 B against 7132 B). The persistence layer links 4266 B (the layer 538, slots
-  and CRC 544, the "ODG1" check 84, the migration 3100; demoDevice 4828 B), against about
+- **Dictionary + access with persistence and boot migration** (DS301 6752 B against 5308 B,
+  demoDevice 8704 B against 7132 B). The persistence layer links 3960 B (the layer 410, slots
+  and CRC 544, the "ODG1" check 84, the migration 2922; demoDevice 4710 B), against about
   1764 B that CANopenNode's CO_storage, CO_storageEeprom and CRC-16 add (5308 - 3544). The
-  dictionary and the core alone are at 72% of CANopenNode's (the row without persistence).
-  Meeting 100% needs the whole layer at about 2.2 KB, the migration at about a third of its
-  size. What it links beyond CANopenNode's storage: stored values survive a firmware update that
-  changes the layout (entry by entry kept, widened, defaulted, dropped or added), images are
-  found where an older NV map put them (the places, the two-pass boot, the region scrub), and a
-  power-safe A/B commit with read-back. The notes' figure of the same row, 5768 B (bsearch,
+  dictionary and the core alone are at 72% of CANopenNode's (the row without persistence), and
+  the layer without migration is within CANopenNode's figure (the row with `migration = false`:
+  86%). Meeting 100% with migration needs the migration at about a third of its size. What it
+  links beyond CANopenNode's storage: stored values survive a firmware update that changes the
+  layout (entry by entry kept, widened, defaulted, dropped or added, checked against the current
+  limits), images are found where an older NV map put them (the places a region that grew or
+  shrank left them, the two-pass boot of several groups, the scrub of a region after boot), and
+  a power-safe A/B commit with read-back. The notes' figure of the same row, 5768 B (bsearch,
   2026-11-23), was measured before the stored-values rule set was merged, which added about
-  1.6 KB here (bsearch today: 7260 B).
-- Measured for this row, and what became of it:
-  - `odg_verify` (the boot self-check of the tables) is not linked by a firmware that does not
-    call it (the bare-metal example does not; the generated self-test and the Linux node do);
-    in its own file, `odg_verify.c`, the core compiles 16 B smaller.
-  - CRC-32 bit by bit: 44 B of code and no table; a 16-entry table would add 64 B, a 256-entry
-    one 1 KiB. Kept.
-  - Lookup: hash links 88 B more than bsearch (80 B of tables), but bsearch (125 instructions
-    per lookup) misses the lookup goal (<= 50% of CANopenNode's 143): the default stays hash.
-  - "ODG1" code in a migrating build: only `odg_fixed_read_` (84 B, which tells an image of the
-    format before from damage). The whole device links 584 B of `odg_persist_fixed.c`, since
-    the LSS slave keeps its configuration in "ODG1" slots.
-  - The store/restore dispatch out of line: +16 B; a byte per group for the two-pass boot:
-    -32 B FLASH for 224 B more stack (rejected); two words for its bitmap: -4 B (not worth it).
-  - The persisted group's defaults are a FLASH table (DS301 432 B, 33 of its 138 values not 0;
-    demoDevice 728 B). A generated per-group reset instead (a memset and the 33 stores, as the
-    sparse RAM block has), tried by hand on DS301 before the services split: -296 B on both
-    rows. Not done: single defaults are read from the table by `odg_comm.c` (the communication
-    values a reset restores, without touching the mirror), `odg_verify` and the "ODG1" limit
-    re-check; each needs a per-value default from elsewhere (a scratch the size of the group,
-    generated per-value code, or verify's check moved to generation) that costs what it saves.
-- **Whole device** (17540 B against 14021 B, 85% of 16496 B). The services link 9353 B
-  (`odg_sdo.c` 2258, `odg_pdo.c` 2184, `odg_err.c` 1152, `odg_node.c` 1069, `odg_lss.c` 994,
-  `odg_hb.c` 810, `odg_comm.c` 452, `odg_sync.c` 252, `odg_node_io.c` 150, `odg_time.c` 32);
-  the split into services took libc's memmove, memcmp and memcpy out of the node, and local
-  rewrites of the PDO, SDO, error and LSS code (same frames and aborts) took 442 B more (table
-  above: against the build before). With the dictionary, the core and the persistence as they
-  are (`od.c` 1669, `odg.c` 1168, persistence 4766, the bench's main and NV driver 268, libc
-  316), 5834 B are left for the services: they must lose about 3519 B (38%), less by what the
-  persistence loses. gcc's -Os output of these files is tight; what is left needs design
-  changes, not local rewrites. RAM, 1784 B (32%), meets its goal.
+  1.6 KB here.
+- Measured for this row on 2026-11-27, and what became of it:
+  - One walk over a group's places serves store, erase, scrub and boot (the images found in
+    address order and the newest), where three walked on their own: -208 B, then +68 B to keep
+    the boot's peak stack where it was (the list of images lives in erase's and scrub's frames
+    only).
+  - A dictionary with one persistence group boots it in one pass (`ODG_CFG_PERSIST_TWO_PASS 0`):
+    -160 B (DS301; demoDevice has three groups).
+  - The boot status object's counts worked out only when the dictionary has the object: -28 B.
+  - The NV driver of this bench is volatile, so its byte loops stay loops: before, GCC made them
+    calls of libc's memcpy (308 B, counted here), which CANopenNode's figures carry anyway (its
+    dictionary access copies with memcpy) and odgen's runtime does not use.
+  - A correctness fix cost +28 B (demoDevice +72 B): sub 0 of an entry whose highest sub-index
+    changed follows it only when its stored value would be kept or widened (a value narrowed
+    there is a loss, now reported).
+  - Tried and dropped: the node-id added to $NODEID values by one loop in `odg_init` instead of a
+    statement per value in the generated reset (-60 B with persistence, +12 B without; it changes
+    what a generated reset must do, so an older generated file would add the node-id twice);
+    the header word reader inline (-8 B).
+  - Earlier: `odg_verify` is not linked by a firmware that does not call it; CRC-32 bit by bit
+    (44 B, no table); hash links 88 B more than bsearch, which misses the lookup goal; the
+    persisted group's defaults as generated code instead of a table (-296 B) would need a
+    per-value default for the readers of single defaults (`odg_comm.c`, `odg_verify`, the "ODG1"
+    limit re-check) that costs what it saves.
+- **Whole device** (15220 B against 14021 B, 85% of 16496 B; with SDO block transfer, odgen's
+  default, 16240 B). The services link 7803 B (`odg_pdo.c` 2044, `odg_sdo.c` 1152 without block
+  transfer (2166 with), `odg_err.c` 1106, `odg_node.c` 1057, `odg_lss.c` 876, `odg_hb.c` 732,
+  `odg_comm.c` 422, `odg_sync.c` 252, `odg_node_io.c` 130, `odg_time.c` 32); the persistence
+  4460 B, of which 584 B of "ODG1" slot code only for the LSS slave's stored configuration
+  (CANopenNode's whole device stores nothing: its storage is CO_storageBlank); the dictionary
+  1669 B and the core 988 B. The same build was 17540 B with block transfer on the morning of
+  2026-11-27; since then the bench's memcpy -308 B, the persistence -306 B (as above), the
+  services -536 B and the core they link -180 B (one mapping walk for both PDO directions, the
+  error register and history through one lookup so that the node links no `odg_get`/`odg_set`,
+  life guarding as one more heartbeat entry, one EMCY send, LSS answers from one place, small
+  helpers kept out of line), and block transfer is a build switch (`[node] sdo_block = false`:
+  `odg_sdo.c` 2166 -> 1152 B). What is left, about 1.2 KB, needs design changes: the next
+  measured candidate is one descriptor list shared by records of one shape (the 4 + 4 PDO
+  communication records: 40 descriptors, 320 B, would be 10), then the LSS configuration kept
+  without the "ODG1" record code. RAM, 1776 B (32%), meets its goal.
 
 Earlier shrinks, measured the same way (the figures of their day, with an NV driver of three empty
 functions and before the stored-values rule set):
