@@ -44,6 +44,26 @@ def test_program(program: str, build_name: str, tmp_path: Path) -> None:
     run(exe, tmp_path)
 
 
+def test_verify_refuses_groups_a_one_pass_build_cannot_boot(tmp_path: Path) -> None:
+    """A runtime built for one persistence group (ODG_CFG_PERSIST_TWO_PASS 0, as NAME_config.h says
+    for such a dictionary) would boot the hand-written dictionary's two groups in one pass, where a
+    group's boot may write over another's image before it moves home: odg_verify refuses it."""
+    main = tmp_path / "main.c"
+    main.write_text('#include "td.h"\n'
+                    "odg_abort_t td_notice(const odg_ref_t *ref, odg_hook_kind_t kind, const void *data,\n"
+                    "                      uint32_t len, void *ctx);\n"
+                    "odg_abort_t td_notice(const odg_ref_t *ref, odg_hook_kind_t kind, const void *data,\n"
+                    "                      uint32_t len, void *ctx)\n"
+                    "{\n    (void)ref; (void)kind; (void)data; (void)len; (void)ctx;\n    return ODG_OK;\n}\n"
+                    "int main(void)\n{\n    uint16_t bad = 0;\n"
+                    "    return odg_init(&td, 5) == ODG_OK && odg_verify(&td, &bad) == ODG_ABORT_INTERNAL ? 0 : 1;\n"
+                    "}\n", encoding="utf-8")
+    exe = tmp_path / "one_pass"
+    build("gcc", ("-O1", "-DODG_CFG_PERSIST_TWO_PASS=0"), (main, CTESTS / "td.c", RUNTIME / "odg.c",
+                                                           RUNTIME / "odg_verify.c"), (RUNTIME, CTESTS), exe)
+    assert subprocess.run([str(exe)], check=False, timeout=60).returncode == 0
+
+
 def test_fault_figures(tmp_path: Path) -> None:
     """test_faults writes its figures (as fuzz/runtime/run.sh asks for fuzz/results/faults.json):
     every cut point, write failure, flip and cycle accounted for, and no mixed image."""
