@@ -274,8 +274,12 @@ odg_abort_t odg_pdo_check_(const odg_node_t *n, uint16_t index, uint8_t sub, uin
 static odg_abort_t move(odg_node_t *n, const odg_pdo_t *p, int tx, uint8_t *frame, uint8_t *len)
 {
     uint32_t i, pos = 0;
+    uint8_t in[8]; /* an RPDO's data: a write's listener may reload the PDO, which clears p->data */
     if (tx) {
         memset(frame, 0, 8);
+    } else {
+        memcpy(in, frame, sizeof in);
+        frame = in;
     }
     for (i = 0; i < p->n_map; pos += p->map[i++] & 0xFFu) {
         uint32_t m = p->map[i], bits = m & 0xFFu, got, size = (bits + 7u) / 8u;

@@ -555,6 +555,28 @@ static void test_application_client(void)
     CHECK_EQ(count_id(TPDO1), 0);
 }
 
+/* A listener that answers a value an RPDO wrote with odg_changed(dict, NULL) makes the node
+ * reload its PDOs while the frame is being applied: the values after it still come from the frame. */
+static void reload_on_flag_1(odg_client_t *self, const odg_ref_t *ref)
+{
+    (void)self;
+    if (ref != NULL && ref->entry->index == 0x2004u && ref->sub->sub == 1u) {
+        odg_changed(&pdo_node, NULL);
+    }
+}
+
+static void test_rpdo_reloaded_while_applied(void)
+{
+    static odg_client_t app;
+    operational();
+    app.changed = reload_on_flag_1;
+    odg_attach(&pdo_node, &app);
+    rx(RPDO1, 0x34, 0x00, 0x03); /* 0x2005 = 52, flag 1 (the reload), then flag 2 */
+    CHECK_EQ(pdo_node_x2005_limited_i16, 52);
+    CHECK_EQ(pdo_node_x2004_flags_s1_flag_1, 1);
+    CHECK_EQ(pdo_node_x2004_flags_s2_flag_2, 1);
+}
+
 /* 0x1003: every EMCY error code enters sub 1, the older ones move down, the oldest falls off
  * past sub 3; sub 0 counts; only 0 may be written to sub 0, and it clears the history. */
 static void test_error_history(void)
@@ -958,6 +980,7 @@ int main(void)
     test_sdo_server_cob_ids();
     test_application_writes();
     test_application_client();
+    test_rpdo_reloaded_while_applied();
     test_error_history();
     test_error_register();
     test_sync_producer();
