@@ -16,7 +16,7 @@ import os
 import struct
 import sys
 
-from vcan_node import remote, start, stop
+from vcan_node import Bootups, remote, start, stop
 
 NODE = 9
 WRITES = ((0x1800, 2, b"\x01"), (0x1800, 5, struct.pack("<H", 500)), (0x1280, 3, b"\x22"),
@@ -27,23 +27,26 @@ def main() -> int:
     exe, workdir = sys.argv[1:3]
     nv = os.path.join(workdir, "od.nv")
     net, node = remote(NODE)
+    up = Bootups(net, NODE)
     procs = []
     try:
         procs.append(start(exe, NODE, "--nv", nv))
-        node.nmt.wait_for_bootup(5)
+        up.wait()
         defaults = {(i, s): node.sdo.upload(i, s) for i, s, _ in WRITES}
         assert all(defaults[(i, s)] != v for i, s, v in WRITES), defaults
         for index, sub, value in WRITES:
             node.sdo.download(index, sub, value)
         node.sdo.download(0x1010, 1, b"save")
+        up.arm()
         node.nmt.state = "RESET"
-        node.nmt.wait_for_bootup(5)
+        up.wait()
         for index, sub, value in WRITES:
             got = node.sdo.upload(index, sub)
             assert got == value, f"0x{index:04X}sub{sub}: {got.hex()} after reset node, stored {value.hex()}"
         stop(procs.pop())
+        up.arm()
         procs.append(start(exe, NODE, "--nv", nv))  # power cycle
-        node.nmt.wait_for_bootup(5)
+        up.wait()
         for index, sub, value in WRITES:
             assert node.sdo.upload(index, sub) == value, f"0x{index:04X}sub{sub} after a power cycle"
         stop(procs.pop())

@@ -21,6 +21,7 @@ import time
 
 import can
 import canopen
+from vcan_node import Bootups
 
 CHANNEL = os.environ.get("ODGEN_VCAN_IFACES", "vcan0").split(",")[0]
 IDENTITY = [0x000004D2, 0x00010203, 0x00020001, 0x5EA1C0DE]  # 0x1018 sub 1-4 of lss-node.eds
@@ -84,8 +85,9 @@ def main() -> int:
         assert "bit timing 125 kbit/s configured" in log and "activate bit timing 125 kbit/s after 50 ms" in log, log
 
         # a restart without --node-id: the stored node-id comes back
+        up = Bootups(net, NODE_ID)
         procs.append(start(exe, nv))
-        node.nmt.wait_for_bootup(5)
+        up.wait()
         assert node.sdo.upload(0x1018, 4) == struct.pack("<I", IDENTITY[3])
         stop(procs.pop())
     finally:

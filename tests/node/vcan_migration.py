@@ -14,7 +14,7 @@ import struct
 import sys
 import time
 
-from vcan_node import remote, start, stop
+from vcan_node import Bootups, remote, start, stop
 
 NODE = 7
 MIGRATED, LOADED = 5, 0
@@ -24,10 +24,11 @@ def main() -> int:
     v1, v2, workdir = sys.argv[1:4]
     nv = os.path.join(workdir, "od.nv")
     net, node = remote(NODE)
+    up = Bootups(net, NODE)
     procs = []
     try:
         procs.append(start(v1, NODE, "--nv", nv))
-        node.nmt.wait_for_bootup(5)
+        up.wait()
         node.sdo.download(0x2000, 0, b"\xfa")  # UNSIGNED8 250: widened to UNSIGNED32 by v2
         node.sdo.download(0x2001, 0, struct.pack("<H", 57920))  # kept
         node.sdo.download(0x2002, 0, struct.pack("<h", -123))  # below v2's LowLimit: default
@@ -36,8 +37,9 @@ def main() -> int:
         stop(procs.pop())
 
         node.emcy.reset()
+        up.arm()
         procs.append(start(v2, NODE, "--nv", nv))
-        node.nmt.wait_for_bootup(5)
+        up.wait()
         assert node.sdo.upload(0x2000, 0) == struct.pack("<I", 250)
         assert node.sdo.upload(0x2001, 0) == struct.pack("<H", 57920)
         assert node.sdo.upload(0x2002, 0) == struct.pack("<h", -5)  # v2's default
