@@ -287,12 +287,12 @@ static int walk(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t end, 
             f->at = addr;
             odg_copy(f->h, t, DESCRIBED_HDR);
         }
-        e = addr + extent(t);
-        for (i = sp != NULL ? sp->n++ : 0u; i > 0u && sp->lo[i - 1u] > addr; i--) { /* in address order */
-            sp->lo[i] = sp->lo[i - 1u];
-            sp->hi[i] = sp->hi[i - 1u];
-        }
-        if (sp != NULL) {
+        if (sp != NULL) { /* inserted in address order */
+            e = addr + extent(t);
+            for (i = sp->n++; i > 0u && sp->lo[i - 1u] > addr; i--) {
+                sp->lo[i] = sp->lo[i - 1u];
+                sp->hi[i] = sp->hi[i - 1u];
+            }
             sp->lo[i] = addr;
             sp->hi[i] = v == -2 && e > rend ? rend : e;
         }
