@@ -92,9 +92,9 @@ DICT_PARTS = {"sub-entry descriptors": "od_subs", "entries": "od_entries", "rese
 NOT_MET = """\
 Where the goals are not met (hash, the default lookup; DS301 unless named; 2026-11-27):
 
-- **Dictionary + access with persistence and boot migration** (DS301 6752 B against 5308 B,
-  demoDevice 8704 B against 7132 B). The persistence layer links 3960 B (the layer 410, slots
-  and CRC 544, the "ODG1" check 84, the migration 2922; demoDevice 4710 B), against about
+- **Dictionary + access with persistence and boot migration** (DS301 6748 B against 5308 B,
+  demoDevice 8700 B against 7132 B). The persistence layer links 3956 B (the layer 410, slots
+  and CRC 544, the "ODG1" check 84, the migration 2918; demoDevice 4706 B), against about
   1764 B that CANopenNode's CO_storage, CO_storageEeprom and CRC-16 add (5308 - 3544). The
   dictionary and the core alone are at 72% of CANopenNode's (the row without persistence), and
   the layer without migration is within CANopenNode's figure (the row with `migration = false`:
@@ -108,7 +108,7 @@ Where the goals are not met (hash, the default lookup; DS301 unless named; 2026-
   1.6 KB here.
 - Measured for this row on 2026-11-27, and what became of it:
   - One walk over a group's places serves store, erase, scrub and boot (the images found in
-    address order and the newest), where three walked on their own: -208 B, then +68 B to keep
+    address order and the newest), where three walked on their own: -208 B, then +64 B to keep
     the boot's peak stack where it was (the list of images lives in erase's and scrub's frames
     only).
   - A dictionary with one persistence group boots it in one pass (`ODG_CFG_PERSIST_TWO_PASS 0`):
@@ -129,14 +129,14 @@ Where the goals are not met (hash, the default lookup; DS301 unless named; 2026-
     persisted group's defaults as generated code instead of a table (-296 B) would need a
     per-value default for the readers of single defaults (`odg_comm.c`, `odg_verify`, the "ODG1"
     limit re-check) that costs what it saves.
-- **Whole device** (15232 B against 14021 B, 85% of 16496 B; with SDO block transfer, odgen's
-  default, 16252 B). The services link 7815 B (`odg_pdo.c` 2056, `odg_sdo.c` 1152 without block
+- **Whole device** (15228 B against 14021 B, 85% of 16496 B; with SDO block transfer, odgen's
+  default, 16248 B). The services link 7815 B (`odg_pdo.c` 2056, `odg_sdo.c` 1152 without block
   transfer (2166 with), `odg_err.c` 1106, `odg_node.c` 1057, `odg_lss.c` 876, `odg_hb.c` 732,
   `odg_comm.c` 422, `odg_sync.c` 252, `odg_node_io.c` 130, `odg_time.c` 32); the persistence
-  4460 B, of which 584 B of "ODG1" slot code only for the LSS slave's stored configuration
+  4456 B, of which 584 B of "ODG1" slot code only for the LSS slave's stored configuration
   (CANopenNode's whole device stores nothing: its storage is CO_storageBlank); the dictionary
   1669 B and the core 988 B. The same build was 17540 B with block transfer on the morning of
-  2026-11-27; since then the bench's memcpy -308 B, the persistence -306 B (as above), the
+  2026-11-27; since then the bench's memcpy -308 B, the persistence -310 B (as above), the
   services -524 B and the core they link -180 B (one mapping walk for both PDO directions, the
   error register and history through one lookup so that the node links no `odg_get`/`odg_set`,
   life guarding as one more heartbeat entry, one EMCY send, LSS answers from one place, small
