@@ -32,6 +32,11 @@ typedef uint32_t odg_num_t;
 /* A key packing a table row's size and the offset of its 16-bit key member (bsearch16 in odg.c). */
 #define KEYED(type, member) ((uint32_t)(sizeof(type) | offsetof(type, member) << 8))
 
+/* The UNSIGNED32 whose little-endian bytes (CANopen's wire order) start at `p`, read byte by
+ * byte: any alignment, any byte order. A macro, as -Os would call a function, not inline it. */
+#define ODG_LE32(p) \
+    ((uint32_t)(p)[0] | (uint32_t)(p)[1] << 8 | (uint32_t)(p)[2] << 16 | (uint32_t)(p)[3] << 24)
+
 /* Native value of a numeric sub-entry of wire size `size` (1..8, 1..4 without ODG_CFG_INT64),
  * zero-extended from its C type (uint8_t, uint16_t, uint32_t for 3..4, uint64_t for 5..8;
  * float/double as bits). */

@@ -7,6 +7,7 @@
  */
 #include <string.h>
 
+#include "odg_impl.h"
 #include "odg_node.h"
 
 #define SIGNATURE 0x3153534Cu /* "LSS1": the layout of odg_lss_t.record */
@@ -80,11 +81,6 @@ static void reply(odg_node_t *n, uint8_t cs, uint32_t value)
     (void)odg_io_send_(n, ODG_LSS_SLAVE_COB, d, 8);
 }
 
-static uint32_t le32(const uint8_t *p)
-{
-    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
-}
-
 /* Switch state selective (0x40..0x43): the four parts of the identity in order; a wrong one
  * starts over. All four matched: configuration mode, answered with 0x44. */
 static void selective(odg_node_t *n, unsigned part, uint32_t v)
@@ -122,7 +118,7 @@ static void identify(odg_node_t *n, unsigned part, uint32_t v)
  * enters configuration mode. */
 static void fastscan(odg_node_t *n, const uint8_t *d)
 {
-    uint32_t id = le32(d + 1);
+    uint32_t id = ODG_LE32(d + 1);
     uint8_t bit = d[5], sub = d[6], next = d[7];
     if (n->cfg.node_id != ODG_LSS_UNCONFIGURED || n->lss.mode != ODG_LSS_WAITING) {
         return;
@@ -191,10 +187,10 @@ int odg_lss_receive_(odg_node_t *n, const uint8_t *d)
     }
     if (cs >= 0x40u && cs <= 0x43u) {
         if (n->lss.mode == ODG_LSS_WAITING) {
-            selective(n, cs - 0x40u, le32(d + 1));
+            selective(n, cs - 0x40u, ODG_LE32(d + 1));
         }
     } else if (cs >= 0x46u && cs <= 0x4Bu) {
-        identify(n, cs - 0x46u, le32(d + 1));
+        identify(n, cs - 0x46u, ODG_LE32(d + 1));
     } else if (cs == 0x4Cu) {
         if (n->cfg.node_id == ODG_LSS_UNCONFIGURED && n->lss.pending == ODG_LSS_UNCONFIGURED) {
             reply(n, 0x50, 0);

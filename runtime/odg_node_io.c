@@ -5,6 +5,7 @@
  */
 #include <string.h>
 
+#include "odg_impl.h"
 #include "odg_node.h"
 
 int odg_io_send_(const odg_node_t *n, uint32_t cob, const uint8_t *data, uint8_t len)
@@ -26,7 +27,7 @@ odg_abort_t odg_io_get_(const odg_node_t *n, uint16_t index, uint8_t sub, uint32
     if (ac == ODG_OK) {
         ac = odg_read(&r, 0, b, sizeof b, &got);
     }
-    *value = (uint32_t)b[0] | (uint32_t)b[1] << 8 | (uint32_t)b[2] << 16 | (uint32_t)b[3] << 24;
+    *value = ODG_LE32(b);
     return ac;
 }
 

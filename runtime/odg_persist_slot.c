@@ -35,7 +35,7 @@ void odg_put32_(uint8_t *p, uint32_t v)
 
 uint32_t odg_get32_(const uint8_t *p)
 {
-    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+    return ODG_LE32(p);
 }
 
 /* a is newer than b: a - b in 1 .. 2^31 - 1 */

@@ -16,12 +16,11 @@
  */
 #include <string.h>
 
+#include "odg_impl.h"
 #include "odg_node.h"
 
 #define SIZE_UNKNOWN 0xFFFFFFFFu
 
-/* Bytes p[0..3], little-endian (a macro: a function would be called, not inlined, at -Os). */
-#define GET32(p) ((uint32_t)(p)[0] | (uint32_t)(p)[1] << 8 | (uint32_t)(p)[2] << 16 | (uint32_t)(p)[3] << 24)
 
 static void put32(uint8_t *p, uint32_t v)
 {
@@ -187,7 +186,7 @@ static odg_abort_t download_initiate(odg_node_t *n, const uint8_t *d)
             ac = write_whole(n, d + 4, len); /* size not indicated: a short number */
         }
     } else {
-        ac = begin_download(n, (d[0] & 0x01u) ? GET32(d + 4) : SIZE_UNKNOWN);
+        ac = begin_download(n, (d[0] & 0x01u) ? ODG_LE32(d + 4) : SIZE_UNKNOWN);
         s->state = ODG_SDO_DN_SEG;
     }
     if (ac == ODG_OK) {
@@ -223,7 +222,7 @@ static odg_abort_t block_download_initiate(odg_node_t *n, const uint8_t *d)
 {
     odg_sdo_t *s = &n->sdo;
     uint8_t blksize = ODG_NODE_SDO_BLKSIZE;
-    odg_abort_t ac = begin_download(n, (d[0] & 0x02u) ? GET32(d + 4) : SIZE_UNKNOWN);
+    odg_abort_t ac = begin_download(n, (d[0] & 0x02u) ? ODG_LE32(d + 4) : SIZE_UNKNOWN);
     if (ac != ODG_OK) {
         return ac;
     }
@@ -327,7 +326,7 @@ static void upload_respond(odg_node_t *n)
 {
     odg_sdo_t *s = &n->sdo;
     if (s->total >= 1u && s->total <= 4u) {
-        respond(n, (uint8_t)(0x43u | (4u - s->total) << 2), GET32(s->buf));
+        respond(n, (uint8_t)(0x43u | (4u - s->total) << 2), ODG_LE32(s->buf));
         s->state = ODG_SDO_IDLE;
         return;
     }

@@ -6,6 +6,7 @@
  */
 #include <string.h>
 
+#include "odg_impl.h"
 #include "odg_node.h"
 
 void odg_time_receive_(odg_node_t *n, const odg_frame_t *f)
@@ -15,7 +16,7 @@ void odg_time_receive_(odg_node_t *n, const odg_frame_t *f)
     if (f->len < 6u || n->cfg.on_time == NULL) {
         return; /* TIME_OF_DAY is 6 bytes: a shorter frame carries no time */
     }
-    ms = ((uint32_t)d[0] | (uint32_t)d[1] << 8 | (uint32_t)d[2] << 16 | (uint32_t)d[3] << 24) & ODG_TIME_MS_MASK;
+    ms = ODG_LE32(d) & ODG_TIME_MS_MASK;
     n->cfg.on_time(n->cfg.app_ctx, ms, (uint16_t)(d[4] | (unsigned)d[5] << 8));
 }
 
