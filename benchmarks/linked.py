@@ -129,23 +129,23 @@ Where the goals are not met (hash, the default lookup; DS301 unless named; 2026-
     persisted group's defaults as generated code instead of a table (-296 B) would need a
     per-value default for the readers of single defaults (`odg_comm.c`, `odg_verify`, the "ODG1"
     limit re-check) that costs what it saves.
-- **Whole device** (15228 B against 14021 B, 85% of 16496 B; with SDO block transfer, odgen's
-  default, 16248 B). The services link 7815 B (`odg_pdo.c` 2056, `odg_sdo.c` 1152 without block
-  transfer (2166 with), `odg_err.c` 1106, `odg_node.c` 1057, `odg_lss.c` 876, `odg_hb.c` 732,
+- **Whole device** (15204 B against 14021 B, 85% of 16496 B; with SDO block transfer, odgen's
+  default, 16224 B). The services link 7791 B (`odg_pdo.c` 2056, `odg_sdo.c` 1152 without block
+  transfer (2166 with), `odg_err.c` 1106, `odg_node.c` 1057, `odg_lss.c` 852, `odg_hb.c` 732,
   `odg_comm.c` 422, `odg_sync.c` 252, `odg_node_io.c` 130, `odg_time.c` 32); the persistence
   4456 B, of which 584 B of "ODG1" slot code only for the LSS slave's stored configuration
   (CANopenNode's whole device stores nothing: its storage is CO_storageBlank); the dictionary
   1669 B and the core 988 B. The same build was 17540 B with block transfer on the morning of
   2026-11-27; since then the bench's memcpy -308 B, the persistence -310 B (as above), the
-  services -524 B and the core they link -180 B (one mapping walk for both PDO directions, the
+  services -548 B and the core they link -180 B (one mapping walk for both PDO directions, the
   error register and history through one lookup so that the node links no `odg_get`/`odg_set`,
-  life guarding as one more heartbeat entry, one EMCY send, LSS answers from one place, small
-  helpers kept out of line; +12 B for an RPDO written from a copy of its frame, which a
-  reload of the PDOs during the writes cleared), and block transfer is a build switch
-  (`[node] sdo_block = false`: `odg_sdo.c` 2166 -> 1152 B). What is left, about 1.2 KB, needs design changes: the next
-  measured candidate is one descriptor list shared by records of one shape (the 4 + 4 PDO
-  communication records: 40 descriptors, 320 B, would be 10), then the LSS configuration kept
-  without the "ODG1" record code. RAM, 1776 B (32%), meets its goal.
+  life guarding as one more heartbeat entry, one EMCY send, LSS answers from one place, one
+  little-endian word reader, small helpers kept out of line; +12 B for an RPDO written from a
+  copy of its frame, which a reload of the PDOs during the writes cleared), and block transfer
+  is a build switch (`[node] sdo_block = false`: `odg_sdo.c` 2166 -> 1152 B). What is left,
+  about 1.2 KB, needs design changes: the next measured candidate is one descriptor list shared
+  by records of one shape (the 4 + 4 PDO communication records: 40 descriptors, 320 B, would be
+  10), then the LSS configuration kept without the "ODG1" record code. RAM, 1776 B (32%), meets its goal.
 
 Earlier shrinks, measured the same way (the figures of their day, with an NV driver of three empty
 functions and before the stored-values rule set):
