@@ -234,39 +234,19 @@ static int looked_at(const odg_group_t *gr, uint32_t end, uint32_t half, const u
            (odg_get32_(a) == DESCRIBED_MAGIC && our_id(gr, odg_get32_(a + 8)) && odg_get32_(a + 12) / 2u == half);
 }
 
-#define PLACES 14u /* slot A, the region's slot B, and slot B of every power of two up to 64 KiB */
-
-/* What one walk over the places of a group found: the newest of its images (valid, or headers
- * of ours whose image cannot be read: described_read -2), and with `spans` all of them in
- * address order. Store, erase, scrub and boot each act on one walk. */
-typedef struct spans {
-    uint32_t lo[PLACES], hi[PLACES]; /* an image's first byte and the end of its slot extent (for
-                                      * one that cannot be read, at most the region's end) */
-    unsigned n;
-} spans_t;
-
-typedef struct found {
-    int newest;               /* 1 valid, 2 cannot be read, 0 no image */
-    uint32_t at;              /* the newest's address (nv_addr when none) */
-    uint8_t h[DESCRIBED_HDR]; /* the newest's header */
-    spans_t *spans;           /* or NULL: the newest alone */
-} found_t;
-
-/* Walk the places of group `gr` inside the dictionary's NV (up to `end`, NAME_NV_SIZE) and the
- * place slot A's header names past it (the slot B of a larger region a later firmware used).
- * 0, or -1 when the driver failed inside the region (a failing read past it means no NV there). */
-static int walk(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t end, found_t *f)
+/* The newest image of group `gr` at its places inside the dictionary's NV (up to `end`,
+ * NAME_NV_SIZE) and the place slot A's header names past it (the slot B of a larger region a
+ * later firmware used): 1 valid, 2 a header of ours whose image cannot be read (described_read
+ * -2), 0 none, -1 the driver failed inside the region (a failing read past it means no NV
+ * there); its address in *at (nv_addr when none) and its header in h. With `wipe`, the valid
+ * images past the region other than at `keep` are erased on the way (-1 when that fails). */
+static int walk(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t end, uint32_t *at, uint8_t *h,
+                int wipe, uint32_t keep)
 {
     uint8_t t[DESCRIBED_HDR], a[DESCRIBED_HDR];
-    uint32_t half = 0u, addr, e, rend = gr->nv_addr + gr->region;
-    unsigned i;
-    int v;
-    spans_t *sp = f->spans;
-    if (sp != NULL) {
-        sp->n = 0;
-    }
-    f->newest = 0;
-    f->at = gr->nv_addr;
+    uint32_t half = 0u, addr;
+    int v, k = 0;
+    *at = gr->nv_addr;
     do {
         if (!looked_at(gr, end, half, a)) {
             continue;
@@ -282,37 +262,21 @@ static int walk(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t end, 
         if (v != 1 && v != -2) {
             continue;
         }
-        if (!f->newest || odg_newer_(odg_get32_(t + 4), odg_get32_(f->h + 4))) {
-            f->newest = v == 1 ? 1 : 2;
-            f->at = addr;
-            odg_copy(f->h, t, DESCRIBED_HDR);
+        if (wipe && v == 1 && half >= gr->region && addr != keep && odg_wipe_(nv, addr, addr + extent(t))) {
+            return -1;
         }
-        if (sp != NULL) { /* inserted in address order */
-            e = addr + extent(t);
-            for (i = sp->n++; i > 0u && sp->lo[i - 1u] > addr; i--) {
-                sp->lo[i] = sp->lo[i - 1u];
-                sp->hi[i] = sp->hi[i - 1u];
-            }
-            sp->lo[i] = addr;
-            sp->hi[i] = v == -2 && e > rend ? rend : e;
+        if (!k || odg_newer_(odg_get32_(t + 4), odg_get32_(h + 4))) {
+            k = v == 1 ? 1 : 2;
+            *at = addr;
+            odg_copy(h, t, DESCRIBED_HDR);
         }
     } while ((half = next_place(gr, half)) != 0u);
-    return 0;
+    return k;
 }
 
-/* The newest image of group `gr` (walk): 1 valid, 2 cannot be read, 0 none, -1 the driver
- * failed; its address in *at (nv_addr when none) and its header in h. The walk's list lives in
- * this frame only, so that the store a boot calls does not stack a second one on it. */
 static int newest(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t end, uint32_t *at, uint8_t *h)
 {
-    found_t f;
-    f.spans = NULL;
-    if (walk(nv, gr, end, &f) < 0) {
-        return -1;
-    }
-    *at = f.at;
-    odg_copy(h, f.h, DESCRIBED_HDR);
-    return f.newest;
+    return walk(nv, gr, end, at, h, 0, 0u);
 }
 
 /* Image bytes on their way to NV, CRC-32 on the fly. */
@@ -434,56 +398,55 @@ odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv,
     return ODG_OK;
 }
 
-/* Make the next boot of group `g` use the defaults: erase its images at every place (those past
- * the region first), then the region but the newest image, then the newest, so that a power
- * cut in between leaves the newest (as if nothing happened), never an older one. */
+/* Make the next boot of group `g` use the defaults: erase its images past the region first,
+ * then the region but the newest image, then the newest, so that a power cut in between leaves
+ * the newest (as if nothing happened), never an older one. */
 odg_abort_t odg_described_erase_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
 {
     const odg_group_t *gr = &d->groups[g];
-    uint32_t start = gr->nv_addr, end = gr->nv_addr + gr->region, e = 0u, lo = end, hi = end;
-    unsigned i;
-    spans_t sp;
-    found_t f;
-    int fail;
-    f.spans = &sp;
-    fail = walk(nv, gr, odg_persist_nv_size(d), &f) < 0;
-    for (i = 0; !fail && i < sp.n; i++) { /* past the region (one that cannot be read: hi <= lo) */
-        fail = sp.lo[i] >= end && sp.lo[i] != f.at && odg_wipe_(nv, sp.lo[i], sp.hi[i]);
-    }
-    if (f.newest) {
-        e = f.at + extent(f.h);
-        e = f.newest == 2 && f.at < end && e > end ? end : e;
-        if (f.at < end) { /* the header is what counts */
-            lo = f.at;
+    uint8_t h[DESCRIBED_HDR];
+    uint32_t end = gr->nv_addr + gr->region, at, x, e = 0u, lo = end, hi = end, nv_end = odg_persist_nv_size(d);
+    int k = newest(nv, gr, nv_end, &at, h), fail = k < 0;
+    if (k > 0) {
+        e = at + extent(h);
+        e = k == 2 && at < end && e > end ? end : e; /* one that cannot be read: its header */
+        if (at < end) {
+            lo = at;
             hi = e > end ? end : e;
         }
     }
-    fail = fail || odg_wipe_(nv, start, lo) || odg_wipe_(nv, hi, end) || (f.newest && odg_wipe_(nv, f.at, e));
+    fail = fail || walk(nv, gr, nv_end, &x, h, 1, at) < 0;
+    fail = fail || odg_wipe_(nv, gr->nv_addr, lo) || odg_wipe_(nv, hi, end) || (k > 0 && odg_wipe_(nv, at, e));
     return fail ? ODG_ABORT_HARDWARE : ODG_OK;
 }
 
 /* After a boot of group `gr`: erase what its region holds besides its own images (at its
- * places): images of other groups or of this one written at another place, and bytes of
+ * places, visited in address order: slot A, then the middle of every power-of-two region up to
+ * its own): images of other groups or of this one written at another place, and bytes of
  * neither, left there by a firmware whose NV map differed, which must never come back as a
  * group's values when the map changes again. Its own older images stay: a rollback firmware
  * that cannot see the newest one (past its NV) finds the one the newest was migrated from.
  * -1 when the driver failed. */
-static int scrub(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t nv_end)
+static int scrub(const odg_nv_driver_t *nv, const odg_group_t *gr)
 {
-    uint32_t end = gr->nv_addr + gr->region, pos = gr->nv_addr;
-    unsigned i;
-    spans_t sp;
-    found_t f;
-    f.spans = &sp;
-    if (walk(nv, gr, nv_end, &f) < 0) {
-        return -1;
-    }
-    for (i = 0; i < sp.n && sp.lo[i] < end; i++) {
-        if (sp.lo[i] > pos && odg_clear_(nv, pos, sp.lo[i])) {
+    uint8_t t[DESCRIBED_HDR];
+    uint32_t end = gr->nv_addr + gr->region, pos = gr->nv_addr, half = 0u, addr, e;
+    int v;
+    do {
+        addr = gr->nv_addr + half;
+        v = described_read(nv, gr, addr, t, 1);
+        if (v == -1) {
             return -1;
         }
-        pos = sp.hi[i] > pos ? sp.hi[i] : pos;
-    }
+        if (v == 1 || v == -2) {
+            if (odg_clear_(nv, pos, addr)) {
+                return -1;
+            }
+            e = addr + extent(t);
+            pos = e > pos ? e : pos;
+        }
+        half = half == 0u ? 32u : 2u * half;
+    } while (half < gr->region);
     return odg_clear_(nv, pos < end ? pos : end, end) ? -1 : 0;
 }
 
@@ -753,7 +716,7 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
         if (migrate(d, nv, g, at, n) == 0 && reads_back(nv, gr, at, h)) {
             /* a migrated image is stored at once, with the A/B commit */
             changed = n[DEFAULTED] || n[DROPPED] || n[CONVERTED] || n[ADDED];
-            if ((!changed || odg_described_store_(d, nv, g) == ODG_OK) && scrub(nv, gr, nv_end) == 0) {
+            if ((!changed || odg_described_store_(d, nv, g) == ODG_OK) && scrub(nv, gr) == 0) {
                 count(d->state, b, n);
                 return changed ? ODG_BOOT_MIGRATED : ODG_BOOT_LOADED;
             }
@@ -763,7 +726,7 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
     }
     /* 2: the newest image cannot be read: its values are lost */
     st = k < 0 ? ODG_BOOT_NV_ERROR : k == 2 ? ODG_BOOT_DAMAGED : described_no_image(nv, gr);
-    if (st != ODG_BOOT_NV_ERROR && (odg_described_store_(d, nv, g) != ODG_OK || scrub(nv, gr, nv_end) != 0)) {
+    if (st != ODG_BOOT_NV_ERROR && (odg_described_store_(d, nv, g) != ODG_OK || scrub(nv, gr) != 0)) {
         st = ODG_BOOT_NV_ERROR;
     }
     return st;
