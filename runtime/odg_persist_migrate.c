@@ -665,17 +665,18 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
 }
 
 /* No image of ours: DEFAULTS when the region is blank (a first boot, or after a restore);
- * SIGNATURE for an "ODG1" image (the format before); else DAMAGED: corrupt bytes, another
- * group's image or this group's written at another place (the NV map changed), all losses. */
+ * SIGNATURE for an "ODG1" image (the format before: its commit mark where a slot starts); else
+ * DAMAGED: corrupt bytes, another group's image or this group's written at another place (the
+ * NV map changed), all losses. */
 static odg_boot_status_t described_no_image(const odg_nv_driver_t *nv, const odg_group_t *gr)
 {
-    uint8_t t[ODG_PERSIST_HEADER_SIZE];
-    uint32_t half = gr->region / 2u;
+    uint8_t t[4];
+    uint32_t half = gr->region / 2u, addr = gr->nv_addr;
     int k, v;
-    for (k = 0; k < 2; k++) {
-        v = odg_slot_blank_(nv, gr->nv_addr + (k ? half : 0u), half);
+    for (k = 0; k < 2; k++, addr += half) {
+        v = odg_slot_blank_(nv, addr, half);
         if (v == 0) {
-            v = odg_fixed_read_(nv, gr->nv_addr + (k ? half : 0u), half - ODG_PERSIST_HEADER_SIZE, t, NULL);
+            v = odg_hdr_read_(nv, addr, t, 4u, ODG_PERSIST_ODG1_MAGIC);
             return v < 0 ? ODG_BOOT_NV_ERROR : (v ? ODG_BOOT_SIGNATURE : ODG_BOOT_DAMAGED);
         }
         if (v < 0) {
@@ -685,7 +686,7 @@ static odg_boot_status_t described_no_image(const odg_nv_driver_t *nv, const odg
     return ODG_BOOT_DEFAULTS;
 }
 
-/* The counts of a boot that found an image, into `b` and the totals of the EMCY. */
+/* The counts of a boot that migrated an image, into `b` and the totals of the EMCY. */
 static void count(odg_state_t *s, odg_boot_t *b, const uint16_t n[5])
 {
     int i;
@@ -702,32 +703,35 @@ static void count(odg_state_t *s, odg_boot_t *b, const uint16_t n[5])
     }
 }
 
+/* Boot group `g`: the newest image migrated (stored at once when anything changed), or the
+ * defaults stored; then the scrub. When the driver fails on the way, or the image does not
+ * read the same a second time: NV_ERROR with the defaults, and no count. */
 odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g,
-                               odg_boot_t *b)
+                                      odg_boot_t *b)
 {
     const odg_group_t *gr = &d->groups[g];
     uint8_t h[DESCRIBED_HDR];
     uint16_t n[5] = {0, 0, 0, 0, 0}; /* entries KEPT, DEFAULTED, DROPPED, CONVERTED, ADDED */
-    uint32_t at, nv_end = odg_persist_nv_size(d);
-    odg_boot_status_t st;
-    int k = newest(nv, gr, nv_end, &at, h), changed;
+    uint32_t at;
+    odg_boot_status_t st = ODG_BOOT_NV_ERROR;
+    int k = newest(nv, gr, odg_persist_nv_size(d), &at, h);
     odg_defaults_(d, g); /* the mirror starts from the defaults (RAM only: no NV access) */
     if (k == 1) {
         if (migrate(d, nv, g, at, n) == 0 && reads_back(nv, gr, at, h)) {
-            /* a migrated image is stored at once, with the A/B commit */
-            changed = n[DEFAULTED] || n[DROPPED] || n[CONVERTED] || n[ADDED];
-            if ((!changed || odg_described_store_(d, nv, g) == ODG_OK) && scrub(nv, gr) == 0) {
-                count(d->state, b, n);
-                return changed ? ODG_BOOT_MIGRATED : ODG_BOOT_LOADED;
-            }
+            st = n[DEFAULTED] || n[DROPPED] || n[CONVERTED] || n[ADDED] ? ODG_BOOT_MIGRATED : ODG_BOOT_LOADED;
         }
-        odg_defaults_(d, g);
-        k = -1; /* a driver failure, or the image did not read the same a second time */
+    } else if (k >= 0) { /* 2: the newest image cannot be read: its values are lost */
+        st = k == 2 ? ODG_BOOT_DAMAGED : described_no_image(nv, gr);
     }
-    /* 2: the newest image cannot be read: its values are lost */
-    st = k < 0 ? ODG_BOOT_NV_ERROR : k == 2 ? ODG_BOOT_DAMAGED : described_no_image(nv, gr);
-    if (st != ODG_BOOT_NV_ERROR && (odg_described_store_(d, nv, g) != ODG_OK || scrub(nv, gr) != 0)) {
+    /* a migrated image, or the defaults, are stored at once with the A/B commit */
+    if (st != ODG_BOOT_NV_ERROR &&
+        ((st != ODG_BOOT_LOADED && odg_described_store_(d, nv, g) != ODG_OK) || scrub(nv, gr) != 0)) {
         st = ODG_BOOT_NV_ERROR;
+    }
+    if (st == ODG_BOOT_NV_ERROR) {
+        odg_defaults_(d, g);
+    } else if (k == 1) {
+        count(d->state, b, n);
     }
     return st;
 }
