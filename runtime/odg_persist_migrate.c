@@ -154,13 +154,12 @@ static int our_id(const odg_group_t *gr, uint32_t id)
     return id == tagged_id(gr) || id == gr->id;
 }
 
-/* Read and check the "ODG2" slot at `addr` (header into `h`). `ours`: of group `gr`, and at
- * slot A or at the middle of the region it names. A valid image has a descriptor of records
- * with increasing keys whose values fill it. 1 valid, 0 not, -1 the driver failed, -2 (`ours`
- * only) a header of ours whose image runs past the region and cannot be read there: an image
- * of a larger region on an NV that ends before it, which is a loss, never "nothing there". */
-static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t addr, uint8_t *h,
-                      int ours)
+/* Read and check the "ODG2" slot at `addr` (header into `h`) as an image of group `gr`: its id,
+ * and at slot A or at the middle of the region it names. A valid image has a descriptor of
+ * records with increasing keys whose values fill it. 1 valid, 0 not, -1 the driver failed, -2
+ * a header of ours whose image runs past the region and cannot be read there: an image of a
+ * larger region on an NV that ends before it, which is a loss, never "nothing there". */
+static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t addr, uint8_t *h)
 {
     uint8_t c[REC];
     uint32_t len, region, cnt, sum, prev = 0, i;
@@ -169,12 +168,11 @@ static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint
     len = odg_get32_(h + 16);
     if (v != 1 || region > 0x01000000u || region / 2u < DESCRIBED_HDR + 2u || len < 2u ||
         len > region / 2u - DESCRIBED_HDR ||
-        (ours && (!our_id(gr, odg_get32_(h + 8)) ||
-                  (addr != gr->nv_addr && addr - gr->nv_addr != region / 2u)))) {
+        !our_id(gr, odg_get32_(h + 8)) || (addr != gr->nv_addr && addr - gr->nv_addr != region / 2u)) {
         return v < 0 ? -1 : 0;
     }
     v = odg_crc_ok_(nv, addr, h, DESCRIBED_HDR, len, NULL);
-    if (v < 0 && ours && addr + DESCRIBED_HDR + len > gr->nv_addr + gr->region) {
+    if (v < 0 && addr + DESCRIBED_HDR + len > gr->nv_addr + gr->region) {
         return -2;
     }
     if (v != 1 || nv->read(nv->ctx, addr + DESCRIBED_HDR, c, 2) != 0) {
@@ -185,10 +183,10 @@ static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint
         if (nv->read(nv->ctx, addr + DESCRIBED_HDR + 2u + REC * i, c, REC) != 0) {
             return -1;
         }
-        if (i > 0u && rec_key(c) <= prev) {
+        if (rec_key(c) < prev) {
             return 0;
         }
-        prev = rec_key(c);
+        prev = rec_key(c) + 1u; /* the keys increase */
         sum += value_size(c);
     }
     return sum == len;
@@ -200,7 +198,7 @@ static int reads_back(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t
                       const uint8_t *h)
 {
     uint8_t t[DESCRIBED_HDR];
-    return described_read(nv, gr, addr, t, 1) == 1 && odg_get32_(t + 20) == odg_get32_(h + 20);
+    return described_read(nv, gr, addr, t) == 1 && odg_get32_(t + 20) == odg_get32_(h + 20);
 }
 
 /* The places an image of group `gr` can be, as offsets from its region's start after `half`:
@@ -226,12 +224,11 @@ static uint32_t extent(const uint8_t *h)
     return (DESCRIBED_HDR + odg_get32_(h + 16) + ODG_PERSIST_ALIGN - 1u) & ~((uint32_t)ODG_PERSIST_ALIGN - 1u);
 }
 
-/* Whether the place `half` of group `gr` is looked at: inside the dictionary's NV (up to `end`,
- * NAME_NV_SIZE), or the place slot A's header (`a`, read, not checked) names past it. */
-static int looked_at(const odg_group_t *gr, uint32_t end, uint32_t half, const uint8_t *a)
+/* The place (as `half`) slot A's header `a` names, read, not checked: the middle of the region
+ * it was written for when it is a header of this group, else 0 (slot A itself). */
+static uint32_t named(const odg_group_t *gr, const uint8_t *a)
 {
-    return half == 0u || gr->nv_addr + half + DESCRIBED_HDR <= end ||
-           (odg_get32_(a) == DESCRIBED_MAGIC && our_id(gr, odg_get32_(a + 8)) && odg_get32_(a + 12) / 2u == half);
+    return odg_get32_(a) == DESCRIBED_MAGIC && our_id(gr, odg_get32_(a + 8)) ? odg_get32_(a + 12) / 2u : 0u;
 }
 
 /* The newest image of group `gr` at its places inside the dictionary's NV (up to `end`,
@@ -243,21 +240,21 @@ static int looked_at(const odg_group_t *gr, uint32_t end, uint32_t half, const u
 static int walk(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t end, uint32_t *at, uint8_t *h,
                 int wipe, uint32_t keep)
 {
-    uint8_t t[DESCRIBED_HDR], a[DESCRIBED_HDR];
-    uint32_t half = 0u, addr;
+    uint8_t t[DESCRIBED_HDR];
+    uint32_t half = 0u, addr, far = 0u; /* far: the place slot A names */
     int v, k = 0;
     *at = gr->nv_addr;
     do {
-        if (!looked_at(gr, end, half, a)) {
-            continue;
+        if (half != 0u && half != far && gr->nv_addr + half + DESCRIBED_HDR > end) {
+            continue; /* past the dictionary's NV */
         }
         addr = gr->nv_addr + half;
-        v = described_read(nv, gr, addr, t, 1);
+        v = described_read(nv, gr, addr, t);
         if (v == -1 && half < gr->region) {
             return -1;
         }
         if (half == 0u) {
-            odg_copy(a, t, DESCRIBED_HDR); /* slot A's header, whatever it holds */
+            far = named(gr, t);
         }
         if (v != 1 && v != -2) {
             continue;
@@ -434,7 +431,7 @@ static int scrub(const odg_nv_driver_t *nv, const odg_group_t *gr)
     int v;
     do {
         addr = gr->nv_addr + half;
-        v = described_read(nv, gr, addr, t, 1);
+        v = described_read(nv, gr, addr, t);
         if (v == -1) {
             return -1;
         }
