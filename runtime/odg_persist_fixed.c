@@ -28,7 +28,6 @@
 #include "odg_persist_impl.h"
 
 #define FIXED_HDR ODG_PERSIST_HEADER_SIZE
-#define FIXED_MAGIC 0x3147444Fu /* "ODG1" as a little-endian UNSIGNED32 */
 /* INTEGER8/16/32 (0x02-0x04), INTEGER24/40/48/56/64 (0x10, 0x12-0x15), by CiA 301 code */
 #define SIGNED ((uint32_t)0x1Cu | (uint32_t)0x3Du << 16)
 
@@ -47,7 +46,7 @@ static uint32_t fixed_slot(const odg_group_t *g, int k)
 int odg_fixed_read_(const odg_nv_driver_t *nv, uint32_t addr, uint32_t max, uint8_t *hdr,
                      uint8_t *dst)
 {
-    int v = odg_hdr_read_(nv, addr, hdr, FIXED_HDR, FIXED_MAGIC);
+    int v = odg_hdr_read_(nv, addr, hdr, FIXED_HDR, ODG_PERSIST_ODG1_MAGIC);
     if (v != 1 || odg_get32_(hdr + 12) > max) {
         return v < 0 ? -1 : 0;
     }
@@ -143,7 +142,7 @@ static odg_abort_t fixed_write(const odg_nv_driver_t *nv, const odg_group_t *gr)
         seq = odg_get32_(hdr[k] + 4) + 1u;
     }
     addr = fixed_slot(gr, k == 0);
-    odg_put32_(h, FIXED_MAGIC);
+    odg_put32_(h, ODG_PERSIST_ODG1_MAGIC);
     odg_put32_(h + 4, seq);
     odg_put32_(h + 8, gr->signature);
     odg_put32_(h + 12, gr->size);

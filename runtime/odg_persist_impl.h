@@ -21,6 +21,7 @@
 #define ODG_MIGRATES_(g) 1
 #endif
 
+#define ODG_PERSIST_ODG1_MAGIC 0x3147444Fu /* "ODG1" as a little-endian UNSIGNED32 */
 #define ODG_PERSIST_CHUNK_ 32u /* bytes read at a time when only checking a slot */
 
 /* ---- slots, CRC-32, the groups' NV extent and defaults (odg_persist_slot.c) ---- */

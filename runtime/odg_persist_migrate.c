@@ -154,13 +154,12 @@ static int our_id(const odg_group_t *gr, uint32_t id)
     return id == tagged_id(gr) || id == gr->id;
 }
 
-/* Read and check the "ODG2" slot at `addr` (header into `h`). `ours`: of group `gr`, and at
- * slot A or at the middle of the region it names. A valid image has a descriptor of records
- * with increasing keys whose values fill it. 1 valid, 0 not, -1 the driver failed, -2 (`ours`
- * only) a header of ours whose image runs past the region and cannot be read there: an image
- * of a larger region on an NV that ends before it, which is a loss, never "nothing there". */
-static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t addr, uint8_t *h,
-                      int ours)
+/* Read and check the "ODG2" slot at `addr` (header into `h`) as an image of group `gr`: its id,
+ * and at slot A or at the middle of the region it names. A valid image has a descriptor of
+ * records with increasing keys whose values fill it. 1 valid, 0 not, -1 the driver failed, -2
+ * a header of ours whose image runs past the region and cannot be read there: an image of a
+ * larger region on an NV that ends before it, which is a loss, never "nothing there". */
+static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t addr, uint8_t *h)
 {
     uint8_t c[REC];
     uint32_t len, region, cnt, sum, prev = 0, i;
@@ -169,12 +168,11 @@ static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint
     len = odg_get32_(h + 16);
     if (v != 1 || region > 0x01000000u || region / 2u < DESCRIBED_HDR + 2u || len < 2u ||
         len > region / 2u - DESCRIBED_HDR ||
-        (ours && (!our_id(gr, odg_get32_(h + 8)) ||
-                  (addr != gr->nv_addr && addr - gr->nv_addr != region / 2u)))) {
+        !our_id(gr, odg_get32_(h + 8)) || (addr != gr->nv_addr && addr - gr->nv_addr != region / 2u)) {
         return v < 0 ? -1 : 0;
     }
     v = odg_crc_ok_(nv, addr, h, DESCRIBED_HDR, len, NULL);
-    if (v < 0 && ours && addr + DESCRIBED_HDR + len > gr->nv_addr + gr->region) {
+    if (v < 0 && addr + DESCRIBED_HDR + len > gr->nv_addr + gr->region) {
         return -2;
     }
     if (v != 1 || nv->read(nv->ctx, addr + DESCRIBED_HDR, c, 2) != 0) {
@@ -185,10 +183,10 @@ static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint
         if (nv->read(nv->ctx, addr + DESCRIBED_HDR + 2u + REC * i, c, REC) != 0) {
             return -1;
         }
-        if (i > 0u && rec_key(c) <= prev) {
+        if (rec_key(c) < prev) {
             return 0;
         }
-        prev = rec_key(c);
+        prev = rec_key(c) + 1u; /* the keys increase */
         sum += value_size(c);
     }
     return sum == len;
@@ -200,7 +198,7 @@ static int reads_back(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t
                       const uint8_t *h)
 {
     uint8_t t[DESCRIBED_HDR];
-    return described_read(nv, gr, addr, t, 1) == 1 && odg_get32_(t + 20) == odg_get32_(h + 20);
+    return described_read(nv, gr, addr, t) == 1 && odg_get32_(t + 20) == odg_get32_(h + 20);
 }
 
 /* The places an image of group `gr` can be, as offsets from its region's start after `half`:
@@ -226,93 +224,56 @@ static uint32_t extent(const uint8_t *h)
     return (DESCRIBED_HDR + odg_get32_(h + 16) + ODG_PERSIST_ALIGN - 1u) & ~((uint32_t)ODG_PERSIST_ALIGN - 1u);
 }
 
-/* Whether the place `half` of group `gr` is looked at: inside the dictionary's NV (up to `end`,
- * NAME_NV_SIZE), or the place slot A's header (`a`, read, not checked) names past it. */
-static int looked_at(const odg_group_t *gr, uint32_t end, uint32_t half, const uint8_t *a)
+/* The place (as `half`) slot A's header `a` names, read, not checked: the middle of the region
+ * it was written for when it is a header of this group, else 0 (slot A itself). */
+static uint32_t named(const odg_group_t *gr, const uint8_t *a)
 {
-    return half == 0u || gr->nv_addr + half + DESCRIBED_HDR <= end ||
-           (odg_get32_(a) == DESCRIBED_MAGIC && our_id(gr, odg_get32_(a + 8)) && odg_get32_(a + 12) / 2u == half);
+    return odg_get32_(a) == DESCRIBED_MAGIC && our_id(gr, odg_get32_(a + 8)) ? odg_get32_(a + 12) / 2u : 0u;
 }
 
-#define PLACES 14u /* slot A, the region's slot B, and slot B of every power of two up to 64 KiB */
-
-/* What one walk over the places of a group found: the newest of its images (valid, or headers
- * of ours whose image cannot be read: described_read -2), and with `spans` all of them in
- * address order. Store, erase, scrub and boot each act on one walk. */
-typedef struct spans {
-    uint32_t lo[PLACES], hi[PLACES]; /* an image's first byte and the end of its slot extent (for
-                                      * one that cannot be read, at most the region's end) */
-    unsigned n;
-} spans_t;
-
-typedef struct found {
-    int newest;               /* 1 valid, 2 cannot be read, 0 no image */
-    uint32_t at;              /* the newest's address (nv_addr when none) */
-    uint8_t h[DESCRIBED_HDR]; /* the newest's header */
-    spans_t *spans;           /* or NULL: the newest alone */
-} found_t;
-
-/* Walk the places of group `gr` inside the dictionary's NV (up to `end`, NAME_NV_SIZE) and the
- * place slot A's header names past it (the slot B of a larger region a later firmware used).
- * 0, or -1 when the driver failed inside the region (a failing read past it means no NV there). */
-static int walk(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t end, found_t *f)
+/* The newest image of group `gr` at its places inside the dictionary's NV (up to `end`,
+ * NAME_NV_SIZE) and the place slot A's header names past it (the slot B of a larger region a
+ * later firmware used): 1 valid, 2 a header of ours whose image cannot be read (described_read
+ * -2), 0 none, -1 the driver failed inside the region (a failing read past it means no NV
+ * there); its address in *at (nv_addr when none) and its header in h. With `wipe`, the valid
+ * images past the region other than at `keep` are erased on the way (-1 when that fails). */
+static int walk(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t end, uint32_t *at, uint8_t *h,
+                int wipe, uint32_t keep)
 {
-    uint8_t t[DESCRIBED_HDR], a[DESCRIBED_HDR];
-    uint32_t half = 0u, addr, e, rend = gr->nv_addr + gr->region;
-    unsigned i;
-    int v;
-    spans_t *sp = f->spans;
-    if (sp != NULL) {
-        sp->n = 0;
-    }
-    f->newest = 0;
-    f->at = gr->nv_addr;
+    uint8_t t[DESCRIBED_HDR];
+    uint32_t half = 0u, addr, far = 0u; /* far: the place slot A names */
+    int v, k = 0;
+    *at = gr->nv_addr;
     do {
-        if (!looked_at(gr, end, half, a)) {
-            continue;
+        if (half != 0u && half != far && gr->nv_addr + half + DESCRIBED_HDR > end) {
+            continue; /* past the dictionary's NV */
         }
         addr = gr->nv_addr + half;
-        v = described_read(nv, gr, addr, t, 1);
+        v = described_read(nv, gr, addr, t);
         if (v == -1 && half < gr->region) {
             return -1;
         }
         if (half == 0u) {
-            odg_copy(a, t, DESCRIBED_HDR); /* slot A's header, whatever it holds */
+            far = named(gr, t);
         }
         if (v != 1 && v != -2) {
             continue;
         }
-        if (!f->newest || odg_newer_(odg_get32_(t + 4), odg_get32_(f->h + 4))) {
-            f->newest = v == 1 ? 1 : 2;
-            f->at = addr;
-            odg_copy(f->h, t, DESCRIBED_HDR);
+        if (wipe && v == 1 && half >= gr->region && addr != keep && odg_wipe_(nv, addr, addr + extent(t))) {
+            return -1;
         }
-        if (sp != NULL) { /* inserted in address order */
-            e = addr + extent(t);
-            for (i = sp->n++; i > 0u && sp->lo[i - 1u] > addr; i--) {
-                sp->lo[i] = sp->lo[i - 1u];
-                sp->hi[i] = sp->hi[i - 1u];
-            }
-            sp->lo[i] = addr;
-            sp->hi[i] = v == -2 && e > rend ? rend : e;
+        if (!k || odg_newer_(odg_get32_(t + 4), odg_get32_(h + 4))) {
+            k = v == 1 ? 1 : 2;
+            *at = addr;
+            odg_copy(h, t, DESCRIBED_HDR);
         }
     } while ((half = next_place(gr, half)) != 0u);
-    return 0;
+    return k;
 }
 
-/* The newest image of group `gr` (walk): 1 valid, 2 cannot be read, 0 none, -1 the driver
- * failed; its address in *at (nv_addr when none) and its header in h. The walk's list lives in
- * this frame only, so that the store a boot calls does not stack a second one on it. */
 static int newest(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t end, uint32_t *at, uint8_t *h)
 {
-    found_t f;
-    f.spans = NULL;
-    if (walk(nv, gr, end, &f) < 0) {
-        return -1;
-    }
-    *at = f.at;
-    odg_copy(h, f.h, DESCRIBED_HDR);
-    return f.newest;
+    return walk(nv, gr, end, at, h, 0, 0u);
 }
 
 /* Image bytes on their way to NV, CRC-32 on the fly. */
@@ -434,56 +395,55 @@ odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv,
     return ODG_OK;
 }
 
-/* Make the next boot of group `g` use the defaults: erase its images at every place (those past
- * the region first), then the region but the newest image, then the newest, so that a power
- * cut in between leaves the newest (as if nothing happened), never an older one. */
+/* Make the next boot of group `g` use the defaults: erase its images past the region first,
+ * then the region but the newest image, then the newest, so that a power cut in between leaves
+ * the newest (as if nothing happened), never an older one. */
 odg_abort_t odg_described_erase_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
 {
     const odg_group_t *gr = &d->groups[g];
-    uint32_t start = gr->nv_addr, end = gr->nv_addr + gr->region, e = 0u, lo = end, hi = end;
-    unsigned i;
-    spans_t sp;
-    found_t f;
-    int fail;
-    f.spans = &sp;
-    fail = walk(nv, gr, odg_persist_nv_size(d), &f) < 0;
-    for (i = 0; !fail && i < sp.n; i++) { /* past the region (one that cannot be read: hi <= lo) */
-        fail = sp.lo[i] >= end && sp.lo[i] != f.at && odg_wipe_(nv, sp.lo[i], sp.hi[i]);
-    }
-    if (f.newest) {
-        e = f.at + extent(f.h);
-        e = f.newest == 2 && f.at < end && e > end ? end : e;
-        if (f.at < end) { /* the header is what counts */
-            lo = f.at;
+    uint8_t h[DESCRIBED_HDR];
+    uint32_t end = gr->nv_addr + gr->region, at, x, e = 0u, lo = end, hi = end, nv_end = odg_persist_nv_size(d);
+    int k = newest(nv, gr, nv_end, &at, h), fail = k < 0;
+    if (k > 0) {
+        e = at + extent(h);
+        e = k == 2 && at < end && e > end ? end : e; /* one that cannot be read: its header */
+        if (at < end) {
+            lo = at;
             hi = e > end ? end : e;
         }
     }
-    fail = fail || odg_wipe_(nv, start, lo) || odg_wipe_(nv, hi, end) || (f.newest && odg_wipe_(nv, f.at, e));
+    fail = fail || walk(nv, gr, nv_end, &x, h, 1, at) < 0;
+    fail = fail || odg_wipe_(nv, gr->nv_addr, lo) || odg_wipe_(nv, hi, end) || (k > 0 && odg_wipe_(nv, at, e));
     return fail ? ODG_ABORT_HARDWARE : ODG_OK;
 }
 
 /* After a boot of group `gr`: erase what its region holds besides its own images (at its
- * places): images of other groups or of this one written at another place, and bytes of
+ * places, visited in address order: slot A, then the middle of every power-of-two region up to
+ * its own): images of other groups or of this one written at another place, and bytes of
  * neither, left there by a firmware whose NV map differed, which must never come back as a
  * group's values when the map changes again. Its own older images stay: a rollback firmware
  * that cannot see the newest one (past its NV) finds the one the newest was migrated from.
  * -1 when the driver failed. */
-static int scrub(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t nv_end)
+static int scrub(const odg_nv_driver_t *nv, const odg_group_t *gr)
 {
-    uint32_t end = gr->nv_addr + gr->region, pos = gr->nv_addr;
-    unsigned i;
-    spans_t sp;
-    found_t f;
-    f.spans = &sp;
-    if (walk(nv, gr, nv_end, &f) < 0) {
-        return -1;
-    }
-    for (i = 0; i < sp.n && sp.lo[i] < end; i++) {
-        if (sp.lo[i] > pos && odg_clear_(nv, pos, sp.lo[i])) {
+    uint8_t t[DESCRIBED_HDR];
+    uint32_t end = gr->nv_addr + gr->region, pos = gr->nv_addr, half = 0u, addr, e;
+    int v;
+    do {
+        addr = gr->nv_addr + half;
+        v = described_read(nv, gr, addr, t);
+        if (v == -1) {
             return -1;
         }
-        pos = sp.hi[i] > pos ? sp.hi[i] : pos;
-    }
+        if (v == 1 || v == -2) {
+            if (odg_clear_(nv, pos, addr)) {
+                return -1;
+            }
+            e = addr + extent(t);
+            pos = e > pos ? e : pos;
+        }
+        half = half == 0u ? 32u : 2u * half;
+    } while (half < gr->region);
     return odg_clear_(nv, pos < end ? pos : end, end) ? -1 : 0;
 }
 
@@ -702,17 +662,18 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
 }
 
 /* No image of ours: DEFAULTS when the region is blank (a first boot, or after a restore);
- * SIGNATURE for an "ODG1" image (the format before); else DAMAGED: corrupt bytes, another
- * group's image or this group's written at another place (the NV map changed), all losses. */
+ * SIGNATURE for an "ODG1" image (the format before: its commit mark where a slot starts); else
+ * DAMAGED: corrupt bytes, another group's image or this group's written at another place (the
+ * NV map changed), all losses. */
 static odg_boot_status_t described_no_image(const odg_nv_driver_t *nv, const odg_group_t *gr)
 {
-    uint8_t t[ODG_PERSIST_HEADER_SIZE];
-    uint32_t half = gr->region / 2u;
+    uint8_t t[4];
+    uint32_t half = gr->region / 2u, addr = gr->nv_addr;
     int k, v;
-    for (k = 0; k < 2; k++) {
-        v = odg_slot_blank_(nv, gr->nv_addr + (k ? half : 0u), half);
+    for (k = 0; k < 2; k++, addr += half) {
+        v = odg_slot_blank_(nv, addr, half);
         if (v == 0) {
-            v = odg_fixed_read_(nv, gr->nv_addr + (k ? half : 0u), half - ODG_PERSIST_HEADER_SIZE, t, NULL);
+            v = odg_hdr_read_(nv, addr, t, 4u, ODG_PERSIST_ODG1_MAGIC);
             return v < 0 ? ODG_BOOT_NV_ERROR : (v ? ODG_BOOT_SIGNATURE : ODG_BOOT_DAMAGED);
         }
         if (v < 0) {
@@ -722,7 +683,7 @@ static odg_boot_status_t described_no_image(const odg_nv_driver_t *nv, const odg
     return ODG_BOOT_DEFAULTS;
 }
 
-/* The counts of a boot that found an image, into `b` and the totals of the EMCY. */
+/* The counts of a boot that migrated an image, into `b` and the totals of the EMCY. */
 static void count(odg_state_t *s, odg_boot_t *b, const uint16_t n[5])
 {
     int i;
@@ -739,32 +700,35 @@ static void count(odg_state_t *s, odg_boot_t *b, const uint16_t n[5])
     }
 }
 
+/* Boot group `g`: the newest image migrated (stored at once when anything changed), or the
+ * defaults stored; then the scrub. When the driver fails on the way, or the image does not
+ * read the same a second time: NV_ERROR with the defaults, and no count. */
 odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g,
-                               odg_boot_t *b)
+                                      odg_boot_t *b)
 {
     const odg_group_t *gr = &d->groups[g];
     uint8_t h[DESCRIBED_HDR];
     uint16_t n[5] = {0, 0, 0, 0, 0}; /* entries KEPT, DEFAULTED, DROPPED, CONVERTED, ADDED */
-    uint32_t at, nv_end = odg_persist_nv_size(d);
-    odg_boot_status_t st;
-    int k = newest(nv, gr, nv_end, &at, h), changed;
+    uint32_t at;
+    odg_boot_status_t st = ODG_BOOT_NV_ERROR;
+    int k = newest(nv, gr, odg_persist_nv_size(d), &at, h);
     odg_defaults_(d, g); /* the mirror starts from the defaults (RAM only: no NV access) */
     if (k == 1) {
         if (migrate(d, nv, g, at, n) == 0 && reads_back(nv, gr, at, h)) {
-            /* a migrated image is stored at once, with the A/B commit */
-            changed = n[DEFAULTED] || n[DROPPED] || n[CONVERTED] || n[ADDED];
-            if ((!changed || odg_described_store_(d, nv, g) == ODG_OK) && scrub(nv, gr, nv_end) == 0) {
-                count(d->state, b, n);
-                return changed ? ODG_BOOT_MIGRATED : ODG_BOOT_LOADED;
-            }
+            st = n[DEFAULTED] || n[DROPPED] || n[CONVERTED] || n[ADDED] ? ODG_BOOT_MIGRATED : ODG_BOOT_LOADED;
         }
-        odg_defaults_(d, g);
-        k = -1; /* a driver failure, or the image did not read the same a second time */
+    } else if (k >= 0) { /* 2: the newest image cannot be read: its values are lost */
+        st = k == 2 ? ODG_BOOT_DAMAGED : described_no_image(nv, gr);
     }
-    /* 2: the newest image cannot be read: its values are lost */
-    st = k < 0 ? ODG_BOOT_NV_ERROR : k == 2 ? ODG_BOOT_DAMAGED : described_no_image(nv, gr);
-    if (st != ODG_BOOT_NV_ERROR && (odg_described_store_(d, nv, g) != ODG_OK || scrub(nv, gr, nv_end) != 0)) {
+    /* a migrated image, or the defaults, are stored at once with the A/B commit */
+    if (st != ODG_BOOT_NV_ERROR &&
+        ((st != ODG_BOOT_LOADED && odg_described_store_(d, nv, g) != ODG_OK) || scrub(nv, gr) != 0)) {
         st = ODG_BOOT_NV_ERROR;
+    }
+    if (st == ODG_BOOT_NV_ERROR) {
+        odg_defaults_(d, g);
+    } else if (k == 1) {
+        count(d->state, b, n);
     }
     return st;
 }
