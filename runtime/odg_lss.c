@@ -10,7 +10,9 @@
 #include "odg_impl.h"
 #include "odg_node.h"
 
-#define SIGNATURE 0x3153534Cu /* "LSS1": the layout of odg_lss_t.record */
+/* The stored configuration, a persistence record (odg_persist_store_record): node-id | bit
+ * timing index << 8. Its tag "LSS1" names this layout. */
+#define TAG 0x3153534Cu
 
 /* End of the persistence groups' regions: the LSS record goes after them. */
 static uint32_t groups_end(const odg_dict_t *d)
@@ -20,20 +22,16 @@ static uint32_t groups_end(const odg_dict_t *d)
 
 #if ODG_NODE_LSS
 
-uint32_t odg_lss_nv_size(const odg_dict_t *dict)
+/* The NV address of the record: the first past the groups, aligned as a slot is. */
+ODG_NODE_OUTLINE_ static uint32_t record_at(const odg_dict_t *d)
 {
     uint32_t a = (uint32_t)ODG_PERSIST_ALIGN - 1u;
-    return ((groups_end(dict) + a) & ~a) + 2u * ODG_PERSIST_SLOT_SIZE(sizeof(((odg_lss_t *)0)->record));
+    return (groups_end(d) + a) & ~a;
 }
 
-/* The stored configuration as a persistence record (odg_persist_store_record). */
-ODG_NODE_OUTLINE_ static void record(odg_node_t *n, odg_group_t *r)
+uint32_t odg_lss_nv_size(const odg_dict_t *dict)
 {
-    memset(r, 0, sizeof *r);
-    r->mirror = n->lss.record;
-    r->size = sizeof n->lss.record;
-    r->signature = SIGNATURE;
-    r->nv_addr = odg_lss_nv_size(n->cfg.dict) - 2u * ODG_PERSIST_SLOT_SIZE(sizeof n->lss.record);
+    return record_at(dict) + 2u * ODG_PERSIST_RECORD_SLOT;
 }
 
 static int valid_id(uint8_t id)
@@ -43,14 +41,13 @@ static int valid_id(uint8_t id)
 
 void odg_lss_init_(odg_node_t *n)
 {
-    odg_group_t r;
-    record(n, &r);
+    uint32_t r;
     n->lss.mode = ODG_LSS_WAITING;
     n->lss.pending = n->cfg.node_id;
     n->lss.bit_index = ODG_LSS_NO_BIT_TIMING;
-    if (n->cfg.nv != NULL && odg_persist_load_record(n->cfg.nv, &r) == 1 && valid_id(n->lss.record[0])) {
-        n->lss.pending = n->lss.record[0];
-        n->lss.bit_index = n->lss.record[1];
+    if (odg_persist_load_record(n->cfg.nv, record_at(n->cfg.dict), TAG, &r) == 1 && valid_id((uint8_t)r)) {
+        n->lss.pending = (uint8_t)r;
+        n->lss.bit_index = (uint8_t)(r >> 8);
     }
 }
 
@@ -140,7 +137,6 @@ static void fastscan(odg_node_t *n, const uint8_t *d)
 /* Commands of configuration mode; others are ignored. */
 static void configure(odg_node_t *n, const uint8_t *d)
 {
-    odg_group_t r;
     odg_abort_t ac;
     uint8_t err = 0;
     switch (d[0]) {
@@ -159,11 +155,8 @@ static void configure(odg_node_t *n, const uint8_t *d)
         }
         return;
     case 0x17: /* store configuration: 1 no NV, 2 the NV failed */
-        record(n, &r);
-        memset(n->lss.record, 0, sizeof n->lss.record);
-        n->lss.record[0] = n->lss.pending;
-        n->lss.record[1] = n->lss.bit_index;
-        ac = odg_persist_store_record(n->cfg.nv, &r);
+        ac = odg_persist_store_record(n->cfg.nv, record_at(n->cfg.dict), TAG,
+                                      n->lss.pending | (uint32_t)n->lss.bit_index << 8);
         err = (uint8_t)(ac == ODG_OK ? 0u : (ac == ODG_ABORT_DATA_STORE ? 1u : 2u));
         break;
     default:

@@ -8,8 +8,9 @@
  * node-id ODG_LSS_UNCONFIGURED: such a node sends no boot-up and answers only LSS and NMT
  * reset commands until a master configured a node-id and switched it back to the waiting
  * state; then it boots as CiA 301 says. A node-id (and bit timing) stored by the master with
- * "store configuration" is kept in NV after the persistence groups (odg_lss_nv_size) in the
- * power-safe format of odg_persist.c, and wins over cfg.node_id at every power-on.
+ * "store configuration" is kept in NV after the persistence groups (odg_lss_nv_size) as a
+ * power-safe persistence record (odg_persist_store_record), and wins over cfg.node_id at every
+ * power-on.
  */
 #ifndef ODG_LSS_H
 #define ODG_LSS_H
@@ -45,7 +46,6 @@ typedef struct odg_lss {
     uint8_t selective;  /* switch state selective: parts of the identity matched in order */
     uint8_t identify;   /* identify remote slave: bit k set when check k passed */
     uint8_t fastscan;   /* fastscan: the LSSSub this slave answers next */
-    uint8_t record[4];  /* the stored configuration: node-id, bit timing, 0, 0 */
 } odg_lss_t;
 
 /* NV bytes the node needs: the persistence groups' slots and, with ODG_NODE_LSS, the two

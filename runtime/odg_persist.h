@@ -4,7 +4,8 @@
  * "save" / "load" (0x1010 / 0x1011), and what a boot reports (docs/persistence.md, the rule
  * set). The NV driver (odg_nv_driver_t) and the group tables (odg_group_t) are part of the
  * dictionary (odg.h). Sources: odg_persist.c (the layer), odg_persist_slot.c (slots and
- * CRC-32), odg_persist_fixed.c (fixed-layout images), odg_persist_migrate.c (self-describing
+ * CRC-32), odg_persist_fixed.c (fixed-layout images and
+ * records of other layers), odg_persist_migrate.c (self-describing
  * images and boot migration).
  */
 #ifndef ODG_PERSIST_H
@@ -100,13 +101,18 @@ odg_abort_t odg_persist_store(const odg_dict_t *dict, uint8_t g);
 /* Make the next boot of group `g` use the defaults (invalidates both slots). */
 odg_abort_t odg_persist_restore(const odg_dict_t *dict, uint8_t g);
 
-/* A record of another layer (not a dictionary group: the LSS configuration, say) kept in two
- * slots of the same power-safe format at rec->nv_addr; `mirror` holds its bytes, `defaults`
- * is not used. Store: OK, HARDWARE (driver failed), DATA_STORE (no driver). Load into the
- * mirror: 1 loaded, 0 none stored (or of another signature or size), -1 the driver failed or
- * the newest image could not be read back. */
-odg_abort_t odg_persist_store_record(const odg_nv_driver_t *nv, const odg_group_t *rec);
-int odg_persist_load_record(const odg_nv_driver_t *nv, const odg_group_t *rec);
+/* A record of another layer (not a dictionary group: the LSS slave's configuration, say):
+ * one UNSIGNED32 kept power-safe in two slots of ODG_PERSIST_RECORD_SLOT bytes each from NV
+ * address `addr` (odg_persist_fixed.c). `tag` names the record's layout; it begins each valid
+ * slot, so it must have no byte 0xFF and must differ from the groups' "ODG1" and "ODG2".
+ * Store: OK, HARDWARE (the driver failed, or the slot read back differs), DATA_STORE (no
+ * driver). Load into `value`: 1 loaded, 0 none stored (or of another tag), -1 the driver
+ * failed or there is none; `value` is untouched unless 1. */
+#define ODG_PERSIST_RECORD_SLOT \
+    ((16u + ((uint32_t)ODG_PERSIST_ALIGN - 1u)) & ~((uint32_t)ODG_PERSIST_ALIGN - 1u))
+odg_abort_t odg_persist_store_record(const odg_nv_driver_t *nv, uint32_t addr, uint32_t tag,
+                                     uint32_t value);
+int odg_persist_load_record(const odg_nv_driver_t *nv, uint32_t addr, uint32_t tag, uint32_t *value);
 
 /* CRC-32 (IEEE 802.3, reflected, init and final xor 0xFFFFFFFF). */
 uint32_t odg_crc32(uint32_t crc, const void *data, uint32_t len);

@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
  * odg_persist_fixed.c - fixed-layout images: a group generated without migration keeps its RAM
- * mirror byte for byte ("ODG1"), checked by its layout signature; records of other layers (the
- * LSS configuration) use the same slots.
+ * mirror byte for byte ("ODG1"), checked by its layout signature; and the records of other
+ * layers (the LSS configuration), a few bytes in slots of their own (at the end of the file).
  *
  * Two slots (A at nv_addr, B right after it). A slot is a header followed by
  * the image (the group's RAM mirror, byte for byte):
@@ -164,25 +164,6 @@ odg_abort_t odg_fixed_store_(const odg_dict_t *d, const odg_nv_driver_t *nv, uin
     return fixed_write(nv, &d->groups[g]);
 }
 
-/* Records of other layers (the LSS configuration) in "ODG1" slots of their own. */
-odg_abort_t odg_persist_store_record(const odg_nv_driver_t *nv, const odg_group_t *rec)
-{
-    return nv != NULL ? fixed_write(nv, rec) : ODG_ABORT_DATA_STORE;
-}
-
-int odg_persist_load_record(const odg_nv_driver_t *nv, const odg_group_t *rec)
-{
-    uint8_t hdr[2][FIXED_HDR], h[FIXED_HDR];
-    int k = nv != NULL ? fixed_newest(nv, rec, hdr) : -2;
-    if (k < 0) {
-        return k == -1 ? 0 : -1;
-    }
-    if (odg_get32_(hdr[k] + 8) != rec->signature || odg_get32_(hdr[k] + 12) != rec->size) {
-        return 0;
-    }
-    return odg_fixed_read_(nv, fixed_slot(rec, k), rec->size, h, (uint8_t *)rec->mirror) == 1 ? 1 : -1;
-}
-
 /* Make the next boot of group `g` ("ODG1") use the defaults: erase both slots. */
 odg_abort_t odg_fixed_erase_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
 {
@@ -222,12 +203,90 @@ odg_boot_status_t odg_fixed_boot_(const odg_dict_t *d, const odg_nv_driver_t *nv
         return ODG_BOOT_LOADED;
     } else { /* values outside tightened limits took their defaults: a loss, stored at once */
         d->state->boot_seen = (uint8_t)(d->state->boot_seen | ODG_BOOT_ENTRIES_LOST);
-        return odg_fixed_store_(d, nv, g) == ODG_OK ? ODG_BOOT_MIGRATED : ODG_BOOT_NV_ERROR;
+        return fixed_write(nv, gr) == ODG_OK ? ODG_BOOT_MIGRATED : ODG_BOOT_NV_ERROR;
     }
     odg_defaults_(d, g);
-    if (st != ODG_BOOT_NV_ERROR && odg_fixed_store_(d, nv, g) != ODG_OK) {
+    if (st != ODG_BOOT_NV_ERROR && fixed_write(nv, gr) != ODG_OK) {
         st = ODG_BOOT_NV_ERROR;
     }
     return st;
 }
 
+
+/* ---- records of other layers ---------------------------------------------------------------
+ *
+ * A record is one UNSIGNED32 in two slots (A at addr, B right after it, ODG_PERSIST_RECORD_SLOT
+ * bytes each), committed as the images above are, each slot read whole into RAM:
+ *
+ *   offset  size  field (all little-endian, encoded byte by byte)
+ *        0     4  tag of the record (its layout, "LSS1" say): the commit mark, written last
+ *        4     4  sequence number (serial arithmetic: wraps around)
+ *        8     4  the value
+ *       12     4  CRC-32 of bytes 0..11
+ *
+ * A slot is valid when it starts with the tag and the CRC matches. A store erases the slot
+ * that does not hold the newest valid record, writes bytes 4..15, then the tag, and reads both
+ * slots back. A tag has no byte 0xFF, so a tag cut short is not the tag; it differs from
+ * "ODG1" and "ODG2", so a group's slot is never taken for a record. */
+
+#define REC_BYTES 16u
+
+/* Read the record slot at `addr` into `s`: 1 valid, 0 not, -1 the driver failed. */
+static int record_read(const odg_nv_driver_t *nv, uint32_t addr, uint32_t tag, uint8_t *s)
+{
+    int v = odg_hdr_read_(nv, addr, s, REC_BYTES, tag);
+    return v == 1 ? odg_crc32(0, s, REC_BYTES - 4u) == odg_get32_(s + REC_BYTES - 4u) : v;
+}
+
+/* Both slots of a record into s[0] and s[1]: -2 the driver failed, -1 neither is valid, else
+ * the slot holding the newest valid record. */
+static int record_newest(const odg_nv_driver_t *nv, uint32_t addr, uint32_t tag,
+                         uint8_t s[2][REC_BYTES])
+{
+    int k, v, best = -1;
+    for (k = 0; k < 2; k++, addr += ODG_PERSIST_RECORD_SLOT) {
+        v = record_read(nv, addr, tag, s[k]);
+        if (v < 0) {
+            return -2;
+        }
+        if (v && (best < 0 || odg_newer_(odg_get32_(s[1] + 4), odg_get32_(s[0] + 4)))) {
+            best = k;
+        }
+    }
+    return best;
+}
+
+odg_abort_t odg_persist_store_record(const odg_nv_driver_t *nv, uint32_t addr, uint32_t tag, uint32_t value)
+{
+    uint8_t s[2][REC_BYTES];
+    uint32_t at;
+    int k = nv != NULL ? record_newest(nv, addr, tag, s) : -3;
+    if (k < -1) {
+        return k == -2 ? ODG_ABORT_HARDWARE : ODG_ABORT_DATA_STORE;
+    }
+    /* into the slot that does not hold the newest record (A when neither is valid), with the
+     * sequence number after the newest's (any when there is none) */
+    at = addr + (k == 0 ? ODG_PERSIST_RECORD_SLOT : 0u);
+    odg_put32_(s[0] + 4, odg_get32_(s[k > 0] + 4) + 1u);
+    odg_put32_(s[0], tag);
+    odg_put32_(s[0] + 8, value);
+    odg_put32_(s[0] + 12, odg_crc32(0, s[0], 12u));
+    /* read back: that slot must now be valid and the newest */
+    if (nv->erase(nv->ctx, at, ODG_PERSIST_RECORD_SLOT) != 0 ||
+        nv->write(nv->ctx, at + 4u, s[0] + 4, 12u) != 0 || nv->write(nv->ctx, at, s[0], 4u) != 0 ||
+        record_newest(nv, addr, tag, s) != (k == 0)) {
+        return ODG_ABORT_HARDWARE;
+    }
+    return ODG_OK;
+}
+
+int odg_persist_load_record(const odg_nv_driver_t *nv, uint32_t addr, uint32_t tag, uint32_t *value)
+{
+    uint8_t s[2][REC_BYTES];
+    int k = nv != NULL ? record_newest(nv, addr, tag, s) : -2;
+    if (k < 0) {
+        return k + 1; /* none: 0; the driver failed: -1 */
+    }
+    *value = odg_get32_(s[k] + 8);
+    return 1;
+}

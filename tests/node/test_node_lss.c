@@ -4,7 +4,9 @@
  * with -DODG_NODE_LSS=1: a node started without a node-id is silent until an LSS master finds
  * it by fastscan (a wrong identity gets no answer), gives it node-id 10 and stores it; it
  * then boots as node 10, and again after a power cycle. Every other command, with right and
- * wrong arguments and identities.
+ * wrong arguments and identities. The stored configuration (a persistence record, runtime/
+ * README.md "Records of other layers"): its NV format, a power cut at every byte of a store,
+ * damaged slots, sequence numbers that wrap, a driver that fails or drops writes.
  */
 #include <stdio.h>
 #include <string.h>
@@ -290,6 +292,231 @@ static void back_to_unconfigured(void)
     CHECK_EQ(power_on(128, NULL), ODG_ABORT_INCOMPATIBLE);
 }
 
+/* ---- the stored configuration in NV ------------------------------------------------------ */
+
+#define TAG 0x3153534Cu /* "LSS1" */
+#define SLOT ODG_PERSIST_RECORD_SLOT
+#define NEVER (-1L)
+
+static long cut_after = NEVER; /* steps (erases, bytes written) the NV takes before the power fails */
+static int half;               /* the byte being written at the cut is left half programmed */
+static int drop_writes;        /* writes answer done but change nothing */
+
+/* A NOR flash over nv_mem: writes clear bits; the power fails after cut_after steps. */
+static int cut_write(void *ctx, uint32_t addr, const void *buf, uint32_t len)
+{
+    const uint8_t *b = (const uint8_t *)buf;
+    uint32_t i;
+    (void)ctx;
+    for (i = 0; i < len && !drop_writes; i++) {
+        if (cut_after == 0) {
+            if (half) {
+                nv_mem[addr + i] &= (uint8_t)(b[i] | 0xF0u); /* the high bits not cleared yet */
+            }
+            return -1;
+        }
+        cut_after -= cut_after > 0;
+        nv_mem[addr + i] &= b[i];
+    }
+    return 0;
+}
+
+static int cut_erase(void *ctx, uint32_t addr, uint32_t len)
+{
+    (void)ctx;
+    if (cut_after == 0) {
+        memset(nv_mem + addr, 0xFF, len / 2u); /* an erase cut short */
+        return -1;
+    }
+    cut_after -= cut_after > 0;
+    memset(nv_mem + addr, 0xFF, len);
+    return 0;
+}
+
+static int dead_read(void *ctx, uint32_t addr, void *buf, uint32_t len)
+{
+    (void)ctx, (void)addr, (void)buf, (void)len;
+    return -1;
+}
+
+static const odg_nv_driver_t nv_cut = {nv_read, cut_write, cut_erase, NULL};
+static const odg_nv_driver_t nv_dead = {dead_read, nv_write, nv_erase, NULL};
+
+/* NV address of the record: after the groups, aligned, its two slots end the node's NV. */
+static uint32_t rec_at(void)
+{
+    return odg_lss_nv_size(&lss_node) - 2u * SLOT;
+}
+
+/* The value the record holds now: -1 when none loads. */
+static long long stored(void)
+{
+    uint32_t v = 0xDEADBEEFu;
+    int r = odg_persist_load_record(&nv_ram, rec_at(), TAG, &v);
+    return r == 1 ? (long long)v : (r == 0 && v == 0xDEADBEEFu ? -1 : -2);
+}
+
+static void put_le32(uint8_t *p, uint32_t v)
+{
+    p[0] = (uint8_t)v;
+    p[1] = (uint8_t)(v >> 8);
+    p[2] = (uint8_t)(v >> 16);
+    p[3] = (uint8_t)(v >> 24);
+}
+
+/* Slot k written as runtime/README.md documents it: tag, sequence, value, CRC-32 of 0..11. */
+static void put_slot(int k, uint32_t seq, uint32_t value)
+{
+    uint8_t *p = nv_mem + rec_at() + (k ? SLOT : 0u);
+    memset(p, 0xFF, SLOT);
+    put_le32(p, TAG);
+    put_le32(p + 4, seq);
+    put_le32(p + 8, value);
+    put_le32(p + 12, odg_crc32(0, p, 12u));
+}
+
+static void record_format(void)
+{
+    uint32_t at = rec_at();
+    CHECK_EQ(at % ODG_PERSIST_ALIGN, 0);
+    CHECK(at >= odg_persist_nv_size(&lss_node));
+    CHECK_EQ(SLOT, 16u); /* ALIGN 8 */
+    memset(nv_mem + at, 0xFF, 2u * SLOT);
+    CHECK_EQ(stored(), -1); /* erased: none */
+    CHECK_EQ(odg_persist_store_record(&nv_ram, at, TAG, 0x0412u), ODG_OK);
+    CHECK(memcmp(nv_mem + at, "LSS1", 4) == 0); /* into A: tag, sequence, value, CRC */
+    CHECK_EQ(le32(nv_mem + at + 8), 0x0412u);
+    CHECK_EQ(le32(nv_mem + at + 12), odg_crc32(0, nv_mem + at, 12u));
+    CHECK_EQ(nv_mem[at + SLOT], 0xFF); /* B untouched */
+    CHECK_EQ(odg_persist_store_record(&nv_ram, at, TAG, 0x0413u), ODG_OK);
+    CHECK(memcmp(nv_mem + at + SLOT, "LSS1", 4) == 0); /* into B, the next sequence number */
+    CHECK_EQ(le32(nv_mem + at + SLOT + 4), le32(nv_mem + at + 4) + 1u);
+    CHECK_EQ(le32(nv_mem + at + 8), 0x0412u); /* A keeps the previous one */
+    CHECK_EQ(stored(), 0x0413u);
+    /* a slot written by hand as documented is read; another tag is not */
+    put_slot(0, 7, 0x0A05u);
+    put_slot(1, 6, 0x0B05u);
+    CHECK_EQ(stored(), 0x0A05u);
+    {
+        uint32_t v = 0;
+        CHECK_EQ(odg_persist_load_record(&nv_ram, at, 0x3253534Cu, &v), 0); /* "LSS2" */
+        CHECK_EQ(odg_persist_load_record(NULL, at, TAG, &v), -1);
+        CHECK_EQ(odg_persist_load_record(&nv_dead, at, TAG, &v), -1);
+        CHECK_EQ(v, 0);
+    }
+    /* the node boots with it: node-id 5, bit timing 10 (not checked by the node) */
+    CHECK_EQ(power_on(ODG_LSS_UNCONFIGURED, &nv_ram), 0);
+    CHECK_EQ(count_id(0x705u), 1);
+    /* a driver that cannot read: the groups report it, the node runs with the node-id given */
+    CHECK_EQ(power_on(7, &nv_dead), ODG_ABORT_HARDWARE);
+    CHECK_EQ(count_id(0x707u), 1);
+    CHECK_EQ(odg_persist_store_record(&nv_dead, at, TAG, 1), ODG_ABORT_HARDWARE);
+    CHECK_EQ(odg_persist_store_record(NULL, at, TAG, 1), ODG_ABORT_DATA_STORE);
+}
+
+/* Sequence numbers compare by serial arithmetic: the newest wins across the wrap, and stores
+ * go on across it. */
+static void sequence_wraps(void)
+{
+    static const uint32_t pairs[][3] = { /* sequence in A, in B, the newest */
+        {0xFFFFFFFFu, 0, 1}, {0, 0xFFFFFFFFu, 0}, {0x7FFFFFFFu, 0x80000000u, 1}, {5, 4, 0}, {0xFFFFFFF0u, 3, 1}};
+    uint32_t at = rec_at(), v;
+    unsigned i;
+    for (i = 0; i < sizeof pairs / sizeof pairs[0]; i++) {
+        put_slot(0, pairs[i][0], 0xA0u + i);
+        put_slot(1, pairs[i][1], 0xB0u + i);
+        CHECK_EQ_AT(stored(), (pairs[i][2] ? 0xB0u : 0xA0u) + i, i);
+    }
+    put_slot(0, 0xFFFFFFFDu, 1);
+    memset(nv_mem + at + SLOT, 0xFF, SLOT);
+    for (v = 2; v < 8; v++) { /* sequences 0xFFFFFFFE, 0xFFFFFFFF, 0, 1, 2, 3 alternately in B and A */
+        CHECK_EQ_AT(odg_persist_store_record(&nv_ram, at, TAG, v), ODG_OK, v);
+        CHECK_EQ_AT(le32(nv_mem + at + ((v & 1u) ? 0u : SLOT) + 4), 0xFFFFFFFCu + v, v);
+        CHECK_EQ_AT(stored(), v, v);
+    }
+}
+
+/* A bit flipped anywhere in the newest slot: the one before loads; in both: none, and the node
+ * takes the node-id it is given. */
+static void damaged_slots(void)
+{
+    uint32_t at = rec_at();
+    unsigned byte;
+    for (byte = 0; byte < 16u; byte++) {
+        put_slot(0, 1, 0x0Bu);
+        put_slot(1, 2, 0x0Cu);
+        nv_mem[at + SLOT + byte] ^= (uint8_t)(1u << (byte & 7u));
+        CHECK_EQ_AT(stored(), 0x0Bu, byte);
+        nv_mem[at + byte] ^= 0x80u;
+        CHECK_EQ_AT(stored(), -1, byte);
+    }
+    CHECK_EQ(power_on(7, &nv_ram), 0);
+    CHECK_EQ(count_id(0x707u), 1);
+    put_slot(0, 1, 0x0Bu);
+    put_slot(1, 2, 0x0Cu);
+    nv_mem[at + SLOT + 9] ^= 1u; /* the newest: a bit of its bit timing flipped */
+    CHECK_EQ(power_on(7, &nv_ram), 0);
+    CHECK_EQ(count_id(0x70Bu), 1);
+    /* a driver that drops writes: the read-back sees it */
+    drop_writes = 1;
+    CHECK_EQ(odg_persist_store_record(&nv_cut, at, TAG, 0x0Du), ODG_ABORT_HARDWARE);
+    drop_writes = 0;
+    CHECK_EQ(stored(), 0x0Bu);
+}
+
+/* The power fails at every step of a store (the erase, each byte; the byte at the cut whole or
+ * half programmed, the erase half done), into slot A and into slot B: afterwards the previous
+ * value loads, or the new one once its last tag byte landed, and the next store works. */
+static void power_cut_anywhere(void)
+{
+    static uint8_t snap[sizeof nv_mem];
+    uint32_t at = rec_at();
+    long k;
+    int into_b, h;
+    for (into_b = 0; into_b < 2; into_b++) {
+        put_slot(0, 0xFFFFFFFFu, 0x11u);
+        if (into_b) {
+            memset(nv_mem + at + SLOT, 0x00, SLOT); /* garbage in B */
+        } else {
+            put_slot(1, 0, 0x12u);
+        }
+        memcpy(snap, nv_mem, sizeof nv_mem);
+        for (h = 0; h < 2; h++) {
+            for (k = 0; k <= 17; k++) { /* 1 erase + 16 bytes */
+                memcpy(nv_mem, snap, sizeof nv_mem);
+                cut_after = k;
+                half = h;
+                CHECK_EQ_AT(odg_persist_store_record(&nv_cut, at, TAG, 0x2Au),
+                            k == 17 ? ODG_OK : ODG_ABORT_HARDWARE, k);
+                cut_after = NEVER;
+                if (k <= 12) { /* the tag is written last: cut before it, it is still erased */
+                    CHECK_EQ_AT(le32(nv_mem + at + (into_b ? SLOT : 0u)), 0xFFFFFFFFu, k);
+                }
+                CHECK_EQ_AT(stored(), k == 17 ? 0x2Au : (into_b ? 0x11u : 0x12u), k);
+                CHECK_EQ_AT(odg_persist_store_record(&nv_cut, at, TAG, 0x2Bu), ODG_OK, k);
+                CHECK_EQ_AT(stored(), 0x2Bu, k);
+            }
+        }
+    }
+    /* a master's store cut short: the node answers "failed" and boots with the node-id before */
+    put_slot(0, 1, 0x0Bu);
+    memset(nv_mem + at + SLOT, 0xFF, SLOT);
+    CHECK_EQ(power_on(ODG_LSS_UNCONFIGURED, &nv_cut), 0);
+    CHECK_EQ(count_id(0x70Bu), 1);
+    CHECK(lss(0x04, 1, 0, 0, 0) == NULL);
+    CHECK_EQ(configure(0x11, 30, 0), 0);
+    cut_after = 9;
+    CHECK_EQ(configure(0x17, 0, 0), 2);
+    cut_after = NEVER;
+    CHECK_EQ(power_on(ODG_LSS_UNCONFIGURED, &nv_ram), 0);
+    CHECK_EQ(count_id(0x70Bu), 1);
+    CHECK(lss(0x04, 1, 0, 0, 0) == NULL);
+    CHECK_EQ(configure(0x11, 30, 0), 0);
+    CHECK_EQ(configure(0x17, 0, 0), 0);
+    CHECK_EQ(power_on(ODG_LSS_UNCONFIGURED, &nv_ram), 0);
+    CHECK_EQ(count_id(0x700u + 30u), 1);
+}
+
 int main(void)
 {
     memset(nv_mem, 0xFF, sizeof nv_mem);
@@ -299,5 +526,9 @@ int main(void)
     survives_power_cycle();
     selective_and_identify();
     back_to_unconfigured();
+    record_format();
+    sequence_wraps();
+    damaged_slots();
+    power_cut_anywhere();
     return done();
 }
