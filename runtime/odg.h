@@ -264,7 +264,8 @@ typedef struct odg_sub {
  * access, storage, PDO mapping; no hooks, limits or $NODEID): subs[first] is sub 0, and
  * subs[first + 1] describes every element, with `sub` = N and the offset of element 1; element
  * k lies (k - 1) * ODG_STRIDE(size) bytes after it. count is 2 (with ODG_E_DENSE: sub 0 is
- * subs[first]). odg_find hands out a copy of the descriptor made for element k (odg_ref_t.elem). */
+ * subs[first]). odg_find hands out a copy of the descriptor made for element k (odg_ref_t.elem).
+ * The "save" / "load" commands of 0x1010 / 0x1011 (ODG_S_COMMAND: no value) may be packed too. */
 #define ODG_E_PACKED   0x40u
 /* Bytes from one packed element to the next: the size of the C type of a number of wire size
  * `size` (uint32_t for 3 bytes, uint64_t / double for 5..8). */

@@ -203,7 +203,7 @@ static int pos_table_ok(const odg_dict_t *d, const void *base, uint32_t layout, 
 }
 
 /* A packed ARRAY or RECORD (ODG_E_PACKED): sub 0, then one descriptor of N >= 1 numbers without hooks,
- * limits or $NODEID, whose last element lies where a value may. */
+ * limits or $NODEID, whose last element lies where a value may (or N "save" or "load" commands). */
 static int packed_ok(const odg_dict_t *d, const odg_entry_t *e)
 {
     const odg_sub_t *s = &d->subs[e->first + 1u];
@@ -213,7 +213,7 @@ static int packed_ok(const odg_dict_t *d, const odg_entry_t *e)
     }
     if (!ODG_CFG_PACKED || e->count != 2u ||
         ((e->code & 0x0Fu) != ODG_OBJ_ARRAY && (e->code & 0x0Fu) != ODG_OBJ_RECORD) ||
-        d->subs[e->first].sub != 0u || s->sub == 0u || ODG_S_CLASS(s->storage) == ODG_S_COMMAND ||
+        d->subs[e->first].sub != 0u || s->sub == 0u ||
         (s->attr & (ODG_A_HOOK | ODG_A_LIMIT | ODG_A_NODEID)) || s->type == ODG_T_VISIBLE_STRING ||
         s->type == ODG_T_OCTET_STRING || s->type == ODG_T_UNICODE_STRING || s->type == ODG_T_DOMAIN) {
         return 0;
@@ -223,6 +223,9 @@ static int packed_ok(const odg_dict_t *d, const odg_entry_t *e)
     r.sub_pos = (uint16_t)(e->first + 1u);
     r.sub = &r.elem;
     odg_element_(s, s->sub, &r.elem);
+    if (ODG_S_CLASS(s->storage) == ODG_S_COMMAND) {
+        r.sub = s; /* "save" or "load" commands: no value, the shared descriptor is checked */
+    }
     return (uint32_t)s->offset + (s->sub - 1u) * ODG_STRIDE(s->size) <= 0xFFFFu && sub_ok(&r);
 }
 

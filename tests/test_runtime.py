@@ -10,6 +10,7 @@ from __future__ import annotations
 import json
 import re
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -41,6 +42,25 @@ def test_program(program: str, build_name: str, tmp_path: Path) -> None:
     cc, flags = BUILDS[build_name]
     exe = tmp_path / program
     build(cc, flags, PROGRAMS[program], (RUNTIME, CTESTS), exe)
+    run(exe, tmp_path)
+
+
+@pytest.mark.parametrize("cc", ["gcc", "clang"])
+def test_packed_commands_act_on_their_groups(cc: str, tmp_path: Path) -> None:
+    """0x1010 / 0x1011 whose "save" and "load" sub-indices share one descriptor (generated so
+    when the dictionary packs another entry, here the identity): each sub-index acts on its
+    own groups across reboots, reads its capabilities, and refuses the wrong word."""
+    out = tmp_path / "gen"
+    done = subprocess.run([sys.executable, "-m", "odgen", "generate", str(CTESTS / "commands.eds"), "--options",
+                           str(CTESTS / "commands.toml"), "-o", str(out), "--name", "cmd"],
+                          capture_output=True, text=True, check=False)
+    assert done.returncode == 0, done.stdout + done.stderr
+    c = (out / "cmd.c").read_text()
+    assert "{.index = 0x1010, .first = 2, .count = 2, .code = ODG_OBJ_ARRAY | ODG_E_DENSE | ODG_E_PACKED}" in c
+    exe = tmp_path / "test_commands"
+    build(cc, ("-O2", '-DODG_CONFIG="cmd_config.h"'),
+          (CTESTS / "test_commands.c", CTESTS / "nv_fault.c", out / "cmd.c", *(RUNTIME / s for s in CORE)),
+          (RUNTIME, CTESTS, out), exe)
     run(exe, tmp_path)
 
 

@@ -6,7 +6,7 @@ from ..diagnostics import where
 from ..model import ObjectDictionary, Sub
 from .lookup import perfect_hash
 from ..place.options import Pattern
-from .packing import packable
+from .packing import packable, packs_values
 from ..place.placement import Placements
 
 
@@ -21,6 +21,7 @@ def _value(od: ObjectDictionary, sub: Sub) -> str:
 def explain_lines(od: ObjectDictionary, placements: Placements, pattern: Pattern) -> list[str]:
     lines = []
     packed: dict[int, bool] = {}
+    commands = packs_values(od, placements)
     for (index, subindex), p in sorted(placements.items()):
         if not pattern.matches(index, subindex):
             continue
@@ -35,7 +36,7 @@ def explain_lines(od: ObjectDictionary, placements: Placements, pattern: Pattern
         lines.append(f"  hooks:   {hooks + function:<14} from {p.hooks_from}")
         if p.capacity is not None:
             lines.append(f"  capacity: {p.capacity} bytes   from {p.capacity_from}")
-        if subindex > 0 and packed.setdefault(index, packable(od, obj, placements)):
+        if subindex > 0 and packed.setdefault(index, packable(od, obj, placements, commands)):
             lines.append(f"  table:   packed: sub-indices 1..{max(obj.subs)} alike share one descriptor "
                          "(8 bytes of FLASH instead of 8 each)")
     return lines

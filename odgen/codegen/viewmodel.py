@@ -34,7 +34,7 @@ from ..model.od import READABLE, WRITABLE
 from ..model.pdo import default_mapped
 from ..model.datatypes import BASIC_TYPES, DataType
 from ..cnames import COMMENT_WIDTH, comment, identifier, string_literal
-from .packing import packable
+from .packing import packable, packs_values
 from ..model.cia301 import RESTORE, STORE
 from ..place.options import PersistOptions
 from ..place.persistence import PersistView, persist_view
@@ -306,6 +306,7 @@ class _Builder:
         self.member_names: dict[str, tuple[int, int]] = {}
         self.storage_codes: dict[str, str] = {}  # ODG_S_* by storage class
         self.mapped = default_mapped(od)  # PDOMapping=0 entries the description's own mappings map (PDO002)
+        self.pack_commands = packs_values(od, placements)  # packing.py
 
     def struct_for(self, storage: str) -> StorageStruct:
         struct = self.structs.get(storage)
@@ -452,7 +453,7 @@ def _entry(b: _Builder, view: DictView, obj: Obj) -> None:
     names = _Names(hex_index, f"x{hex_index}_{ident}", obj.is_var)
     for sub in subs:
         _sub(b, view, obj, sub, names)
-    if packable(b.od, obj, b.placements):
+    if packable(b.od, obj, b.placements, b.pack_commands):
         _pack(view)
 
 
@@ -473,7 +474,8 @@ def _pack(view: DictView) -> None:
                                                                                         one.storage) for s in elements):
         return
     last = elements[-1]
-    view.packed.append(PackedView(entry.index, one.offset, last.offset, len(elements), one.size))
+    if not one.storage.startswith("ODG_S_COMMAND"):  # commands have no value whose layout to assert
+        view.packed.append(PackedView(entry.index, one.offset, last.offset, len(elements), one.size))
     view.subs[entry.first + 1] = one._replace(sub=last.sub, note=f"sub-indices 1..{last.sub} (1: {one.note})")
     del view.subs[entry.first + 2:]
     entry.count = 2
