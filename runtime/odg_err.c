@@ -211,7 +211,7 @@ odg_abort_t odg_node_emcy(odg_node_t *node, uint16_t code, uint8_t error_registe
 {
     uint8_t d[8];
     record(node, code, vendor, n_vendor);
-    if (!odg_io_talking_(node) || (node->err.cob & ODG_COB_INVALID)) {
+    if (!ODG_IO_TALKING(node) || (node->err.cob & ODG_COB_INVALID)) {
         return ODG_ABORT_DATA_STATE;
     }
     memset(d, 0, sizeof d);
@@ -231,7 +231,7 @@ void odg_err_tick_(odg_node_t *n, uint32_t ms)
     uint32_t us = e->fresh ? 0u : ms > 4000000u ? 0xFFFFFFFFu : ms * 1000u;
     e->fresh = 0;
     e->inhibit_us = e->inhibit_us > us ? e->inhibit_us - us : 0u;
-    if (e->inhibit_us != 0u || e->queued == 0u || (e->cob & ODG_COB_INVALID) || !odg_io_talking_(n)) {
+    if (e->inhibit_us != 0u || e->queued == 0u || (e->cob & ODG_COB_INVALID) || !ODG_IO_TALKING(n)) {
         return;
     }
     if (emcy_out(n, e->queue[0], 0) == 0) {

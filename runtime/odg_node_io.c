@@ -36,8 +36,3 @@ uint32_t odg_io_get_or_(const odg_node_t *n, uint16_t index, uint8_t sub, uint32
     uint32_t v;
     return odg_io_get_(n, index, sub, &v) == ODG_OK ? v : dflt;
 }
-
-int odg_io_talking_(const odg_node_t *n)
-{
-    return n->state == ODG_NMT_PRE_OPERATIONAL || n->state == ODG_NMT_OPERATIONAL;
-}

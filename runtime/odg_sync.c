@@ -31,7 +31,7 @@ void odg_sync_tick_(odg_node_t *n, uint32_t ms)
     uint32_t period = odg_io_get_or_(n, 0x1006, 0, 0), overflow;
     uint32_t us = ms > 4000000u ? 0xFFFFFFFFu : ms * 1000u;
     if (!(n->sync.cob & SYNC_GENERATE) || period == 0u ||
-        !odg_io_talking_(n)) {
+        !ODG_IO_TALKING(n)) {
         n->sync.prod_us = 0;
         n->sync.counter = 0; /* production stopped: the counter starts again at 1 */
         return;
