@@ -187,7 +187,7 @@ static int emcy_out(odg_node_t *n, const uint8_t *data, uint8_t between_ticks)
     if (odg_io_send_(n, n->err.cob, data, 8) != 0) {
         return 1;
     }
-    n->err.inhibit_us = odg_io_get_or_(n, 0x1015, 0, 0) * 100u;
+    n->err.inhibit_us = odg_io_num_(n, 0x1015, 0) * 100u;
     n->err.fresh = between_ticks;
     return 0;
 }

@@ -18,7 +18,7 @@ static void load_cobs(odg_node_t *n)
     uint32_t id = n->cfg.node_id;
     n->sync.cob = odg_io_get_or_(n, 0x1005, 0, 0x80u);
     n->err.cob = odg_io_get_or_(n, 0x1014, 0, 0x80u + id);
-    n->time.cob = odg_io_get_or_(n, 0x1012, 0, 0);
+    n->time.cob = odg_io_num_(n, 0x1012, 0);
 }
 
 /* The SDO server's COB-IDs from 0x1200 (without it, the pre-defined 0x600/0x580 + node-id), read

@@ -36,3 +36,10 @@ uint32_t odg_io_get_or_(const odg_node_t *n, uint16_t index, uint8_t sub, uint32
     uint32_t v;
     return odg_io_get_(n, index, sub, &v) == ODG_OK ? v : dflt;
 }
+
+uint32_t odg_io_num_(const odg_node_t *n, uint16_t index, uint8_t sub)
+{
+    uint32_t v;
+    (void)odg_io_get_(n, index, sub, &v); /* 0 when absent or not readable: odg_read wrote nothing */
+    return v;
+}

@@ -164,10 +164,10 @@ void odg_pdo_load_(odg_node_t *n, int tx, uint16_t k)
         return;
     }
     p->type = (uint8_t)odg_io_get_or_(n, comm, 2, 255);
-    p->inhibit = (uint16_t)odg_io_get_or_(n, comm, 3, 0);
-    p->event = (uint16_t)odg_io_get_or_(n, comm, 5, 0);
-    p->sync_start = (uint8_t)odg_io_get_or_(n, comm, 6, 0);
-    count = odg_io_get_or_(n, (uint16_t)(comm + 0x200u), 0, 0);
+    p->inhibit = (uint16_t)odg_io_num_(n, comm, 3);
+    p->event = (uint16_t)odg_io_num_(n, comm, 5);
+    p->sync_start = (uint8_t)odg_io_num_(n, comm, 6);
+    count = odg_io_num_(n, (uint16_t)(comm + 0x200u), 0);
     /* a mapping or type the node cannot serve (only possible in the dictionary's defaults,
      * as SDO writes are checked) leaves the PDO unused (n_map and len 0) */
     if (reserved_type(tx, p->type) ||
@@ -230,7 +230,7 @@ static odg_abort_t check_mapping_write(const odg_node_t *n, int tx, uint16_t ind
     if (sub == 0u) {
         return read_mapping(n, tx, index, v, NULL);
     }
-    if (odg_io_get_or_(n, index, 0, 0) != 0u) {
+    if (odg_io_num_(n, index, 0) != 0u) {
         return ODG_ABORT_UNSUPPORTED;
     }
     return v == 0u ? ODG_OK : check_entry(n, tx, v);
@@ -253,7 +253,7 @@ odg_abort_t odg_pdo_check_(const odg_node_t *n, uint16_t index, uint8_t sub, uin
          * writes of mappings are checked): the PDO stays unused, and enabling it is refused */
         if (ac == ODG_OK && !valid && !(v & ODG_COB_INVALID)) {
             uint16_t map = (uint16_t)(index + 0x200u);
-            if (read_mapping(n, tx, map, odg_io_get_or_(n, map, 0, 0), NULL) != ODG_OK) {
+            if (read_mapping(n, tx, map, odg_io_num_(n, map, 0), NULL) != ODG_OK) {
                 return ODG_ABORT_INCOMPATIBLE;
             }
         }
@@ -347,7 +347,7 @@ static int transmit(odg_node_t *n, odg_pdo_t *p, int force)
 
 static int in_window(const odg_node_t *n)
 {
-    uint32_t window = odg_io_get_or_(n, 0x1007, 0, 0);
+    uint32_t window = odg_io_num_(n, 0x1007, 0);
     return window == 0u || n->sync_us <= window;
 }
 
