@@ -41,9 +41,10 @@ static int reserved_type(int tx, uint32_t type)
     return type > TYPE_SYNC_MAX && type < (tx ? TYPE_RTR_SYNC : TYPE_EVENT);
 }
 
+/* Valid (COB-ID bit 31 clear) and mapped: odg_pdo_load_ leaves n_map 0 otherwise. */
 static int active(const odg_pdo_t *p)
 {
-    return p->n_map > 0u && !(p->cob & ODG_COB_INVALID);
+    return p->n_map > 0u;
 }
 
 /* Copy `n` bits, LSB first (CiA 301 PDO mapping order), from bit `spos` of `src` to `dpos`. */
@@ -174,7 +175,7 @@ void odg_pdo_load_(odg_node_t *n, int tx, uint16_t k)
         read_mapping(n, tx, (uint16_t)(comm + 0x200u), count, p) != ODG_OK) {
         count = 0;
     }
-    p->n_map = (uint8_t)count;
+    p->n_map = (uint8_t)(p->cob & ODG_COB_INVALID ? 0u : count); /* an invalid PDO is not active */
     if (tx && n->state == ODG_NMT_OPERATIONAL) {
         restart(p);
     }
