@@ -494,8 +494,6 @@ static odg_abort_t initiate(odg_node_t *n, const uint8_t *d)
     odg_sdo_t *s = &n->sdo;
     odg_abort_t ac;
     unsigned ccs = d[0] >> 5;
-    s->index = (uint16_t)(d[1] | (unsigned)d[2] << 8);
-    s->sub = d[3];
     if (!(ccs == 1u || ccs == 2u ||
           (ODG_NODE_SDO_BLOCK && ((ccs == 5u && (d[0] & 3u) == 0u) || (ccs == 6u && (d[0] & 1u) == 0u))))) {
         return ODG_ABORT_COMMAND;
@@ -536,11 +534,12 @@ void odg_sdo_receive_(odg_node_t *n, const odg_frame_t *f)
         s->state = ODG_SDO_IDLE;
         return;
     }
+    if (s->state == ODG_SDO_IDLE) { /* a request: what it names, which an abort names too */
+        s->index = (uint16_t)(d[1] | (unsigned)d[2] << 8);
+        s->sub = d[3];
+    }
     if (f->len < 8u) {
-        if (s->state == ODG_SDO_IDLE) {
-            s->index = (uint16_t)(d[1] | (unsigned)d[2] << 8);
-            s->sub = d[3];
-        }
+        /* too short: ac stays ODG_ABORT_COMMAND */
     } else if (s->state == ODG_SDO_IDLE) {
         ac = initiate(n, d);
     } else if (s->state == ODG_SDO_DN_SEG) {
