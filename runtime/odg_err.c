@@ -227,7 +227,6 @@ odg_abort_t odg_node_emcy(odg_node_t *node, uint16_t code, uint8_t error_registe
 void odg_err_tick_(odg_node_t *n, uint32_t ms)
 {
     odg_err_t *e = &n->err;
-    uint8_t k;
     uint32_t us = e->fresh ? 0u : ms > 4000000u ? 0xFFFFFFFFu : ms * 1000u;
     e->fresh = 0;
     e->inhibit_us = e->inhibit_us > us ? e->inhibit_us - us : 0u;
@@ -236,8 +235,7 @@ void odg_err_tick_(odg_node_t *n, uint32_t ms)
     }
     if (emcy_out(n, e->queue[0], 0) == 0) {
         e->queued--;
-        for (k = 0; k < e->queued; k++) { /* the rest move up, row by row (no memmove) */
-            odg_copy(e->queue[k], e->queue[k + 1u], 8);
-        }
+        /* the rest move up a row: odg_copy goes from the first byte up, so it may overlap so */
+        odg_copy(e->queue, (const uint8_t *)e->queue + 8, 8u * e->queued);
     }
 }
