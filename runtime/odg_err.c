@@ -89,7 +89,7 @@ ODG_NODE_OUTLINE_ static uint8_t active(const odg_node_t *n, uint16_t code)
 
 /* The last active error takes the place of error k: their order does not matter (0x1001 is the
  * union of their bits), and the node then links no memmove. */
-ODG_NODE_OUTLINE_ static void forget(odg_node_t *n, uint8_t k)
+ODG_NODE_OUTLINE_ static void forget(odg_node_t *n, uint32_t k)
 {
     n->err.active--;
     n->err.code[k] = n->err.code[n->err.active];
@@ -127,7 +127,7 @@ odg_abort_t odg_node_error_clear(odg_node_t *node, uint16_t code)
 
 void odg_err_reset_(odg_node_t *n, int all)
 {
-    uint8_t k = n->err.active;
+    uint32_t k = n->err.active;
     while (k-- > 0u) {
         if (all || (n->err.code[k] >> 8) == 0x81u || (n->err.code[k] >> 8) == 0x82u) {
             forget(n, k);
@@ -139,17 +139,15 @@ void odg_err_reset_(odg_node_t *n, int all)
 /* ---- the pre-defined error field --------------------------------------------------------- */
 
 /* The newest entry goes to sub 1, each older one a sub further (which costs one lookup of each
- * sub), up to one past the count or the last sub there is; sub 0 counts those written. */
-static void record(odg_node_t *n, uint16_t code, const uint8_t *vendor, uint8_t n_vendor)
+ * sub), up to one past the count or the last sub there is; sub 0 counts those written. The entry
+ * of the EMCY frame `d`: its code (bytes 0-1) and first two vendor bytes (3-4) << 16. */
+static void record(odg_node_t *n, const uint8_t *d)
 {
-    uint32_t count, k, old, carry = code;
+    uint32_t count, k, old, carry = d[0] | (uint32_t)d[1] << 8 | (uint32_t)d[3] << 16 | (uint32_t)d[4] << 24;
     odg_ref_t r0, r;
-    uint8_t *p0 = slot(n, HISTORY, 0, &r0), *p;
-    if (p0 == NULL || code == 0u) {
-        return; /* no history kept, or an error reset (not an error) */
-    }
-    if (vendor != NULL && n_vendor > 0u) {
-        carry |= (uint32_t)vendor[0] << 16 | (n_vendor > 1u ? (uint32_t)vendor[1] << 24 : 0u);
+    uint8_t *p0, *p;
+    if ((carry & 0xFFFFu) == 0u || (p0 = slot(n, HISTORY, 0, &r0)) == NULL) {
+        return; /* an error reset (not an error), or no history kept */
     }
     count = (uint32_t)odg_num_get_(p0, r0.sub->size);
     for (k = 1; k <= count + 1u && k <= 254u && (p = slot(n, HISTORY, (uint8_t)k, &r)) != NULL; k++) {
@@ -210,16 +208,16 @@ odg_abort_t odg_node_emcy(odg_node_t *node, uint16_t code, uint8_t error_registe
                           const uint8_t *vendor, uint8_t n_vendor)
 {
     uint8_t d[8];
-    record(node, code, vendor, n_vendor);
-    if (!ODG_IO_TALKING(node) || (node->err.cob & ODG_COB_INVALID)) {
-        return ODG_ABORT_DATA_STATE;
-    }
     memset(d, 0, sizeof d);
     d[0] = (uint8_t)code;
     d[1] = (uint8_t)(code >> 8);
     d[2] = error_register;
     if (vendor != NULL) {
         odg_copy(d + 3, vendor, n_vendor < 5u ? n_vendor : 5u);
+    }
+    record(node, d); /* whether it goes out or not */
+    if (!ODG_IO_TALKING(node) || (node->err.cob & ODG_COB_INVALID)) {
+        return ODG_ABORT_DATA_STATE;
     }
     return emcy_send(node, d);
 }
