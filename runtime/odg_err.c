@@ -160,11 +160,6 @@ static void record(odg_node_t *n, const uint8_t *d)
     }
 }
 
-odg_abort_t odg_err_check_(uint8_t sub, uint32_t value)
-{
-    return sub == 0u && value != 0u ? ODG_ABORT_VALUE_RANGE : ODG_OK;
-}
-
 void odg_err_written_(odg_node_t *n)
 {
     uint32_t k;

@@ -88,7 +88,7 @@ static odg_abort_t check(const odg_node_t *n, uint16_t index, uint8_t sub, const
     if (index == 0x1016u) {
         return odg_hb_check_(n, sub, v);
     }
-    return index == 0x1003u ? odg_err_check_(sub, v) : odg_pdo_check_(n, index, sub, v);
+    return index == 0x1003u ? ODG_ERR_CHECK(sub, v) : odg_pdo_check_(n, index, sub, v);
 }
 
 /* Store a complete value of at most 8 bytes: PDO rules first, then the dictionary (which
