@@ -289,21 +289,16 @@ static odg_abort_t block_download_end(odg_node_t *n, const uint8_t *d)
 
 /* ---- upload ----------------------------------------------------------------------------- */
 
-/* `len` bytes of the value from `off`: the first 8 from the snapshot taken at the start,
- * the rest read now. A value that shrank meanwhile is padded with zeros. */
+/* `len` bytes of the value from `off` into `out`, which the caller zeroed: the first 8 from the
+ * snapshot taken at the start, the rest read now (a value that shrank meanwhile leaves zeros). */
 static odg_abort_t upload_data(odg_node_t *n, uint32_t off, uint8_t *out, uint32_t len)
 {
     odg_sdo_t *s = &n->sdo;
-    uint32_t k = 0, got = 0;
-    odg_abort_t ac = ODG_OK;
+    uint32_t k = 0, got;
     for (; k < len && off + k < s->n_buf; k++) {
         out[k] = s->buf[off + k];
     }
-    if (k < len) {
-        ac = odg_read(&s->ref, off + k, out + k, len - k, &got);
-    }
-    memset(out + k + got, 0, len - k - got);
-    return ac;
+    return k < len ? odg_read(&s->ref, off + k, out + k, len - k, &got) : ODG_OK;
 }
 
 /* Read the first bytes (PRE_READ runs here) and the size of the value. */
@@ -424,6 +419,7 @@ static odg_abort_t crc_range(odg_node_t *n, uint32_t from, uint32_t to)
     odg_abort_t ac = ODG_OK;
     while (from < to && ac == ODG_OK) {
         uint32_t len = to - from < 7u ? to - from : 7u;
+        memset(b, 0, sizeof b);
         ac = upload_data(n, from, b, len);
         n->sdo.crc = crc16(n->sdo.crc, b, len);
         from += len;
