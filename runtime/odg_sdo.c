@@ -105,15 +105,13 @@ static odg_abort_t write_whole(odg_node_t *n, const uint8_t *data, uint32_t len)
     return ac;
 }
 
-/* Strings and domains are streamed; every other type is a number of at most 8 bytes. */
-static int variable_length(uint8_t type)
-{
-    return type == ODG_T_VISIBLE_STRING || type == ODG_T_OCTET_STRING || type == ODG_T_UNICODE_STRING ||
-           type == ODG_T_DOMAIN;
-}
-
 /* Start a segmented or block download of `total` bytes (SIZE_UNKNOWN: not indicated); a
- * number announced longer than 8 bytes is refused. */
+ * number announced longer than 8 bytes is refused. Strings and domains are streamed (IS_STREAM:
+ * of the types the build serves, which are all the dictionary has); every other type is a
+ * number of at most 8 bytes. */
+#if ODG_NODE_SDO_BLOCK
+ODG_NODE_OUTLINE_ /* two callers then: out of line, else inlined into its one caller */
+#endif
 static odg_abort_t begin_download(odg_node_t *n, uint32_t total)
 {
     odg_sdo_t *s = &n->sdo;
@@ -123,7 +121,7 @@ static odg_abort_t begin_download(odg_node_t *n, uint32_t total)
     s->flags = (uint8_t)(total == SIZE_UNKNOWN ? 0u
                          : total > 8u        ? ODG_SDO_F_SIZED | ODG_SDO_F_STREAM
                                              : ODG_SDO_F_SIZED);
-    return total != SIZE_UNKNOWN && total > 8u && !variable_length(s->ref.sub->type) ? ODG_ABORT_TOO_LONG : ODG_OK;
+    return total != SIZE_UNKNOWN && total > 8u && !IS_STREAM(s->ref.sub) ? ODG_ABORT_TOO_LONG : ODG_OK;
 }
 
 /* Take the next `len` bytes of a download. Without an indicated size the bytes are
