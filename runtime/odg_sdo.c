@@ -20,6 +20,9 @@
 #include "odg_node.h"
 
 #define SIZE_UNKNOWN 0xFFFFFFFFu
+/* A download streamed to odg_write_part: only strings and domains are (begin_download refuses
+ * the rest), so a build serving none leaves the streaming out. */
+#define STREAMING(s) (T_STREAM != 0u && ((s)->flags & ODG_SDO_F_STREAM) != 0u)
 
 
 static void put32(uint8_t *p, uint32_t v)
@@ -134,7 +137,7 @@ static odg_abort_t take(odg_node_t *n, const uint8_t *data, uint32_t len)
     if (len > s->total - s->offset) { /* without a size total is SIZE_UNKNOWN: never */
         return ODG_ABORT_TOO_LONG;
     }
-    if (s->flags & ODG_SDO_F_STREAM) {
+    if (STREAMING(s)) {
         if ((ac = odg_write_part(&s->ref, s->offset, data, len, s->total)) != ODG_OK) {
             return ac;
         }
@@ -157,7 +160,7 @@ static odg_abort_t finish_download(odg_node_t *n)
     if ((s->flags & ODG_SDO_F_SIZED) && s->offset != s->total) {
         return ODG_ABORT_TOO_SHORT;
     }
-    if (s->flags & ODG_SDO_F_STREAM) {
+    if (STREAMING(s)) {
         return ODG_OK;
     }
     return write_whole(n, s->buf, s->offset);
@@ -288,7 +291,8 @@ static odg_abort_t block_download_end(odg_node_t *n, const uint8_t *d)
 /* ---- upload ----------------------------------------------------------------------------- */
 
 /* `len` bytes of the value from `off` into `out`, which the caller zeroed: the first 8 from the
- * snapshot taken at the start, the rest read now (a value that shrank meanwhile leaves zeros). */
+ * snapshot taken at the start, the rest read now (a value that shrank meanwhile leaves zeros).
+ * Only strings and domains have bytes beyond the snapshot: builds without them read none. */
 static odg_abort_t upload_data(odg_node_t *n, uint32_t off, uint8_t *out, uint32_t len)
 {
     odg_sdo_t *s = &n->sdo;
@@ -296,7 +300,7 @@ static odg_abort_t upload_data(odg_node_t *n, uint32_t off, uint8_t *out, uint32
     for (; k < len && off + k < s->n_buf; k++) {
         out[k] = s->buf[off + k];
     }
-    return k < len ? odg_read(&s->ref, off + k, out + k, len - k, &got) : ODG_OK;
+    return T_STREAM != 0u && k < len ? odg_read(&s->ref, off + k, out + k, len - k, &got) : ODG_OK;
 }
 
 /* Read the first bytes (PRE_READ runs here) and the size of the value. */
@@ -308,7 +312,7 @@ static odg_abort_t upload_begin(odg_node_t *n)
     memset(s->buf, 0, sizeof s->buf); /* an expedited upload sends 4 bytes: those not read are 0 */
     ac = odg_read(&s->ref, 0, s->buf, sizeof s->buf, &got);
     s->n_buf = (uint8_t)got;
-    s->total = got < sizeof s->buf ? got : odg_length(&s->ref);
+    s->total = T_STREAM == 0u || got < sizeof s->buf ? got : odg_length(&s->ref); /* a number: got */
     s->offset = 0;
     s->toggle = 0;
     return ac;
