@@ -23,6 +23,9 @@
 /* A download streamed to odg_write_part: only strings and domains are (begin_download refuses
  * the rest), so a build serving none leaves the streaming out. */
 #define STREAMING(s) (T_STREAM != 0u && ((s)->flags & ODG_SDO_F_STREAM) != 0u)
+/* Values longer than 4 bytes, uploaded in segments: strings, domains and the types wider than
+ * 32 bits. A build serving none of them uploads every value expedited (1..4 bytes). */
+#define LONG_VALUES (T_STREAM != 0u || ODG_CFG_INT64)
 
 
 static void put32(uint8_t *p, uint32_t v)
@@ -322,7 +325,7 @@ static odg_abort_t upload_begin(odg_node_t *n)
 static void upload_respond(odg_node_t *n)
 {
     odg_sdo_t *s = &n->sdo;
-    if (s->total >= 1u && s->total <= 4u) {
+    if (!LONG_VALUES || (s->total >= 1u && s->total <= 4u)) {
         respond(n, (uint8_t)(0x43u | (4u - s->total) << 2), ODG_LE32(s->buf));
         s->state = ODG_SDO_IDLE;
         return;
@@ -542,7 +545,7 @@ void odg_sdo_receive_(odg_node_t *n, const odg_frame_t *f)
         ac = initiate(n, d);
     } else if (s->state == ODG_SDO_DN_SEG) {
         ac = download_segment(n, d);
-    } else if (s->state == ODG_SDO_UP_SEG) {
+    } else if (LONG_VALUES && s->state == ODG_SDO_UP_SEG) {
         ac = upload_segment(n, d);
 #if ODG_NODE_SDO_BLOCK
     } else if (s->state == ODG_SDO_BLK_DN) {
