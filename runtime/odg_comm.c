@@ -15,10 +15,11 @@ static int comm_value(uint16_t index, const odg_sub_t *s)
            s->size <= 8u && !IS_STREAM(s); /* IS_STREAM: the stream types this build serves */
 }
 
-/* Bytes of the C type holding a number of wire size `size`: the copy keeps values as stored. */
+/* Bytes of the C type holding a number of wire size `size`: the copy keeps values as stored
+ * (sizes above 4 only with the types wider than 32 bits). */
 static uint32_t native_size(uint32_t size)
 {
-    return size == 3u ? 4u : (size > 4u ? 8u : size);
+    return size == 3u ? 4u : (ODG_CFG_INT64 && size > 4u ? 8u : size);
 }
 
 /* One value and its place in node->comm (the bytes of its C type): COMM_KEEP copies the
