@@ -156,9 +156,9 @@ void odg_hb_rtr_(odg_node_t *n, const odg_frame_t *f)
     if (f->id != 0x700u + n->cfg.node_id || odg_io_num_(n, 0x1017, 0) != 0u) {
         return;
     }
-    answer = (uint8_t)(n->state | (n->hb.guard_toggle ? 0x80u : 0u));
+    answer = (uint8_t)(n->state | n->hb.guard_toggle);
     if (odg_io_send_(n, f->id, &answer, 1) == 0) {
-        n->hb.guard_toggle = (uint8_t)!n->hb.guard_toggle;
+        n->hb.guard_toggle ^= 0x80u;
     }
     heard(n, &n->hb.watch[GUARD]);
 }
