@@ -84,7 +84,7 @@ static odg_abort_t check(const odg_node_t *n, uint16_t index, uint8_t sub, const
     if (index == 0x1019u) {
         return odg_sync_check_(n, data, len);
     }
-    if ((index != 0x1003u && index != 0x1016u && (index < 0x1400u || index >= 0x1C00u)) || len > 4u) {
+    if (len > 4u) {
         return ODG_OK;
     }
     while (len > 0u) {
@@ -94,7 +94,10 @@ static odg_abort_t check(const odg_node_t *n, uint16_t index, uint8_t sub, const
     if (index == 0x1016u) {
         return odg_hb_check_(n, sub, v);
     }
-    return index == 0x1003u ? ODG_ERR_CHECK(sub, v) : odg_pdo_check_(n, index, sub, v);
+    if (index == 0x1003u) {
+        return ODG_ERR_CHECK(sub, v);
+    }
+    return index >= 0x1400u && index < 0x1C00u ? odg_pdo_check_(n, index, sub, v) : ODG_OK;
 }
 
 /* Store a complete value of at most 8 bytes: PDO rules first, then the dictionary (which
