@@ -201,17 +201,23 @@ static int restricted(uint32_t id)
            (id >= 0x601u && id <= 0x67Fu) || (id >= 0x6E0u && id <= 0x6FFu) || id >= 0x701u;
 }
 
-/* COB-ID (sub 1): disabling is always allowed; a valid PDO keeps bits 0..29 (CiA 301); only
- * 11-bit identifiers outside the restricted ones can be made valid. */
-static odg_abort_t check_cob(uint32_t old, uint32_t v)
+/* COB-ID (sub 1) of a PDO, `valid` or not, whose COB-ID is `old`: disabling is always allowed;
+ * a valid PDO keeps bits 0..29 (CiA 301); only 11-bit identifiers outside the restricted ones
+ * can be made valid. A mapping the node cannot serve is only possible in the dictionary's
+ * defaults (SDO writes of mappings are checked): the PDO stays unused, and enabling it is
+ * refused. */
+static odg_abort_t check_cob(const odg_node_t *n, int tx, uint16_t index, uint32_t old, uint32_t v)
 {
+    uint16_t map = (uint16_t)(index + 0x200u);
+    int valid = !(old & ODG_COB_INVALID);
     if (v & ODG_COB_INVALID) {
         return ODG_OK;
     }
-    if (!(old & ODG_COB_INVALID) && ((v ^ old) & 0x3FFFFFFFu)) {
+    if ((valid && ((v ^ old) & 0x3FFFFFFFu)) || (v & 0x3FFFF800u) || restricted(v & 0x7FFu)) {
         return ODG_ABORT_VALUE_RANGE;
     }
-    return (v & 0x3FFFF800u) || restricted(v & 0x7FFu) ? ODG_ABORT_VALUE_RANGE : ODG_OK;
+    return valid || read_mapping(n, tx, map, odg_io_num_(n, map, 0), NULL) == ODG_OK ? ODG_OK
+                                                                                   : ODG_ABORT_INCOMPATIBLE;
 }
 
 /*
@@ -249,16 +255,7 @@ odg_abort_t odg_pdo_check_(const odg_node_t *n, uint16_t index, uint8_t sub, uin
         return check_mapping_write(n, tx, index, sub, v, valid);
     }
     if (sub == 1u) {
-        odg_abort_t ac = check_cob(cob, v);
-        /* a mapping the node cannot serve is only possible in the dictionary's defaults (SDO
-         * writes of mappings are checked): the PDO stays unused, and enabling it is refused */
-        if (ac == ODG_OK && !valid && !(v & ODG_COB_INVALID)) {
-            uint16_t map = (uint16_t)(index + 0x200u);
-            if (read_mapping(n, tx, map, odg_io_num_(n, map, 0), NULL) != ODG_OK) {
-                return ODG_ABORT_INCOMPATIBLE;
-            }
-        }
-        return ac;
+        return check_cob(n, tx, index, cob, v);
     }
     if (sub == 2u) {
         return reserved_type(tx, v) ? ODG_ABORT_VALUE_RANGE : ODG_OK;
