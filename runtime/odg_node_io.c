@@ -39,7 +39,5 @@ uint32_t odg_io_get_or_(const odg_node_t *n, uint16_t index, uint8_t sub, uint32
 
 uint32_t odg_io_num_(const odg_node_t *n, uint16_t index, uint8_t sub)
 {
-    uint32_t v;
-    (void)odg_io_get_(n, index, sub, &v); /* 0 when absent or not readable: odg_read wrote nothing */
-    return v;
+    return odg_io_get_or_(n, index, sub, 0);
 }
