@@ -201,11 +201,11 @@ static int restricted(uint32_t id)
            (id >= 0x601u && id <= 0x67Fu) || (id >= 0x6E0u && id <= 0x6FFu) || id >= 0x701u;
 }
 
-/* COB-ID (sub 1) of a PDO, `valid` or not, whose COB-ID is `old`: disabling is always allowed;
- * a valid PDO keeps bits 0..29 (CiA 301); only 11-bit identifiers outside the restricted ones
- * can be made valid. A mapping the node cannot serve is only possible in the dictionary's
- * defaults (SDO writes of mappings are checked): the PDO stays unused, and enabling it is
- * refused. */
+/* A new COB-ID `v` (sub 1) for the PDO of communication entry `index`, whose COB-ID is `old`:
+ * disabling is always allowed; a valid PDO keeps bits 0..29 (CiA 301); only 11-bit identifiers
+ * outside the restricted ones can be made valid. A mapping the node cannot serve is only
+ * possible in the dictionary's defaults (SDO writes of mappings are checked): the PDO stays
+ * unused, and enabling it is refused. */
 static odg_abort_t check_cob(const odg_node_t *n, int tx, uint16_t index, uint32_t old, uint32_t v)
 {
     uint16_t map = (uint16_t)(index + 0x200u);
