@@ -51,10 +51,12 @@ uint8_t odg_node_error_bits(uint16_t code)
 }
 
 /* The storage of a numeric sub the node may write (0x1001, 0x1003: RAM or a group's mirror, at
- * most 4 bytes), found into `r`; NULL when there is none. */
+ * most 4 bytes: a build without streams and types wider than 32 bits has no other), found into
+ * `r`; NULL when there is none. */
 static uint8_t *slot(const odg_node_t *n, uint16_t index, uint8_t sub, odg_ref_t *r)
 {
-    if (odg_find(n->cfg.dict, index, sub, r) != ODG_OK || r->sub->size > 4u ||
+    if (odg_find(n->cfg.dict, index, sub, r) != ODG_OK ||
+        ((T_STREAM != 0u || ODG_CFG_INT64) && r->sub->size > 4u) ||
         ODG_S_CLASS(r->sub->storage) == ODG_S_ROM || ODG_S_CLASS(r->sub->storage) == ODG_S_COMMAND) {
         return NULL;
     }
