@@ -13,7 +13,7 @@ static int comm_value(const odg_sub_t *s)
 {
     uint32_t cls = ODG_S_CLASS(s->storage);
     return (s->attr & ODG_A_WRITE) != 0u && (cls == ODG_S_RAM || cls == ODG_S_PERSIST) &&
-           s->size <= 8u && !IS_STREAM(s); /* IS_STREAM: the stream types this build serves */
+           !IS_STREAM(s); /* IS_STREAM: the stream types this build serves, all the dictionary has */
 }
 
 /* Bytes of the C type holding a number of wire size `size`: the copy keeps values as stored
