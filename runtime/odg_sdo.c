@@ -326,13 +326,13 @@ static odg_abort_t upload_begin(odg_node_t *n)
     return ac;
 }
 
-/* Answer an upload request: expedited for 1..4 bytes, else announce a segmented transfer. */
+/* Answer an upload request (the server is idle): expedited for 1..4 bytes, after which it
+ * stays idle, else announce a segmented transfer. */
 static void upload_respond(odg_node_t *n)
 {
     odg_sdo_t *s = &n->sdo;
     if (!LONG_VALUES || (s->total >= 1u && s->total <= 4u)) {
         respond(n, (uint8_t)(0x43u | (4u - s->total) << 2), ODG_LE32(s->buf));
-        s->state = ODG_SDO_IDLE;
         return;
     }
     respond(n, 0x41, s->total);
