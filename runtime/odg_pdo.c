@@ -357,12 +357,14 @@ static void window_tick(odg_node_t *n, uint32_t ms)
     n->sync_us = ms > (0xFFFFFFFFu - n->sync_us) / 1000u ? 0xFFFFFFFFu : n->sync_us + ms * 1000u;
     for (k = 0; k < ODG_NODE_MAX_TPDO; k++) {
         odg_pdo_t *p = &n->tpdo[k];
+        int sync;
         if (!(p->flags & ODG_PDO_F_DUE)) {
-            continue; /* DUE: an active synchronous TPDO (odg_pdo_sync_ sets it, a reload clears it) */
+            continue;
         }
-        if (!in_window(n)) {
+        sync = active(p) && p->type <= TYPE_SYNC_MAX;
+        if (sync && !in_window(n)) {
             n->sync_dropped++;
-        } else if (transmit(n, p, 1)) {
+        } else if (sync && transmit(n, p, 1)) {
             continue; /* still due */
         }
         p->flags &= (uint8_t)~(ODG_PDO_F_DUE | ODG_PDO_F_REQUEST);
