@@ -318,7 +318,9 @@ static odg_abort_t upload_begin(odg_node_t *n)
     memset(s->buf, 0, sizeof s->buf); /* an expedited upload sends 4 bytes: those not read are 0 */
     ac = odg_read(&s->ref, 0, s->buf, sizeof s->buf, &got);
     s->total = T_STREAM == 0u || got < sizeof s->buf ? got : odg_length(&s->ref); /* a number: got */
-    s->n_buf = (uint8_t)got;
+    if (LONG_VALUES || ODG_NODE_SDO_BLOCK) { /* for upload_data: segmented and block uploads */
+        s->n_buf = (uint8_t)got;
+    }
     if (LONG_VALUES) { /* for a segmented upload, which only values longer than 4 bytes take */
         s->offset = 0;
         s->toggle = 0;
