@@ -420,7 +420,8 @@ typedef struct odg_ref {
 odg_abort_t odg_init(const odg_dict_t *dict, uint8_t node_id);
 
 /* Copy `n` bytes: a byte loop, so neither the runtime nor a generated reset links libc's
- * memcpy for it (a few hundred bytes on small cores). */
+ * memcpy for it (a few hundred bytes on small cores). It goes from the first byte up, so `dst`
+ * may overlap `src` when it lies below it (the node's EMCY queue moves up so). */
 void odg_copy(void *dst, const void *src, uint32_t n);
 
 /* Attach `client` (see odg_client_t); attaching one already attached does nothing. */

@@ -7,18 +7,20 @@
 #include "odg_node.h"
 
 /* What reset communication brings back: the numbers in 0x1000-0x1FFF an SDO client may write,
- * but not the error history 0x1003 (events, not parameters) nor the commands 0x1010/0x1011. */
-static int comm_value(uint16_t index, const odg_sub_t *s)
+ * but not the error history 0x1003 (events, not parameters: comm_walk skips it) nor the commands
+ * 0x1010/0x1011. */
+static int comm_value(const odg_sub_t *s)
 {
     uint32_t cls = ODG_S_CLASS(s->storage);
-    return index != 0x1003u && (s->attr & ODG_A_WRITE) != 0u && (cls == ODG_S_RAM || cls == ODG_S_PERSIST) &&
-           s->size <= 8u && !IS_STREAM(s); /* IS_STREAM: the stream types this build serves */
+    return (s->attr & ODG_A_WRITE) != 0u && (cls == ODG_S_RAM || cls == ODG_S_PERSIST) &&
+           !IS_STREAM(s); /* IS_STREAM: the stream types this build serves, all the dictionary has */
 }
 
-/* Bytes of the C type holding a number of wire size `size`: the copy keeps values as stored. */
+/* Bytes of the C type holding a number of wire size `size`: the copy keeps values as stored
+ * (sizes above 4 only with the types wider than 32 bits). */
 static uint32_t native_size(uint32_t size)
 {
-    return size == 3u ? 4u : (size > 4u ? 8u : size);
+    return size == 3u ? 4u : (ODG_CFG_INT64 && size > 4u ? 8u : size);
 }
 
 /* One value and its place in node->comm (the bytes of its C type): COMM_KEEP copies the
@@ -57,7 +59,7 @@ static uint32_t comm_object(const odg_dict_t *d, odg_node_t *n, const odg_entry_
     uint32_t bytes = 0;
     odg_ref_t r;
     do {
-        if (odg_find(d, en->index, k, &r) == ODG_OK && comm_value(en->index, r.sub)) {
+        if (odg_find(d, en->index, k, &r) == ODG_OK && comm_value(r.sub)) {
             uint32_t size = native_size(r.sub->size);
             if (n != NULL) {
                 comm_copy(n, r.sub, size, at + bytes, how, sub);
@@ -76,8 +78,8 @@ static uint32_t comm_walk(odg_node_t *n, const odg_dict_t *d, int how, uint8_t s
     uint16_t e;
     for (e = 0; e < d->n_entries && d->entries[e].index <= 0x1FFFu; e++) {
         const odg_entry_t *en = &d->entries[e];
-        if (en->index < 0x1000u) {
-            continue; /* data type definitions */
+        if (en->index < 0x1000u || en->index == 0x1003u) {
+            continue; /* data type definitions, the error history */
         }
         size = comm_object(d, NULL, en, NULL, how, sub);
         if (n != NULL && at + size > ODG_NODE_COMM_BYTES) {

@@ -51,10 +51,12 @@ uint8_t odg_node_error_bits(uint16_t code)
 }
 
 /* The storage of a numeric sub the node may write (0x1001, 0x1003: RAM or a group's mirror, at
- * most 4 bytes), found into `r`; NULL when there is none. */
+ * most 4 bytes: a build without streams and types wider than 32 bits has no other), found into
+ * `r`; NULL when there is none. */
 static uint8_t *slot(const odg_node_t *n, uint16_t index, uint8_t sub, odg_ref_t *r)
 {
-    if (odg_find(n->cfg.dict, index, sub, r) != ODG_OK || r->sub->size > 4u ||
+    if (odg_find(n->cfg.dict, index, sub, r) != ODG_OK ||
+        ((T_STREAM != 0u || ODG_CFG_INT64) && r->sub->size > 4u) ||
         ODG_S_CLASS(r->sub->storage) == ODG_S_ROM || ODG_S_CLASS(r->sub->storage) == ODG_S_COMMAND) {
         return NULL;
     }
@@ -89,7 +91,7 @@ ODG_NODE_OUTLINE_ static uint8_t active(const odg_node_t *n, uint16_t code)
 
 /* The last active error takes the place of error k: their order does not matter (0x1001 is the
  * union of their bits), and the node then links no memmove. */
-ODG_NODE_OUTLINE_ static void forget(odg_node_t *n, uint8_t k)
+ODG_NODE_OUTLINE_ static void forget(odg_node_t *n, uint32_t k)
 {
     n->err.active--;
     n->err.code[k] = n->err.code[n->err.active];
@@ -127,7 +129,7 @@ odg_abort_t odg_node_error_clear(odg_node_t *node, uint16_t code)
 
 void odg_err_reset_(odg_node_t *n, int all)
 {
-    uint8_t k = n->err.active;
+    uint32_t k = n->err.active;
     while (k-- > 0u) {
         if (all || (n->err.code[k] >> 8) == 0x81u || (n->err.code[k] >> 8) == 0x82u) {
             forget(n, k);
@@ -139,17 +141,15 @@ void odg_err_reset_(odg_node_t *n, int all)
 /* ---- the pre-defined error field --------------------------------------------------------- */
 
 /* The newest entry goes to sub 1, each older one a sub further (which costs one lookup of each
- * sub), up to one past the count or the last sub there is; sub 0 counts those written. */
-static void record(odg_node_t *n, uint16_t code, const uint8_t *vendor, uint8_t n_vendor)
+ * sub), up to one past the count or the last sub there is; sub 0 counts those written. The entry
+ * of the EMCY frame `d`: its code (bytes 0-1) and first two vendor bytes (3-4) << 16. */
+static void record(odg_node_t *n, const uint8_t *d)
 {
-    uint32_t count, k, old, carry = code;
+    uint32_t count, k, old, carry = d[0] | (uint32_t)d[1] << 8 | (uint32_t)d[3] << 16 | (uint32_t)d[4] << 24;
     odg_ref_t r0, r;
-    uint8_t *p0 = slot(n, HISTORY, 0, &r0), *p;
-    if (p0 == NULL || code == 0u) {
-        return; /* no history kept, or an error reset (not an error) */
-    }
-    if (vendor != NULL && n_vendor > 0u) {
-        carry |= (uint32_t)vendor[0] << 16 | (n_vendor > 1u ? (uint32_t)vendor[1] << 24 : 0u);
+    uint8_t *p0, *p;
+    if ((carry & 0xFFFFu) == 0u || (p0 = slot(n, HISTORY, 0, &r0)) == NULL) {
+        return; /* an error reset (not an error), or no history kept */
     }
     count = (uint32_t)odg_num_get_(p0, r0.sub->size);
     for (k = 1; k <= count + 1u && k <= 254u && (p = slot(n, HISTORY, (uint8_t)k, &r)) != NULL; k++) {
@@ -160,11 +160,6 @@ static void record(odg_node_t *n, uint16_t code, const uint8_t *vendor, uint8_t 
     if (k > 1u) {
         odg_num_put_(p0, r0.sub->size, k - 1u);
     }
-}
-
-odg_abort_t odg_err_check_(uint8_t sub, uint32_t value)
-{
-    return sub == 0u && value != 0u ? ODG_ABORT_VALUE_RANGE : ODG_OK;
 }
 
 void odg_err_written_(odg_node_t *n)
@@ -187,7 +182,7 @@ static int emcy_out(odg_node_t *n, const uint8_t *data, uint8_t between_ticks)
     if (odg_io_send_(n, n->err.cob, data, 8) != 0) {
         return 1;
     }
-    n->err.inhibit_us = odg_io_get_or_(n, 0x1015, 0, 0) * 100u;
+    n->err.inhibit_us = odg_io_num_(n, 0x1015, 0) * 100u;
     n->err.fresh = between_ticks;
     return 0;
 }
@@ -210,10 +205,6 @@ odg_abort_t odg_node_emcy(odg_node_t *node, uint16_t code, uint8_t error_registe
                           const uint8_t *vendor, uint8_t n_vendor)
 {
     uint8_t d[8];
-    record(node, code, vendor, n_vendor);
-    if (!odg_io_talking_(node) || (node->err.cob & ODG_COB_INVALID)) {
-        return ODG_ABORT_DATA_STATE;
-    }
     memset(d, 0, sizeof d);
     d[0] = (uint8_t)code;
     d[1] = (uint8_t)(code >> 8);
@@ -221,23 +212,25 @@ odg_abort_t odg_node_emcy(odg_node_t *node, uint16_t code, uint8_t error_registe
     if (vendor != NULL) {
         odg_copy(d + 3, vendor, n_vendor < 5u ? n_vendor : 5u);
     }
+    record(node, d); /* whether it goes out or not */
+    if (!ODG_IO_TALKING(node) || (node->err.cob & ODG_COB_INVALID)) {
+        return ODG_ABORT_DATA_STATE;
+    }
     return emcy_send(node, d);
 }
 
 void odg_err_tick_(odg_node_t *n, uint32_t ms)
 {
     odg_err_t *e = &n->err;
-    uint8_t k;
     uint32_t us = e->fresh ? 0u : ms > 4000000u ? 0xFFFFFFFFu : ms * 1000u;
     e->fresh = 0;
     e->inhibit_us = e->inhibit_us > us ? e->inhibit_us - us : 0u;
-    if (e->inhibit_us != 0u || e->queued == 0u || (e->cob & ODG_COB_INVALID) || !odg_io_talking_(n)) {
+    if (e->inhibit_us != 0u || e->queued == 0u || (e->cob & ODG_COB_INVALID) || !ODG_IO_TALKING(n)) {
         return;
     }
     if (emcy_out(n, e->queue[0], 0) == 0) {
         e->queued--;
-        for (k = 0; k < e->queued; k++) { /* the rest move up, row by row (no memmove) */
-            odg_copy(e->queue[k], e->queue[k + 1u], 8);
-        }
+        /* the rest move up a row: odg_copy goes from the first byte up, so it may overlap so */
+        odg_copy(e->queue, (const uint8_t *)e->queue + 8, 8u * e->queued);
     }
 }

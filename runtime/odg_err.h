@@ -45,8 +45,9 @@ typedef struct odg_err {
 } odg_err_t;
 
 /* Internal, called by the services above and odg_node.c. */
-/* 0x1003: before an SDO write (sub 0 takes only 0), and after one (0 clears the history). */
-odg_abort_t odg_err_check_(uint8_t sub, uint32_t value);
+/* 0x1003: before an SDO write (sub 0 takes only 0: a macro, the rule is one test), and after
+ * one (0 clears the history). */
+#define ODG_ERR_CHECK(sub, value) ((sub) == 0u && (value) != 0u ? ODG_ABORT_VALUE_RANGE : ODG_OK)
 void odg_err_written_(struct odg_node *n);
 /* At a reset: forget every active error (`all`) or those of communication; 0x1001 follows. */
 void odg_err_reset_(struct odg_node *n, int all);

@@ -38,7 +38,7 @@
  * change) takes effect at once; 0 or an absent 0x1017 stops the heartbeat. */
 void odg_hb_produce_(odg_node_t *n, uint32_t ms)
 {
-    uint32_t period = odg_io_get_or_(n, 0x1017, 0, 0);
+    uint32_t period = odg_io_num_(n, 0x1017, 0);
     uint32_t t = n->hb.timer + ms;
     if (period == 0u) {
         n->hb.timer = 0;
@@ -96,8 +96,9 @@ void odg_hb_load_(odg_node_t *n)
     odg_hb_watch_t *w = n->hb.watch;
     memset(w, 0, ODG_NODE_MAX_HB * sizeof *w); /* life guarding (watch[GUARD]) goes on */
     for (k = 0; k < ODG_NODE_MAX_HB; k++, w++) {
-        if (odg_io_get_(n, 0x1016, (uint8_t)(k + 1u), &entry) == ODG_OK && watched_id(entry) != 0u) {
-            w->id = watched_id(entry);
+        entry = odg_io_num_(n, 0x1016, (uint8_t)(k + 1u)); /* 0 (not watched) when absent */
+        w->id = watched_id(entry);
+        if (w->id != 0u) {
             w->time = (uint16_t)entry;
         }
     }
@@ -106,10 +107,10 @@ void odg_hb_load_(odg_node_t *n)
 
 odg_abort_t odg_hb_check_(const odg_node_t *n, uint8_t sub, uint32_t value)
 {
-    uint32_t k, other;
+    uint32_t k;
     uint8_t id = watched_id(value);
     for (k = 1; id != 0u && k <= 127u; k++) {
-        if (k != sub && odg_io_get_(n, 0x1016, (uint8_t)k, &other) == ODG_OK && watched_id(other) == id) {
+        if (k != sub && watched_id(odg_io_num_(n, 0x1016, (uint8_t)k)) == id) {
             return ODG_ABORT_INCOMPATIBLE;
         }
     }
@@ -142,7 +143,7 @@ void odg_hb_receive_(odg_node_t *n, const odg_frame_t *f)
 /* A communication error: the NMT command 0x1029 sub 1 asks for (the hub carries it out), or 0. */
 static uint8_t communication_error(const odg_node_t *n)
 {
-    uint32_t behaviour = odg_io_get_or_(n, 0x1029, 1, 0);
+    uint32_t behaviour = odg_io_num_(n, 0x1029, 1);
     if (behaviour == 1u || (behaviour != 2u && n->state != ODG_NMT_OPERATIONAL)) {
         return 0; /* 0 and the values CiA 301 leaves to manufacturers: as 0 */
     }
@@ -152,12 +153,12 @@ static uint8_t communication_error(const odg_node_t *n)
 void odg_hb_rtr_(odg_node_t *n, const odg_frame_t *f)
 {
     uint8_t answer;
-    if (f->id != 0x700u + n->cfg.node_id || odg_io_get_or_(n, 0x1017, 0, 0) != 0u) {
+    if (f->id != 0x700u + n->cfg.node_id || odg_io_num_(n, 0x1017, 0) != 0u) {
         return;
     }
-    answer = (uint8_t)(n->state | (n->hb.guard_toggle ? 0x80u : 0u));
+    answer = (uint8_t)(n->state | n->hb.guard_toggle);
     if (odg_io_send_(n, f->id, &answer, 1) == 0) {
-        n->hb.guard_toggle = (uint8_t)!n->hb.guard_toggle;
+        n->hb.guard_toggle ^= 0x80u;
     }
     heard(n, &n->hb.watch[GUARD]);
 }
@@ -171,7 +172,7 @@ uint8_t odg_hb_tick_(odg_node_t *n, uint32_t ms)
     uint8_t cmd = 0;
     odg_hb_watch_t *w = n->hb.watch;
     w[GUARD].id = n->cfg.node_id;
-    w[GUARD].time = odg_io_get_or_(n, 0x100C, 0, 0) * odg_io_get_or_(n, 0x100D, 0, 0);
+    w[GUARD].time = odg_io_num_(n, 0x100C, 0) * odg_io_num_(n, 0x100D, 0);
     for (k = 0; k <= GUARD; k++, w++) {
         if (w->time == 0u || !w->started) {
             continue;

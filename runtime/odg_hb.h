@@ -56,7 +56,7 @@ typedef struct odg_hb {
     void *on_heartbeat_ctx;
     /* the consumer's entries, then life guarding, which times out as they do */
     odg_hb_watch_t watch[ODG_NODE_MAX_HB + 1u];
-    uint8_t guard_toggle;    /* node guarding: the toggle bit of the next answer */
+    uint8_t guard_toggle;    /* node guarding: the toggle bit of the next answer, as its bit 7 */
     uint8_t can_state;       /* odg_can_state_t the CAN driver reported last */
 } odg_hb_t;
 

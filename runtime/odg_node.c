@@ -18,7 +18,7 @@ static void load_cobs(odg_node_t *n)
     uint32_t id = n->cfg.node_id;
     n->sync.cob = odg_io_get_or_(n, 0x1005, 0, 0x80u);
     n->err.cob = odg_io_get_or_(n, 0x1014, 0, 0x80u + id);
-    n->time.cob = odg_io_get_or_(n, 0x1012, 0, 0);
+    n->time.cob = odg_io_num_(n, 0x1012, 0);
 }
 
 /* The SDO server's COB-IDs from 0x1200 (without it, the pre-defined 0x600/0x580 + node-id), read
@@ -124,7 +124,6 @@ static odg_abort_t init_dict(odg_node_t *n, int keep_clients)
  * send the boot-up frame, and go pre-operational. */
 static odg_abort_t boot(odg_node_t *n, int what)
 {
-    static const uint8_t bootup = 0x00;
     odg_abort_t ac = ODG_OK;
     n->state = ODG_NMT_INITIALISING;
     n->sdo.state = ODG_SDO_IDLE;
@@ -149,7 +148,7 @@ static odg_abort_t boot(odg_node_t *n, int what)
     n->sync.prod_us = 0;
     n->sync.counter = 0;
     n->err.queued = 0;
-    (void)odg_io_send_(n, 0x700u + n->cfg.node_id, &bootup, 1);
+    (void)odg_io_send_(n, 0x700u + n->cfg.node_id, &n->state, 1); /* boot-up: 0, initialising */
     n->state = ODG_NMT_PRE_OPERATIONAL;
     if (what != BOOT_COMM) {
         stored_values_lost(n);

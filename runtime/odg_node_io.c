@@ -37,7 +37,7 @@ uint32_t odg_io_get_or_(const odg_node_t *n, uint16_t index, uint8_t sub, uint32
     return odg_io_get_(n, index, sub, &v) == ODG_OK ? v : dflt;
 }
 
-int odg_io_talking_(const odg_node_t *n)
+uint32_t odg_io_num_(const odg_node_t *n, uint16_t index, uint8_t sub)
 {
-    return n->state == ODG_NMT_PRE_OPERATIONAL || n->state == ODG_NMT_OPERATIONAL;
+    return odg_io_get_or_(n, index, sub, 0);
 }

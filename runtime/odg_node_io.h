@@ -36,7 +36,8 @@ typedef int (*odg_send_fn)(void *ctx, const odg_frame_t *frame);
 
 /* ---- NMT ----------------------------------------------------------------------------- */
 
-/* The values are the heartbeat state bytes of CiA 301. */
+/* The values are the heartbeat state bytes of CiA 301 (bit 0 set: the two in which the node
+ * talks, see ODG_IO_TALKING). */
 typedef enum odg_nmt_state {
     ODG_NMT_INITIALISING = 0x00,
     ODG_NMT_STOPPED = 0x04,
@@ -64,8 +65,11 @@ int odg_io_send_(const struct odg_node *n, uint32_t cob, const uint8_t *data, ui
 /* A number of up to 4 bytes from the dictionary (little-endian wire bytes), via odg_read. */
 odg_abort_t odg_io_get_(const struct odg_node *n, uint16_t index, uint8_t sub, uint32_t *value);
 uint32_t odg_io_get_or_(const struct odg_node *n, uint16_t index, uint8_t sub, uint32_t dflt);
-/* Pre-operational or operational: the states in which EMCY, TIME and SYNC go out. */
-int odg_io_talking_(const struct odg_node *n);
+/* The same with the default 0 (one argument less at each of the many calls). */
+uint32_t odg_io_num_(const struct odg_node *n, uint16_t index, uint8_t sub);
+/* Pre-operational (0x7F) or operational (0x05): the states in which EMCY, TIME and SYNC go
+ * out, and the only ones with bit 0 set. A macro on the node's state: a call costs more. */
+#define ODG_IO_TALKING(n) (((n)->state & 1u) != 0u)
 
 #ifdef __cplusplus
 }

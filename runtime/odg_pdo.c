@@ -41,9 +41,10 @@ static int reserved_type(int tx, uint32_t type)
     return type > TYPE_SYNC_MAX && type < (tx ? TYPE_RTR_SYNC : TYPE_EVENT);
 }
 
+/* Valid (COB-ID bit 31 clear) and mapped: odg_pdo_load_ leaves n_map 0 otherwise. */
 static int active(const odg_pdo_t *p)
 {
-    return p->n_map > 0u && !(p->cob & ODG_COB_INVALID);
+    return p->n_map > 0u;
 }
 
 /* Copy `n` bits, LSB first (CiA 301 PDO mapping order), from bit `spos` of `src` to `dpos`. */
@@ -164,17 +165,17 @@ void odg_pdo_load_(odg_node_t *n, int tx, uint16_t k)
         return;
     }
     p->type = (uint8_t)odg_io_get_or_(n, comm, 2, 255);
-    p->inhibit = (uint16_t)odg_io_get_or_(n, comm, 3, 0);
-    p->event = (uint16_t)odg_io_get_or_(n, comm, 5, 0);
-    p->sync_start = (uint8_t)odg_io_get_or_(n, comm, 6, 0);
-    count = odg_io_get_or_(n, (uint16_t)(comm + 0x200u), 0, 0);
+    p->inhibit = (uint16_t)odg_io_num_(n, comm, 3);
+    p->event = (uint16_t)odg_io_num_(n, comm, 5);
+    p->sync_start = (uint8_t)odg_io_num_(n, comm, 6);
+    count = odg_io_num_(n, (uint16_t)(comm + 0x200u), 0);
     /* a mapping or type the node cannot serve (only possible in the dictionary's defaults,
      * as SDO writes are checked) leaves the PDO unused (n_map and len 0) */
     if (reserved_type(tx, p->type) ||
         read_mapping(n, tx, (uint16_t)(comm + 0x200u), count, p) != ODG_OK) {
         count = 0;
     }
-    p->n_map = (uint8_t)count;
+    p->n_map = (uint8_t)(p->cob & ODG_COB_INVALID ? 0u : count); /* an invalid PDO is not active */
     if (tx && n->state == ODG_NMT_OPERATIONAL) {
         restart(p);
     }
@@ -200,17 +201,23 @@ static int restricted(uint32_t id)
            (id >= 0x601u && id <= 0x67Fu) || (id >= 0x6E0u && id <= 0x6FFu) || id >= 0x701u;
 }
 
-/* COB-ID (sub 1): disabling is always allowed; a valid PDO keeps bits 0..29 (CiA 301); only
- * 11-bit identifiers outside the restricted ones can be made valid. */
-static odg_abort_t check_cob(uint32_t old, uint32_t v)
+/* A new COB-ID `v` (sub 1) for the PDO of communication entry `index`, whose COB-ID is `old`:
+ * disabling is always allowed; a valid PDO keeps bits 0..29 (CiA 301); only 11-bit identifiers
+ * outside the restricted ones can be made valid. A mapping the node cannot serve is only
+ * possible in the dictionary's defaults (SDO writes of mappings are checked): the PDO stays
+ * unused, and enabling it is refused. */
+static odg_abort_t check_cob(const odg_node_t *n, int tx, uint16_t index, uint32_t old, uint32_t v)
 {
+    uint16_t map = (uint16_t)(index + 0x200u);
+    int valid = !(old & ODG_COB_INVALID);
     if (v & ODG_COB_INVALID) {
         return ODG_OK;
     }
-    if (!(old & ODG_COB_INVALID) && ((v ^ old) & 0x3FFFFFFFu)) {
+    if ((valid && ((v ^ old) & 0x3FFFFFFFu)) || (v & 0x3FFFF800u) || restricted(v & 0x7FFu)) {
         return ODG_ABORT_VALUE_RANGE;
     }
-    return (v & 0x3FFFF800u) || restricted(v & 0x7FFu) ? ODG_ABORT_VALUE_RANGE : ODG_OK;
+    return valid || read_mapping(n, tx, map, odg_io_num_(n, map, 0), NULL) == ODG_OK ? ODG_OK
+                                                                                   : ODG_ABORT_INCOMPATIBLE;
 }
 
 /*
@@ -230,7 +237,7 @@ static odg_abort_t check_mapping_write(const odg_node_t *n, int tx, uint16_t ind
     if (sub == 0u) {
         return read_mapping(n, tx, index, v, NULL);
     }
-    if (odg_io_get_or_(n, index, 0, 0) != 0u) {
+    if (odg_io_num_(n, index, 0) != 0u) {
         return ODG_ABORT_UNSUPPORTED;
     }
     return v == 0u ? ODG_OK : check_entry(n, tx, v);
@@ -248,16 +255,7 @@ odg_abort_t odg_pdo_check_(const odg_node_t *n, uint16_t index, uint8_t sub, uin
         return check_mapping_write(n, tx, index, sub, v, valid);
     }
     if (sub == 1u) {
-        odg_abort_t ac = check_cob(cob, v);
-        /* a mapping the node cannot serve is only possible in the dictionary's defaults (SDO
-         * writes of mappings are checked): the PDO stays unused, and enabling it is refused */
-        if (ac == ODG_OK && !valid && !(v & ODG_COB_INVALID)) {
-            uint16_t map = (uint16_t)(index + 0x200u);
-            if (read_mapping(n, tx, map, odg_io_get_or_(n, map, 0, 0), NULL) != ODG_OK) {
-                return ODG_ABORT_INCOMPATIBLE;
-            }
-        }
-        return ac;
+        return check_cob(n, tx, index, cob, v);
     }
     if (sub == 2u) {
         return reserved_type(tx, v) ? ODG_ABORT_VALUE_RANGE : ODG_OK;
@@ -347,7 +345,7 @@ static int transmit(odg_node_t *n, odg_pdo_t *p, int force)
 
 static int in_window(const odg_node_t *n)
 {
-    uint32_t window = odg_io_get_or_(n, 0x1007, 0, 0);
+    uint32_t window = odg_io_num_(n, 0x1007, 0);
     return window == 0u || n->sync_us <= window;
 }
 

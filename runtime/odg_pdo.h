@@ -33,7 +33,7 @@ typedef struct odg_pdo {
     uint32_t cob;                   /* sub1; bit 31 set: PDO not valid */
     uint8_t type;                   /* transmission type, sub2 */
     uint8_t sync_start;             /* TPDO sub6 */
-    uint8_t n_map;                  /* mapped objects; 0: PDO absent or not mapped */
+    uint8_t n_map;                  /* mapped objects; 0: PDO absent, not valid or not mapped */
     uint8_t len;                    /* bytes: mapped length (RPDO), last sent (TPDO) */
     uint8_t count;                  /* TPDO: SYNCs since the last synchronous send */
     uint8_t flags;                  /* ODG_PDO_F_* */

@@ -20,6 +20,12 @@
 #include "odg_node.h"
 
 #define SIZE_UNKNOWN 0xFFFFFFFFu
+/* A download streamed to odg_write_part: only strings and domains are (begin_download refuses
+ * the rest), so a build serving none leaves the streaming out. */
+#define STREAMING(s) (T_STREAM != 0u && ((s)->flags & ODG_SDO_F_STREAM) != 0u)
+/* Values longer than 4 bytes, uploaded in segments: strings, domains and the types wider than
+ * 32 bits. A build serving none of them uploads every value expedited (1..4 bytes). */
+#define LONG_VALUES (T_STREAM != 0u || ODG_CFG_INT64)
 
 
 static void put32(uint8_t *p, uint32_t v)
@@ -78,7 +84,7 @@ static odg_abort_t check(const odg_node_t *n, uint16_t index, uint8_t sub, const
     if (index == 0x1019u) {
         return odg_sync_check_(n, data, len);
     }
-    if ((index != 0x1003u && index != 0x1016u && (index < 0x1400u || index >= 0x1C00u)) || len > 4u) {
+    if (len > 4u) {
         return ODG_OK;
     }
     while (len > 0u) {
@@ -88,7 +94,10 @@ static odg_abort_t check(const odg_node_t *n, uint16_t index, uint8_t sub, const
     if (index == 0x1016u) {
         return odg_hb_check_(n, sub, v);
     }
-    return index == 0x1003u ? odg_err_check_(sub, v) : odg_pdo_check_(n, index, sub, v);
+    if (index == 0x1003u) {
+        return ODG_ERR_CHECK(sub, v);
+    }
+    return index >= 0x1400u && index < 0x1C00u ? odg_pdo_check_(n, index, sub, v) : ODG_OK;
 }
 
 /* Store a complete value of at most 8 bytes: PDO rules first, then the dictionary (which
@@ -105,15 +114,13 @@ static odg_abort_t write_whole(odg_node_t *n, const uint8_t *data, uint32_t len)
     return ac;
 }
 
-/* Strings and domains are streamed; every other type is a number of at most 8 bytes. */
-static int variable_length(uint8_t type)
-{
-    return type == ODG_T_VISIBLE_STRING || type == ODG_T_OCTET_STRING || type == ODG_T_UNICODE_STRING ||
-           type == ODG_T_DOMAIN;
-}
-
 /* Start a segmented or block download of `total` bytes (SIZE_UNKNOWN: not indicated); a
- * number announced longer than 8 bytes is refused. */
+ * number announced longer than 8 bytes is refused. Strings and domains are streamed (IS_STREAM:
+ * of the types the build serves, which are all the dictionary has); every other type is a
+ * number of at most 8 bytes. */
+#if ODG_NODE_SDO_BLOCK
+ODG_NODE_OUTLINE_ /* two callers then: out of line, else inlined into its one caller */
+#endif
 static odg_abort_t begin_download(odg_node_t *n, uint32_t total)
 {
     odg_sdo_t *s = &n->sdo;
@@ -123,7 +130,7 @@ static odg_abort_t begin_download(odg_node_t *n, uint32_t total)
     s->flags = (uint8_t)(total == SIZE_UNKNOWN ? 0u
                          : total > 8u        ? ODG_SDO_F_SIZED | ODG_SDO_F_STREAM
                                              : ODG_SDO_F_SIZED);
-    return total != SIZE_UNKNOWN && total > 8u && !variable_length(s->ref.sub->type) ? ODG_ABORT_TOO_LONG : ODG_OK;
+    return total != SIZE_UNKNOWN && total > 8u && !IS_STREAM(s->ref.sub) ? ODG_ABORT_TOO_LONG : ODG_OK;
 }
 
 /* Take the next `len` bytes of a download. Without an indicated size the bytes are
@@ -136,7 +143,7 @@ static odg_abort_t take(odg_node_t *n, const uint8_t *data, uint32_t len)
     if (len > s->total - s->offset) { /* without a size total is SIZE_UNKNOWN: never */
         return ODG_ABORT_TOO_LONG;
     }
-    if (s->flags & ODG_SDO_F_STREAM) {
+    if (STREAMING(s)) {
         if ((ac = odg_write_part(&s->ref, s->offset, data, len, s->total)) != ODG_OK) {
             return ac;
         }
@@ -159,7 +166,7 @@ static odg_abort_t finish_download(odg_node_t *n)
     if ((s->flags & ODG_SDO_F_SIZED) && s->offset != s->total) {
         return ODG_ABORT_TOO_SHORT;
     }
-    if (s->flags & ODG_SDO_F_STREAM) {
+    if (STREAMING(s)) {
         return ODG_OK;
     }
     return write_whole(n, s->buf, s->offset);
@@ -289,21 +296,17 @@ static odg_abort_t block_download_end(odg_node_t *n, const uint8_t *d)
 
 /* ---- upload ----------------------------------------------------------------------------- */
 
-/* `len` bytes of the value from `off`: the first 8 from the snapshot taken at the start,
- * the rest read now. A value that shrank meanwhile is padded with zeros. */
+/* `len` bytes of the value from `off` into `out`, which the caller zeroed: the first 8 from the
+ * snapshot taken at the start, the rest read now (a value that shrank meanwhile leaves zeros).
+ * Only strings and domains have bytes beyond the snapshot: builds without them read none. */
 static odg_abort_t upload_data(odg_node_t *n, uint32_t off, uint8_t *out, uint32_t len)
 {
     odg_sdo_t *s = &n->sdo;
-    uint32_t k = 0, got = 0;
-    odg_abort_t ac = ODG_OK;
+    uint32_t k = 0, got;
     for (; k < len && off + k < s->n_buf; k++) {
         out[k] = s->buf[off + k];
     }
-    if (k < len) {
-        ac = odg_read(&s->ref, off + k, out + k, len - k, &got);
-    }
-    memset(out + k + got, 0, len - k - got);
-    return ac;
+    return T_STREAM != 0u && k < len ? odg_read(&s->ref, off + k, out + k, len - k, &got) : ODG_OK;
 }
 
 /* Read the first bytes (PRE_READ runs here) and the size of the value. */
@@ -314,20 +317,24 @@ static odg_abort_t upload_begin(odg_node_t *n)
     odg_abort_t ac;
     memset(s->buf, 0, sizeof s->buf); /* an expedited upload sends 4 bytes: those not read are 0 */
     ac = odg_read(&s->ref, 0, s->buf, sizeof s->buf, &got);
-    s->n_buf = (uint8_t)got;
-    s->total = got < sizeof s->buf ? got : odg_length(&s->ref);
-    s->offset = 0;
-    s->toggle = 0;
+    s->total = T_STREAM == 0u || got < sizeof s->buf ? got : odg_length(&s->ref); /* a number: got */
+    if (LONG_VALUES || ODG_NODE_SDO_BLOCK) { /* for upload_data: segmented and block uploads */
+        s->n_buf = (uint8_t)got;
+    }
+    if (LONG_VALUES) { /* for a segmented upload, which only values longer than 4 bytes take */
+        s->offset = 0;
+        s->toggle = 0;
+    }
     return ac;
 }
 
-/* Answer an upload request: expedited for 1..4 bytes, else announce a segmented transfer. */
+/* Answer an upload request (the server is idle): expedited for 1..4 bytes, after which it
+ * stays idle, else announce a segmented transfer. */
 static void upload_respond(odg_node_t *n)
 {
     odg_sdo_t *s = &n->sdo;
-    if (s->total >= 1u && s->total <= 4u) {
+    if (!LONG_VALUES || (s->total >= 1u && s->total <= 4u)) {
         respond(n, (uint8_t)(0x43u | (4u - s->total) << 2), ODG_LE32(s->buf));
-        s->state = ODG_SDO_IDLE;
         return;
     }
     respond(n, 0x41, s->total);
@@ -424,6 +431,7 @@ static odg_abort_t crc_range(odg_node_t *n, uint32_t from, uint32_t to)
     odg_abort_t ac = ODG_OK;
     while (from < to && ac == ODG_OK) {
         uint32_t len = to - from < 7u ? to - from : 7u;
+        memset(b, 0, sizeof b);
         ac = upload_data(n, from, b, len);
         n->sdo.crc = crc16(n->sdo.crc, b, len);
         from += len;
@@ -494,8 +502,6 @@ static odg_abort_t initiate(odg_node_t *n, const uint8_t *d)
     odg_sdo_t *s = &n->sdo;
     odg_abort_t ac;
     unsigned ccs = d[0] >> 5;
-    s->index = (uint16_t)(d[1] | (unsigned)d[2] << 8);
-    s->sub = d[3];
     if (!(ccs == 1u || ccs == 2u ||
           (ODG_NODE_SDO_BLOCK && ((ccs == 5u && (d[0] & 3u) == 0u) || (ccs == 6u && (d[0] & 1u) == 0u))))) {
         return ODG_ABORT_COMMAND;
@@ -536,16 +542,17 @@ void odg_sdo_receive_(odg_node_t *n, const odg_frame_t *f)
         s->state = ODG_SDO_IDLE;
         return;
     }
+    if (s->state == ODG_SDO_IDLE) { /* a request: what it names, which an abort names too */
+        s->index = (uint16_t)(d[1] | (unsigned)d[2] << 8);
+        s->sub = d[3];
+    }
     if (f->len < 8u) {
-        if (s->state == ODG_SDO_IDLE) {
-            s->index = (uint16_t)(d[1] | (unsigned)d[2] << 8);
-            s->sub = d[3];
-        }
+        /* too short: ac stays ODG_ABORT_COMMAND */
     } else if (s->state == ODG_SDO_IDLE) {
         ac = initiate(n, d);
     } else if (s->state == ODG_SDO_DN_SEG) {
         ac = download_segment(n, d);
-    } else if (s->state == ODG_SDO_UP_SEG) {
+    } else if (LONG_VALUES && s->state == ODG_SDO_UP_SEG) {
         ac = upload_segment(n, d);
 #if ODG_NODE_SDO_BLOCK
     } else if (s->state == ODG_SDO_BLK_DN) {

@@ -28,10 +28,10 @@ void odg_sync_receive_(odg_node_t *n, const odg_frame_t *f)
 void odg_sync_tick_(odg_node_t *n, uint32_t ms)
 {
     odg_frame_t f;
-    uint32_t period = odg_io_get_or_(n, 0x1006, 0, 0), overflow;
+    uint32_t period = odg_io_num_(n, 0x1006, 0), overflow;
     uint32_t us = ms > 4000000u ? 0xFFFFFFFFu : ms * 1000u;
     if (!(n->sync.cob & SYNC_GENERATE) || period == 0u ||
-        !odg_io_talking_(n)) {
+        !ODG_IO_TALKING(n)) {
         n->sync.prod_us = 0;
         n->sync.counter = 0; /* production stopped: the counter starts again at 1 */
         return;
@@ -41,7 +41,7 @@ void odg_sync_tick_(odg_node_t *n, uint32_t ms)
         return;
     }
     n->sync.prod_us = n->sync.prod_us - period >= period ? 0u : n->sync.prod_us - period; /* no burst after a pause */
-    overflow = odg_io_get_or_(n, 0x1019, 0, 0);
+    overflow = odg_io_num_(n, 0x1019, 0);
     f.id = ODG_COB_ID(n->sync.cob);
     f.flags = 0;
     f.len = 0;
@@ -61,5 +61,5 @@ odg_abort_t odg_sync_check_(const odg_node_t *n, const uint8_t *data, uint32_t l
     if (len == 1u && (data[0] == 1u || data[0] > 240u)) {
         return ODG_ABORT_VALUE_RANGE; /* reserved counter overflow values */
     }
-    return odg_io_get_or_(n, 0x1006, 0, 0) != 0u ? ODG_ABORT_DATA_STATE : ODG_OK;
+    return odg_io_num_(n, 0x1006, 0) != 0u ? ODG_ABORT_DATA_STATE : ODG_OK;
 }

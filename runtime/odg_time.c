@@ -26,7 +26,7 @@ odg_abort_t odg_node_time_send(odg_node_t *node, uint32_t ms, uint16_t days)
     if (ms > ODG_TIME_MS_MASK) {
         return ODG_ABORT_VALUE_RANGE;
     }
-    if (!odg_io_talking_(node) || !(node->time.cob & ODG_TIME_PRODUCE)) {
+    if (!ODG_IO_TALKING(node) || !(node->time.cob & ODG_TIME_PRODUCE)) {
         return ODG_ABORT_DATA_STATE;
     }
     d[0] = (uint8_t)ms;

@@ -81,10 +81,35 @@ static void test_every_rpdo(void)
     }
 }
 
+/* The SDO server of a build whose values are all numbers of at most 4 bytes (no strings,
+ * domains or types wider than 32 bits: odg_sdo.c then builds no segmented upload): every upload
+ * is expedited with its size, segmented downloads of numbers still work, sized or not, and a
+ * download announced longer than 8 bytes, or an unsized one going beyond 8 bytes, is refused;
+ * an upload segment request finds no transfer under way. */
+static void test_sdo_numbers_only(void)
+{
+    static const uint8_t two[2] = {0x34, 0x12}, nine[9] = {1, 2, 3, 4, 5, 6, 7, 8, 9};
+    start_node(&wide_node, NULL);
+    CHECK_EQ(ODG_CFG_STRINGS | ODG_CFG_UNICODE | ODG_CFG_DOMAINS | ODG_CFG_INT64, 0);
+    CHECK_EQ(sdo(0x40, IDX(0x1000), 0, 0, 0, 0, 0)->data[0], 0x43); /* 4 bytes */
+    CHECK_EQ(sdo(0x40, IDX(0x1017), 0, 0, 0, 0, 0)->data[0], 0x4B); /* 2 bytes */
+    CHECK_EQ(sdo(0x40, IDX(0x1001), 0, 0, 0, 0, 0)->data[0], 0x4F); /* 1 byte */
+    CHECK_EQ(download_segmented(0x1017, 0, two, 2, 1), 0);
+    CHECK_EQ(upload_u32(0x1017, 0), 0x1234);
+    CHECK_EQ(download_u32(0x1017, 0, 0, 2), 0);
+    CHECK_EQ(download_segmented(0x1017, 0, two, 2, 0), 0);
+    CHECK_EQ(upload_u32(0x1017, 0), 0x1234);
+    CHECK_EQ(download_segmented(0x1017, 0, nine, 9, 1), ODG_ABORT_TOO_LONG);
+    CHECK_EQ(download_segmented(0x1017, 0, nine, 9, 0), ODG_ABORT_OUT_OF_MEMORY);
+    CHECK_EQ(upload_u32(0x1017, 0), 0x1234);
+    CHECK_EQ(abort_of(sdo(0x60, 0, 0, 0, 0, 0, 0, 0)), ODG_ABORT_COMMAND);
+}
+
 int main(void)
 {
     test_sized_by_the_dictionary();
     test_every_tpdo();
     test_every_rpdo();
+    test_sdo_numbers_only();
     return done();
 }
