@@ -82,10 +82,10 @@ static void reply(odg_node_t *n, uint8_t cs, uint32_t value)
  * starts over. All four matched: configuration mode, answered with 0x44. */
 static void selective(odg_node_t *n, unsigned part, uint32_t v)
 {
-    int next = part == 0u || n->lss.selective == part; /* the vendor-ID (re)starts it */
-    n->lss.selective = (uint8_t)(next && v == identity(n, part) ? part + 1u : 0u);
-    if (n->lss.selective == 4u) {
-        n->lss.selective = 0;
+    int go = part == 0u || n->lss.selective == part; /* the vendor-ID (re)starts it */
+    unsigned got = go && v == identity(n, part) ? part + 1u : 0u;
+    n->lss.selective = (uint8_t)(got & 3u); /* all four: done, 0 again */
+    if (got == 4u) {
         n->lss.mode = ODG_LSS_CONFIGURATION;
         reply(n, 0x44, 0);
     }
@@ -96,14 +96,12 @@ static void selective(odg_node_t *n, unsigned part, uint32_t v)
 static void identify(odg_node_t *n, unsigned part, uint32_t v)
 {
     uint32_t id = identity(n, part < 2u ? part : (part + 2u) >> 1); /* 2, 3: revision; 4, 5: serial */
-    int ok = part < 2u ? v == id : ((part & 1u) == 0u ? id >= v : id <= v);
-    if (part == 0u) {
-        n->lss.identify = 0;
-    }
-    if (ok) {
-        n->lss.identify = (uint8_t)(n->lss.identify | 1u << part);
-    }
-    if (part == 5u && n->lss.identify == 0x3Fu) {
+    /* vendor and product (0, 1) must equal; a low bound (2, 4) be <= id, a high one (3, 5) >= id:
+     * parts 0, 1, 2, 4 check v <= id (bits 0x17), parts 0, 1, 3, 5 check v >= id (bits 0x2B) */
+    int ok = (v <= id || !(0x17u >> part & 1u)) && (v >= id || !(0x2Bu >> part & 1u));
+    uint8_t seen = (uint8_t)(part == 0u ? 0u : n->lss.identify);
+    n->lss.identify = seen = (uint8_t)(seen | (unsigned)ok << part);
+    if (part == 5u && seen == 0x3Fu) {
         reply(n, 0x4F, 0);
     }
 }
@@ -122,7 +120,7 @@ static void fastscan(odg_node_t *n, const uint8_t *d)
     }
     if (bit == 0x80u) {
         n->lss.fastscan = 0;
-    } else if (bit > 31u || sub > 3u || next > 3u || sub != n->lss.fastscan ||
+    } else if (bit > 31u || next > 3u || sub != n->lss.fastscan || /* that is 0..3: so is sub */
                ((id ^ identity(n, sub)) & (0xFFFFFFFFu << bit)) != 0u) {
         return;
     } else if (bit == 0u) {
@@ -141,13 +139,19 @@ static void configure(odg_node_t *n, const uint8_t *d)
     uint8_t err = 0;
     switch (d[0]) {
     case 0x11: /* configure node-id: 1..127, or 0xFF to make the node non-configured */
-        err = (uint8_t)!valid_id(d[1]);
-        n->lss.pending = err ? n->lss.pending : d[1];
+        if (valid_id(d[1])) {
+            n->lss.pending = d[1];
+        } else {
+            err = 1;
+        }
         break;
     case 0x13: /* configure bit timing: table 0 (CiA), index, accepted by the application */
-        err = d[1] != 0u || d[2] > 9u || n->cfg.on_bit_timing == NULL ||
-              n->cfg.on_bit_timing(n->cfg.app_ctx, d[2], 0, 0) != 0;
-        n->lss.bit_index = err ? n->lss.bit_index : d[2];
+        if (d[1] != 0u || d[2] > 9u || n->cfg.on_bit_timing == NULL ||
+            n->cfg.on_bit_timing(n->cfg.app_ctx, d[2], 0, 0) != 0) {
+            err = 1;
+        } else {
+            n->lss.bit_index = d[2];
+        }
         break;
     case 0x15: /* activate bit timing: no answer */
         if (n->cfg.on_bit_timing != NULL && n->lss.bit_index != ODG_LSS_NO_BIT_TIMING) {
