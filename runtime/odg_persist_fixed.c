@@ -235,7 +235,7 @@ odg_boot_status_t odg_fixed_boot_(const odg_dict_t *d, const odg_nv_driver_t *nv
 static int record_read(const odg_nv_driver_t *nv, uint32_t addr, uint32_t tag, uint8_t *s)
 {
     int v = odg_hdr_read_(nv, addr, s, REC_BYTES, tag);
-    return v == 1 ? odg_crc32(0, s, REC_BYTES - 4u) == odg_get32_(s + REC_BYTES - 4u) : v;
+    return v == 1 ? odg_crc_ok_(nv, addr, s, REC_BYTES, 0u, NULL) : v; /* the CRC ends the slot */
 }
 
 /* Both slots of a record into s[0] and s[1]: -2 the driver failed, -1 neither is valid, else
