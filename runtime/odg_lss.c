@@ -41,14 +41,13 @@ static int valid_id(uint8_t id)
 
 void odg_lss_init_(odg_node_t *n)
 {
-    uint32_t r;
-    n->lss.mode = ODG_LSS_WAITING;
-    n->lss.pending = n->cfg.node_id;
-    n->lss.bit_index = ODG_LSS_NO_BIT_TIMING;
-    if (odg_persist_load_record(n->cfg.nv, record_at(n->cfg.dict), TAG, &r) == 1 && valid_id((uint8_t)r)) {
-        n->lss.pending = (uint8_t)r;
-        n->lss.bit_index = (uint8_t)(r >> 8);
+    uint32_t r; /* node-id | bit timing index << 8, as stored */
+    if (odg_persist_load_record(n->cfg.nv, record_at(n->cfg.dict), TAG, &r) != 1 || !valid_id((uint8_t)r)) {
+        r = n->cfg.node_id | (uint32_t)ODG_LSS_NO_BIT_TIMING << 8; /* none stored */
     }
+    n->lss.mode = ODG_LSS_WAITING;
+    n->lss.pending = (uint8_t)r;
+    n->lss.bit_index = (uint8_t)(r >> 8);
 }
 
 int odg_lss_activate_(odg_node_t *n)
@@ -96,11 +95,11 @@ static void selective(odg_node_t *n, unsigned part, uint32_t v)
 static void identify(odg_node_t *n, unsigned part, uint32_t v)
 {
     uint32_t id = identity(n, part < 2u ? part : (part + 2u) >> 1); /* 2, 3: revision; 4, 5: serial */
-    /* vendor and product (0, 1) must equal; a low bound (2, 4) be <= id, a high one (3, 5) >= id:
-     * parts 0, 1, 2, 4 check v <= id (bits 0x17), parts 0, 1, 3, 5 check v >= id (bits 0x2B) */
-    int ok = (v <= id || !(0x17u >> part & 1u)) && (v >= id || !(0x2Bu >> part & 1u));
+    /* vendor and product (0, 1) must equal id, a low bound (2, 4) be <= id, a high one (3, 5)
+     * >= id: a value above id fails parts 0, 1, 2, 4 (bits 0x17), one below it 0, 1, 3, 5 (0x2B) */
+    unsigned ok = ((v > id ? 0x17u : (v < id ? 0x2Bu : 0u)) >> part & 1u) ^ 1u;
     uint8_t seen = (uint8_t)(part == 0u ? 0u : n->lss.identify);
-    n->lss.identify = seen = (uint8_t)(seen | (unsigned)ok << part);
+    n->lss.identify = seen = (uint8_t)(seen | ok << part);
     if (part == 5u && seen == 0x3Fu) {
         reply(n, 0x4F, 0);
     }
@@ -121,7 +120,7 @@ static void fastscan(odg_node_t *n, const uint8_t *d)
     if (bit == 0x80u) {
         n->lss.fastscan = 0;
     } else if (bit > 31u || next > 3u || sub != n->lss.fastscan || /* that is 0..3: so is sub */
-               ((id ^ identity(n, sub)) & (0xFFFFFFFFu << bit)) != 0u) {
+               (id ^ identity(n, sub)) >> bit != 0u) { /* a bit bitChecked..31 differs */
         return;
     } else if (bit == 0u) {
         n->lss.fastscan = next;
@@ -136,6 +135,7 @@ static void fastscan(odg_node_t *n, const uint8_t *d)
 static void configure(odg_node_t *n, const uint8_t *d)
 {
     odg_abort_t ac;
+    unsigned part;
     uint8_t err = 0;
     switch (d[0]) {
     case 0x11: /* configure node-id: 1..127, or 0xFF to make the node non-configured */
@@ -164,8 +164,9 @@ static void configure(odg_node_t *n, const uint8_t *d)
         err = (uint8_t)(ac == ODG_OK ? 0u : (ac == ODG_ABORT_DATA_STORE ? 1u : 2u));
         break;
     default:
-        if (d[0] >= 0x5Au && d[0] <= 0x5Eu) { /* inquire identity (0x5A..0x5D), node-id (the active one) */
-            reply(n, d[0], d[0] < 0x5Eu ? identity(n, d[0] - 0x5Au) : n->cfg.node_id);
+        part = d[0] - 0x5Au;
+        if (part <= 4u) { /* inquire identity (0x5A..0x5D), node-id (the active one) */
+            reply(n, d[0], part < 4u ? identity(n, part) : n->cfg.node_id);
         }
         return;
     }
