@@ -5,8 +5,6 @@
  * (non-configured) remote slave, fastscan. Calls the persistence layer's record functions
  * and odg_node_io.c. See odg_lss.h and NODE.md.
  */
-#include <string.h>
-
 #include "odg_impl.h"
 #include "odg_node.h"
 
@@ -23,7 +21,7 @@ static uint32_t groups_end(const odg_dict_t *d)
 #if ODG_NODE_LSS
 
 /* The NV address of the record: the first past the groups, aligned as a slot is. */
-ODG_NODE_OUTLINE_ static uint32_t record_at(const odg_dict_t *d)
+static uint32_t record_at(const odg_dict_t *d)
 {
     uint32_t a = (uint32_t)ODG_PERSIST_ALIGN - 1u;
     return (groups_end(d) + a) & ~a;
@@ -52,11 +50,9 @@ void odg_lss_init_(odg_node_t *n)
 
 int odg_lss_activate_(odg_node_t *n)
 {
-    if (n->lss.pending == n->cfg.node_id) {
-        return 0;
-    }
+    int changed = n->lss.pending != n->cfg.node_id;
     n->cfg.node_id = n->lss.pending;
-    return 1;
+    return changed;
 }
 
 /* 0x1018 sub 1 + part: vendor-ID, product code, revision number, serial number */
@@ -68,12 +64,11 @@ static uint32_t identity(const odg_node_t *n, unsigned part)
 static void reply(odg_node_t *n, uint8_t cs, uint32_t value)
 {
     uint8_t d[8];
-    memset(d, 0, sizeof d);
+    unsigned k;
     d[0] = cs;
-    d[1] = (uint8_t)value;
-    d[2] = (uint8_t)(value >> 8);
-    d[3] = (uint8_t)(value >> 16);
-    d[4] = (uint8_t)(value >> 24);
+    for (k = 1; k < 8u; k++, value >>= 8) { /* the value little-endian, then zeros */
+        d[k] = (uint8_t)value;
+    }
     (void)odg_io_send_(n, ODG_LSS_SLAVE_COB, d, 8);
 }
 
@@ -176,6 +171,7 @@ static void configure(odg_node_t *n, const uint8_t *d)
 int odg_lss_receive_(odg_node_t *n, const uint8_t *d)
 {
     uint8_t cs = d[0];
+    uint32_t v = ODG_LE32(d + 1);
     if (cs == 0x04u && d[1] <= 1u) { /* switch state global */
         n->lss.mode = d[1];
         n->lss.selective = 0;
@@ -185,10 +181,10 @@ int odg_lss_receive_(odg_node_t *n, const uint8_t *d)
     }
     if (cs >= 0x40u && cs <= 0x43u) {
         if (n->lss.mode == ODG_LSS_WAITING) {
-            selective(n, cs - 0x40u, ODG_LE32(d + 1));
+            selective(n, cs - 0x40u, v);
         }
     } else if (cs >= 0x46u && cs <= 0x4Bu) {
-        identify(n, cs - 0x46u, ODG_LE32(d + 1));
+        identify(n, cs - 0x46u, v);
     } else if (cs == 0x4Cu) {
         if (n->cfg.node_id == ODG_LSS_UNCONFIGURED && n->lss.pending == ODG_LSS_UNCONFIGURED) {
             reply(n, 0x50, 0);
