@@ -126,31 +126,32 @@ static void fastscan(odg_node_t *n, const uint8_t *d)
     reply(n, 0x4F, 0);
 }
 
-/* Commands of configuration mode; others are ignored. */
-static void configure(odg_node_t *n, const uint8_t *d)
+/* Commands of configuration mode; others are ignored. v: bytes 1..4, little-endian. */
+static void configure(odg_node_t *n, uint8_t cs, uint32_t v)
 {
+    uint8_t b1 = (uint8_t)v, b2 = (uint8_t)(v >> 8);
     odg_abort_t ac;
     unsigned part;
     uint8_t err = 0;
-    switch (d[0]) {
+    switch (cs) {
     case 0x11: /* configure node-id: 1..127, or 0xFF to make the node non-configured */
-        if (valid_id(d[1])) {
-            n->lss.pending = d[1];
+        if (valid_id(b1)) {
+            n->lss.pending = b1;
         } else {
             err = 1;
         }
         break;
     case 0x13: /* configure bit timing: table 0 (CiA), index, accepted by the application */
-        if (d[1] != 0u || d[2] > 9u || n->cfg.on_bit_timing == NULL ||
-            n->cfg.on_bit_timing(n->cfg.app_ctx, d[2], 0, 0) != 0) {
+        if (b1 != 0u || b2 > 9u || n->cfg.on_bit_timing == NULL ||
+            n->cfg.on_bit_timing(n->cfg.app_ctx, b2, 0, 0) != 0) {
             err = 1;
         } else {
-            n->lss.bit_index = d[2];
+            n->lss.bit_index = b2;
         }
         break;
     case 0x15: /* activate bit timing: no answer */
         if (n->cfg.on_bit_timing != NULL && n->lss.bit_index != ODG_LSS_NO_BIT_TIMING) {
-            (void)n->cfg.on_bit_timing(n->cfg.app_ctx, n->lss.bit_index, (uint16_t)(d[1] | (unsigned)d[2] << 8), 1);
+            (void)n->cfg.on_bit_timing(n->cfg.app_ctx, n->lss.bit_index, (uint16_t)v, 1);
         }
         return;
     case 0x17: /* store configuration: 1 no NV, 2 the NV failed */
@@ -159,13 +160,13 @@ static void configure(odg_node_t *n, const uint8_t *d)
         err = (uint8_t)(ac == ODG_OK ? 0u : (ac == ODG_ABORT_DATA_STORE ? 1u : 2u));
         break;
     default:
-        part = d[0] - 0x5Au;
+        part = cs - 0x5Au;
         if (part <= 4u) { /* inquire identity (0x5A..0x5D), node-id (the active one) */
-            reply(n, d[0], part < 4u ? identity(n, part) : n->cfg.node_id);
+            reply(n, cs, part < 4u ? identity(n, part) : n->cfg.node_id);
         }
         return;
     }
-    reply(n, d[0], err);
+    reply(n, cs, err);
 }
 
 int odg_lss_receive_(odg_node_t *n, const uint8_t *d)
@@ -192,7 +193,7 @@ int odg_lss_receive_(odg_node_t *n, const uint8_t *d)
     } else if (cs == 0x51u) {
         fastscan(n, d);
     } else if (n->lss.mode == ODG_LSS_CONFIGURATION) {
-        configure(n, d);
+        configure(n, cs, v);
     }
     return 0;
 }
