@@ -5,8 +5,6 @@
  * (non-configured) remote slave, fastscan. Calls the persistence layer's record functions
  * and odg_node_io.c. See odg_lss.h and NODE.md.
  */
-#include <string.h>
-
 #include "odg_impl.h"
 #include "odg_node.h"
 
@@ -23,7 +21,7 @@ static uint32_t groups_end(const odg_dict_t *d)
 #if ODG_NODE_LSS
 
 /* The NV address of the record: the first past the groups, aligned as a slot is. */
-ODG_NODE_OUTLINE_ static uint32_t record_at(const odg_dict_t *d)
+static uint32_t record_at(const odg_dict_t *d)
 {
     uint32_t a = (uint32_t)ODG_PERSIST_ALIGN - 1u;
     return (groups_end(d) + a) & ~a;
@@ -41,23 +39,20 @@ static int valid_id(uint8_t id)
 
 void odg_lss_init_(odg_node_t *n)
 {
-    uint32_t r;
-    n->lss.mode = ODG_LSS_WAITING;
-    n->lss.pending = n->cfg.node_id;
-    n->lss.bit_index = ODG_LSS_NO_BIT_TIMING;
-    if (odg_persist_load_record(n->cfg.nv, record_at(n->cfg.dict), TAG, &r) == 1 && valid_id((uint8_t)r)) {
-        n->lss.pending = (uint8_t)r;
-        n->lss.bit_index = (uint8_t)(r >> 8);
+    uint32_t r; /* node-id | bit timing index << 8, as stored */
+    if (odg_persist_load_record(n->cfg.nv, record_at(n->cfg.dict), TAG, &r) != 1 || !valid_id((uint8_t)r)) {
+        r = n->cfg.node_id | (uint32_t)ODG_LSS_NO_BIT_TIMING << 8; /* none stored */
     }
+    n->lss.mode = ODG_LSS_WAITING;
+    n->lss.pending = (uint8_t)r;
+    n->lss.bit_index = (uint8_t)(r >> 8);
 }
 
 int odg_lss_activate_(odg_node_t *n)
 {
-    if (n->lss.pending == n->cfg.node_id) {
-        return 0;
-    }
+    int changed = n->lss.pending != n->cfg.node_id;
     n->cfg.node_id = n->lss.pending;
-    return 1;
+    return changed;
 }
 
 /* 0x1018 sub 1 + part: vendor-ID, product code, revision number, serial number */
@@ -69,12 +64,11 @@ static uint32_t identity(const odg_node_t *n, unsigned part)
 static void reply(odg_node_t *n, uint8_t cs, uint32_t value)
 {
     uint8_t d[8];
-    memset(d, 0, sizeof d);
+    unsigned k;
     d[0] = cs;
-    d[1] = (uint8_t)value;
-    d[2] = (uint8_t)(value >> 8);
-    d[3] = (uint8_t)(value >> 16);
-    d[4] = (uint8_t)(value >> 24);
+    for (k = 1; k < 8u; k++, value >>= 8) { /* the value little-endian, then zeros */
+        d[k] = (uint8_t)value;
+    }
     (void)odg_io_send_(n, ODG_LSS_SLAVE_COB, d, 8);
 }
 
@@ -82,10 +76,10 @@ static void reply(odg_node_t *n, uint8_t cs, uint32_t value)
  * starts over. All four matched: configuration mode, answered with 0x44. */
 static void selective(odg_node_t *n, unsigned part, uint32_t v)
 {
-    int next = part == 0u || n->lss.selective == part; /* the vendor-ID (re)starts it */
-    n->lss.selective = (uint8_t)(next && v == identity(n, part) ? part + 1u : 0u);
-    if (n->lss.selective == 4u) {
-        n->lss.selective = 0;
+    int go = part == 0u || n->lss.selective == part; /* the vendor-ID (re)starts it */
+    unsigned got = go && v == identity(n, part) ? part + 1u : 0u;
+    n->lss.selective = (uint8_t)(got & 3u); /* all four: done, 0 again */
+    if (got == 4u) {
         n->lss.mode = ODG_LSS_CONFIGURATION;
         reply(n, 0x44, 0);
     }
@@ -96,14 +90,12 @@ static void selective(odg_node_t *n, unsigned part, uint32_t v)
 static void identify(odg_node_t *n, unsigned part, uint32_t v)
 {
     uint32_t id = identity(n, part < 2u ? part : (part + 2u) >> 1); /* 2, 3: revision; 4, 5: serial */
-    int ok = part < 2u ? v == id : ((part & 1u) == 0u ? id >= v : id <= v);
-    if (part == 0u) {
-        n->lss.identify = 0;
-    }
-    if (ok) {
-        n->lss.identify = (uint8_t)(n->lss.identify | 1u << part);
-    }
-    if (part == 5u && n->lss.identify == 0x3Fu) {
+    /* vendor and product (0, 1) must equal id, a low bound (2, 4) be <= id, a high one (3, 5)
+     * >= id: a value above id fails parts 0, 1, 2, 4 (bits 0x17), one below it 0, 1, 3, 5 (0x2B) */
+    unsigned ok = ((v > id ? 0x17u : (v < id ? 0x2Bu : 0u)) >> part & 1u) ^ 1u;
+    uint8_t seen = (uint8_t)(part == 0u ? 0u : n->lss.identify);
+    n->lss.identify = seen = (uint8_t)(seen | ok << part);
+    if (part == 5u && seen == 0x3Fu) {
         reply(n, 0x4F, 0);
     }
 }
@@ -122,8 +114,8 @@ static void fastscan(odg_node_t *n, const uint8_t *d)
     }
     if (bit == 0x80u) {
         n->lss.fastscan = 0;
-    } else if (bit > 31u || sub > 3u || next > 3u || sub != n->lss.fastscan ||
-               ((id ^ identity(n, sub)) & (0xFFFFFFFFu << bit)) != 0u) {
+    } else if (bit > 31u || next > 3u || sub != n->lss.fastscan || /* that is 0..3: so is sub */
+               (id ^ identity(n, sub)) >> bit != 0u) { /* a bit bitChecked..31 differs */
         return;
     } else if (bit == 0u) {
         n->lss.fastscan = next;
@@ -134,24 +126,32 @@ static void fastscan(odg_node_t *n, const uint8_t *d)
     reply(n, 0x4F, 0);
 }
 
-/* Commands of configuration mode; others are ignored. */
-static void configure(odg_node_t *n, const uint8_t *d)
+/* Commands of configuration mode; others are ignored. v: bytes 1..4, little-endian. */
+static void configure(odg_node_t *n, uint8_t cs, uint32_t v)
 {
+    uint8_t b1 = (uint8_t)v, b2 = (uint8_t)(v >> 8);
     odg_abort_t ac;
+    unsigned part;
     uint8_t err = 0;
-    switch (d[0]) {
+    switch (cs) {
     case 0x11: /* configure node-id: 1..127, or 0xFF to make the node non-configured */
-        err = (uint8_t)!valid_id(d[1]);
-        n->lss.pending = err ? n->lss.pending : d[1];
+        if (valid_id(b1)) {
+            n->lss.pending = b1;
+        } else {
+            err = 1;
+        }
         break;
     case 0x13: /* configure bit timing: table 0 (CiA), index, accepted by the application */
-        err = d[1] != 0u || d[2] > 9u || n->cfg.on_bit_timing == NULL ||
-              n->cfg.on_bit_timing(n->cfg.app_ctx, d[2], 0, 0) != 0;
-        n->lss.bit_index = err ? n->lss.bit_index : d[2];
+        if (b1 != 0u || b2 > 9u || n->cfg.on_bit_timing == NULL ||
+            n->cfg.on_bit_timing(n->cfg.app_ctx, b2, 0, 0) != 0) {
+            err = 1;
+        } else {
+            n->lss.bit_index = b2;
+        }
         break;
     case 0x15: /* activate bit timing: no answer */
         if (n->cfg.on_bit_timing != NULL && n->lss.bit_index != ODG_LSS_NO_BIT_TIMING) {
-            (void)n->cfg.on_bit_timing(n->cfg.app_ctx, n->lss.bit_index, (uint16_t)(d[1] | (unsigned)d[2] << 8), 1);
+            (void)n->cfg.on_bit_timing(n->cfg.app_ctx, n->lss.bit_index, (uint16_t)v, 1);
         }
         return;
     case 0x17: /* store configuration: 1 no NV, 2 the NV failed */
@@ -160,17 +160,19 @@ static void configure(odg_node_t *n, const uint8_t *d)
         err = (uint8_t)(ac == ODG_OK ? 0u : (ac == ODG_ABORT_DATA_STORE ? 1u : 2u));
         break;
     default:
-        if (d[0] >= 0x5Au && d[0] <= 0x5Eu) { /* inquire identity (0x5A..0x5D), node-id (the active one) */
-            reply(n, d[0], d[0] < 0x5Eu ? identity(n, d[0] - 0x5Au) : n->cfg.node_id);
+        part = cs - 0x5Au;
+        if (part <= 4u) { /* inquire identity (0x5A..0x5D), node-id (the active one) */
+            reply(n, cs, part < 4u ? identity(n, part) : n->cfg.node_id);
         }
         return;
     }
-    reply(n, d[0], err);
+    reply(n, cs, err);
 }
 
 int odg_lss_receive_(odg_node_t *n, const uint8_t *d)
 {
     uint8_t cs = d[0];
+    uint32_t v = ODG_LE32(d + 1);
     if (cs == 0x04u && d[1] <= 1u) { /* switch state global */
         n->lss.mode = d[1];
         n->lss.selective = 0;
@@ -180,10 +182,10 @@ int odg_lss_receive_(odg_node_t *n, const uint8_t *d)
     }
     if (cs >= 0x40u && cs <= 0x43u) {
         if (n->lss.mode == ODG_LSS_WAITING) {
-            selective(n, cs - 0x40u, ODG_LE32(d + 1));
+            selective(n, cs - 0x40u, v);
         }
     } else if (cs >= 0x46u && cs <= 0x4Bu) {
-        identify(n, cs - 0x46u, ODG_LE32(d + 1));
+        identify(n, cs - 0x46u, v);
     } else if (cs == 0x4Cu) {
         if (n->cfg.node_id == ODG_LSS_UNCONFIGURED && n->lss.pending == ODG_LSS_UNCONFIGURED) {
             reply(n, 0x50, 0);
@@ -191,7 +193,7 @@ int odg_lss_receive_(odg_node_t *n, const uint8_t *d)
     } else if (cs == 0x51u) {
         fastscan(n, d);
     } else if (n->lss.mode == ODG_LSS_CONFIGURATION) {
-        configure(n, d);
+        configure(n, cs, v);
     }
     return 0;
 }

@@ -235,7 +235,7 @@ odg_boot_status_t odg_fixed_boot_(const odg_dict_t *d, const odg_nv_driver_t *nv
 static int record_read(const odg_nv_driver_t *nv, uint32_t addr, uint32_t tag, uint8_t *s)
 {
     int v = odg_hdr_read_(nv, addr, s, REC_BYTES, tag);
-    return v == 1 ? odg_crc32(0, s, REC_BYTES - 4u) == odg_get32_(s + REC_BYTES - 4u) : v;
+    return v == 1 ? odg_crc_ok_(nv, addr, s, REC_BYTES, 0u, NULL) : v; /* the CRC ends the slot */
 }
 
 /* Both slots of a record into s[0] and s[1]: -2 the driver failed, -1 neither is valid, else
@@ -260,21 +260,22 @@ odg_abort_t odg_persist_store_record(const odg_nv_driver_t *nv, uint32_t addr, u
 {
     uint8_t s[2][REC_BYTES];
     uint32_t at;
-    int k = nv != NULL ? record_newest(nv, addr, tag, s) : -3;
+    int to, k = nv != NULL ? record_newest(nv, addr, tag, s) : -3;
     if (k < -1) {
         return k == -2 ? ODG_ABORT_HARDWARE : ODG_ABORT_DATA_STORE;
     }
-    /* into the slot that does not hold the newest record (A when neither is valid), with the
-     * sequence number after the newest's (any when there is none) */
-    at = addr + (k == 0 ? ODG_PERSIST_RECORD_SLOT : 0u);
-    odg_put32_(s[0] + 4, odg_get32_(s[k > 0] + 4) + 1u);
+    /* into the slot that does not hold the newest record (B when A does, else A), with the
+     * sequence number after the newest's (after A's, any, when neither is valid) */
+    to = k == 0;
+    at = addr + (to ? ODG_PERSIST_RECORD_SLOT : 0u);
+    odg_put32_(s[0] + 4, odg_get32_(s[k == 1] + 4) + 1u);
     odg_put32_(s[0], tag);
     odg_put32_(s[0] + 8, value);
     odg_put32_(s[0] + 12, odg_crc32(0, s[0], 12u));
     /* read back: that slot must now be valid and the newest */
     if (nv->erase(nv->ctx, at, ODG_PERSIST_RECORD_SLOT) != 0 ||
         nv->write(nv->ctx, at + 4u, s[0] + 4, 12u) != 0 || nv->write(nv->ctx, at, s[0], 4u) != 0 ||
-        record_newest(nv, addr, tag, s) != (k == 0)) {
+        record_newest(nv, addr, tag, s) != to) {
         return ODG_ABORT_HARDWARE;
     }
     return ODG_OK;

@@ -59,7 +59,8 @@ static const odg_frame_t *lss(uint8_t cs, uint32_t v, uint8_t b5, uint8_t b6, ui
 
 static int answered(const odg_frame_t *r, uint8_t cs)
 {
-    return r != NULL && r->data[0] == cs;
+    /* every answer has 8 bytes, the last three reserved: 0 */
+    return r != NULL && r->data[0] == cs && r->len == 8u && (r->data[5] | r->data[6] | r->data[7]) == 0u;
 }
 
 /* The configure answers: cs, error code. -1 when there was none. */
@@ -134,7 +135,11 @@ static void fastscan_finds_the_identity(void)
         CHECK(lss(0x51, ident[sub] ^ 0x80000000u, 31, (uint8_t)sub, 0) == NULL);
         CHECK(answered(lss(0x51, ident[sub] ^ 0x7FFFFFFFu, 31, (uint8_t)sub, 0), 0x4F));
         CHECK(lss(0x51, ident[sub], 0, (uint8_t)((sub + 1) & 3), 0) == NULL); /* not its part */
+        CHECK(lss(0x51, ident[sub], 0, (uint8_t)sub, 4) == NULL); /* LSSNext beyond the serial */
+        CHECK(lss(0x51, ident[sub], 32, (uint8_t)sub, 0) == NULL); /* bitChecked beyond 31 */
+        CHECK(answered(lss(0x51, ident[sub] ^ 0x7Fu, 7, (uint8_t)sub, (uint8_t)sub), 0x4F)); /* bits 7..31 */
     }
+    CHECK(lss(0x51, 0, 0, 4, 0) == NULL); /* LSSSub beyond the serial */
     CHECK(lss(0x5E, 0, 0, 0, 0) == NULL); /* not selected: still waiting */
     CHECK(fastscan(found));
     for (sub = 0; sub < 4; sub++) {
@@ -263,6 +268,37 @@ static void selective_and_identify(void)
     lss(0x49, 0xFFFFFFFFu, 0, 0, 0);
     lss(0x4A, SERIAL + 1u, 0, 0, 0); /* serial above the range */
     CHECK(lss(0x4B, 0xFFFFFFFFu, 0, 0, 0) == NULL);
+    lss(0x46, VENDOR, 0, 0, 0);
+    lss(0x47, PRODUCT - 1u, 0, 0, 0); /* another product */
+    lss(0x48, 0, 0, 0, 0);
+    lss(0x49, 0xFFFFFFFFu, 0, 0, 0);
+    lss(0x4A, 0, 0, 0, 0);
+    CHECK(lss(0x4B, 0xFFFFFFFFu, 0, 0, 0) == NULL);
+    lss(0x46, VENDOR, 0, 0, 0);
+    lss(0x47, PRODUCT, 0, 0, 0);
+    lss(0x48, 0, 0, 0, 0);
+    lss(0x49, REVISION - 1u, 0, 0, 0); /* revision above the range */
+    lss(0x4A, 0, 0, 0, 0);
+    CHECK(lss(0x4B, 0xFFFFFFFFu, 0, 0, 0) == NULL);
+    lss(0x46, VENDOR, 0, 0, 0);
+    lss(0x47, PRODUCT, 0, 0, 0);
+    lss(0x48, 0, 0, 0, 0);
+    lss(0x49, 0xFFFFFFFFu, 0, 0, 0);
+    lss(0x4A, 0, 0, 0, 0);
+    CHECK(lss(0x4B, SERIAL - 1u, 0, 0, 0) == NULL); /* serial below the range */
+    lss(0x46, VENDOR, 0, 0, 0); /* ranges just around the identity */
+    lss(0x47, PRODUCT, 0, 0, 0);
+    lss(0x48, REVISION - 1u, 0, 0, 0);
+    lss(0x49, REVISION + 1u, 0, 0, 0);
+    lss(0x4A, SERIAL - 1u, 0, 0, 0);
+    CHECK(answered(lss(0x4B, SERIAL + 1u, 0, 0, 0), 0x4F));
+    lss(0x46, VENDOR, 0, 0, 0); /* ranges of one value: the bounds count as inside */
+    lss(0x47, PRODUCT, 0, 0, 0);
+    lss(0x48, REVISION, 0, 0, 0);
+    lss(0x49, REVISION, 0, 0, 0);
+    CHECK(lss(0x4A, SERIAL, 0, 0, 0) == NULL); /* only the last request is answered */
+    CHECK(answered(lss(0x4B, SERIAL, 0, 0, 0), 0x4F));
+    CHECK(lss(0x4A, SERIAL, 0, 0, 0) == NULL); /* nor a request repeated after it */
     /* not stored: a power cycle brings back node 10 */
     CHECK(lss(0x04, 1, 0, 0, 0) == NULL); /* switch state global: configuration */
     CHECK_EQ(inquire_id(), 20);
