@@ -92,27 +92,32 @@ DICT_PARTS = {"sub-entry descriptors": "od_subs", "entries": "od_entries", "rese
 NOT_MET = """\
 Where the goals are not met (hash, the default lookup; DS301 unless named; 2026-11-27):
 
-- **Dictionary + access with persistence and boot migration** (DS301 6748 B against 5308 B,
-  demoDevice 8700 B against 7132 B). The persistence layer links 3956 B (the layer 410, slots
-  and CRC 544, the "ODG1" check 84, the migration 2918; demoDevice 4706 B), against about
-  1764 B that CANopenNode's CO_storage, CO_storageEeprom and CRC-16 add (5308 - 3544). The
-  dictionary and the core alone are at 72% of CANopenNode's (the row without persistence), and
-  the layer without migration is within CANopenNode's figure (the row with `migration = false`:
-  86%). Meeting 100% with migration needs the migration at about a third of its size. What it
-  links beyond CANopenNode's storage: stored values survive a firmware update that changes the
-  layout (entry by entry kept, widened, defaulted, dropped or added, checked against the current
-  limits), images are found where an older NV map put them (the places a region that grew or
-  shrank left them, the two-pass boot of several groups, the scrub of a region after boot), and
-  a power-safe A/B commit with read-back. The notes' figure of the same row, 5768 B (bsearch,
-  2026-11-23), was measured before the stored-values rule set was merged, which added about
-  1.6 KB here.
+- **Dictionary + access with persistence and boot migration** (DS301 6484 B against 5308 B,
+  demoDevice 8424 B against 7132 B). The persistence layer links 3744 B (the layer 410, slots
+  and CRC 544, the migration 2790; demoDevice 4512 B), against about 1764 B that CANopenNode's
+  CO_storage, CO_storageEeprom and CRC-16 add (5308 - 3544). The dictionary and the core alone
+  are at 71% of CANopenNode's (the row without persistence), and the layer without migration is
+  within CANopenNode's figure (the row with `migration = false`: 85%). Meeting 100% with
+  migration needs the migration at about half its size. What it links beyond CANopenNode's
+  storage: stored values survive a firmware update that changes the layout (entry by entry
+  kept, widened, defaulted, dropped or added, checked against the current limits), images are
+  found where an older NV map put them (the places a region that grew or shrank left them, the
+  two-pass boot of several groups, the scrub of a region after boot), and a power-safe A/B
+  commit with read-back. The code is spread evenly over these features (none of them is more
+  than about 300 B), so what is left needs a smaller contract, not smaller code. The notes'
+  figure of the same row, 5768 B (bsearch, 2026-11-23), was measured before the stored-values
+  rule set was merged, which added about 1.6 KB here.
 - Measured for this row on 2026-11-27, and what became of it:
-  - One walk over a group's places serves store, erase, scrub and boot (the images found in
-    address order and the newest), where three walked on their own: -208 B, then +64 B to keep
-    the boot's peak stack where it was (the list of images lives in erase's and scrub's frames
-    only).
+  - One walk over a group's places serves store, erase, scrub and boot: -208 B, then +64 B to
+    keep the boot's peak stack where it was; later the walk lost its list of images (0x1011
+    erases the images past the region on a second walk, the scrub visits the region's places in
+    address order) and reads the place slot A names once: -74 B.
   - A dictionary with one persistence group boots it in one pass (`ODG_CFG_PERSIST_TWO_PASS 0`):
     -160 B (DS301; demoDevice has three groups).
+  - The boot of a migrated group stores and scrubs at one place, and an "ODG1" image there is
+    known by its commit mark, so a build whose groups all migrate links no "ODG1" reader: -148 B.
+  - The 0x1010/0x1011 commands share one descriptor when the dictionary packs another entry:
+    -48 B on every DS301 row (demoDevice -80 B).
   - The boot status object's counts worked out only when the dictionary has the object: -28 B.
   - The NV driver of this bench is volatile, so its byte loops stay loops: before, GCC made them
     calls of libc's memcpy (308 B, counted here), which CANopenNode's figures carry anyway (its
@@ -123,29 +128,25 @@ Where the goals are not met (hash, the default lookup; DS301 unless named; 2026-
   - Tried and dropped: the node-id added to $NODEID values by one loop in `odg_init` instead of a
     statement per value in the generated reset (-60 B with persistence, +12 B without; it changes
     what a generated reset must do, so an older generated file would add the node-id twice);
-    the header word reader inline (-8 B).
+    the header word reader inline (-8 B); the walk's three passes over the layout as one
+    function (+48 B); the record walk without its count of records left (+16 B).
   - Earlier: `odg_verify` is not linked by a firmware that does not call it; CRC-32 bit by bit
     (44 B, no table); hash links 88 B more than bsearch, which misses the lookup goal; the
     persisted group's defaults as generated code instead of a table (-296 B) would need a
     per-value default for the readers of single defaults (`odg_comm.c`, `odg_verify`, the "ODG1"
     limit re-check) that costs what it saves.
-- **Whole device** (15204 B against 14021 B, 85% of 16496 B; with SDO block transfer, odgen's
-  default, 16224 B). The services link 7791 B (`odg_pdo.c` 2056, `odg_sdo.c` 1152 without block
-  transfer (2166 with), `odg_err.c` 1106, `odg_node.c` 1057, `odg_lss.c` 852, `odg_hb.c` 732,
-  `odg_comm.c` 422, `odg_sync.c` 252, `odg_node_io.c` 130, `odg_time.c` 32); the persistence
-  4456 B, of which 584 B of "ODG1" slot code only for the LSS slave's stored configuration
-  (CANopenNode's whole device stores nothing: its storage is CO_storageBlank); the dictionary
-  1669 B and the core 988 B. The same build was 17540 B with block transfer on the morning of
-  2026-11-27; since then the bench's memcpy -308 B, the persistence -310 B (as above), the
-  services -548 B and the core they link -180 B (one mapping walk for both PDO directions, the
-  error register and history through one lookup so that the node links no `odg_get`/`odg_set`,
-  life guarding as one more heartbeat entry, one EMCY send, LSS answers from one place, one
-  little-endian word reader, small helpers kept out of line; +12 B for an RPDO written from a
-  copy of its frame, which a reload of the PDOs during the writes cleared), and block transfer
-  is a build switch (`[node] sdo_block = false`: `odg_sdo.c` 2166 -> 1152 B). What is left,
-  about 1.2 KB, needs design changes: the next measured candidate is one descriptor list shared
-  by records of one shape (the 4 + 4 PDO communication records: 40 descriptors, 320 B, would be
-  10), then the LSS configuration kept without the "ODG1" record code. RAM, 1776 B (32%), meets its goal.
+
+The **whole device** meets its goal since 2026-11-27 (13960 B against 14021 B, 85% of 16496 B;
+with SDO block transfer, odgen's default, 15000 B). It was 15204 B in the morning: the services
+-656 B (SDO 1152 -> 784 B: a build without strings or domains leaves the streamed transfers
+out, one whose values are all numbers of at most 4 bytes answers every upload expedited; PDO,
+EMCY, heartbeat, SYNC and communication values each a little smaller), the LSS configuration in
+a record store of its own instead of "ODG1" slots (-192 B) and the LSS slave and that store
+-130 B, the migration about -210 B (as above), the packed commands -48 B. Its services link 7002 B
+(`odg_pdo.c` 1988, `odg_node.c` 1054, `odg_err.c` 1012, `odg_sdo.c` 784, `odg_hb.c` 694,
+`odg_lss.c` 674, `odg_comm.c` 406, `odg_sync.c` 240, `odg_node_io.c` 118, `odg_time.c` 32),
+the persistence 4100 B (the LSS record store 356 of it), the dictionary 1621 B and the core
+940 B. RAM, 1772 B (32%), meets its goal too.
 
 Earlier shrinks, measured the same way (the figures of their day, with an NV driver of three empty
 functions and before the stored-values rule set):
