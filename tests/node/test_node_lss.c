@@ -206,6 +206,19 @@ static void survives_power_cycle(void)
     CHECK_EQ(count_id(0x707u), 0);
 }
 
+/* Identify remote slave with the ranges given (0x46 .. 0x4B): only the last request may be
+ * answered; its answer, or NULL. */
+static const odg_frame_t *identify(uint32_t vendor, uint32_t product, uint32_t rev_lo, uint32_t rev_hi,
+                                   uint32_t serial_lo, uint32_t serial_hi)
+{
+    CHECK(lss(0x46, vendor, 0, 0, 0) == NULL);
+    CHECK(lss(0x47, product, 0, 0, 0) == NULL);
+    CHECK(lss(0x48, rev_lo, 0, 0, 0) == NULL);
+    CHECK(lss(0x49, rev_hi, 0, 0, 0) == NULL);
+    CHECK(lss(0x4A, serial_lo, 0, 0, 0) == NULL);
+    return lss(0x4B, serial_hi, 0, 0, 0);
+}
+
 static void selective_and_identify(void)
 {
     const odg_frame_t *r;
@@ -244,60 +257,16 @@ static void selective_and_identify(void)
     nmt(ODG_NMT_START, 20);
     CHECK_EQ(odg_node_state(&node), ODG_NMT_OPERATIONAL);
     /* identify remote slave: vendor, product, revision and serial ranges */
-    lss(0x46, VENDOR, 0, 0, 0);
-    lss(0x47, PRODUCT, 0, 0, 0);
-    lss(0x48, REVISION - 1u, 0, 0, 0);
-    lss(0x49, REVISION, 0, 0, 0);
-    lss(0x4A, 0, 0, 0, 0);
-    CHECK(answered(lss(0x4B, 0xFFFFFFFFu, 0, 0, 0), 0x4F));
-    lss(0x46, VENDOR, 0, 0, 0);
-    lss(0x47, PRODUCT, 0, 0, 0);
-    lss(0x48, REVISION + 1u, 0, 0, 0); /* revision below the range */
-    lss(0x49, 0xFFFFFFFFu, 0, 0, 0);
-    lss(0x4A, 0, 0, 0, 0);
-    CHECK(lss(0x4B, 0xFFFFFFFFu, 0, 0, 0) == NULL);
-    lss(0x46, VENDOR + 1u, 0, 0, 0); /* another vendor */
-    lss(0x47, PRODUCT, 0, 0, 0);
-    lss(0x48, 0, 0, 0, 0);
-    lss(0x49, 0xFFFFFFFFu, 0, 0, 0);
-    lss(0x4A, 0, 0, 0, 0);
-    CHECK(lss(0x4B, 0xFFFFFFFFu, 0, 0, 0) == NULL);
-    lss(0x46, VENDOR, 0, 0, 0);
-    lss(0x47, PRODUCT, 0, 0, 0);
-    lss(0x48, 0, 0, 0, 0);
-    lss(0x49, 0xFFFFFFFFu, 0, 0, 0);
-    lss(0x4A, SERIAL + 1u, 0, 0, 0); /* serial above the range */
-    CHECK(lss(0x4B, 0xFFFFFFFFu, 0, 0, 0) == NULL);
-    lss(0x46, VENDOR, 0, 0, 0);
-    lss(0x47, PRODUCT - 1u, 0, 0, 0); /* another product */
-    lss(0x48, 0, 0, 0, 0);
-    lss(0x49, 0xFFFFFFFFu, 0, 0, 0);
-    lss(0x4A, 0, 0, 0, 0);
-    CHECK(lss(0x4B, 0xFFFFFFFFu, 0, 0, 0) == NULL);
-    lss(0x46, VENDOR, 0, 0, 0);
-    lss(0x47, PRODUCT, 0, 0, 0);
-    lss(0x48, 0, 0, 0, 0);
-    lss(0x49, REVISION - 1u, 0, 0, 0); /* revision above the range */
-    lss(0x4A, 0, 0, 0, 0);
-    CHECK(lss(0x4B, 0xFFFFFFFFu, 0, 0, 0) == NULL);
-    lss(0x46, VENDOR, 0, 0, 0);
-    lss(0x47, PRODUCT, 0, 0, 0);
-    lss(0x48, 0, 0, 0, 0);
-    lss(0x49, 0xFFFFFFFFu, 0, 0, 0);
-    lss(0x4A, 0, 0, 0, 0);
-    CHECK(lss(0x4B, SERIAL - 1u, 0, 0, 0) == NULL); /* serial below the range */
-    lss(0x46, VENDOR, 0, 0, 0); /* ranges just around the identity */
-    lss(0x47, PRODUCT, 0, 0, 0);
-    lss(0x48, REVISION - 1u, 0, 0, 0);
-    lss(0x49, REVISION + 1u, 0, 0, 0);
-    lss(0x4A, SERIAL - 1u, 0, 0, 0);
-    CHECK(answered(lss(0x4B, SERIAL + 1u, 0, 0, 0), 0x4F));
-    lss(0x46, VENDOR, 0, 0, 0); /* ranges of one value: the bounds count as inside */
-    lss(0x47, PRODUCT, 0, 0, 0);
-    lss(0x48, REVISION, 0, 0, 0);
-    lss(0x49, REVISION, 0, 0, 0);
-    CHECK(lss(0x4A, SERIAL, 0, 0, 0) == NULL); /* only the last request is answered */
-    CHECK(answered(lss(0x4B, SERIAL, 0, 0, 0), 0x4F));
+    CHECK(answered(identify(VENDOR, PRODUCT, REVISION - 1u, REVISION, 0, 0xFFFFFFFFu), 0x4F));
+    CHECK(identify(VENDOR, PRODUCT, REVISION + 1u, 0xFFFFFFFFu, 0, 0xFFFFFFFFu) == NULL); /* revision below */
+    CHECK(identify(VENDOR + 1u, PRODUCT, 0, 0xFFFFFFFFu, 0, 0xFFFFFFFFu) == NULL);          /* another vendor */
+    CHECK(identify(VENDOR, PRODUCT, 0, 0xFFFFFFFFu, SERIAL + 1u, 0xFFFFFFFFu) == NULL);    /* serial below */
+    CHECK(identify(VENDOR, PRODUCT - 1u, 0, 0xFFFFFFFFu, 0, 0xFFFFFFFFu) == NULL);         /* another product */
+    CHECK(identify(VENDOR, PRODUCT, 0, REVISION - 1u, 0, 0xFFFFFFFFu) == NULL);            /* revision above */
+    CHECK(identify(VENDOR, PRODUCT, 0, 0xFFFFFFFFu, 0, SERIAL - 1u) == NULL);              /* serial above */
+    /* ranges just around the identity; ranges of one value (the bounds count as inside) */
+    CHECK(answered(identify(VENDOR, PRODUCT, REVISION - 1u, REVISION + 1u, SERIAL - 1u, SERIAL + 1u), 0x4F));
+    CHECK(answered(identify(VENDOR, PRODUCT, REVISION, REVISION, SERIAL, SERIAL), 0x4F));
     CHECK(lss(0x4A, SERIAL, 0, 0, 0) == NULL); /* nor a request repeated after it */
     /* not stored: a power cycle brings back node 10 */
     CHECK(lss(0x04, 1, 0, 0, 0) == NULL); /* switch state global: configuration */

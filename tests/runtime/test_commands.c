@@ -51,6 +51,15 @@ static void reboot(void)
     CHECK_EQ(odg_persist_init(&layer, &cmd, &nv.driver, st), ODG_OK);
 }
 
+/* `word` written to `index` sub `sub`, a reboot, then what each group serves. */
+static void after(uint16_t index, uint8_t sub, const char *word, uint32_t hb, uint32_t par)
+{
+    CHECK_EQ(command(index, sub, word), ODG_OK);
+    reboot();
+    CHECK_EQ(get(0x1017), hb);
+    CHECK_EQ(get(0x2000), par);
+}
+
 int main(void)
 {
     odg_ref_t ref;
@@ -72,41 +81,17 @@ int main(void)
     }
     CHECK_EQ(command(0x1010, 4, "save"), ODG_ABORT_NO_SUB);
 
-    /* sub 2: the heartbeat time only */
     set(0x1017, 250);
     set(0x2000, 9);
-    CHECK_EQ(command(0x1010, 2, "save"), ODG_OK);
-    reboot();
-    CHECK_EQ(get(0x1017), 250u);
-    CHECK_EQ(get(0x2000), 7u);
-
-    /* sub 3: the parameter only */
+    after(0x1010, 2, "save", 250u, 7u); /* sub 2: the heartbeat time only */
     set(0x1017, 500);
     set(0x2000, 9);
-    CHECK_EQ(command(0x1010, 3, "save"), ODG_OK);
-    reboot();
-    CHECK_EQ(get(0x1017), 250u);
-    CHECK_EQ(get(0x2000), 9u);
-
-    /* 0x1011 sub 2: the communication group back to its defaults at the next boot */
-    CHECK_EQ(command(0x1011, 2, "load"), ODG_OK);
-    reboot();
-    CHECK_EQ(get(0x1017), 1000u);
-    CHECK_EQ(get(0x2000), 9u);
-
-    /* sub 1: every group, saved and then loaded */
+    after(0x1010, 3, "save", 250u, 9u); /* sub 3: the parameter only */
+    after(0x1011, 2, "load", 1000u, 9u); /* the communication group back to its defaults */
     set(0x1017, 125);
     set(0x2000, 3);
-    CHECK_EQ(command(0x1010, 1, "save"), ODG_OK);
-    reboot();
-    CHECK_EQ(get(0x1017), 125u);
-    CHECK_EQ(get(0x2000), 3u);
-    CHECK_EQ(command(0x1011, 3, "load"), ODG_OK);
-    reboot();
-    CHECK_EQ(get(0x1017), 125u);
-    CHECK_EQ(get(0x2000), 7u);
-    CHECK_EQ(command(0x1011, 1, "load"), ODG_OK);
-    reboot();
-    CHECK_EQ(get(0x1017), 1000u);
+    after(0x1010, 1, "save", 125u, 3u); /* sub 1: every group */
+    after(0x1011, 3, "load", 125u, 7u);
+    after(0x1011, 1, "load", 1000u, 7u);
     return done();
 }
