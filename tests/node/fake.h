@@ -142,6 +142,17 @@ static uint32_t abort_of(const odg_frame_t *r)
     return r->data[0] == 0x80u ? le32(r->data + 4) : 0u;
 }
 
+/* The SDO transfer under way times out: nothing sent for 999 ms (ticked 1 ms at a time), then
+ * the server's timeout abort at the 1000th. */
+static void sdo_times_out(void)
+{
+    clear();
+    run_ms(999);
+    CHECK_EQ(n_sent, 0);
+    run_ms(1);
+    CHECK_EQ(abort_of(last_id(SDO_TX)), ODG_ABORT_TIMEOUT);
+}
+
 static uint32_t upload(uint16_t index, uint8_t sub, uint8_t *buf, uint32_t cap, uint32_t *n)
 {
     const odg_frame_t *r = sdo(0x40, IDX(index), sub, 0, 0, 0, 0);
@@ -450,6 +461,7 @@ void fake_keep_(void)
     (void)run_ms, (void)after, (void)count_id, (void)last_id, (void)upload, (void)upload_u32;
     (void)download, (void)download_u32, (void)download_segmented, (void)block_download;
     (void)block_upload, (void)nv_ram, (void)start_node, (void)nmt, (void)abort_of;
+    (void)sdo_times_out;
 }
 
 #endif /* FAKE_H */

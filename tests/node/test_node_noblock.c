@@ -87,11 +87,7 @@ static void test_expedited_and_segmented(void)
     CHECK_EQ(sdo(0x21, IDX(0x2009), 0, 20, 0, 0, 0)->data[0], 0x60);
     CHECK_EQ(abort_of(sdo(0x10, 'a', 'b', 'c', 'd', 'e', 'f', 'g')), ODG_ABORT_TOGGLE);
     CHECK_EQ(sdo(0x40, IDX(0x2009), 0, 0, 0, 0, 0)->data[0], 0x41);
-    clear();
-    run_ms(999);
-    CHECK_EQ(n_sent, 0);
-    run_ms(1);
-    CHECK_EQ(abort_of(last_id(SDO_TX)), ODG_ABORT_TIMEOUT);
+    sdo_times_out();
     still_serving();
 }
 

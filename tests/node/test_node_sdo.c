@@ -362,11 +362,7 @@ static void test_aborts(void)
 
     /* timeouts: segmented download, segmented upload, block upload waiting for its ack */
     CHECK_EQ(sdo(0x21, IDX(0x2009), 0, 20, 0, 0, 0)->data[0], 0x60);
-    clear();
-    run_ms(999);
-    CHECK_EQ(n_sent, 0);
-    run_ms(1);
-    CHECK_EQ(abort_of(last_id(SDO_TX)), ODG_ABORT_TIMEOUT);
+    sdo_times_out();
     CHECK_EQ(sdo(0x40, IDX(0x2009), 0, 0, 0, 0, 0)->data[0], 0x41);
     run_ms(600);
     CHECK_EQ(sdo(0x60, 0, 0, 0, 0, 0, 0, 0)->data[0] & 0xF0u, 0x00); /* a frame restarts the clock */
