@@ -706,6 +706,24 @@ void odg_copy(void *dst, const void *src, uint32_t n)
     }
 }
 
+void odg_group_defaults(const odg_group_t *g, uint32_t from, uint32_t n, void *dst)
+{
+    const uint16_t *r = g->spread;
+    const uint8_t *v = (const uint8_t *)g->defaults;
+    uint8_t *p = (uint8_t *)dst;
+    uint32_t k;
+    for (k = 0; k < n; k++) {
+        p[k] = 0;
+    }
+    for (; r[1] != 0u; r += 2) { /* each run, its bytes from v on */
+        for (k = r[0]; k < r[1]; k++, v++) {
+            if (k - from < n) {
+                p[k - from] = *v;
+            }
+        }
+    }
+}
+
 /* ---- typed access ---------------------------------------------------------------------------- */
 
 /* The number at index/sub whose C type is `size` bytes: `ref` filled, its value's address. */

@@ -321,7 +321,13 @@ typedef struct odg_nv_driver {
 
 typedef struct odg_group {
     void *mirror;            /* RAM struct holding the group's values */
-    const void *defaults;    /* FLASH struct with the factory defaults, same layout */
+    /* The factory defaults: `spread` lists (start, end) byte offsets into the mirror, ended by
+     * 0, 0, and `defaults` holds those runs' bytes one after the other (NULL when there is
+     * none); every other byte of the mirror defaults to zero. A generated dictionary keeps only
+     * the runs that are not all zero; {0, size, 0, 0} makes `defaults` a struct of the mirror's
+     * layout. odg_group_defaults reads them. */
+    const void *defaults;
+    const uint16_t *spread;
     uint32_t size;           /* sizeof the struct */
     uint32_t signature;      /* layout signature (index, sub, type, size, order) */
     uint32_t nv_addr;        /* first of two slots, each odg_persist_slot_size(size) bytes */
@@ -423,6 +429,13 @@ odg_abort_t odg_init(const odg_dict_t *dict, uint8_t node_id);
  * memcpy for it (a few hundred bytes on small cores). It goes from the first byte up, so `dst`
  * may overlap `src` when it lies below it (the node's EMCY queue moves up so). */
 void odg_copy(void *dst, const void *src, uint32_t n);
+
+/* Bytes `from` .. `from + n` of group `g`'s defaults (the mirror's layout, without the node-id
+ * of $NODEID values) into `dst`: the whole mirror from 0, or one value from its offset. */
+void odg_group_defaults(const odg_group_t *g, uint32_t from, uint32_t n, void *dst);
+
+/* The end of member `m` of struct type `T`: where the runs of a group's defaults end. */
+#define ODG_END(T, m) (offsetof(T, m) + sizeof(((T *)0)->m))
 
 /* Attach `client` (see odg_client_t); attaching one already attached does nothing. */
 void odg_attach(const odg_dict_t *dict, odg_client_t *client);

@@ -135,7 +135,7 @@ void odg_defaults_(const odg_dict_t *d, uint8_t g)
 {
     const odg_group_t *gr = &d->groups[g];
     uint32_t p;
-    odg_copy(gr->mirror, gr->defaults, gr->size);
+    odg_group_defaults(gr, 0, gr->size, gr->mirror);
     for (p = 0; p < d->n_subs; p++) {
         const odg_sub_t *s = &d->subs[p];
         if ((s->attr & ODG_A_NODEID) && s->storage == (uint8_t)(ODG_S_PERSIST | (unsigned)g << 2)) {
