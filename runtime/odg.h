@@ -91,6 +91,11 @@ extern "C" {
 #ifndef ODG_CFG_PERSIST_TWO_PASS /* the two-pass boot: a migrated group among two or more */
 #define ODG_CFG_PERSIST_TWO_PASS ODG_CFG_PERSIST_MIGRATION
 #endif
+
+/* The format of the generated tables this runtime reads; a generated NAME.c checks it. 2: a
+ * group's defaults are runs (odg_group_t.spread), and odg_init adds the node-id. */
+#define ODG_TABLES 2
+
 #ifndef ODG_CFG_HASH /* lookup by a generated perfect hash (odgen --lookup hash) */
 #define ODG_CFG_HASH 1
 #endif
@@ -364,7 +369,7 @@ typedef struct odg_client {
 
 typedef struct odg_state { /* pointer first: no padding between the bytes */
     odg_client_t *clients;      /* attached layers; odg_init detaches them all */
-    uint8_t node_id;            /* set by odg_init before dict->reset runs */
+    uint8_t node_id;            /* set by odg_init */
     uint8_t boot_seen;          /* bit (1 << status) for each odg_boot_status_t a persistence
                                  * group reported: odg_init sets NV_ERROR for every group (no
                                  * driver yet), odg_persist_init the statuses it found */
@@ -384,7 +389,7 @@ typedef struct odg_dict {
     const odg_group_t *groups;
     odg_state_t *state;              /* RAM */
     int32_t (*find)(uint16_t index); /* generated scan: position in entries or -1; NULL = binary search */
-    void (*reset)(const struct odg_dict *dict); /* generated: RAM values to defaults, node-id applied */
+    void (*reset)(const struct odg_dict *dict); /* generated: RAM values to defaults */
     uint16_t n_entries;
     uint16_t n_subs;
     uint16_t n_hooks;
@@ -420,8 +425,8 @@ typedef struct odg_ref {
 
 /* ---- API ---------------------------------------------------------------------------- */
 
-/* Store `node_id` in dict->state, detach every client, then dict->reset(dict): RAM values
- * and group mirrors to their defaults with the node-id added to $NODEID entries. Loading
+/* Store `node_id` in dict->state, detach every client, then dict->reset(dict) (RAM values
+ * and group mirrors to their defaults) and add the node-id to $NODEID values. Loading
  * stored values is the persistence layer's part (odg_persist_init, after this). */
 odg_abort_t odg_init(const odg_dict_t *dict, uint8_t node_id);
 

@@ -42,7 +42,7 @@ static void comm_copy(odg_node_t *n, const odg_sub_t *s, uint32_t size, uint8_t 
         return; /* not of the groups named */
     } else if (how == COMM_LOADED) {
         odg_group_defaults(g, s->offset, size, at);
-        if (s->attr & ODG_A_NODEID) { /* as the generated reset adds it */
+        if (s->attr & ODG_A_NODEID) { /* as odg_init adds it */
             odg_num_put_(at, size, odg_num_get_(at, size) + n->cfg.node_id);
         }
         return;

@@ -183,12 +183,6 @@ class DomainView:
 
 
 @dataclass
-class NodeIdFix:
-    lvalue: str
-    ctype: str
-
-
-@dataclass
 class DictView:
     name: str
     upper: str
@@ -204,7 +198,6 @@ class DictView:
     functions: list[str] = field(default_factory=list)
     groups: list[GroupView] = field(default_factory=list)
     domains: list[DomainView] = field(default_factory=list)
-    nodeid_fixes: list[NodeIdFix] = field(default_factory=list)
     packed: list[PackedView] = field(default_factory=list)
     macros: list[tuple[str, str, str]] = field(default_factory=list)  # #define name value /* note */
     accessors: list[tuple[str, str]] = field(default_factory=list)  # #define name expression
@@ -605,8 +598,6 @@ def _value_member(b: _Builder, view: DictView, target: StorageStruct, key: tuple
         init = real_literal(float(number), dtype.bits) if kind == "real" else int_literal(int(number), ctype)
         target.members.append(Member(member, ctype, "", init, note, ALIGN[ctype], key,
                                      0 if _ZERO_INIT.fullmatch(init) else 1, init))
-        if value is not None and value.nodeid and isinstance(value.parsed, int):
-            view.nodeid_fixes.append(NodeIdFix(f"{target.name}.{member}", ctype))
         size = max(dtype.bits // 8, 1)
     view.accessors.append((f"{view.name}_{member}", f"({target.name}.{member})"))
     return f"offsetof({target.type_name}, {member})", size

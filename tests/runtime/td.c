@@ -331,10 +331,7 @@ static void td_reset(const odg_dict_t *dict)
     td_ram = td_ram_defaults;
     td_persist_comm = td_persist_comm_defaults;
     td_persist_app = td_persist_app_defaults;
-    td_ram.x1014 = (uint32_t)(td_ram.x1014 + dict->state->node_id);
-    td_persist_comm.x1400_s1 = (uint32_t)(td_persist_comm.x1400_s1 + dict->state->node_id);
-    td_persist_app.x2500_s5 = (uint16_t)(td_persist_app.x2500_s5 + dict->state->node_id);
-    (void)dict;
+    (void)dict; /* odg_init adds the node-id to the $NODEID values (x1014, x1400_s1, x2500_s5) */
 }
 
 ODG_ATTR_ROM const odg_dict_t td = {

@@ -6,7 +6,10 @@
 #include <math.h>
 #include "alltypes.h"
 
-/* The runtime must serve what this dictionary uses (alltypes_config.h). */
+/* The runtime must be the one this file was generated for, and serve what it uses (alltypes_config.h). */
+#if ODG_TABLES != 2
+#error "alltypes.c was generated for another version of the odg runtime: regenerate it with the odgen that ships this runtime"
+#endif
 #if !ODG_CFG_INT64
 #error "alltypes uses types wider than 32 bits: build the runtime with ODG_CFG_INT64 1 (alltypes_config.h)"
 #endif
@@ -294,8 +297,7 @@ static void alltypes_reset(const odg_dict_t *dict)
     odg_group_defaults(&alltypes_groups[0], 0, (uint32_t)sizeof alltypes_persist_app, &alltypes_persist_app);
     odg_group_defaults(&alltypes_groups[1], 0, (uint32_t)sizeof alltypes_persist_comm, &alltypes_persist_comm);
     odg_copy(&alltypes_ram, &alltypes_ram_defaults, (uint32_t)sizeof alltypes_ram);
-    alltypes_persist_comm.x2007_uint32_value = (uint32_t)(alltypes_persist_comm.x2007_uint32_value + dict->state->node_id);
-    (void)dict;
+    (void)dict; /* odg_init adds the node-id to $NODEID values after this */
 }
 
 ODG_ATTR_ROM const odg_dict_t alltypes = {
