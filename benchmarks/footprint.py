@@ -77,9 +77,9 @@ def by_class(syms: dict[str, int]) -> dict[str, int]:
     classes = {"rom values (FLASH)": syms.get("od_rom", 0), "ram values (RAM)": syms.get("od_ram", 0),
                "ram defaults (FLASH)": syms.get("od_ram_defaults", 0)}
     classes["persist mirrors (RAM)"] = sum(v for k, v in syms.items()
-                                           if k.startswith("od_persist_") and not k.endswith("_defaults"))
+                                           if k.startswith("od_persist_") and not k.endswith(("_defaults", "_spread")))
     classes["persist defaults (FLASH)"] = sum(v for k, v in syms.items()
-                                              if k.startswith("od_persist_") and k.endswith("_defaults"))
+                                              if k.startswith("od_persist_") and k.endswith(("_defaults", "_spread")))
     classes["tables (FLASH)"] = sum(syms.get(f"od_{t}", 0) for t in ("entries", "subs", "limits", "domains",
                                                                    "hook_map", "groups")) + syms.get("od", 0)
     classes["hook slots + state (RAM)"] = syms.get("od_hook_slots", 0) + syms.get("od_state", 0)

@@ -86,7 +86,7 @@ PART_OF = {"od.o": "dictionary tables (od.c)", "odg.o": "core access (odg.c)",
            "odg_verify.o": "self-check (odg_verify.c)", "main.o": "main and NV driver (the bench's)"}
 # the dictionary's tables by symbol (od.c; regular expressions), in the build with migration
 DICT_PARTS = {"sub-entry descriptors": "od_subs", "entries": "od_entries", "reset (defaults)": "od_reset",
-              "persisted defaults": r"od_persist_\w+_defaults", "lookup tables": r"od_(hash|find)\w*",
+              "persisted defaults": r"od_persist_\w+_(defaults|spread)", "lookup tables": r"od_(hash|find)\w*",
               "dictionary": "od", "groups": "od_groups"}
 
 NOT_MET = """\

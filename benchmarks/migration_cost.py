@@ -64,7 +64,7 @@ def measure(label: str, eds: Path, options: str) -> dict[str, object]:
         key = "on" if migration else "off"
         row[f"flash_{key}"] = flash(work / "od.o")
         row[f"mirror_{key}"] = {k[len("od_persist_"):]: v for k, v in syms.items()
-                                if k.startswith("od_persist_") and not k.endswith(("_defaults", "_layout"))}
+                                if k.startswith("od_persist_") and not k.endswith(("_defaults", "_spread", "_layout"))}
         row["layout_bytes"] = row.get("layout_bytes") or sum(v for k, v in syms.items() if k.endswith("_layout"))
     prepared = prepare(Request(eds, name="od", options=BUILD / f"{label}-on" / "od.toml"))
     assert prepared.od is not None and prepared.placements is not None

@@ -686,15 +686,29 @@ odg_abort_t odg_init(const odg_dict_t *dict, uint8_t node_id)
     if (dict == NULL || dict->state == NULL) {
         return ODG_ABORT_NO_DICTIONARY;
     }
-    /* the generated reset reads the node-id from the state */
     dict->state->node_id = node_id;
     dict->state->clients = NULL;
     /* no stored values yet: every group runs on defaults until odg_persist_init */
     dict->state->boot_seen = (uint8_t)(dict->n_groups > 0u ? 1u << ODG_BOOT_NV_ERROR : 0u);
     if (dict->reset) {
         dict->reset(dict);
+        odg_add_node_id_(dict, ODG_ALL_STORAGE_);
     }
     return ODG_OK;
+}
+
+/* One loop for every dictionary instead of a statement per $NODEID value in each generated
+ * reset: smaller as soon as the persistence layer links it for a group's defaults. */
+void odg_add_node_id_(const odg_dict_t *d, unsigned storage)
+{
+    uint32_t p;
+    for (p = 0; p < d->n_subs; p++) {
+        const odg_sub_t *s = &d->subs[p];
+        if ((s->attr & ODG_A_NODEID) && (storage == ODG_ALL_STORAGE_ || s->storage == storage)) {
+            uint8_t *v = odg_value_(d, s);
+            odg_num_put_(v, s->size, odg_num_get_(v, s->size) + d->state->node_id);
+        }
+    }
 }
 
 void odg_copy(void *dst, const void *src, uint32_t n)
@@ -703,6 +717,24 @@ void odg_copy(void *dst, const void *src, uint32_t n)
     const uint8_t *s = (const uint8_t *)src;
     while (n-- > 0u) {
         *d++ = *s++;
+    }
+}
+
+void odg_group_defaults(const odg_group_t *g, uint32_t from, uint32_t n, void *dst)
+{
+    const uint16_t *r = g->spread;
+    const uint8_t *v = (const uint8_t *)g->defaults;
+    uint8_t *p = (uint8_t *)dst;
+    uint32_t k;
+    for (k = 0; k < n; k++) {
+        p[k] = 0;
+    }
+    for (; r[1] != 0u; r += 2) { /* each run, its bytes from v on */
+        for (k = r[0]; k < r[1]; k++, v++) {
+            if (k - from < n) {
+                p[k - from] = *v;
+            }
+        }
     }
 }
 

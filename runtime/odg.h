@@ -91,6 +91,11 @@ extern "C" {
 #ifndef ODG_CFG_PERSIST_TWO_PASS /* the two-pass boot: a migrated group among two or more */
 #define ODG_CFG_PERSIST_TWO_PASS ODG_CFG_PERSIST_MIGRATION
 #endif
+
+/* The format of the generated tables this runtime reads; a generated NAME.c checks it. 2: a
+ * group's defaults are runs (odg_group_t.spread), and odg_init adds the node-id. */
+#define ODG_TABLES 2
+
 #ifndef ODG_CFG_HASH /* lookup by a generated perfect hash (odgen --lookup hash) */
 #define ODG_CFG_HASH 1
 #endif
@@ -321,7 +326,13 @@ typedef struct odg_nv_driver {
 
 typedef struct odg_group {
     void *mirror;            /* RAM struct holding the group's values */
-    const void *defaults;    /* FLASH struct with the factory defaults, same layout */
+    /* The factory defaults: `spread` lists (start, end) byte offsets into the mirror, ended by
+     * 0, 0, and `defaults` holds those runs' bytes one after the other (NULL when there is
+     * none); every other byte of the mirror defaults to zero. A generated dictionary keeps only
+     * the runs that are not all zero; {0, size, 0, 0} makes `defaults` a struct of the mirror's
+     * layout. odg_group_defaults reads them. */
+    const void *defaults;
+    const uint16_t *spread;
     uint32_t size;           /* sizeof the struct */
     uint32_t signature;      /* layout signature (index, sub, type, size, order) */
     uint32_t nv_addr;        /* first of two slots, each odg_persist_slot_size(size) bytes */
@@ -358,7 +369,7 @@ typedef struct odg_client {
 
 typedef struct odg_state { /* pointer first: no padding between the bytes */
     odg_client_t *clients;      /* attached layers; odg_init detaches them all */
-    uint8_t node_id;            /* set by odg_init before dict->reset runs */
+    uint8_t node_id;            /* set by odg_init */
     uint8_t boot_seen;          /* bit (1 << status) for each odg_boot_status_t a persistence
                                  * group reported: odg_init sets NV_ERROR for every group (no
                                  * driver yet), odg_persist_init the statuses it found */
@@ -378,7 +389,7 @@ typedef struct odg_dict {
     const odg_group_t *groups;
     odg_state_t *state;              /* RAM */
     int32_t (*find)(uint16_t index); /* generated scan: position in entries or -1; NULL = binary search */
-    void (*reset)(const struct odg_dict *dict); /* generated: RAM values to defaults, node-id applied */
+    void (*reset)(const struct odg_dict *dict); /* generated: RAM values to defaults */
     uint16_t n_entries;
     uint16_t n_subs;
     uint16_t n_hooks;
@@ -414,8 +425,8 @@ typedef struct odg_ref {
 
 /* ---- API ---------------------------------------------------------------------------- */
 
-/* Store `node_id` in dict->state, detach every client, then dict->reset(dict): RAM values
- * and group mirrors to their defaults with the node-id added to $NODEID entries. Loading
+/* Store `node_id` in dict->state, detach every client, then dict->reset(dict) (RAM values
+ * and group mirrors to their defaults) and add the node-id to $NODEID values. Loading
  * stored values is the persistence layer's part (odg_persist_init, after this). */
 odg_abort_t odg_init(const odg_dict_t *dict, uint8_t node_id);
 
@@ -423,6 +434,13 @@ odg_abort_t odg_init(const odg_dict_t *dict, uint8_t node_id);
  * memcpy for it (a few hundred bytes on small cores). It goes from the first byte up, so `dst`
  * may overlap `src` when it lies below it (the node's EMCY queue moves up so). */
 void odg_copy(void *dst, const void *src, uint32_t n);
+
+/* Bytes `from` .. `from + n` of group `g`'s defaults (the mirror's layout, without the node-id
+ * of $NODEID values) into `dst`: the whole mirror from 0, or one value from its offset. */
+void odg_group_defaults(const odg_group_t *g, uint32_t from, uint32_t n, void *dst);
+
+/* The end of member `m` of struct type `T`: where the runs of a group's defaults end. */
+#define ODG_END(T, m) (offsetof(T, m) + sizeof(((T *)0)->m))
 
 /* Attach `client` (see odg_client_t); attaching one already attached does nothing. */
 void odg_attach(const odg_dict_t *dict, odg_client_t *client);

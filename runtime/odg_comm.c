@@ -41,12 +41,13 @@ static void comm_copy(odg_node_t *n, const odg_sub_t *s, uint32_t size, uint8_t 
     } else if (how != COMM_KEEP && (g == NULL || (sub != 1u && g->store_sub != sub))) {
         return; /* not of the groups named */
     } else if (how == COMM_LOADED) {
-        from = (const uint8_t *)g->defaults + s->offset;
+        odg_group_defaults(g, s->offset, size, at);
+        if (s->attr & ODG_A_NODEID) { /* as odg_init adds it */
+            odg_num_put_(at, size, odg_num_get_(at, size) + n->cfg.node_id);
+        }
+        return;
     }
     odg_copy(to, from, size);
-    if (how == COMM_LOADED && (s->attr & ODG_A_NODEID)) { /* as the generated reset adds it */
-        odg_num_put_(at, size, odg_num_get_(at, size) + n->cfg.node_id);
-    }
 }
 
 /* The communication values of one object: their bytes, and with `n` (not NULL) each copied

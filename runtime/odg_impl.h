@@ -54,6 +54,11 @@ void odg_num_put_(void *p, uint32_t size, odg_num_t v);
  * offset indexes dict->domains). Writable except for ODG_S_ROM, which is only ever read. */
 uint8_t *odg_value_(const odg_dict_t *d, const odg_sub_t *s);
 
+/* Add the node-id to the $NODEID values (ODG_A_NODEID) of storage class `storage` (a
+ * descriptor's `storage` byte), or of all with ODG_ALL_STORAGE_: after a reset to defaults. */
+#define ODG_ALL_STORAGE_ 0x100u
+void odg_add_node_id_(const odg_dict_t *d, unsigned storage);
+
 /* The range check of a write (BOOLEAN 0/1, NaN, limits) for the numeric sub-entry at position
  * `pos` of dict->subs, on its value sign-extended to 64 bits (REAL as its bits). */
 odg_abort_t odg_check_(const odg_dict_t *d, uint16_t pos, odg_num_t v);

@@ -96,7 +96,7 @@ static uint16_t recheck_one(const odg_dict_t *d, uint8_t g, uint32_t pos, const 
     if (odg_check_(d, (uint16_t)pos, x) == ODG_OK) {
         return 0;
     }
-    odg_copy(v, (const uint8_t *)gr->defaults + (v - (uint8_t *)gr->mirror), s->size);
+    odg_group_defaults(gr, (uint32_t)(v - (uint8_t *)gr->mirror), s->size, v);
     return 1;
 }
 

@@ -129,18 +129,11 @@ uint32_t odg_persist_nv_size(const odg_dict_t *dict)
     return end;
 }
 
-/* Defaults into the mirror of group `g`, with the node-id added to $NODEID values (what the
- * generated reset does for the whole dictionary). */
+/* Defaults into the mirror of group `g`, with the node-id added to $NODEID values (what
+ * odg_init does for the whole dictionary). */
 void odg_defaults_(const odg_dict_t *d, uint8_t g)
 {
     const odg_group_t *gr = &d->groups[g];
-    uint32_t p;
-    odg_copy(gr->mirror, gr->defaults, gr->size);
-    for (p = 0; p < d->n_subs; p++) {
-        const odg_sub_t *s = &d->subs[p];
-        if ((s->attr & ODG_A_NODEID) && s->storage == (uint8_t)(ODG_S_PERSIST | (unsigned)g << 2)) {
-            uint8_t *v = odg_value_(d, s);
-            odg_num_put_(v, s->size, odg_num_get_(v, s->size) + d->state->node_id);
-        }
-    }
+    odg_group_defaults(gr, 0, gr->size, gr->mirror);
+    odg_add_node_id_(d, ODG_S_PERSIST | (unsigned)g << 2);
 }

@@ -72,6 +72,24 @@ static odg_num_t native_value(const odg_sub_t *s, const void *p)
     return v;
 }
 
+/* Whether the runs of group `g`'s defaults lie in its mirror, in order, each of some bytes,
+ * with their bytes in `defaults` when there is one. */
+static int spread_ok(const odg_group_t *g)
+{
+    const uint16_t *r = g->spread;
+    uint32_t end = 0;
+    if (r == NULL) {
+        return 0;
+    }
+    for (; r[1] != 0u; r += 2) {
+        if (r[0] < end || r[1] <= r[0] || r[1] > g->size) {
+            return 0;
+        }
+        end = r[1];
+    }
+    return r[0] == 0u && (end == 0u || g->defaults != NULL);
+}
+
 /* Whether this build of the runtime serves the sub-entry's type, storage, hooks and limits
  * (the ODG_CFG_* switches of odg.h). */
 static int configured(const odg_sub_t *s)
@@ -165,9 +183,15 @@ static int sub_ok(const odg_ref_t *r)
     if (m & T_STREAM) {
         return 1;
     }
-    if (g != NULL &&
-        odg_check_(d, r->sub_pos, native_value(s, (const uint8_t *)g->defaults + s->offset)) != ODG_OK) {
-        return 0;
+    if (g != NULL) {
+        odg_num_t def[8u / sizeof(odg_num_t)]; /* the FLASH default: a number's bytes, at most 8 */
+        if (!spread_ok(g)) {
+            return 0;
+        }
+        odg_group_defaults(g, s->offset, n, def);
+        if (odg_check_(d, r->sub_pos, native_value(s, def)) != ODG_OK) {
+            return 0;
+        }
     }
     return odg_check_(d, r->sub_pos, native_value(s, value)) == ODG_OK;
 }
@@ -380,7 +404,7 @@ odg_abort_t odg_verify(const odg_dict_t *dict, uint16_t *bad_index)
     for (i = 0; i < d->n_groups; i++) {
         const odg_group_t *g = &d->groups[i];
         uint32_t len;
-        if (g->mirror == NULL || g->defaults == NULL || g->size == 0u ||
+        if (g->mirror == NULL || !spread_ok(g) || g->size == 0u ||
             g->size > 0x7FFFFFF0u - 2u * ODG_PERSIST_HEADER_SIZE - 2u * ODG_PERSIST_ALIGN ||
             g->nv_addr > 0xFFFFFFFFu - (len = nv_len(g)) || !layout_ok(d, (uint8_t)i)) {
             return ODG_ABORT_INTERNAL;

@@ -251,7 +251,7 @@ def test_a_name_that_clashes_is_refused_when_given_and_prefixed_when_taken_from_
     assert outcome.result.view is not None and name_clash(outcome.result.view.name) is None
 
 
-@pytest.mark.parametrize("second", ["a_t", "a_defaults"])
+@pytest.mark.parametrize("second", ["a_t", "a_defaults", "a_spread", "a_defaults_t"])
 def test_persistence_groups_whose_c_names_meet_are_refused(second: str, tmp_path: Path) -> None:
     options = tmp_path / "groups.toml"
     options.write_text(f'[[entry]]\nmatch = "0x2000"\nstorage = "persist:a"\n\n'

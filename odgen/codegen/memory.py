@@ -11,7 +11,8 @@ from __future__ import annotations
 import struct
 from dataclasses import dataclass
 
-from .viewmodel import DictView, StorageStruct, member_bytes
+from .spread import flash_bytes
+from .viewmodel import ALIGN, DictView, StorageStruct, member_bytes
 
 ENTRY_BYTES = 6  # odg_entry_t: uint16 index, uint16 first, uint8 count, uint8 code
 SUB_BYTES = 8  # odg_sub_t: uint16 offset, uint16 size, four uint8
@@ -22,7 +23,7 @@ HOOK_SLOT_BYTES = 2 * struct.calcsize("P")  # odg_hook_slot_t: function pointer 
 class MemoryRow:
     kind: str  # values | tables
     label: str
-    var: str  # the C object the self-test takes sizeof of ("" for tables)
+    var: str  # the C expression of its bytes the self-test prints ("" for tables)
     size: int
     place: str  # FLASH | RAM | RAM+FLASH (a RAM block with its const defaults copy)
 
@@ -47,8 +48,20 @@ def block_bytes(block: StorageStruct) -> int:
 
 
 def value_rows(view: DictView) -> list[MemoryRow]:
-    return [MemoryRow("values", s.name.removeprefix(view.name + "_"), s.name, block_bytes(s),
-                      "FLASH" if s.const else "RAM+FLASH") for s in view.structs]
+    rows: list[MemoryRow] = []
+    groups = 0  # the groups come in the order of their structs (viewmodel._groups)
+    for s in view.structs:
+        label = s.name.removeprefix(view.name + "_")
+        if not s.group:
+            rows.append(MemoryRow("values", label, f"sizeof {s.name}", block_bytes(s),
+                                  "FLASH" if s.const else "RAM+FLASH"))
+            continue
+        # a group's defaults are its spread (spread.py): the runs that are not all zero, and their table
+        rows += [MemoryRow("values", label, f"sizeof {s.name}", block_bytes(s), "RAM"),
+                 MemoryRow("values", f"{label} defaults", f"spread_bytes(&d->groups[{groups}])",
+                           flash_bytes(s.runs, ALIGN), "FLASH")]
+        groups += 1
+    return rows
 
 
 def memory_rows(view: DictView) -> list[MemoryRow]:

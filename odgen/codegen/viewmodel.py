@@ -35,6 +35,7 @@ from ..model.pdo import default_mapped
 from ..model.datatypes import BASIC_TYPES, DataType
 from ..cnames import COMMENT_WIDTH, comment, identifier, string_literal
 from .packing import packable, packs_values
+from .spread import Run, runs
 from ..model.cia301 import RESTORE, STORE
 from ..place.options import PersistOptions
 from ..place.persistence import PersistView, persist_view
@@ -49,7 +50,7 @@ _INT_CTYPES = {8: "int8_t", 16: "int16_t", 24: "int32_t", 32: "int32_t", 40: "in
                56: "int64_t", 64: "int64_t"}
 _UINT_CTYPES = {1: "uint8_t", 8: "uint8_t", 16: "uint16_t", 24: "uint32_t", 32: "uint32_t", 40: "uint64_t",
                 48: "uint64_t", 56: "uint64_t", 64: "uint64_t"}
-_ALIGN = {"int8_t": 1, "uint8_t": 1, "char": 1, "int16_t": 2, "uint16_t": 2, "int32_t": 4, "uint32_t": 4,
+ALIGN = {"int8_t": 1, "uint8_t": 1, "char": 1, "int16_t": 2, "uint16_t": 2, "int32_t": 4, "uint32_t": 4,
           "float": 4, "int64_t": 8, "uint64_t": 8, "double": 8}
 _GROUP_SUBS = {"comm": 2, "app": 3, "application": 3}
 # Initializers of value zero as written here (int_literal, real_literal, empty strings and domains).
@@ -69,6 +70,10 @@ class Member(NamedTuple):
     note: str
     align: int
     key: tuple[int, int]
+    # The default's elements up to its last non-zero one (a scalar: 1 or 0) and their initializer:
+    # what the group's spread of non-zero defaults keeps of it (spread.py).
+    used: int
+    head: str
 
 
 @dataclass
@@ -83,6 +88,19 @@ class StorageStruct:
     @property
     def qualifier(self) -> str:
         return "const " if self.const else ""
+
+    @property
+    def group(self) -> bool:
+        """Whether the struct is a persistence group's mirror: its defaults are a spread (spread.py)."""
+        return self.attr.startswith("ODG_ATTR_PERSIST_")
+
+    @property
+    def spread(self) -> str:
+        return f"{self.name}_spread" if self.group else ""
+
+    @functools.cached_property  # asked once the members are complete and sorted
+    def runs(self) -> list[Run]:
+        return runs(self.members, ALIGN)
 
     @functools.cached_property  # the template asks twice; asked once the members are complete
     def copied(self) -> bool:
@@ -136,6 +154,8 @@ class GroupView:
     type_name: str
     signature: int
     store_sub: int  # the group's place in NV: persistview.PersistView
+    spread: str  # the table placing the runs of `defaults` (spread.py)
+    defaults_ref: str  # &defaults, or NULL when every default is zero
 
 
 @dataclass
@@ -163,12 +183,6 @@ class DomainView:
 
 
 @dataclass
-class NodeIdFix:
-    lvalue: str
-    ctype: str
-
-
-@dataclass
 class DictView:
     name: str
     upper: str
@@ -184,7 +198,6 @@ class DictView:
     functions: list[str] = field(default_factory=list)
     groups: list[GroupView] = field(default_factory=list)
     domains: list[DomainView] = field(default_factory=list)
-    nodeid_fixes: list[NodeIdFix] = field(default_factory=list)
     packed: list[PackedView] = field(default_factory=list)
     macros: list[tuple[str, str, str]] = field(default_factory=list)  # #define name value /* note */
     accessors: list[tuple[str, str]] = field(default_factory=list)  # #define name expression
@@ -384,13 +397,14 @@ def _check_block_size(b: _Builder, struct: StorageStruct) -> None:
 
 
 def member_bytes(m: Member) -> int:
-    return _ALIGN[m.ctype] * (int(m.array[1:-1]) if m.array else 1)
+    return ALIGN[m.ctype] * (int(m.array[1:-1]) if m.array else 1)
 
 
 def _generated_symbols(view: DictView) -> set[str]:
     tables = ("entries", "subs", "limits", "hook_map", "hook_slots", "groups", "state", "find", "reset")
     names = {view.name, *(f"{view.name}_{t}" for t in tables), *(name for name, _ in view.accessors)}
     names |= {s.name for s in view.structs} | {s.defaults for s in view.structs} | {d.name for d in view.domains}
+    names |= {s.spread for s in view.structs if s.group} | {f"{s.defaults}_t" for s in view.structs if s.group}
     return names
 
 
@@ -398,7 +412,7 @@ def _check_group_names(b: _Builder, view: DictView) -> None:
     """Persistence groups whose symbols meet (group `a` has type `NAME_persist_a_t`, which is group `a_t`)."""
     owner: dict[str, str] = {}
     for s in view.structs:
-        for symbol in (s.name, s.type_name, s.defaults):
+        for symbol in (s.name, s.type_name, s.defaults, s.spread, f"{s.defaults}_t" if s.group else ""):
             if not symbol:
                 continue
             first = owner.setdefault(symbol, s.name)
@@ -406,6 +420,7 @@ def _check_group_names(b: _Builder, view: DictView) -> None:
                 where_from = b.od.source
                 b.diags.add(GEN004, Loc(where_from), f"C name {symbol} is generated for both {first} and {s.name}; "
                             "rename one persistence group (;StorageLocation or the options file)")
+                break  # one report for the two groups
 
 
 def _check_functions(b: _Builder, view: DictView) -> None:
@@ -574,15 +589,15 @@ def _value_member(b: _Builder, view: DictView, target: StorageStruct, key: tuple
     kind = dtype.kind
     if kind in ("vstring", "ostring", "ustring"):
         array, init, size = _string_init(dtype, value, placement.capacity)
-        target.members.append(Member(member, ctype, array, init, note, _ALIGN[ctype], key))
+        used, head = _head(string_default(dtype, value), 4 if kind == "ustring" else 2)
+        target.members.append(Member(member, ctype, array, init, note, ALIGN[ctype], key, used, head))
     elif kind == "domain":
         return _domain(b, view, target, member, value, placement, note, key)
     else:
         number = initial_value(value, sub, dtype)
         init = real_literal(float(number), dtype.bits) if kind == "real" else int_literal(int(number), ctype)
-        target.members.append(Member(member, ctype, "", init, note, _ALIGN[ctype], key))
-        if value is not None and value.nodeid and isinstance(value.parsed, int):
-            view.nodeid_fixes.append(NodeIdFix(f"{target.name}.{member}", ctype))
+        target.members.append(Member(member, ctype, "", init, note, ALIGN[ctype], key,
+                                     0 if _ZERO_INIT.fullmatch(init) else 1, init))
         size = max(dtype.bits // 8, 1)
     view.accessors.append((f"{view.name}_{member}", f"({target.name}.{member})"))
     return f"offsetof({target.type_name}, {member})", size
@@ -604,14 +619,24 @@ def _string_init(dtype: DataType, value: Value | None, capacity: int | None) -> 
     return f"[{cap // 2 + 1}]", "{" + body + "}", cap
 
 
+def _head(units: bytes | list[int], digits: int) -> tuple[int, str]:
+    """A string's or domain's elements up to its last non-zero one, and their initializer."""
+    used = len(units)
+    while used > 0 and units[used - 1] == 0:
+        used -= 1
+    return used, "{" + ", ".join(f"0x{u:0{digits}X}" for u in units[:used]) + "}"
+
+
 def _domain(b: _Builder, view: DictView, target: StorageStruct, member: str, value: Value | None,
             placement: Placement, note: str, key: tuple[int, int]) -> tuple[str, int]:
     data = domain_default(value)
     rom = placement.storage == "rom"  # const: exactly its bytes, in FLASH
     cap = max(len(data), 1) if rom else domain_capacity(value, placement.capacity)
     body = ", ".join(f"0x{x:02X}" for x in data) or "0"
-    target.members.append(Member(member + "_buf", "uint8_t", f"[{cap}]", "{" + body + "}", note, 1, key))
-    target.members.append(Member(member + "_len", "uint32_t", "", f"UINT32_C({len(data)})", note, 4, key))
+    target.members.append(Member(member + "_buf", "uint8_t", f"[{cap}]", "{" + body + "}", note, 1, key,
+                                 *_head(data, 2)))
+    target.members.append(Member(member + "_len", "uint32_t", "", f"UINT32_C({len(data)})", note, 4, key,
+                                 1 if data else 0, f"UINT32_C({len(data)})"))
     # odg_domain_t points at writable memory; a DOMAIN in rom is const and never written through
     # them (odg_write refuses ODG_S_ROM and entries without ODG_A_WRITE), so the casts are safe.
     buffer, length = f"{target.name}.{member}_buf", f"&{target.name}.{member}_len"
@@ -642,7 +667,8 @@ def _groups(od: ObjectDictionary, view: DictView) -> list[GroupView]:
         group = s.name[len(f"{view.name}_persist_"):]
         sub = _GROUP_SUBS.get(group, 0)
         store_sub = sub if store is not None and sub in store.subs else 1
-        groups.append(GroupView(group, s.name, s.defaults, s.type_name, _signature(s), store_sub))
+        groups.append(GroupView(group, s.name, s.defaults, s.type_name, _signature(s), store_sub, s.spread,
+                                f"&{s.defaults}" if s.runs else "NULL"))
     return groups
 
 

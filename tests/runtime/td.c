@@ -266,10 +266,14 @@ ODG_ATTR_RAM static odg_hook_slot_t td_hook_slots[6] = {
     {NULL, NULL},      /* 0x2300sub6 */
 };
 
+/* Each group's defaults as one run: a struct of the mirror's layout (odg.h, odg_group_t). */
+ODG_ATTR_ROM static const uint16_t td_comm_spread[4] = {0, sizeof(td_persist_comm_t), 0, 0};
+ODG_ATTR_ROM static const uint16_t td_app_spread[4] = {0, sizeof(td_persist_app_t), 0, 0};
+
 ODG_ATTR_ROM static const odg_group_t td_groups[2] = {
-    {&td_persist_comm, &td_persist_comm_defaults, sizeof(td_persist_comm_t), 0x5C0FFEE1u,
+    {&td_persist_comm, &td_persist_comm_defaults, td_comm_spread, sizeof(td_persist_comm_t), 0x5C0FFEE1u,
      TD_NV_BASE + 0u, 2, 0, 0, 0},
-    {&td_persist_app, &td_persist_app_defaults, sizeof(td_persist_app_t), 0xA991A992u,
+    {&td_persist_app, &td_persist_app_defaults, td_app_spread, sizeof(td_persist_app_t), 0xA991A992u,
      TD_NV_BASE + 0u + 2u * ODG_PERSIST_SLOT_SIZE(sizeof(td_persist_comm_t)), 3, 0, 0, 0},
 };
 
@@ -327,10 +331,7 @@ static void td_reset(const odg_dict_t *dict)
     td_ram = td_ram_defaults;
     td_persist_comm = td_persist_comm_defaults;
     td_persist_app = td_persist_app_defaults;
-    td_ram.x1014 = (uint32_t)(td_ram.x1014 + dict->state->node_id);
-    td_persist_comm.x1400_s1 = (uint32_t)(td_persist_comm.x1400_s1 + dict->state->node_id);
-    td_persist_app.x2500_s5 = (uint16_t)(td_persist_app.x2500_s5 + dict->state->node_id);
-    (void)dict;
+    (void)dict; /* odg_init adds the node-id to the $NODEID values (x1014, x1400_s1, x2500_s5) */
 }
 
 ODG_ATTR_ROM const odg_dict_t td = {

@@ -904,6 +904,11 @@ static int32_t find_claims_0x1015(uint16_t index)
         fresh();                                                             \
     } while (0)
 
+/* Bad runs of a group's defaults (odg_group_t.spread). */
+static const uint16_t beyond[4] = {0, sizeof(td_persist_app_t) + 1u, 0, 0};
+static const uint16_t backwards[6] = {8, 12, 0, 4, 0, 0};
+static const uint16_t empty_run[4] = {4, 4, 0, 0};
+
 static void test_verify(void)
 {
     uint16_t bad = 0x1234;
@@ -1127,6 +1132,15 @@ static void test_verify(void)
     BAD(0x2500);
     G[1].defaults = NULL;
     BAD(0x2500);
+    /* the runs of the defaults: in the mirror, in order, each of some bytes */
+    G[1].spread = NULL;
+    BAD(0x2500);
+    G[1].spread = beyond;
+    BAD(0x2500);
+    G[1].spread = backwards;
+    BAD(0x2500);
+    G[1].spread = empty_run;
+    BAD(0x2500);
     /* hook map */
     HM[1].sub_pos = 64;
     BAD(0x2300);
@@ -1162,6 +1176,37 @@ static void test_verify(void)
 
 /* Values are found through the dictionary's blocks, not at fixed addresses: a copy of td with
  * other ROM, RAM and group structs reads and writes those. */
+/* odg_group_defaults: every window of a mirror whose defaults are three runs, against the
+ * mirror spelled out, with the bytes around the window untouched. */
+static void test_group_defaults(void)
+{
+    static const uint16_t spread[8] = {2, 5, 9, 10, 20, 24, 0, 0};
+    static const uint8_t runs[8] = {0x11, 0x22, 0x33, 0x44, 0x55, 0x66, 0x77, 0x88};
+    static const uint8_t whole[26] = {0, 0, 0x11, 0x22, 0x33, 0, 0, 0, 0, 0x44, 0, 0, 0,
+                                      0, 0, 0, 0, 0, 0, 0, 0x55, 0x66, 0x77, 0x88, 0, 0};
+    odg_group_t g;
+    uint8_t out[28];
+    uint32_t from, n, i;
+    memset(&g, 0, sizeof g);
+    g.defaults = runs;
+    g.spread = spread;
+    g.size = sizeof whole;
+    for (from = 0; from <= sizeof whole; from++) {
+        for (n = 0; from + n <= sizeof whole; n++) {
+            memset(out, 0xA5, sizeof out);
+            odg_group_defaults(&g, from, n, out + 1);
+            CHECK(out[0] == 0xA5u && out[n + 1u] == 0xA5u && memcmp(out + 1, whole + from, n) == 0);
+        }
+    }
+    g.defaults = NULL; /* no run at all: every byte zero, and `defaults` is never read */
+    g.spread = spread + 6;
+    memset(out, 0xA5, sizeof out);
+    odg_group_defaults(&g, 3, 4, out);
+    for (i = 0; i < sizeof out; i++) {
+        CHECK_EQ(out[i], i < 4u ? 0u : 0xA5u);
+    }
+}
+
 static void test_blocks(void)
 {
     static td_rom_t rom2;
@@ -1402,6 +1447,7 @@ int main(void)
     test_abort_text();
     test_init();
     test_verify();
+    test_group_defaults();
     test_blocks();
     test_find();
     test_reads();

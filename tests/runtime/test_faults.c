@@ -110,7 +110,7 @@ static void fill_random(uint8_t g)
     for (p = 0; p < td.n_subs; p++) {
         const odg_sub_t *s = &td.subs[p];
         if (s->storage == (uint8_t)(ODG_S_PERSIST | (unsigned)g << 2) && (s->attr & ODG_A_LIMIT)) {
-            memcpy(mirror(g) + s->offset, (const uint8_t *)td.groups[g].defaults + s->offset, s->size);
+            odg_group_defaults(&td.groups[g], s->offset, s->size, mirror(g) + s->offset);
         }
     }
 }

@@ -6,7 +6,10 @@
 #include <math.h>
 #include "alltypes.h"
 
-/* The runtime must serve what this dictionary uses (alltypes_config.h). */
+/* The runtime must be the one this file was generated for, and serve what it uses (alltypes_config.h). */
+#if ODG_TABLES != 2
+#error "alltypes.c was generated for another version of the odg runtime: regenerate it with the odgen that ships this runtime"
+#endif
 #if !ODG_CFG_INT64
 #error "alltypes uses types wider than 32 bits: build the runtime with ODG_CFG_INT64 1 (alltypes_config.h)"
 #endif
@@ -73,7 +76,25 @@ ODG_ATTR_ROM static const alltypes_ram_t alltypes_ram_defaults = {
 };
 
 ODG_ATTR_PERSIST_APP alltypes_persist_app_t alltypes_persist_app;
-ODG_ATTR_ROM static const alltypes_persist_app_t alltypes_persist_app_defaults = {
+
+/* The runs of alltypes_persist_app's defaults that are not all zero, one after the other; alltypes_persist_app_spread
+ * says where each run lies in the mirror (odg_group_defaults). */
+typedef struct {
+    double x2010_real64_value;
+    int64_t x2011_int40_value;
+    int64_t x2012_int48_value;
+    int64_t x2013_int56_value;
+    int64_t x2014_int64_value;
+    uint64_t x2016_uint40_value;
+    uint64_t x2017_uint48_value;
+    uint64_t x2018_uint56_value;
+    uint64_t x2019_uint64_value;
+    uint32_t x2015_uint24_value;
+    int32_t x2103_sparse_record_s4_fourth;
+    uint16_t x2103_sparse_record_s1_first;
+    uint8_t x2103_sparse_record_s0_highest_sub_index_supported;
+} alltypes_persist_app_defaults_t;
+ODG_ATTR_ROM static const alltypes_persist_app_defaults_t alltypes_persist_app_defaults = {
     .x2010_real64_value = -2.25,
     .x2011_int40_value = INT64_C(-549755813888),
     .x2012_int48_value = INT64_C(123456789012),
@@ -88,9 +109,30 @@ ODG_ATTR_ROM static const alltypes_persist_app_t alltypes_persist_app_defaults =
     .x2103_sparse_record_s1_first = 1,
     .x2103_sparse_record_s0_highest_sub_index_supported = 4,
 };
+ODG_ATTR_ROM static const uint16_t alltypes_persist_app_spread[4] = {
+    offsetof(alltypes_persist_app_t, x2010_real64_value), ODG_END(alltypes_persist_app_t, x2103_sparse_record_s0_highest_sub_index_supported),
+    0, 0};
+/* The runs' bytes lie one after the other in alltypes_persist_app_defaults, as odg_group_defaults reads them. */
+typedef char alltypes_persist_app_assert_runs[(ODG_END(alltypes_persist_app_defaults_t, x2103_sparse_record_s0_highest_sub_index_supported) == 0u
+    + (ODG_END(alltypes_persist_app_t, x2103_sparse_record_s0_highest_sub_index_supported) - offsetof(alltypes_persist_app_t, x2010_real64_value))
+    ) ? 1 : -1];
 
 ODG_ATTR_PERSIST_COMM alltypes_persist_comm_t alltypes_persist_comm;
-ODG_ATTR_ROM static const alltypes_persist_comm_t alltypes_persist_comm_defaults = {
+
+/* The runs of alltypes_persist_comm's defaults that are not all zero, one after the other; alltypes_persist_comm_spread
+ * says where each run lies in the mirror (odg_group_defaults). */
+typedef struct {
+    int32_t x2004_int32_value;
+    uint32_t x2007_uint32_value;
+    float x2008_real32_value;
+    uint16_t x1017_producer_heartbeat_time;
+    int16_t x2003_int16_value;
+    uint16_t x2006_uint16_value;
+    uint8_t x2001_bool_flag;
+    int8_t x2002_int8_value;
+    uint8_t x2005_uint8_value;
+} alltypes_persist_comm_defaults_t;
+ODG_ATTR_ROM static const alltypes_persist_comm_defaults_t alltypes_persist_comm_defaults = {
     .x2004_int32_value = INT32_C(-70000),
     .x2007_uint32_value = UINT32_C(0x180),
     .x2008_real32_value = 1.5f,
@@ -101,6 +143,13 @@ ODG_ATTR_ROM static const alltypes_persist_comm_t alltypes_persist_comm_defaults
     .x2002_int8_value = -5,
     .x2005_uint8_value = 7,
 };
+ODG_ATTR_ROM static const uint16_t alltypes_persist_comm_spread[4] = {
+    offsetof(alltypes_persist_comm_t, x2004_int32_value), ODG_END(alltypes_persist_comm_t, x2005_uint8_value),
+    0, 0};
+/* The runs' bytes lie one after the other in alltypes_persist_comm_defaults, as odg_group_defaults reads them. */
+typedef char alltypes_persist_comm_assert_runs[(ODG_END(alltypes_persist_comm_defaults_t, x2005_uint8_value) == 0u
+    + (ODG_END(alltypes_persist_comm_t, x2005_uint8_value) - offsetof(alltypes_persist_comm_t, x2004_int32_value))
+    ) ? 1 : -1];
 
 ODG_ATTR_ROM static const odg_domain_t alltypes_domains[1] = {
     {.data = alltypes_ram.x200E_domain_value_buf, .length = &alltypes_ram.x200E_domain_value_len, .capacity = 16u}, /* x200E_domain_value */
@@ -221,10 +270,10 @@ ODG_ATTR_RAM static odg_hook_slot_t alltypes_hook_slots[4] = {
 typedef char alltypes_assert_nv_align[(ALLTYPES_NV_APP_REGION / 2u % ODG_PERSIST_ALIGN == 0u && ALLTYPES_NV_COMM_REGION / 2u % ODG_PERSIST_ALIGN == 0u && 1) ? 1 : -1];
 
 ODG_ATTR_ROM static const odg_group_t alltypes_groups[2] = {
-    {.mirror = &alltypes_persist_app, .defaults = &alltypes_persist_app_defaults, .size = sizeof(alltypes_persist_app_t),
+    {.mirror = &alltypes_persist_app, .defaults = &alltypes_persist_app_defaults, .spread = alltypes_persist_app_spread, .size = sizeof(alltypes_persist_app_t),
      .signature = 0x528A6BFCu, .nv_addr = ALLTYPES_NV_BASE + ALLTYPES_NV_APP_OFFSET, .store_sub = 3,
      .n_layout = 13u, .region = ALLTYPES_NV_APP_REGION, .id = 0xC96E70CFu},
-    {.mirror = &alltypes_persist_comm, .defaults = &alltypes_persist_comm_defaults, .size = sizeof(alltypes_persist_comm_t),
+    {.mirror = &alltypes_persist_comm, .defaults = &alltypes_persist_comm_defaults, .spread = alltypes_persist_comm_spread, .size = sizeof(alltypes_persist_comm_t),
      .signature = 0xB2AD448Bu, .nv_addr = ALLTYPES_NV_BASE + ALLTYPES_NV_COMM_OFFSET, .store_sub = 2,
      .n_layout = 9u, .region = ALLTYPES_NV_COMM_REGION, .id = 0xA80C03E3u},
 };
@@ -245,11 +294,10 @@ ODG_ATTR_ROM static const uint8_t alltypes_hash_disp[16] = {
 
 static void alltypes_reset(const odg_dict_t *dict)
 {
+    odg_group_defaults(&alltypes_groups[0], 0, (uint32_t)sizeof alltypes_persist_app, &alltypes_persist_app);
+    odg_group_defaults(&alltypes_groups[1], 0, (uint32_t)sizeof alltypes_persist_comm, &alltypes_persist_comm);
     odg_copy(&alltypes_ram, &alltypes_ram_defaults, (uint32_t)sizeof alltypes_ram);
-    odg_copy(&alltypes_persist_app, &alltypes_persist_app_defaults, (uint32_t)sizeof alltypes_persist_app);
-    odg_copy(&alltypes_persist_comm, &alltypes_persist_comm_defaults, (uint32_t)sizeof alltypes_persist_comm);
-    alltypes_persist_comm.x2007_uint32_value = (uint32_t)(alltypes_persist_comm.x2007_uint32_value + dict->state->node_id);
-    (void)dict;
+    (void)dict; /* odg_init adds the node-id to $NODEID values after this */
 }
 
 ODG_ATTR_ROM const odg_dict_t alltypes = {

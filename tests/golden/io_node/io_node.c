@@ -6,7 +6,10 @@
 #include <math.h>
 #include "io_node.h"
 
-/* The runtime must serve what this dictionary uses (io_node_config.h). */
+/* The runtime must be the one this file was generated for, and serve what it uses (io_node_config.h). */
+#if ODG_TABLES != 2
+#error "io_node.c was generated for another version of the odg runtime: regenerate it with the odgen that ships this runtime"
+#endif
 #if !ODG_CFG_LIMITS
 #error "io_node uses limits on integers: build the runtime with ODG_CFG_LIMITS 1 (io_node_config.h)"
 #endif
@@ -134,11 +137,7 @@ ODG_ATTR_ROM static const uint8_t io_node_hash_disp[8] = {
 static void io_node_reset(const odg_dict_t *dict)
 {
     odg_copy(&io_node_ram, &io_node_ram_defaults, (uint32_t)sizeof io_node_ram);
-    io_node_ram.x1200_sdo_server_parameter_s1_cob_id_client_to_server_rx = (uint32_t)(io_node_ram.x1200_sdo_server_parameter_s1_cob_id_client_to_server_rx + dict->state->node_id);
-    io_node_ram.x1200_sdo_server_parameter_s2_cob_id_server_to_client_tx = (uint32_t)(io_node_ram.x1200_sdo_server_parameter_s2_cob_id_server_to_client_tx + dict->state->node_id);
-    io_node_ram.x1400_rpdo_communication_parameter_s1_cob_id_used_by_rpdo = (uint32_t)(io_node_ram.x1400_rpdo_communication_parameter_s1_cob_id_used_by_rpdo + dict->state->node_id);
-    io_node_ram.x1800_tpdo_communication_parameter_s1_cob_id_used_by_tpdo = (uint32_t)(io_node_ram.x1800_tpdo_communication_parameter_s1_cob_id_used_by_tpdo + dict->state->node_id);
-    (void)dict;
+    (void)dict; /* odg_init adds the node-id to $NODEID values after this */
 }
 
 ODG_ATTR_ROM const odg_dict_t io_node = {

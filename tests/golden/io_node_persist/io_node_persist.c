@@ -6,7 +6,10 @@
 #include <math.h>
 #include "io_node_persist.h"
 
-/* The runtime must serve what this dictionary uses (io_node_persist_config.h). */
+/* The runtime must be the one this file was generated for, and serve what it uses (io_node_persist_config.h). */
+#if ODG_TABLES != 2
+#error "io_node_persist.c was generated for another version of the odg runtime: regenerate it with the odgen that ships this runtime"
+#endif
 #if !ODG_CFG_HOOKS
 #error "io_node_persist uses hooks: build the runtime with ODG_CFG_HOOKS 1 (io_node_persist_config.h)"
 #endif
@@ -56,12 +59,44 @@ ODG_ATTR_ROM static const io_node_persist_ram_t io_node_persist_ram_defaults = {
 };
 
 ODG_ATTR_PERSIST_APP io_node_persist_persist_app_t io_node_persist_persist_app;
-ODG_ATTR_ROM static const io_node_persist_persist_app_t io_node_persist_persist_app_defaults = {
+
+/* The runs of io_node_persist_persist_app's defaults that are not all zero, one after the other; io_node_persist_persist_app_spread
+ * says where each run lies in the mirror (odg_group_defaults). */
+typedef struct {
+    uint16_t x2000_debounce_time_ms;
+} io_node_persist_persist_app_defaults_t;
+ODG_ATTR_ROM static const io_node_persist_persist_app_defaults_t io_node_persist_persist_app_defaults = {
     .x2000_debounce_time_ms = 10,
 };
+ODG_ATTR_ROM static const uint16_t io_node_persist_persist_app_spread[4] = {
+    offsetof(io_node_persist_persist_app_t, x2000_debounce_time_ms), ODG_END(io_node_persist_persist_app_t, x2000_debounce_time_ms),
+    0, 0};
+/* The runs' bytes lie one after the other in io_node_persist_persist_app_defaults, as odg_group_defaults reads them. */
+typedef char io_node_persist_persist_app_assert_runs[(ODG_END(io_node_persist_persist_app_defaults_t, x2000_debounce_time_ms) == 0u
+    + (ODG_END(io_node_persist_persist_app_t, x2000_debounce_time_ms) - offsetof(io_node_persist_persist_app_t, x2000_debounce_time_ms))
+    ) ? 1 : -1];
 
 ODG_ATTR_PERSIST_COMM io_node_persist_persist_comm_t io_node_persist_persist_comm;
-ODG_ATTR_ROM static const io_node_persist_persist_comm_t io_node_persist_persist_comm_defaults = {
+
+/* The runs of io_node_persist_persist_comm's defaults that are not all zero, one after the other; io_node_persist_persist_comm_spread
+ * says where each run lies in the mirror (odg_group_defaults). */
+typedef struct {
+    uint32_t x1400_rpdo_communication_parameter_s1_cob_id_used_by_rpdo;
+    uint32_t x1600_rpdo_mapping_parameter_s1_application_object_1;
+    uint32_t x1800_tpdo_communication_parameter_s1_cob_id_used_by_tpdo;
+    uint32_t x1A00_tpdo_mapping_parameter_s1_application_object_1;
+    uint16_t x1017_producer_heartbeat_time;
+    uint16_t x1800_tpdo_communication_parameter_s3_inhibit_time;
+    uint16_t x1800_tpdo_communication_parameter_s5_event_timer;
+    uint8_t x1400_rpdo_communication_parameter_s0_highest_sub_index_supported;
+    uint8_t x1400_rpdo_communication_parameter_s2_transmission_type;
+    uint8_t x1600_rpdo_mapping_parameter_s0_number_of_mapped_application_objects_in_pdo;
+    uint8_t x1800_tpdo_communication_parameter_s0_highest_sub_index_supported;
+    uint8_t x1800_tpdo_communication_parameter_s2_transmission_type;
+    uint8_t x1800_tpdo_communication_parameter_s6_sync_start_value;
+    uint8_t x1A00_tpdo_mapping_parameter_s0_number_of_mapped_application_objects_in_pdo;
+} io_node_persist_persist_comm_defaults_t;
+ODG_ATTR_ROM static const io_node_persist_persist_comm_defaults_t io_node_persist_persist_comm_defaults = {
     .x1400_rpdo_communication_parameter_s1_cob_id_used_by_rpdo = UINT32_C(0x200),
     .x1600_rpdo_mapping_parameter_s1_application_object_1 = UINT32_C(0x62000108),
     .x1800_tpdo_communication_parameter_s1_cob_id_used_by_tpdo = UINT32_C(0x180),
@@ -77,6 +112,13 @@ ODG_ATTR_ROM static const io_node_persist_persist_comm_t io_node_persist_persist
     .x1800_tpdo_communication_parameter_s6_sync_start_value = 0,
     .x1A00_tpdo_mapping_parameter_s0_number_of_mapped_application_objects_in_pdo = 1,
 };
+ODG_ATTR_ROM static const uint16_t io_node_persist_persist_comm_spread[4] = {
+    offsetof(io_node_persist_persist_comm_t, x1400_rpdo_communication_parameter_s1_cob_id_used_by_rpdo), ODG_END(io_node_persist_persist_comm_t, x1A00_tpdo_mapping_parameter_s0_number_of_mapped_application_objects_in_pdo),
+    0, 0};
+/* The runs' bytes lie one after the other in io_node_persist_persist_comm_defaults, as odg_group_defaults reads them. */
+typedef char io_node_persist_persist_comm_assert_runs[(ODG_END(io_node_persist_persist_comm_defaults_t, x1A00_tpdo_mapping_parameter_s0_number_of_mapped_application_objects_in_pdo) == 0u
+    + (ODG_END(io_node_persist_persist_comm_t, x1A00_tpdo_mapping_parameter_s0_number_of_mapped_application_objects_in_pdo) - offsetof(io_node_persist_persist_comm_t, x1400_rpdo_communication_parameter_s1_cob_id_used_by_rpdo))
+    ) ? 1 : -1];
 
 
 /* Offsets into a value block are 16-bit. */
@@ -153,10 +195,10 @@ ODG_ATTR_RAM static odg_hook_slot_t io_node_persist_hook_slots[2] = {
 typedef char io_node_persist_assert_nv_align[(IO_NODE_PERSIST_NV_APP_REGION / 2u % ODG_PERSIST_ALIGN == 0u && IO_NODE_PERSIST_NV_COMM_REGION / 2u % ODG_PERSIST_ALIGN == 0u && 1) ? 1 : -1];
 
 ODG_ATTR_ROM static const odg_group_t io_node_persist_groups[2] = {
-    {.mirror = &io_node_persist_persist_app, .defaults = &io_node_persist_persist_app_defaults, .size = sizeof(io_node_persist_persist_app_t),
+    {.mirror = &io_node_persist_persist_app, .defaults = &io_node_persist_persist_app_defaults, .spread = io_node_persist_persist_app_spread, .size = sizeof(io_node_persist_persist_app_t),
      .signature = 0x3B56BF5Fu, .nv_addr = IO_NODE_PERSIST_NV_BASE + IO_NODE_PERSIST_NV_APP_OFFSET, .store_sub = 1,
      .n_layout = 1u, .region = IO_NODE_PERSIST_NV_APP_REGION, .id = 0xC96E70CFu},
-    {.mirror = &io_node_persist_persist_comm, .defaults = &io_node_persist_persist_comm_defaults, .size = sizeof(io_node_persist_persist_comm_t),
+    {.mirror = &io_node_persist_persist_comm, .defaults = &io_node_persist_persist_comm_defaults, .spread = io_node_persist_persist_comm_spread, .size = sizeof(io_node_persist_persist_comm_t),
      .signature = 0x6338B07Au, .nv_addr = IO_NODE_PERSIST_NV_BASE + IO_NODE_PERSIST_NV_COMM_OFFSET, .store_sub = 1,
      .n_layout = 14u, .region = IO_NODE_PERSIST_NV_COMM_REGION, .id = 0xA80C03E3u},
 };
@@ -175,14 +217,10 @@ ODG_ATTR_ROM static const uint8_t io_node_persist_hash_disp[8] = {
 
 static void io_node_persist_reset(const odg_dict_t *dict)
 {
+    odg_group_defaults(&io_node_persist_groups[0], 0, (uint32_t)sizeof io_node_persist_persist_app, &io_node_persist_persist_app);
+    odg_group_defaults(&io_node_persist_groups[1], 0, (uint32_t)sizeof io_node_persist_persist_comm, &io_node_persist_persist_comm);
     odg_copy(&io_node_persist_ram, &io_node_persist_ram_defaults, (uint32_t)sizeof io_node_persist_ram);
-    odg_copy(&io_node_persist_persist_app, &io_node_persist_persist_app_defaults, (uint32_t)sizeof io_node_persist_persist_app);
-    odg_copy(&io_node_persist_persist_comm, &io_node_persist_persist_comm_defaults, (uint32_t)sizeof io_node_persist_persist_comm);
-    io_node_persist_ram.x1200_sdo_server_parameter_s1_cob_id_client_to_server_rx = (uint32_t)(io_node_persist_ram.x1200_sdo_server_parameter_s1_cob_id_client_to_server_rx + dict->state->node_id);
-    io_node_persist_ram.x1200_sdo_server_parameter_s2_cob_id_server_to_client_tx = (uint32_t)(io_node_persist_ram.x1200_sdo_server_parameter_s2_cob_id_server_to_client_tx + dict->state->node_id);
-    io_node_persist_persist_comm.x1400_rpdo_communication_parameter_s1_cob_id_used_by_rpdo = (uint32_t)(io_node_persist_persist_comm.x1400_rpdo_communication_parameter_s1_cob_id_used_by_rpdo + dict->state->node_id);
-    io_node_persist_persist_comm.x1800_tpdo_communication_parameter_s1_cob_id_used_by_tpdo = (uint32_t)(io_node_persist_persist_comm.x1800_tpdo_communication_parameter_s1_cob_id_used_by_tpdo + dict->state->node_id);
-    (void)dict;
+    (void)dict; /* odg_init adds the node-id to $NODEID values after this */
 }
 
 ODG_ATTR_ROM const odg_dict_t io_node_persist = {

@@ -6,7 +6,10 @@
 #include <math.h>
 #include "plain_bsearch.h"
 
-/* The runtime must serve what this dictionary uses (plain_bsearch_config.h). */
+/* The runtime must be the one this file was generated for, and serve what it uses (plain_bsearch_config.h). */
+#if ODG_TABLES != 2
+#error "plain_bsearch.c was generated for another version of the odg runtime: regenerate it with the odgen that ships this runtime"
+#endif
 #if !ODG_CFG_UNHASHED
 #error "plain_bsearch uses lookup by generated find or binary search: build the runtime with ODG_CFG_UNHASHED 1 (plain_bsearch_config.h)"
 #endif
@@ -50,7 +53,7 @@ ODG_ATTR_RAM static odg_state_t plain_bsearch_state;
 static void plain_bsearch_reset(const odg_dict_t *dict)
 {
     odg_copy(&plain_bsearch_ram, &plain_bsearch_ram_defaults, (uint32_t)sizeof plain_bsearch_ram);
-    (void)dict;
+    (void)dict; /* odg_init adds the node-id to $NODEID values after this */
 }
 
 ODG_ATTR_ROM const odg_dict_t plain_bsearch = {
