@@ -231,17 +231,17 @@ static uint32_t named(const odg_group_t *gr, const uint8_t *a)
     return odg_get32_(a) == DESCRIBED_MAGIC && our_id(gr, odg_get32_(a + 8)) ? odg_get32_(a + 12) / 2u : 0u;
 }
 
-/* The newest image of group `gr` at its places inside the dictionary's NV (up to `end`,
+/* The newest image of group `gr` of `d` at its places inside the dictionary's NV (up to its
  * NAME_NV_SIZE) and the place slot A's header names past it (the slot B of a larger region a
  * later firmware used): 1 valid, 2 a header of ours whose image cannot be read (described_read
  * -2), 0 none, -1 the driver failed inside the region (a failing read past it means no NV
  * there); its address in *at (nv_addr when none) and its header in h. With `wipe`, the valid
  * images past the region other than at `keep` are erased on the way (-1 when that fails). */
-static int walk(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t end, uint32_t *at, uint8_t *h,
-                int wipe, uint32_t keep)
+static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t *at,
+                uint8_t *h, int wipe, uint32_t keep)
 {
     uint8_t t[DESCRIBED_HDR];
-    uint32_t half = 0u, addr, far = 0u; /* far: the place slot A names */
+    uint32_t half = 0u, addr, end = odg_persist_nv_size(d), far = 0u; /* far: the place slot A names */
     int v, k = 0;
     *at = gr->nv_addr;
     do {
@@ -271,9 +271,10 @@ static int walk(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t end, 
     return k;
 }
 
-static int newest(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t end, uint32_t *at, uint8_t *h)
+static int newest(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t *at,
+                  uint8_t *h)
 {
-    return walk(nv, gr, end, at, h, 0, 0u);
+    return walk(d, nv, gr, at, h, 0, 0u);
 }
 
 /* Image bytes on their way to NV, CRC-32 on the fly. */
@@ -353,7 +354,7 @@ odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv,
     const odg_sub_t *s;
     recs_t r;
     out_t o;
-    int k = newest(nv, gr, odg_persist_nv_size(d), &at, t);
+    int k = newest(d, nv, gr, &at, t);
     if (k < 0) {
         return ODG_ABORT_HARDWARE;
     }
@@ -402,8 +403,8 @@ odg_abort_t odg_described_erase_(const odg_dict_t *d, const odg_nv_driver_t *nv,
 {
     const odg_group_t *gr = &d->groups[g];
     uint8_t h[DESCRIBED_HDR];
-    uint32_t end = gr->nv_addr + gr->region, at, x, e = 0u, lo = end, hi = end, nv_end = odg_persist_nv_size(d);
-    int k = newest(nv, gr, nv_end, &at, h), fail = k < 0;
+    uint32_t end = gr->nv_addr + gr->region, at, x, e = 0u, lo = end, hi = end;
+    int k = newest(d, nv, gr, &at, h), fail = k < 0;
     if (k > 0) {
         e = at + extent(h);
         e = k == 2 && at < end && e > end ? end : e; /* one that cannot be read: its header */
@@ -412,7 +413,7 @@ odg_abort_t odg_described_erase_(const odg_dict_t *d, const odg_nv_driver_t *nv,
             hi = e > end ? end : e;
         }
     }
-    fail = fail || walk(nv, gr, nv_end, &x, h, 1, at) < 0;
+    fail = fail || walk(d, nv, gr, &x, h, 1, at) < 0;
     fail = fail || odg_wipe_(nv, gr->nv_addr, lo) || odg_wipe_(nv, hi, end) || (k > 0 && odg_wipe_(nv, at, e));
     return fail ? ODG_ABORT_HARDWARE : ODG_OK;
 }
@@ -711,7 +712,7 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
     uint16_t n[5] = {0, 0, 0, 0, 0}; /* entries KEPT, DEFAULTED, DROPPED, CONVERTED, ADDED */
     uint32_t at;
     odg_boot_status_t st = ODG_BOOT_NV_ERROR;
-    int k = newest(nv, gr, odg_persist_nv_size(d), &at, h);
+    int k = newest(d, nv, gr, &at, h);
     odg_defaults_(d, g); /* the mirror starts from the defaults (RAM only: no NV access) */
     if (k == 1) {
         if (migrate(d, nv, g, at, n) == 0 && reads_back(nv, gr, at, h)) {
@@ -740,7 +741,7 @@ int odg_described_displaced_(const odg_dict_t *d, const odg_nv_driver_t *nv, uin
     const odg_group_t *gr = &d->groups[g];
     uint8_t h[DESCRIBED_HDR];
     uint32_t at;
-    return ODG_MIGRATES_(gr) && newest(nv, gr, odg_persist_nv_size(d), &at, h) == 1 && at - gr->nv_addr >= gr->region;
+    return ODG_MIGRATES_(gr) && newest(d, nv, gr, &at, h) == 1 && at - gr->nv_addr >= gr->region;
 }
 
 #else
