@@ -462,13 +462,6 @@ static int scrub(const odg_nv_driver_t *nv, const odg_group_t *gr)
  * in the group (the default, no loss). */
 enum { KEPT = 0, DEFAULTED = 1, DROPPED = 2, CONVERTED = 3, ADDED = 4, FAILED = -1 };
 
-/* UNSIGNEDn -> UNSIGNEDm, INTEGERn -> INTEGERm, UNSIGNEDn -> INTEGERm with m > n. */
-static int widens(uint8_t from, uint8_t to)
-{
-    unsigned a = num_of(from), b = num_of(to);
-    return (a & b & NUM_INT) && (b & 0xFu) > (a & 0xFu) && (!(a & NUM_SIGNED) || (b & NUM_SIGNED));
-}
-
 /* A string (unit 1, or 2 for UNICODE_STRING): what fits, up to its terminator; converted when
  * the stored content went on past the new capacity. */
 static int read_string(const odg_nv_driver_t *nv, const odg_sub_t *s, uint8_t *p, uint32_t sl,
@@ -540,8 +533,11 @@ static int read_stream(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg
  * Else it is narrowed, retyped, or of a length that does not fit its type: defaulted. */
 static int carried(const odg_sub_t *s, const uint8_t *st)
 {
-    uint32_t sl = get16(st + 4);
-    return (s->type == st[3] || widens(st[3], s->type)) && sl != 0u && sl == (num_of(st[3]) & 0xFu);
+    unsigned a = num_of(st[3]), b = num_of(s->type), sl = get16(st + 4);
+    /* a widened integer: UNSIGNEDn -> UNSIGNEDm, INTEGERn -> INTEGERm, UNSIGNEDn -> INTEGERm
+     * with m > n */
+    int widens = (a & b & NUM_INT) && (b & 0xFu) > (a & 0xFu) && !(a & ~b & NUM_SIGNED);
+    return (s->type == st[3] || widens) && sl != 0u && sl == (a & 0xFu);
 }
 
 /* Read the firmware's sub-entry `s` (at `pos` in dict->subs) from the stored entry `st`, whose
