@@ -49,7 +49,7 @@ static unsigned num_of(uint8_t t)
                (ODG_CFG_UNICODE ? BIT(ODG_T_UNICODE_STRING) : 0u) |                      \
                (ODG_CFG_DOMAINS ? BIT(ODG_T_DOMAIN) : 0u)                                \
          : 0u)
-#define IS(t, type) ((type_bit(t) & STREAMS & BIT(type)) != 0u)
+#define IS(t, type) ((STREAMS & BIT(type)) != 0u && (t) == (type))
 
 OUTLINE static uint32_t type_bit(uint8_t t)
 {
@@ -467,7 +467,7 @@ enum { KEPT = 0, DEFAULTED = 1, DROPPED = 2, CONVERTED = 3, ADDED = 4, FAILED = 
 static int read_string(const odg_nv_driver_t *nv, const odg_sub_t *s, uint8_t *p, uint32_t sl,
                        uint32_t addr)
 {
-    uint32_t unit = s->type == ODG_T_UNICODE_STRING ? 2u : 1u, fl = s->size, i;
+    uint32_t unit = IS(s->type, ODG_T_UNICODE_STRING) ? 2u : 1u, fl = s->size, i;
     uint8_t c[2] = {0, 0};
     uint16_t u;
     memset(p, 0, fl - fl % unit + unit);
