@@ -422,7 +422,8 @@ odg_abort_t odg_described_erase_(const odg_dict_t *d, const odg_nv_driver_t *nv,
         }
     }
     fail = fail || walk(d, nv, gr, &x, h, 1, at) < 0;
-    fail = fail || odg_wipe_(nv, gr->nv_addr, lo) || odg_wipe_(nv, hi, end) || (k > 0 && odg_wipe_(nv, at, e));
+    /* the newest last (none: e is 0, nothing to erase) */
+    fail = fail || odg_wipe_(nv, gr->nv_addr, lo) || odg_wipe_(nv, hi, end) || odg_wipe_(nv, at, e);
     return fail ? ODG_ABORT_HARDWARE : ODG_OK;
 }
 
