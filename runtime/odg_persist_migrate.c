@@ -164,7 +164,7 @@ OUTLINE static int our_id(const odg_group_t *gr, uint32_t id)
 
 /* Read and check the "ODG2" slot at `addr` (header into `h`) as an image of group `gr`: its id,
  * and at slot A or at the middle of the region it names. A valid image has a descriptor of
- * records with increasing keys whose values fill it. 1 valid, 0 not, -1 the driver failed, -2
+ * records with increasing keys whose values fill it. 1 valid, 0 not, -1 the driver failed, 2
  * a header of ours whose image runs past the region and cannot be read there: an image of a
  * larger region on an NV that ends before it, which is a loss, never "nothing there". */
 static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t addr, uint8_t *h)
@@ -181,7 +181,7 @@ static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint
     }
     v = odg_crc_ok_(nv, addr, h, DESCRIBED_HDR, len, NULL);
     if (v < 0 && addr + DESCRIBED_HDR + len > gr->nv_addr + gr->region) {
-        return -2;
+        return 2;
     }
     if (v != 1 || nv->read(nv->ctx, addr + DESCRIBED_HDR, c, 2) != 0) {
         return v == 0 ? 0 : -1;
@@ -242,7 +242,7 @@ static uint32_t named(const odg_group_t *gr, const uint8_t *a)
 /* The newest image of group `gr` of `d` at its places inside the dictionary's NV (up to its
  * NAME_NV_SIZE) and the place slot A's header names past it (the slot B of a larger region a
  * later firmware used): 1 valid, 2 a header of ours whose image cannot be read (described_read
- * -2), 0 none, -1 the driver failed inside the region (a failing read past it means no NV
+ * says 2), 0 none, -1 the driver failed inside the region (a failing read past it means no NV
  * there); its address in *at (nv_addr when none) and its header in h. With `wipe`, the valid
  * images past the region other than at `keep` are erased on the way (-1 when that fails). */
 static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t *at,
@@ -264,14 +264,14 @@ static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_
         if (half == 0u) {
             far = named(gr, t);
         }
-        if (v != 1 && v != -2) {
+        if (v <= 0) {
             continue;
         }
         if (wipe && v == 1 && half >= gr->region && addr != keep && odg_wipe_(nv, addr, addr + extent(t))) {
             return -1;
         }
         if (!k || odg_newer_(odg_get32_(t + 4), odg_get32_(h + 4))) {
-            k = v == 1 ? 1 : 2;
+            k = v;
             *at = addr;
             odg_copy(h, t, DESCRIBED_HDR);
         }
@@ -445,7 +445,7 @@ static int scrub(const odg_nv_driver_t *nv, const odg_group_t *gr)
         if (v == -1) {
             return -1;
         }
-        if (v == 1 || v == -2) {
+        if (v > 0) {
             if (odg_clear_(nv, pos, addr)) {
                 return -1;
             }
