@@ -472,7 +472,7 @@ static int read_string(const odg_nv_driver_t *nv, const odg_sub_t *s, uint8_t *p
     uint8_t c[2] = {0, 0};
     uint16_t u;
     memset(p, 0, fl - fl % unit + unit);
-    for (i = 0; i + unit <= fl && i + unit <= sl; i += unit) {
+    for (i = 0; i + unit <= sl; i += unit) {
         if (nv->read(nv->ctx, addr + i, c, unit) != 0) {
             return FAILED;
         }
@@ -480,19 +480,16 @@ static int read_string(const odg_nv_driver_t *nv, const odg_sub_t *s, uint8_t *p
         if (u == 0u) {
             return KEPT;
         }
+        if (i + unit > fl) {
+            return CONVERTED; /* a character past the new capacity */
+        }
         if (unit == 2u) {
             memcpy(p + i, &u, 2);
         } else {
             p[i] = c[0];
         }
     }
-    if (i + unit > sl) {
-        return KEPT;
-    }
-    if (nv->read(nv->ctx, addr + i, c, unit) != 0) {
-        return FAILED;
-    }
-    return c[0] != 0u || c[1] != 0u ? CONVERTED : KEPT;
+    return KEPT;
 }
 
 /* A string or domain of the same type: keep what fits (resized). An OCTET_STRING and a domain
