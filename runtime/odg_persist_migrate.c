@@ -305,8 +305,9 @@ static void flush(out_t *o)
     o->n = 0;
 }
 
-/* The `n` low bytes of `v`, little endian. */
-static void emit(out_t *o, odg_num_t v, uint32_t n)
+/* The `n` low bytes of `v`, little endian (`n` first: no argument on the stack when `v` has 64
+ * bits). */
+static void emit(out_t *o, uint32_t n, odg_num_t v)
 {
     while (n-- > 0u) {
         o->buf[o->n++] = (uint8_t)v;
@@ -328,24 +329,24 @@ static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
         keep = *dm->length;
         keep = keep < n ? keep : n;
         keep = keep < dm->capacity ? keep : dm->capacity;
-        emit(o, keep, 4);
+        emit(o, 4, keep);
         p = dm->data;
     } else {
         p = odg_value_(d, s);
     }
     if (!(type_bit(s->type) & STREAMS)) {
-        emit(o, odg_num_get_(p, n), n);
+        emit(o, n, odg_num_get_(p, n));
     } else if (IS(s->type, ODG_T_UNICODE_STRING)) {
         for (i = 0; i < n; i += 2u) {
             uint16_t u;
             memcpy(&u, p + i, 2);
             zero |= u == 0u;
-            emit(o, zero ? 0u : u, n - i < 2u ? 1u : 2u);
+            emit(o, n - i < 2u ? 1u : 2u, zero ? 0u : u);
         }
     } else {
         for (i = 0; i < n; i++) {
             zero |= i >= keep || (s->type == ODG_T_VISIBLE_STRING && p[i] == 0u);
-            emit(o, zero ? 0u : p[i], 1);
+            emit(o, 1, zero ? 0u : p[i]);
         }
     }
 }
@@ -386,10 +387,10 @@ odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv,
     o.crc = odg_crc32(0, h, 20);
     o.n = 0;
     o.fail = nv->erase(nv->ctx, addr, half) != 0;
-    emit(&o, gr->n_layout, 2);
+    emit(&o, 2, gr->n_layout);
     for (recs_start(&r, d, g); (s = recs_next(&r)) != NULL;) { /* the layout descriptor */
-        emit(&o, r.key >> 8 | (uint32_t)s->sub << 16 | (uint32_t)s->type << 24, 4);
-        emit(&o, s->size, 2);
+        emit(&o, 4, r.key >> 8 | (uint32_t)s->sub << 16 | (uint32_t)s->type << 24);
+        emit(&o, 2, s->size);
     }
     for (recs_start(&r, d, g); (s = recs_next(&r)) != NULL;) {
         emit_value(&o, d, s);
