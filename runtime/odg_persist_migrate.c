@@ -51,9 +51,11 @@ static unsigned num_of(uint8_t t)
          : 0u)
 #define IS(t, type) ((STREAMS & BIT(type)) != 0u && (t) == (type))
 
-OUTLINE static uint32_t type_bit(uint8_t t)
+/* Whether `t` is a string or domain this build serves (STREAMS): never in a build without. */
+#define STREAMED(t) (STREAMS != 0u && streamed(t))
+OUTLINE static int streamed(uint8_t t)
 {
-    return t < 0x1Cu ? BIT(t) : 0u;
+    return t < 0x1Cu && (BIT(t) & STREAMS) != 0u;
 }
 
 static uint16_t get16(const uint8_t *p)
@@ -334,7 +336,7 @@ static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
     } else {
         p = odg_value_(d, s);
     }
-    if (!(type_bit(s->type) & STREAMS)) {
+    if (!STREAMED(s->type)) {
         emit(o, n, odg_num_get_(p, n));
     } else if (IS(s->type, ODG_T_UNICODE_STRING)) {
         for (i = 0; i < n; i += 2u) {
@@ -548,7 +550,7 @@ static int read_value(const odg_dict_t *d, const odg_nv_driver_t *nv, uint32_t p
     uint32_t sl = get16(st + 4), i;
     uint8_t c[8];
     odg_num_t v;
-    if (s->type == st[3] && (type_bit(s->type) & STREAMS)) {
+    if (s->type == st[3] && STREAMED(s->type)) {
         return read_stream(d, nv, s, sl, addr);
     }
     /* a number of a type this build serves: no wider than odg_num_t (ODG_CFG_INT64) */
@@ -592,7 +594,7 @@ static long stored_highest(const odg_nv_driver_t *nv, uint32_t ra, uint32_t rend
  * narrowed or retyped is defaulted, one resized is resized (migration.py: plan). */
 static int follows(const odg_sub_t *s, const uint8_t *st)
 {
-    if (s->type == st[3] && (type_bit(s->type) & STREAMS)) {
+    if (s->type == st[3] && STREAMED(s->type)) {
         return get16(st + 4) == s->size;
     }
     return carried(s, st);
