@@ -80,7 +80,6 @@ OUTLINE static uint32_t value_size(const uint8_t *rec)
 typedef struct recs {
     const odg_dict_t *d;
     const odg_entry_t *e; /* the entry of the current sub-entry */
-    uint32_t key;         /* its index << 8 | sub */
     uint16_t pos;         /* position in dict->subs after its descriptor */
     uint16_t left;        /* records still to come */
     uint8_t storage;      /* ODG_S_PERSIST | group << 2 */
@@ -125,7 +124,6 @@ static const odg_sub_t *recs_next(recs_t *r)
             break;
         }
         r->left--;
-        r->key = (uint32_t)r->e->index << 8 | s->sub;
         return s;
     }
     return NULL;
@@ -391,7 +389,7 @@ odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv,
     o.fail = nv->erase(nv->ctx, addr, half) != 0;
     emit(&o, 2, gr->n_layout);
     for (recs_start(&r, d, g); (s = recs_next(&r)) != NULL;) { /* the layout descriptor */
-        emit(&o, 4, r.key >> 8 | (uint32_t)s->sub << 16 | (uint32_t)s->type << 24);
+        emit(&o, 4, r.e->index | (uint32_t)s->sub << 16 | (uint32_t)s->type << 24);
         emit(&o, 2, s->size);
     }
     for (recs_start(&r, d, g); (s = recs_next(&r)) != NULL;) {
@@ -621,7 +619,7 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
                    uint16_t n[5])
 {
     uint8_t st[REC];
-    uint32_t ra = at + DESCRIBED_HDR + 2u, rend, vo, key; /* ra: the next record's address */
+    uint32_t ra = at + DESCRIBED_HDR + 2u, rend, vo, key, fkey; /* ra: the next record's address */
     const odg_sub_t *s;
     recs_t fw;
     long high;
@@ -633,18 +631,19 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
     vo = rend;
     for (recs_start(&fw, d, g); (s = recs_next(&fw)) != NULL;) {
         r = ADDED;
+        fkey = (uint32_t)fw.e->index << 8 | s->sub; /* the firmware record's key */
         while (ra != rend) { /* stored entries before this key are no longer in the group */
             if (!have && nv->read(nv->ctx, ra, st, REC) != 0) {
                 return -1;
             }
             have = 1;
             key = rec_key(st);
-            if (key > fw.key) {
+            if (key > fkey) {
                 break; /* not stored: the default */
             }
-            if (key < fw.key) {
+            if (key < fkey) {
                 n[DROPPED]++;
-            } else if ((fw.key & 0xFFu) == 0u && follows(s, st) &&
+            } else if ((fkey & 0xFFu) == 0u && follows(s, st) &&
                        (high = stored_highest(nv, ra + REC, rend, fw.e->index)) !=
                            (long)fw_highest(d, fw.e)) {
                 if (high < 0) {
@@ -657,7 +656,7 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
             vo += value_size(st);
             ra += REC;
             have = 0;
-            if (key == fw.key) {
+            if (key == fkey) {
                 break;
             }
         }
