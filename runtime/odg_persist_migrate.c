@@ -291,14 +291,14 @@ typedef struct out {
     uint32_t addr; /* where buf goes */
     uint32_t crc;
     uint32_t n;    /* bytes in buf */
-    int fail;
+    int fail;      /* not 0 once the driver failed */
     uint8_t buf[ODG_PERSIST_CHUNK_];
 } out_t;
 
 static void flush(out_t *o)
 {
     if (o->n > 0u && !o->fail) {
-        o->fail = o->nv->write(o->nv->ctx, o->addr, o->buf, o->n) != 0;
+        o->fail = o->nv->write(o->nv->ctx, o->addr, o->buf, o->n);
         o->crc = odg_crc32(o->crc, o->buf, o->n);
         o->addr += o->n;
     }
@@ -386,7 +386,7 @@ odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv,
     o.addr = addr + DESCRIBED_HDR;
     o.crc = odg_crc32(0, h, 20);
     o.n = 0;
-    o.fail = nv->erase(nv->ctx, addr, half) != 0;
+    o.fail = nv->erase(nv->ctx, addr, half);
     emit(&o, 2, gr->n_layout);
     for (recs_start(&r, d, g); (s = recs_next(&r)) != NULL;) { /* the layout descriptor */
         emit(&o, 4, r.e->index | (uint32_t)s->sub << 16 | (uint32_t)s->type << 24);
