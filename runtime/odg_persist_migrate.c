@@ -249,11 +249,12 @@ static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_
                 uint8_t *h, int wipe, uint32_t keep)
 {
     uint8_t t[DESCRIBED_HDR];
-    uint32_t half = 0u, addr, end = odg_persist_nv_size(d), far = 0u; /* far: the place slot A names */
+    /* far: the place slot A names (0 until slot A is read: slot A is never past the NV) */
+    uint32_t half = 0u, addr, end = odg_persist_nv_size(d), far = 0u;
     int v, k = 0;
     *at = gr->nv_addr;
     do {
-        if (half != 0u && half != far && gr->nv_addr + half + DESCRIBED_HDR > end) {
+        if (half != far && gr->nv_addr + half + DESCRIBED_HDR > end) {
             continue; /* past the dictionary's NV */
         }
         addr = gr->nv_addr + half;
