@@ -599,15 +599,14 @@ static int follows(const odg_sub_t *s, const uint8_t *st)
     return carried(s, st);
 }
 
-/* The highest sub-index of the firmware's entry `e` persisted in the same group as its sub 0. */
-static uint8_t fw_highest(const odg_dict_t *d, const odg_entry_t *e)
+/* The highest sub-index among the firmware's records of the entry `fw` is at, after it. */
+static uint8_t fw_highest(const recs_t *fw)
 {
-    uint8_t high = 0, storage = d->subs[e->first].storage;
-    uint32_t p;
-    for (p = e->first; p < (uint32_t)e->first + e->count; p++) {
-        if (d->subs[p].storage == storage) {
-            high = d->subs[p].sub;
-        }
+    recs_t r = *fw;
+    const odg_sub_t *s;
+    uint8_t high = 0;
+    while ((s = recs_next(&r)) != NULL && r.e == fw->e) {
+        high = s->sub;
     }
     return high;
 }
@@ -646,7 +645,7 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
                 n[DROPPED]++;
             } else if ((fkey & 0xFFu) == 0u && follows(s, st) &&
                        (high = stored_highest(nv, ra + REC, rend, fw.e->index)) !=
-                           (long)fw_highest(d, fw.e)) {
+                           (long)fw_highest(&fw)) {
                 if (high < 0) {
                     return -1;
                 }
