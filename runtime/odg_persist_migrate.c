@@ -529,15 +529,16 @@ static int read_stream(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg
 }
 
 /* Whether the stored entry `st` is a number the firmware's sub-entry `s` keeps or converts: the
- * same type, or an integer widened, with its type's length (migration.py: KEEP or CONVERT).
- * Else it is narrowed, retyped, or of a length that does not fit its type: defaulted. */
-static int carried(const odg_sub_t *s, const uint8_t *st)
+ * same type, or an integer widened, with its type's length (migration.py: KEEP or CONVERT); its
+ * stored type's num_type (never 0) then, else 0. Else it is narrowed, retyped, or of a length
+ * that does not fit its type: defaulted. */
+static unsigned carried(const odg_sub_t *s, const uint8_t *st)
 {
     unsigned a = num_of(st[3]), b = num_of(s->type), sl = get16(st + 4);
     /* a widened integer: UNSIGNEDn -> UNSIGNEDm, INTEGERn -> INTEGERm, UNSIGNEDn -> INTEGERm
      * with m > n */
     int widens = (a & b & NUM_INT) && (b & 0xFu) > (a & 0xFu) && !(a & ~b & NUM_SIGNED);
-    return (s->type == st[3] || widens) && sl != 0u && sl == (a & 0xFu);
+    return (s->type == st[3] || widens) && sl != 0u && sl == (a & 0xFu) ? a : 0u;
 }
 
 /* Read the firmware's sub-entry `s` (at `pos` in dict->subs) from the stored entry `st`, whose
@@ -549,17 +550,18 @@ static int read_value(const odg_dict_t *d, const odg_nv_driver_t *nv, uint32_t p
     uint32_t sl = get16(st + 4), i;
     uint8_t c[8];
     odg_num_t v;
+    unsigned a;
     if (s->type == st[3] && STREAMED(s->type)) {
         return read_stream(d, nv, s, sl, addr);
     }
     /* a number of a type this build serves: no wider than odg_num_t (ODG_CFG_INT64) */
-    if (!carried(s, st)) {
+    if ((a = carried(s, st)) == 0u) {
         return DEFAULTED;
     }
     if (nv->read(nv->ctx, addr, c, sl) != 0) {
         return FAILED;
     }
-    v = (num_of(st[3]) & NUM_SIGNED) && (c[sl - 1u] & 0x80u) ? ~(odg_num_t)0 : 0u;
+    v = (a & NUM_SIGNED) && (c[sl - 1u] & 0x80u) ? ~(odg_num_t)0 : 0u;
     for (i = sl; i-- > 0u;) {
         v = v << 8 | c[i];
     }
@@ -596,7 +598,7 @@ static int follows(const odg_sub_t *s, const uint8_t *st)
     if (s->type == st[3] && STREAMED(s->type)) {
         return get16(st + 4) == s->size;
     }
-    return carried(s, st);
+    return carried(s, st) != 0u;
 }
 
 /* The highest sub-index among the firmware's records of the entry `fw` is at, after it. */
