@@ -170,7 +170,7 @@ OUTLINE static int our_id(const odg_group_t *gr, uint32_t id)
 static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t addr, uint8_t *h)
 {
     uint8_t c[REC];
-    uint32_t len, region, cnt, sum, prev = 0, i;
+    uint32_t len, region, cnt, sum, prev = 0, rend;
     int v = odg_hdr_read_(nv, addr, h, DESCRIBED_HDR, DESCRIBED_MAGIC);
     region = odg_get32_(h + 12);
     len = odg_get32_(h + 16);
@@ -187,8 +187,9 @@ static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint
         return v == 0 ? 0 : -1;
     }
     cnt = get16(c);
-    for (i = 0, sum = 2u + REC * cnt; i < cnt && sum <= len; i++) {
-        if (nv->read(nv->ctx, addr + DESCRIBED_HDR + 2u + REC * i, c, REC) != 0) {
+    addr += DESCRIBED_HDR + 2u; /* the records */
+    for (rend = addr + REC * cnt, sum = 2u + REC * cnt; addr != rend && sum <= len; addr += REC) {
+        if (nv->read(nv->ctx, addr, c, REC) != 0) {
             return -1;
         }
         if (rec_key(c) < prev) {
