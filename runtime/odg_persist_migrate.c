@@ -508,7 +508,8 @@ static int read_stream(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg
         if (nv->read(nv->ctx, addr, c, 4) != 0) {
             return FAILED;
         }
-        used = odg_get32_(c) < sl ? odg_get32_(c) : sl;
+        used = odg_get32_(c);
+        used = used < sl ? used : sl;
         cap = cap < dm->capacity ? cap : dm->capacity;
         p = dm->data;
         addr += 4u;
