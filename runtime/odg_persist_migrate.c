@@ -260,7 +260,7 @@ static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_
         }
         addr = gr->nv_addr + half;
         v = described_read(nv, gr, addr, t);
-        if (v == -1 && half < gr->region) {
+        if (v < 0 && half < gr->region) {
             return -1;
         }
         if (half == 0u) {
@@ -445,7 +445,7 @@ static int scrub(const odg_nv_driver_t *nv, const odg_group_t *gr)
     do {
         addr = gr->nv_addr + half;
         v = described_read(nv, gr, addr, t);
-        if (v == -1) {
+        if (v < 0) {
             return -1;
         }
         if (v > 0) {
