@@ -283,7 +283,7 @@ static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_
         if (wipe && v == 1 && half >= gr->region && addr != keep && odg_wipe_(nv, addr, addr + extent(t))) {
             return -1;
         }
-        if (!k || odg_newer_(ODG_LE32(t + 4), ODG_LE32(h + 4))) {
+        if (!k || ODG_NEWER_(ODG_LE32(t + 4), ODG_LE32(h + 4))) {
             k = v;
             *at = addr;
             odg_copy(h, t, DESCRIBED_HDR);
