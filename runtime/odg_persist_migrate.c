@@ -168,7 +168,7 @@ static uint32_t tagged_id(const odg_group_t *gr)
     return gr->id ^ ((gr->nv_addr + 1u) * 0x9E3779B1u);
 }
 
-OUTLINE static int our_id(const odg_group_t *gr, uint32_t id)
+static int our_id(const odg_group_t *gr, uint32_t id)
 {
     return id == tagged_id(gr) || id == gr->id;
 }
