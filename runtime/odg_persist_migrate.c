@@ -251,20 +251,26 @@ static uint32_t named(const odg_group_t *gr, const uint8_t *a)
     return ODG_LE32(a) == DESCRIBED_MAGIC && our_id(gr, ODG_LE32(a + 8)) ? ODG_LE32(a + 12) / 2u : 0u;
 }
 
+/* An image found: where it is, and its header (one argument for both: fewer on the stack). */
+typedef struct found {
+    uint32_t at;
+    uint8_t h[DESCRIBED_HDR];
+} found_t;
+
 /* The newest image of group `gr` of `d` at its places inside the dictionary's NV (up to its
  * NAME_NV_SIZE) and the place slot A's header names past it (the slot B of a larger region a
  * later firmware used): 1 valid, 2 a header of ours whose image cannot be read (described_read
  * says 2), 0 none, -1 the driver failed inside the region (a failing read past it means no NV
- * there); its address in *at (nv_addr when none) and its header in h. With `wipe`, the valid
+ * there); its address (nv_addr when none) and its header in *f. With `wipe`, the valid
  * images past the region other than at `keep` are erased on the way (-1 when that fails). */
-static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t *at,
-                uint8_t *h, int wipe, uint32_t keep)
+static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_t *gr, found_t *f,
+                int wipe, uint32_t keep)
 {
     uint8_t t[DESCRIBED_HDR];
     /* far: the place slot A names (0 until slot A is read: slot A is never past the NV) */
     uint32_t half = 0u, addr, end = odg_persist_nv_size(d), far = 0u;
     int v, k = 0;
-    *at = gr->nv_addr;
+    f->at = gr->nv_addr;
     do {
         if (half != far && gr->nv_addr + half + DESCRIBED_HDR > end) {
             continue; /* past the dictionary's NV */
@@ -283,19 +289,18 @@ static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_
         if (wipe && v == 1 && half >= gr->region && addr != keep && odg_wipe_(nv, addr, addr + extent(t))) {
             return -1;
         }
-        if (!k || ODG_NEWER_(ODG_LE32(t + 4), ODG_LE32(h + 4))) {
+        if (!k || ODG_NEWER_(ODG_LE32(t + 4), ODG_LE32(f->h + 4))) {
             k = v;
-            *at = addr;
-            odg_copy(h, t, DESCRIBED_HDR);
+            f->at = addr;
+            odg_copy(f->h, t, DESCRIBED_HDR);
         }
     } while ((half = next_place(gr, half)) != 0u);
     return k;
 }
 
-static int newest(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t *at,
-                  uint8_t *h)
+static int newest(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_t *gr, found_t *f)
 {
-    return walk(d, nv, gr, at, h, 0, 0u);
+    return walk(d, nv, gr, f, 0, 0u);
 }
 
 /* Image bytes on their way to NV, CRC-32 on the fly. */
@@ -371,12 +376,13 @@ static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
 odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
 {
     const odg_group_t *gr = &d->groups[g];
-    uint8_t h[DESCRIBED_HDR], t[DESCRIBED_HDR];
-    uint32_t at, seq = 1, half = gr->region / 2u, addr = gr->nv_addr, size = image_size(d, g);
+    uint8_t h[DESCRIBED_HDR];
+    found_t t;
+    uint32_t seq = 1, half = gr->region / 2u, addr = gr->nv_addr, size = image_size(d, g);
     const odg_sub_t *s;
     recs_t r;
     out_t o;
-    int k = newest(d, nv, gr, &at, t);
+    int k = newest(d, nv, gr, &t);
     if (k < 0) {
         return ODG_ABORT_HARDWARE;
     }
@@ -384,8 +390,8 @@ odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv,
         /* the slot beside the newest; should the newest be an image of a larger region that
          * reaches into it (after a rollback), it is written over: it was read (and migrated) at
          * boot, and keeping it would refuse every store for good */
-        seq = ODG_LE32(t + 4) + 1u;
-        addr = at == gr->nv_addr + half ? gr->nv_addr : gr->nv_addr + half;
+        seq = ODG_LE32(t.h + 4) + 1u;
+        addr = t.at == gr->nv_addr + half ? gr->nv_addr : gr->nv_addr + half;
     }
     if (DESCRIBED_HDR + size > half) {
         return ODG_ABORT_DATA_STORE; /* odg_verify: never for a generated dictionary */
@@ -424,18 +430,19 @@ odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv,
 odg_abort_t odg_described_erase_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
 {
     const odg_group_t *gr = &d->groups[g];
-    uint8_t h[DESCRIBED_HDR];
-    uint32_t end = gr->nv_addr + gr->region, at, x, e = 0u, lo = end, hi = end;
-    int k = newest(d, nv, gr, &at, h), fail = k < 0;
+    found_t f;
+    uint32_t end = gr->nv_addr + gr->region, at, e = 0u, lo = end, hi = end;
+    int k = newest(d, nv, gr, &f), fail = k < 0;
+    at = f.at;
     if (k > 0) {
-        e = at + extent(h);
+        e = at + extent(f.h);
         e = k == 2 && at < end && e > end ? end : e; /* one that cannot be read: its header */
         if (at < end) {
             lo = at;
             hi = e > end ? end : e;
         }
     }
-    fail = fail || walk(d, nv, gr, &x, h, 1, at) < 0;
+    fail = fail || walk(d, nv, gr, &f, 1, at) < 0;
     /* the newest last (none: e is 0, nothing to erase) */
     fail = fail || odg_wipe_(nv, gr->nv_addr, lo) || odg_wipe_(nv, hi, end) || odg_wipe_(nv, at, e);
     return fail ? ODG_ABORT_HARDWARE : ODG_OK;
@@ -727,14 +734,13 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
                                       odg_boot_t *b)
 {
     const odg_group_t *gr = &d->groups[g];
-    uint8_t h[DESCRIBED_HDR];
+    found_t f;
     uint16_t n[5] = {0, 0, 0, 0, 0}; /* entries KEPT, DEFAULTED, DROPPED, CONVERTED, ADDED */
-    uint32_t at;
     odg_boot_status_t st = ODG_BOOT_NV_ERROR;
-    int k = newest(d, nv, gr, &at, h);
+    int k = newest(d, nv, gr, &f);
     odg_defaults_(d, g); /* the mirror starts from the defaults (RAM only: no NV access) */
     if (k == 1) {
-        if (migrate(d, nv, g, at, n) == 0 && reads_back(nv, gr, at, h)) {
+        if (migrate(d, nv, g, f.at, n) == 0 && reads_back(nv, gr, f.at, f.h)) {
             st = n[DEFAULTED] || n[DROPPED] || n[CONVERTED] || n[ADDED] ? ODG_BOOT_MIGRATED : ODG_BOOT_LOADED;
         }
     } else if (k >= 0) { /* 2: the newest image cannot be read: its values are lost */
@@ -758,9 +764,8 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
 int odg_described_displaced_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
 {
     const odg_group_t *gr = &d->groups[g];
-    uint8_t h[DESCRIBED_HDR];
-    uint32_t at;
-    return ODG_MIGRATES_(gr) && newest(d, nv, gr, &at, h) == 1 && at - gr->nv_addr >= gr->region;
+    found_t f;
+    return ODG_MIGRATES_(gr) && newest(d, nv, gr, &f) == 1 && f.at - gr->nv_addr >= gr->region;
 }
 
 #else
