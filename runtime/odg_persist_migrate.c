@@ -194,8 +194,11 @@ static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint
     if (v < 0 && addr + DESCRIBED_HDR + len > gr->nv_addr + gr->region) {
         return 2;
     }
-    if (v != 1 || nv->read(nv->ctx, addr + DESCRIBED_HDR, c, 2) != 0) {
-        return v == 0 ? 0 : -1;
+    if (v != 1) {
+        return v; /* 0 a CRC error, -1 the driver failed */
+    }
+    if (nv->read(nv->ctx, addr + DESCRIBED_HDR, c, 2) != 0) {
+        return -1;
     }
     cnt = get16(c);
     addr += DESCRIBED_HDR + 2u; /* the records */
