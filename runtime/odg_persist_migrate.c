@@ -644,7 +644,7 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
                    uint16_t n[5])
 {
     uint8_t st[REC];
-    uint32_t ra = at + DESCRIBED_HDR + 2u, rend, vo, key, fkey; /* ra: the next record's address */
+    uint32_t ra = at + DESCRIBED_HDR + 2u, rend, vo, key, fkey, cnt; /* ra: the next record's address */
     const odg_sub_t *s;
     recs_t fw;
     long high;
@@ -652,7 +652,8 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
     if (nv->read(nv->ctx, ra - 2u, st, 2) != 0) {
         return -1;
     }
-    rend = ra + REC * (uint32_t)get16(st); /* past the records, where the values start */
+    cnt = get16(st);
+    rend = ra + REC * cnt; /* past the records, where the values start */
     vo = rend;
     for (recs_start(&fw, d, g); (s = recs_next(&fw)) != NULL;) {
         r = ADDED;
@@ -667,7 +668,7 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
                 break; /* not stored: the default */
             }
             if (key < fkey) {
-                n[DROPPED]++;
+                /* before it: no longer in the group, dropped (counted at the end) */
             } else if ((fkey & 0xFFu) == 0u && follows(s, st) &&
                        (high = stored_highest(nv, ra + REC, rend, fw.e->index)) !=
                            (long)fw_highest(&fw)) {
@@ -687,7 +688,7 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
         }
         n[r]++;
     }
-    n[DROPPED] = (uint16_t)(n[DROPPED] + (rend - ra) / REC);
+    n[DROPPED] = (uint16_t)(cnt - n[KEPT] - n[DEFAULTED] - n[CONVERTED]); /* not matched */
     return 0;
 }
 
