@@ -667,17 +667,17 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
             if (key > fkey) {
                 break; /* not stored: the default */
             }
-            if (key < fkey) {
-                /* before it: no longer in the group, dropped (counted at the end) */
-            } else if ((fkey & 0xFFu) == 0u && follows(s, st) &&
-                       (high = stored_highest(nv, ra + REC, rend, fw.e->index)) !=
-                           (long)fw_highest(&fw)) {
-                if (high < 0) {
+            /* a key before it: no longer in the group, dropped (counted at the end) */
+            if (key == fkey) {
+                if ((fkey & 0xFFu) == 0u && follows(s, st) &&
+                    (high = stored_highest(nv, ra + REC, rend, fw.e->index)) != (long)fw_highest(&fw)) {
+                    if (high < 0) {
+                        return -1;
+                    }
+                    r = CONVERTED; /* the count follows the entry: its default */
+                } else if ((r = read_value(d, nv, fw.pos - 1u, s, st, vo)) == FAILED) {
                     return -1;
                 }
-                r = CONVERTED; /* the count follows the entry: its default */
-            } else if ((r = read_value(d, nv, fw.pos - 1u, s, st, vo)) == FAILED) {
-                return -1;
             }
             vo += value_size(st);
             ra += REC;
