@@ -55,7 +55,7 @@ static unsigned num_of(uint8_t t)
 
 /* Whether `t` is a string or domain this build serves (STREAMS): never in a build without. */
 #define STREAMED(t) (STREAMS != 0u && streamed(t))
-OUTLINE static int streamed(uint8_t t)
+static int streamed(uint8_t t)
 {
     return t < 0x1Cu && (BIT(t) & STREAMS) != 0u;
 }
