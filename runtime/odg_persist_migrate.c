@@ -94,7 +94,8 @@ typedef struct recs {
     uint16_t pos;         /* position in dict->subs after its descriptor */
     uint16_t left;        /* records still to come */
     uint8_t storage;      /* ODG_S_PERSIST | group << 2 */
-    const odg_sub_t *of;  /* the descriptor of the packed elements being walked, or NULL */
+    const odg_sub_t *of;  /* the descriptor of the packed elements walked last (done when
+                           * elem.sub is its sub), or NULL */
     odg_sub_t elem;       /* the descriptor made for an element of a packed ARRAY */
 } recs_t;
 
@@ -122,7 +123,6 @@ static const odg_sub_t *recs_next(recs_t *r)
             while ((uint32_t)r->e->first + r->e->count < r->pos) {
                 r->e++;
             }
-            r->of = NULL;
             if (s->storage != r->storage) {
                 continue;
             }
