@@ -624,7 +624,8 @@ static int follows(const odg_sub_t *s, const uint8_t *st)
     return carried(s, st) != 0u;
 }
 
-/* The highest sub-index among the firmware's records of the entry `fw` is at, after it. */
+/* The highest sub-index among the firmware's records of the entry whose sub 0 the layout walk
+ * `fw` is at (0 when none follows): read ahead on a copy of the walk. */
 static uint8_t fw_highest(const recs_t *fw)
 {
     recs_t r = *fw;
