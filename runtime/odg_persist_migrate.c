@@ -493,14 +493,14 @@ static int read_string(const odg_nv_driver_t *nv, const odg_sub_t *s, uint8_t *p
                        uint32_t addr)
 {
     uint32_t unit = IS(s->type, ODG_T_UNICODE_STRING) ? 2u : 1u, fl = s->size, i;
-    uint8_t c[2] = {0, 0};
+    uint8_t c[2];
     uint16_t u;
     memset(p, 0, fl - fl % unit + unit);
     for (i = 0; i + unit <= sl; i += unit) {
         if (nv->read(nv->ctx, addr + i, c, unit) != 0) {
             return FAILED;
         }
-        u = (uint16_t)(c[0] | (unsigned)c[1] << 8);
+        u = (uint16_t)(unit == 2u ? c[0] | (unsigned)c[1] << 8 : c[0]);
         if (u == 0u) {
             return KEPT;
         }
