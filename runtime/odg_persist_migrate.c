@@ -366,7 +366,7 @@ static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
         }
     } else {
         for (i = 0; i < n; i++) {
-            zero |= i >= keep || (s->type == ODG_T_VISIBLE_STRING && p[i] == 0u);
+            zero |= i >= keep || (p[i] == 0u && s->type == ODG_T_VISIBLE_STRING);
             emit(o, 1, zero ? 0u : p[i]);
         }
     }
