@@ -27,7 +27,8 @@
 /* ---- slots, CRC-32, the groups' NV extent and defaults (odg_persist_slot.c) ---- */
 void odg_put32_(uint8_t *p, uint32_t v);
 uint32_t odg_get32_(const uint8_t *p);
-/* a is newer than b: a - b in 1 .. 2^31 - 1 */
+/* a is newer than b: a - b in 1 .. 2^31 - 1 (ODG_NEWER_ inline, for unsigned 32-bit a and b) */
+#define ODG_NEWER_(a, b) ((uint32_t)((a) - (b) - 1u) < 0x7FFFFFFFu)
 int odg_newer_(uint32_t a, uint32_t b);
 int odg_hdr_read_(const odg_nv_driver_t *nv, uint32_t addr, uint8_t *h, uint32_t n, uint32_t magic);
 int odg_crc_ok_(const odg_nv_driver_t *nv, uint32_t addr, const uint8_t *h, uint32_t n, uint32_t len,

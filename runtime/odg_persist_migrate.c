@@ -12,6 +12,16 @@
 
 #if ODG_CFG_PERSIST_MIGRATION
 
+/* A helper called from several places stays out of line where GCC's -Os would copy it into
+ * each caller (measured: fewer bytes on Cortex-M4). */
+#if defined(__GNUC__)
+#define OUTLINE __attribute__((noinline))
+#else
+#define OUTLINE
+#endif
+
+/* Header words are read with ODG_LE32, inline: -Os makes it one load where the core allows,
+ * less than a call of odg_get32_ (measured on Cortex-M4). */
 #define DESCRIBED_HDR ODG_PERSIST_HEADER2_SIZE
 #define DESCRIBED_MAGIC 0x3247444Fu /* "ODG2" */
 #define REC 6u             /* a layout descriptor record: index u16, sub u8, type u8, length u16 */
@@ -41,11 +51,22 @@ static unsigned num_of(uint8_t t)
                (ODG_CFG_UNICODE ? BIT(ODG_T_UNICODE_STRING) : 0u) |                      \
                (ODG_CFG_DOMAINS ? BIT(ODG_T_DOMAIN) : 0u)                                \
          : 0u)
-#define IS(t, type) ((type_bit(t) & STREAMS & BIT(type)) != 0u)
+#define IS(t, type) ((STREAMS & BIT(type)) != 0u && (t) == (type))
 
-static uint32_t type_bit(uint8_t t)
+/* Whether `t` is a string or domain this build serves (STREAMS): never in a build without. */
+#define STREAMED(t) (STREAMS != 0u && streamed(t))
+static int streamed(uint8_t t)
 {
-    return t < 0x1Cu ? BIT(t) : 0u;
+    return t < 0x1Cu && (BIT(t) & STREAMS) != 0u;
+}
+
+/* odg_put32_ inline: -Os makes it one store where the core allows, less than a call. */
+static void put32(uint8_t *p, uint32_t v)
+{
+    p[0] = (uint8_t)v;
+    p[1] = (uint8_t)(v >> 8);
+    p[2] = (uint8_t)(v >> 16);
+    p[3] = (uint8_t)(v >> 24);
 }
 
 static uint16_t get16(const uint8_t *p)
@@ -53,13 +74,13 @@ static uint16_t get16(const uint8_t *p)
     return (uint16_t)(p[0] | (unsigned)p[1] << 8);
 }
 
-static uint32_t rec_key(const uint8_t *rec)
+OUTLINE static uint32_t rec_key(const uint8_t *rec)
 {
     return (uint32_t)get16(rec) << 8 | rec[2];
 }
 
 /* Bytes of an entry's value in an image: a domain's used length (u32) precedes its bytes. */
-static uint32_t value_size(const uint8_t *rec)
+OUTLINE static uint32_t value_size(const uint8_t *rec)
 {
     return get16(rec + 4) + (rec[3] == ODG_T_DOMAIN ? 4u : 0u);
 }
@@ -70,11 +91,11 @@ static uint32_t value_size(const uint8_t *rec)
 typedef struct recs {
     const odg_dict_t *d;
     const odg_entry_t *e; /* the entry of the current sub-entry */
-    uint32_t key;         /* its index << 8 | sub */
     uint16_t pos;         /* position in dict->subs after its descriptor */
     uint16_t left;        /* records still to come */
     uint8_t storage;      /* ODG_S_PERSIST | group << 2 */
-    const odg_sub_t *of;  /* the descriptor of the packed elements being walked, or NULL */
+    const odg_sub_t *of;  /* the descriptor of the packed elements walked last (done when
+                           * elem.sub is its sub), or NULL */
     odg_sub_t elem;       /* the descriptor made for an element of a packed ARRAY */
 } recs_t;
 
@@ -102,7 +123,6 @@ static const odg_sub_t *recs_next(recs_t *r)
             while ((uint32_t)r->e->first + r->e->count < r->pos) {
                 r->e++;
             }
-            r->of = NULL;
             if (s->storage != r->storage) {
                 continue;
             }
@@ -115,7 +135,6 @@ static const odg_sub_t *recs_next(recs_t *r)
             break;
         }
         r->left--;
-        r->key = (uint32_t)r->e->index << 8 | s->sub;
         return s;
     }
     return NULL;
@@ -156,31 +175,35 @@ static int our_id(const odg_group_t *gr, uint32_t id)
 
 /* Read and check the "ODG2" slot at `addr` (header into `h`) as an image of group `gr`: its id,
  * and at slot A or at the middle of the region it names. A valid image has a descriptor of
- * records with increasing keys whose values fill it. 1 valid, 0 not, -1 the driver failed, -2
+ * records with increasing keys whose values fill it. 1 valid, 0 not, -1 the driver failed, 2
  * a header of ours whose image runs past the region and cannot be read there: an image of a
  * larger region on an NV that ends before it, which is a loss, never "nothing there". */
 static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t addr, uint8_t *h)
 {
     uint8_t c[REC];
-    uint32_t len, region, cnt, sum, prev = 0, i;
+    uint32_t len, region, cnt, sum, prev = 0, rend;
     int v = odg_hdr_read_(nv, addr, h, DESCRIBED_HDR, DESCRIBED_MAGIC);
-    region = odg_get32_(h + 12);
-    len = odg_get32_(h + 16);
+    region = ODG_LE32(h + 12);
+    len = ODG_LE32(h + 16);
     if (v != 1 || region > 0x01000000u || region / 2u < DESCRIBED_HDR + 2u || len < 2u ||
         len > region / 2u - DESCRIBED_HDR ||
-        !our_id(gr, odg_get32_(h + 8)) || (addr != gr->nv_addr && addr - gr->nv_addr != region / 2u)) {
+        !our_id(gr, ODG_LE32(h + 8)) || (addr != gr->nv_addr && addr - gr->nv_addr != region / 2u)) {
         return v < 0 ? -1 : 0;
     }
     v = odg_crc_ok_(nv, addr, h, DESCRIBED_HDR, len, NULL);
     if (v < 0 && addr + DESCRIBED_HDR + len > gr->nv_addr + gr->region) {
-        return -2;
+        return 2;
     }
-    if (v != 1 || nv->read(nv->ctx, addr + DESCRIBED_HDR, c, 2) != 0) {
-        return v == 0 ? 0 : -1;
+    if (v != 1) {
+        return v; /* 0 a CRC error, -1 the driver failed */
+    }
+    if (nv->read(nv->ctx, addr + DESCRIBED_HDR, c, 2) != 0) {
+        return -1;
     }
     cnt = get16(c);
-    for (i = 0, sum = 2u + REC * cnt; i < cnt && sum <= len; i++) {
-        if (nv->read(nv->ctx, addr + DESCRIBED_HDR + 2u + REC * i, c, REC) != 0) {
+    addr += DESCRIBED_HDR + 2u; /* the records */
+    for (rend = addr + REC * cnt, sum = 2u + REC * cnt; addr != rend && sum <= len; addr += REC) {
+        if (nv->read(nv->ctx, addr, c, REC) != 0) {
             return -1;
         }
         if (rec_key(c) < prev) {
@@ -198,7 +221,7 @@ static int reads_back(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t
                       const uint8_t *h)
 {
     uint8_t t[DESCRIBED_HDR];
-    return described_read(nv, gr, addr, t) == 1 && odg_get32_(t + 20) == odg_get32_(h + 20);
+    return described_read(nv, gr, addr, t) == 1 && ODG_LE32(t + 20) == ODG_LE32(h + 20);
 }
 
 /* The places an image of group `gr` can be, as offsets from its region's start after `half`:
@@ -206,7 +229,7 @@ static int reads_back(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t
  * group may have had, in place (powers of two from 64 bytes up to ODG_PERSIST_MAX_REGION): a
  * region that grew or shrank keeps its images where they were written, and each image's
  * header names the region it was written for. 0 after the last. */
-static uint32_t next_place(const odg_group_t *gr, uint32_t half)
+OUTLINE static uint32_t next_place(const odg_group_t *gr, uint32_t half)
 {
     if (half == 0u) {
         return gr->region / 2u;
@@ -221,59 +244,66 @@ static uint32_t next_place(const odg_group_t *gr, uint32_t half)
 /* The bytes a slot's image takes, rounded up to the slot alignment. */
 static uint32_t extent(const uint8_t *h)
 {
-    return (DESCRIBED_HDR + odg_get32_(h + 16) + ODG_PERSIST_ALIGN - 1u) & ~((uint32_t)ODG_PERSIST_ALIGN - 1u);
+    return (DESCRIBED_HDR + ODG_LE32(h + 16) + ODG_PERSIST_ALIGN - 1u) & ~((uint32_t)ODG_PERSIST_ALIGN - 1u);
 }
 
 /* The place (as `half`) slot A's header `a` names, read, not checked: the middle of the region
  * it was written for when it is a header of this group, else 0 (slot A itself). */
 static uint32_t named(const odg_group_t *gr, const uint8_t *a)
 {
-    return odg_get32_(a) == DESCRIBED_MAGIC && our_id(gr, odg_get32_(a + 8)) ? odg_get32_(a + 12) / 2u : 0u;
+    return ODG_LE32(a) == DESCRIBED_MAGIC && our_id(gr, ODG_LE32(a + 8)) ? ODG_LE32(a + 12) / 2u : 0u;
 }
 
-/* The newest image of group `gr` at its places inside the dictionary's NV (up to `end`,
+/* An image found: where it is, and its header (one argument for both: fewer on the stack). */
+typedef struct found {
+    uint32_t at;
+    uint8_t h[DESCRIBED_HDR];
+} found_t;
+
+/* The newest image of group `gr` of `d` at its places inside the dictionary's NV (up to its
  * NAME_NV_SIZE) and the place slot A's header names past it (the slot B of a larger region a
  * later firmware used): 1 valid, 2 a header of ours whose image cannot be read (described_read
- * -2), 0 none, -1 the driver failed inside the region (a failing read past it means no NV
- * there); its address in *at (nv_addr when none) and its header in h. With `wipe`, the valid
+ * says 2), 0 none, -1 the driver failed inside the region (a failing read past it means no NV
+ * there); its address (nv_addr when none) and its header in *f. With `wipe`, the valid
  * images past the region other than at `keep` are erased on the way (-1 when that fails). */
-static int walk(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t end, uint32_t *at, uint8_t *h,
+static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_t *gr, found_t *f,
                 int wipe, uint32_t keep)
 {
     uint8_t t[DESCRIBED_HDR];
-    uint32_t half = 0u, addr, far = 0u; /* far: the place slot A names */
+    /* far: the place slot A names (0 until slot A is read: slot A is never past the NV) */
+    uint32_t half = 0u, addr, end = odg_persist_nv_size(d), far = 0u;
     int v, k = 0;
-    *at = gr->nv_addr;
+    f->at = gr->nv_addr;
     do {
-        if (half != 0u && half != far && gr->nv_addr + half + DESCRIBED_HDR > end) {
+        if (half != far && gr->nv_addr + half + DESCRIBED_HDR > end) {
             continue; /* past the dictionary's NV */
         }
         addr = gr->nv_addr + half;
         v = described_read(nv, gr, addr, t);
-        if (v == -1 && half < gr->region) {
+        if (v < 0 && half < gr->region) {
             return -1;
         }
         if (half == 0u) {
             far = named(gr, t);
         }
-        if (v != 1 && v != -2) {
+        if (v <= 0) {
             continue;
         }
         if (wipe && v == 1 && half >= gr->region && addr != keep && odg_wipe_(nv, addr, addr + extent(t))) {
             return -1;
         }
-        if (!k || odg_newer_(odg_get32_(t + 4), odg_get32_(h + 4))) {
-            k = v == 1 ? 1 : 2;
-            *at = addr;
-            odg_copy(h, t, DESCRIBED_HDR);
+        if (!k || ODG_NEWER_(ODG_LE32(t + 4), ODG_LE32(f->h + 4))) {
+            k = v;
+            f->at = addr;
+            odg_copy(f->h, t, DESCRIBED_HDR);
         }
     } while ((half = next_place(gr, half)) != 0u);
     return k;
 }
 
-static int newest(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t end, uint32_t *at, uint8_t *h)
+static int newest(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_t *gr, found_t *f)
 {
-    return walk(nv, gr, end, at, h, 0, 0u);
+    return walk(d, nv, gr, f, 0, 0u);
 }
 
 /* Image bytes on their way to NV, CRC-32 on the fly. */
@@ -282,22 +312,23 @@ typedef struct out {
     uint32_t addr; /* where buf goes */
     uint32_t crc;
     uint32_t n;    /* bytes in buf */
-    int fail;
+    int fail;      /* not 0 once the driver failed */
     uint8_t buf[ODG_PERSIST_CHUNK_];
 } out_t;
 
 static void flush(out_t *o)
 {
     if (o->n > 0u && !o->fail) {
-        o->fail = o->nv->write(o->nv->ctx, o->addr, o->buf, o->n) != 0;
+        o->fail = o->nv->write(o->nv->ctx, o->addr, o->buf, o->n);
         o->crc = odg_crc32(o->crc, o->buf, o->n);
         o->addr += o->n;
     }
     o->n = 0;
 }
 
-/* The `n` low bytes of `v`, little endian. */
-static void emit(out_t *o, odg_num_t v, uint32_t n)
+/* The `n` low bytes of `v`, little endian (`n` first: no argument on the stack when `v` has 64
+ * bits). */
+static void emit(out_t *o, uint32_t n, odg_num_t v)
 {
     while (n-- > 0u) {
         o->buf[o->n++] = (uint8_t)v;
@@ -319,24 +350,24 @@ static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
         keep = *dm->length;
         keep = keep < n ? keep : n;
         keep = keep < dm->capacity ? keep : dm->capacity;
-        emit(o, keep, 4);
+        emit(o, 4, keep);
         p = dm->data;
     } else {
         p = odg_value_(d, s);
     }
-    if (!(type_bit(s->type) & STREAMS)) {
-        emit(o, odg_num_get_(p, n), n);
+    if (!STREAMED(s->type)) {
+        emit(o, n, odg_num_get_(p, n));
     } else if (IS(s->type, ODG_T_UNICODE_STRING)) {
         for (i = 0; i < n; i += 2u) {
             uint16_t u;
             memcpy(&u, p + i, 2);
             zero |= u == 0u;
-            emit(o, zero ? 0u : u, n - i < 2u ? 1u : 2u);
+            emit(o, n - i < 2u ? 1u : 2u, zero ? 0u : u);
         }
     } else {
         for (i = 0; i < n; i++) {
-            zero |= i >= keep || (s->type == ODG_T_VISIBLE_STRING && p[i] == 0u);
-            emit(o, zero ? 0u : p[i], 1);
+            zero |= i >= keep || (p[i] == 0u && s->type == ODG_T_VISIBLE_STRING);
+            emit(o, 1, zero ? 0u : p[i]);
         }
     }
 }
@@ -348,12 +379,13 @@ static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
 odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
 {
     const odg_group_t *gr = &d->groups[g];
-    uint8_t h[DESCRIBED_HDR], t[DESCRIBED_HDR];
-    uint32_t at, seq = 1, half = gr->region / 2u, addr = gr->nv_addr, size = image_size(d, g);
+    uint8_t h[DESCRIBED_HDR];
+    found_t t;
+    uint32_t seq = 1, half = gr->region / 2u, addr = gr->nv_addr, size = image_size(d, g);
     const odg_sub_t *s;
     recs_t r;
     out_t o;
-    int k = newest(nv, gr, odg_persist_nv_size(d), &at, t);
+    int k = newest(d, nv, gr, &t);
     if (k < 0) {
         return ODG_ABORT_HARDWARE;
     }
@@ -361,33 +393,33 @@ odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv,
         /* the slot beside the newest; should the newest be an image of a larger region that
          * reaches into it (after a rollback), it is written over: it was read (and migrated) at
          * boot, and keeping it would refuse every store for good */
-        seq = odg_get32_(t + 4) + 1u;
-        addr = at == gr->nv_addr + half ? gr->nv_addr : gr->nv_addr + half;
+        seq = ODG_LE32(t.h + 4) + 1u;
+        addr = t.at == gr->nv_addr + half ? gr->nv_addr : gr->nv_addr + half;
     }
     if (DESCRIBED_HDR + size > half) {
         return ODG_ABORT_DATA_STORE; /* odg_verify: never for a generated dictionary */
     }
-    odg_put32_(h, DESCRIBED_MAGIC);
-    odg_put32_(h + 4, seq);
-    odg_put32_(h + 8, tagged_id(gr));
-    odg_put32_(h + 12, gr->region);
-    odg_put32_(h + 16, size);
+    put32(h, DESCRIBED_MAGIC);
+    put32(h + 4, seq);
+    put32(h + 8, tagged_id(gr));
+    put32(h + 12, gr->region);
+    put32(h + 16, size);
     o.nv = nv;
     o.addr = addr + DESCRIBED_HDR;
     o.crc = odg_crc32(0, h, 20);
     o.n = 0;
-    o.fail = nv->erase(nv->ctx, addr, half) != 0;
-    emit(&o, gr->n_layout, 2);
+    o.fail = nv->erase(nv->ctx, addr, half);
+    emit(&o, 2, gr->n_layout);
     for (recs_start(&r, d, g); (s = recs_next(&r)) != NULL;) { /* the layout descriptor */
-        emit(&o, r.key >> 8 | (uint32_t)s->sub << 16 | (uint32_t)s->type << 24, 4);
-        emit(&o, s->size, 2);
+        emit(&o, 4, r.e->index | (uint32_t)s->sub << 16 | (uint32_t)s->type << 24);
+        emit(&o, 2, s->size);
     }
     for (recs_start(&r, d, g); (s = recs_next(&r)) != NULL;) {
         emit_value(&o, d, s);
     }
     flush(&o);
     /* the CRC covers the bytes written; the read-back below checks that they landed */
-    odg_put32_(h + 20, o.crc);
+    put32(h + 20, o.crc);
     if (o.fail || nv->write(nv->ctx, addr + 4u, h + 4, DESCRIBED_HDR - 4u) != 0 ||
         nv->write(nv->ctx, addr, h, 4u) != 0 || !reads_back(nv, gr, addr, h)) {
         return ODG_ABORT_HARDWARE;
@@ -401,19 +433,21 @@ odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv,
 odg_abort_t odg_described_erase_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
 {
     const odg_group_t *gr = &d->groups[g];
-    uint8_t h[DESCRIBED_HDR];
-    uint32_t end = gr->nv_addr + gr->region, at, x, e = 0u, lo = end, hi = end, nv_end = odg_persist_nv_size(d);
-    int k = newest(nv, gr, nv_end, &at, h), fail = k < 0;
+    found_t f;
+    uint32_t end = gr->nv_addr + gr->region, at, e = 0u, lo = end, hi = end;
+    int k = newest(d, nv, gr, &f), fail = k < 0;
+    at = f.at;
     if (k > 0) {
-        e = at + extent(h);
+        e = at + extent(f.h);
         e = k == 2 && at < end && e > end ? end : e; /* one that cannot be read: its header */
         if (at < end) {
             lo = at;
             hi = e > end ? end : e;
         }
     }
-    fail = fail || walk(nv, gr, nv_end, &x, h, 1, at) < 0;
-    fail = fail || odg_wipe_(nv, gr->nv_addr, lo) || odg_wipe_(nv, hi, end) || (k > 0 && odg_wipe_(nv, at, e));
+    fail = fail || walk(d, nv, gr, &f, 1, at) < 0;
+    /* the newest last (none: e is 0, nothing to erase) */
+    fail = fail || odg_wipe_(nv, gr->nv_addr, lo) || odg_wipe_(nv, hi, end) || odg_wipe_(nv, at, e);
     return fail ? ODG_ABORT_HARDWARE : ODG_OK;
 }
 
@@ -432,10 +466,10 @@ static int scrub(const odg_nv_driver_t *nv, const odg_group_t *gr)
     do {
         addr = gr->nv_addr + half;
         v = described_read(nv, gr, addr, t);
-        if (v == -1) {
+        if (v < 0) {
             return -1;
         }
-        if (v == 1 || v == -2) {
+        if (v > 0) {
             if (odg_clear_(nv, pos, addr)) {
                 return -1;
             }
@@ -453,29 +487,25 @@ static int scrub(const odg_nv_driver_t *nv, const odg_group_t *gr)
  * in the group (the default, no loss). */
 enum { KEPT = 0, DEFAULTED = 1, DROPPED = 2, CONVERTED = 3, ADDED = 4, FAILED = -1 };
 
-/* UNSIGNEDn -> UNSIGNEDm, INTEGERn -> INTEGERm, UNSIGNEDn -> INTEGERm with m > n. */
-static int widens(uint8_t from, uint8_t to)
-{
-    unsigned a = num_of(from), b = num_of(to);
-    return (a & b & NUM_INT) && (b & 0xFu) > (a & 0xFu) && (!(a & NUM_SIGNED) || (b & NUM_SIGNED));
-}
-
 /* A string (unit 1, or 2 for UNICODE_STRING): what fits, up to its terminator; converted when
  * the stored content went on past the new capacity. */
 static int read_string(const odg_nv_driver_t *nv, const odg_sub_t *s, uint8_t *p, uint32_t sl,
                        uint32_t addr)
 {
-    uint32_t unit = s->type == ODG_T_UNICODE_STRING ? 2u : 1u, fl = s->size, i;
-    uint8_t c[2] = {0, 0};
+    uint32_t unit = IS(s->type, ODG_T_UNICODE_STRING) ? 2u : 1u, fl = s->size, i;
+    uint8_t c[2];
     uint16_t u;
     memset(p, 0, fl - fl % unit + unit);
-    for (i = 0; i + unit <= fl && i + unit <= sl; i += unit) {
+    for (i = 0; i + unit <= sl; i += unit) {
         if (nv->read(nv->ctx, addr + i, c, unit) != 0) {
             return FAILED;
         }
-        u = (uint16_t)(c[0] | (unsigned)c[1] << 8);
+        u = (uint16_t)(unit == 2u ? c[0] | (unsigned)c[1] << 8 : c[0]);
         if (u == 0u) {
             return KEPT;
+        }
+        if (i + unit > fl) {
+            return CONVERTED; /* a character past the new capacity */
         }
         if (unit == 2u) {
             memcpy(p + i, &u, 2);
@@ -483,13 +513,7 @@ static int read_string(const odg_nv_driver_t *nv, const odg_sub_t *s, uint8_t *p
             p[i] = c[0];
         }
     }
-    if (i + unit > sl) {
-        return KEPT;
-    }
-    if (nv->read(nv->ctx, addr + i, c, unit) != 0) {
-        return FAILED;
-    }
-    return c[0] != 0u || c[1] != 0u ? CONVERTED : KEPT;
+    return KEPT;
 }
 
 /* A string or domain of the same type: keep what fits (resized). An OCTET_STRING and a domain
@@ -505,7 +529,8 @@ static int read_stream(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg
         if (nv->read(nv->ctx, addr, c, 4) != 0) {
             return FAILED;
         }
-        used = odg_get32_(c) < sl ? odg_get32_(c) : sl;
+        used = ODG_LE32(c);
+        used = used < sl ? used : sl;
         cap = cap < dm->capacity ? cap : dm->capacity;
         p = dm->data;
         addr += 4u;
@@ -527,12 +552,16 @@ static int read_stream(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg
 }
 
 /* Whether the stored entry `st` is a number the firmware's sub-entry `s` keeps or converts: the
- * same type, or an integer widened, with its type's length (migration.py: KEEP or CONVERT).
- * Else it is narrowed, retyped, or of a length that does not fit its type: defaulted. */
-static int carried(const odg_sub_t *s, const uint8_t *st)
+ * same type, or an integer widened, with its type's length (migration.py: KEEP or CONVERT); its
+ * stored type's num_type (never 0) then, else 0. Else it is narrowed, retyped, or of a length
+ * that does not fit its type: defaulted. */
+static unsigned carried(const odg_sub_t *s, const uint8_t *st)
 {
-    uint32_t sl = get16(st + 4);
-    return (s->type == st[3] || widens(st[3], s->type)) && sl != 0u && sl == (num_of(st[3]) & 0xFu);
+    unsigned a = num_of(st[3]), b = num_of(s->type), sl = get16(st + 4);
+    /* a widened integer: UNSIGNEDn -> UNSIGNEDm, INTEGERn -> INTEGERm, UNSIGNEDn -> INTEGERm
+     * with m > n */
+    int widens = (a & b & NUM_INT) && (b & 0xFu) > (a & 0xFu) && !(a & ~b & NUM_SIGNED);
+    return (s->type == st[3] || widens) && sl != 0u && sl == (a & 0xFu) ? a : 0u;
 }
 
 /* Read the firmware's sub-entry `s` (at `pos` in dict->subs) from the stored entry `st`, whose
@@ -544,17 +573,18 @@ static int read_value(const odg_dict_t *d, const odg_nv_driver_t *nv, uint32_t p
     uint32_t sl = get16(st + 4), i;
     uint8_t c[8];
     odg_num_t v;
-    if (s->type == st[3] && (type_bit(s->type) & STREAMS)) {
+    unsigned a;
+    if (s->type == st[3] && STREAMED(s->type)) {
         return read_stream(d, nv, s, sl, addr);
     }
     /* a number of a type this build serves: no wider than odg_num_t (ODG_CFG_INT64) */
-    if (!carried(s, st)) {
+    if ((a = carried(s, st)) == 0u) {
         return DEFAULTED;
     }
     if (nv->read(nv->ctx, addr, c, sl) != 0) {
         return FAILED;
     }
-    v = (num_of(st[3]) & NUM_SIGNED) && (c[sl - 1u] & 0x80u) ? ~(odg_num_t)0 : 0u;
+    v = (a & NUM_SIGNED) && (c[sl - 1u] & 0x80u) ? ~(odg_num_t)0 : 0u;
     for (i = sl; i-- > 0u;) {
         v = v << 8 | c[i];
     }
@@ -588,21 +618,21 @@ static long stored_highest(const odg_nv_driver_t *nv, uint32_t ra, uint32_t rend
  * narrowed or retyped is defaulted, one resized is resized (migration.py: plan). */
 static int follows(const odg_sub_t *s, const uint8_t *st)
 {
-    if (s->type == st[3] && (type_bit(s->type) & STREAMS)) {
+    if (s->type == st[3] && STREAMED(s->type)) {
         return get16(st + 4) == s->size;
     }
-    return carried(s, st);
+    return carried(s, st) != 0u;
 }
 
-/* The highest sub-index of the firmware's entry `e` persisted in the same group as its sub 0. */
-static uint8_t fw_highest(const odg_dict_t *d, const odg_entry_t *e)
+/* The highest sub-index among the firmware's records of the entry whose sub 0 the layout walk
+ * `fw` is at (0 when none follows): read ahead on a copy of the walk. */
+static uint8_t fw_highest(const recs_t *fw)
 {
-    uint8_t high = 0, storage = d->subs[e->first].storage;
-    uint32_t p;
-    for (p = e->first; p < (uint32_t)e->first + e->count; p++) {
-        if (d->subs[p].storage == storage) {
-            high = d->subs[p].sub;
-        }
+    recs_t r = *fw;
+    const odg_sub_t *s;
+    uint8_t high = 0;
+    while ((s = recs_next(&r)) != NULL && r.e == fw->e) {
+        high = s->sub;
     }
     return high;
 }
@@ -615,7 +645,7 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
                    uint16_t n[5])
 {
     uint8_t st[REC];
-    uint32_t ra = at + DESCRIBED_HDR + 2u, rend, vo, key; /* ra: the next record's address */
+    uint32_t ra = at + DESCRIBED_HDR + 2u, rend, vo, key, fkey, cnt; /* ra: the next record's address */
     const odg_sub_t *s;
     recs_t fw;
     long high;
@@ -623,41 +653,43 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
     if (nv->read(nv->ctx, ra - 2u, st, 2) != 0) {
         return -1;
     }
-    rend = ra + REC * (uint32_t)get16(st); /* past the records, where the values start */
+    cnt = get16(st);
+    rend = ra + REC * cnt; /* past the records, where the values start */
     vo = rend;
     for (recs_start(&fw, d, g); (s = recs_next(&fw)) != NULL;) {
         r = ADDED;
+        fkey = (uint32_t)fw.e->index << 8 | s->sub; /* the firmware record's key */
         while (ra != rend) { /* stored entries before this key are no longer in the group */
             if (!have && nv->read(nv->ctx, ra, st, REC) != 0) {
                 return -1;
             }
             have = 1;
             key = rec_key(st);
-            if (key > fw.key) {
+            if (key > fkey) {
                 break; /* not stored: the default */
             }
-            if (key < fw.key) {
-                n[DROPPED]++;
-            } else if ((fw.key & 0xFFu) == 0u && follows(s, st) &&
-                       (high = stored_highest(nv, ra + REC, rend, fw.e->index)) !=
-                           (long)fw_highest(d, fw.e)) {
-                if (high < 0) {
+            /* a key before it: no longer in the group, dropped (counted at the end) */
+            if (key == fkey) {
+                if ((fkey & 0xFFu) == 0u && follows(s, st) &&
+                    (high = stored_highest(nv, ra + REC, rend, fw.e->index)) != (long)fw_highest(&fw)) {
+                    if (high < 0) {
+                        return -1;
+                    }
+                    r = CONVERTED; /* the count follows the entry: its default */
+                } else if ((r = read_value(d, nv, fw.pos - 1u, s, st, vo)) == FAILED) {
                     return -1;
                 }
-                r = CONVERTED; /* the count follows the entry: its default */
-            } else if ((r = read_value(d, nv, fw.pos - 1u, s, st, vo)) == FAILED) {
-                return -1;
             }
             vo += value_size(st);
             ra += REC;
             have = 0;
-            if (key == fw.key) {
+            if (key == fkey) {
                 break;
             }
         }
         n[r]++;
     }
-    n[DROPPED] = (uint16_t)(n[DROPPED] + (rend - ra) / REC);
+    n[DROPPED] = (uint16_t)(cnt - n[KEPT] - n[DEFAULTED] - n[CONVERTED]); /* not matched */
     return 0;
 }
 
@@ -707,14 +739,13 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
                                       odg_boot_t *b)
 {
     const odg_group_t *gr = &d->groups[g];
-    uint8_t h[DESCRIBED_HDR];
+    found_t f;
     uint16_t n[5] = {0, 0, 0, 0, 0}; /* entries KEPT, DEFAULTED, DROPPED, CONVERTED, ADDED */
-    uint32_t at;
     odg_boot_status_t st = ODG_BOOT_NV_ERROR;
-    int k = newest(nv, gr, odg_persist_nv_size(d), &at, h);
+    int k = newest(d, nv, gr, &f);
     odg_defaults_(d, g); /* the mirror starts from the defaults (RAM only: no NV access) */
     if (k == 1) {
-        if (migrate(d, nv, g, at, n) == 0 && reads_back(nv, gr, at, h)) {
+        if (migrate(d, nv, g, f.at, n) == 0 && reads_back(nv, gr, f.at, f.h)) {
             st = n[DEFAULTED] || n[DROPPED] || n[CONVERTED] || n[ADDED] ? ODG_BOOT_MIGRATED : ODG_BOOT_LOADED;
         }
     } else if (k >= 0) { /* 2: the newest image cannot be read: its values are lost */
@@ -738,9 +769,8 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
 int odg_described_displaced_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
 {
     const odg_group_t *gr = &d->groups[g];
-    uint8_t h[DESCRIBED_HDR];
-    uint32_t at;
-    return ODG_MIGRATES_(gr) && newest(nv, gr, odg_persist_nv_size(d), &at, h) == 1 && at - gr->nv_addr >= gr->region;
+    found_t f;
+    return ODG_MIGRATES_(gr) && newest(d, nv, gr, &f) == 1 && f.at - gr->nv_addr >= gr->region;
 }
 
 #else

@@ -41,7 +41,7 @@ uint32_t odg_get32_(const uint8_t *p)
 /* a is newer than b: a - b in 1 .. 2^31 - 1 */
 int odg_newer_(uint32_t a, uint32_t b)
 {
-    return a - b - 1u < 0x7FFFFFFFu;
+    return ODG_NEWER_(a, b);
 }
 
 /* Read the `n`-byte header of the slot at `addr` into `h`: 1 when it starts with `magic`, 0 when
