@@ -538,6 +538,11 @@ class Checker:
             # (inside its NV, or named by slot A's header)
             here = [i for i in self.nv.stale.get(g, []) if i.region[0] == fw.regions[g][0]]
             self.nv.stale[g] = [i for i in self.nv.stale.get(g, []) if i not in here]
+            # those inside the NV stay where they are (the scrub keeps a group's own images at
+            # its places), so a later rollback that cannot see the newest may still take one
+            placed = self.nv.placed.setdefault((g, fw.regions[g][0]), [])
+            inside = min(self.nv.size, fw.nv_size)
+            placed[:0] = [i for i in here if i not in placed and i.region[0] + i.region[1] <= inside]
             cands = [*here, *self.nv.images.get(g, [None])]
             options = [(c, self._expect(fw, g, c)) for c in cands]
             match = [(c, want) for c, want in options if all(got[k] in (want[k][0], fw.defaults[k]) for k in got)]

@@ -55,6 +55,18 @@ def test_all_types_under_sanitizers() -> None:
     _assert_passed(run_check(ALLTYPES, cc=_compiler("clang"), cflags=SANITIZE))
 
 
+def test_persisted_strings_domains_and_a_blank_group_read_their_defaults() -> None:
+    """Groups' defaults as spreads of runs (spread.py): a string cut at its trailing zeros, a
+    unicode string, 64-bit values, zeros inside runs, a group with no default but zero. The
+    self-test reads each default, also after a "load"; under the sanitizers."""
+    request = Request(ALLTYPES.input, options=GEN / "alltypes_persisted.toml")
+    source = generate(request).files["alltypes.c"]
+    assert ".defaults = NULL, .spread = alltypes_persist_blank_spread" in source
+    assert "ODG_END(alltypes_persist_app_t, x2009_device_label[20])" in source  # 21 of 41 bytes
+    assert "x200B_unicode_label[2])" in source
+    _assert_passed(run_check(request, cc=_compiler("clang"), cflags=SANITIZE))
+
+
 @pytest.mark.parametrize("case", sorted(GOLDEN_CASES))
 def test_golden_files(case: str) -> None:
     """Set ODGEN_UPDATE_GOLDEN=1 to rewrite tests/golden after an intended change."""

@@ -29,6 +29,8 @@ SUPPORT = Path(__file__).resolve().parent / "targets"
 EXAMPLES = ROOT / "examples"
 IO_NODE = (EXAMPLES / "io-node" / "io-node.eds", EXAMPLES / "io-node" / "io-node.toml")
 ALLTYPES = (FIXTURES / "generate" / "alltypes.eds", FIXTURES / "generate" / "alltypes.toml")
+# every kind of value in persistence groups: their defaults' runs in the target's byte order
+PERSISTED = (ALLTYPES[0], FIXTURES / "generate" / "alltypes_persisted.toml")
 PLASMA = EXAMPLES / "plasma-equipment"
 SEMIHOSTING = "qemu-system-arm -nographic -monitor none -serial none -semihosting-config enable=on,target=native"
 CORTEX_M = f"-mthumb --specs=nano.specs -nostartfiles -T {SUPPORT / 'cortex_m.ld'} {SUPPORT / 'cortex_m.c'}"
@@ -81,17 +83,19 @@ def _check(core: Core, description: Path, options: Path | None, capsys: pytest.C
 RUNS = [
     ("cortex-m0", *IO_NODE),
     ("cortex-m0", *ALLTYPES),
+    ("cortex-m0", *PERSISTED),
     ("cortex-m4", PLASMA / "master.eds", None),
     ("cortex-m4", *ALLTYPES),
     ("powerpc", PLASMA / "flow_meter.eds", None),
     ("powerpc", *ALLTYPES),
+    ("powerpc", *PERSISTED),
     ("avr", PLASMA / "hv_supply.eds", None),
     ("avr", *IO_NODE),
 ]
 
 
 @pytest.mark.parametrize(("core", "description", "options"), RUNS,
-                         ids=[f"{core}-{path.stem}" for core, path, _ in RUNS])
+                         ids=[f"{core}-{(options or path).stem}" for core, path, options in RUNS])
 def test_self_test_passes_on_the_core(core: str, description: Path, options: Path | None,
                                       capsys: pytest.CaptureFixture[str]) -> None:
     code, out = _check(_core(core), description, options, capsys, "--verbose")

@@ -16,14 +16,14 @@ bytes than a run's (start, end) pair would.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from collections.abc import Sequence
+from dataclasses import dataclass, field
 from typing import Protocol
 
 RUN_BYTES = 4  # a spread row: start and end, uint16_t each
 
 
-class Member(Protocol):
+class RunMember(Protocol):
     """What a run needs of a struct member (viewmodel.Member)."""
 
     @property
@@ -44,7 +44,7 @@ class Member(Protocol):
 class Piece:
     """A member of a run: whole, or the first `used` elements of an array (its last piece)."""
 
-    member: Member
+    member: RunMember
     whole: bool
 
     @property
@@ -74,8 +74,13 @@ class Run:
         return f"ODG_END({type_name}, {last.member.name}[{last.member.used - 1}])"
 
 
-def member_size(m: Member, align: dict[str, int]) -> int:
-    return align[m.ctype] * (int(m.array[1:-1]) if m.array else 1)
+def elements(m: RunMember) -> int:
+    return int(m.array[1:-1]) if m.array else 1
+
+
+def member_size(m: RunMember, align: dict[str, int]) -> int:
+    """Bytes of a member: its elements, each of its C type's alignment (which is its size)."""
+    return align[m.ctype] * elements(m)
 
 
 def flash_bytes(found: list[Run], align: dict[str, int]) -> int:
@@ -86,16 +91,16 @@ def flash_bytes(found: list[Run], align: dict[str, int]) -> int:
     return runs_bytes + 2 * (2 * len(found) + 2)
 
 
-def runs(members: Sequence[Member], align: dict[str, int]) -> list[Run]:
+def runs(members: Sequence[RunMember], align: dict[str, int]) -> list[Run]:
     """The non-zero runs of a struct whose members are in layout order."""
     out: list[Run] = []
-    gap: list[Member] = []  # zero members since the last non-zero one
+    gap: list[RunMember] = []  # zero members since the last non-zero one
     open_run = False  # whether the last run may go on (it ended with a whole member)
     for m in members:
         if m.used == 0:
             gap.append(m)
             continue
-        whole = m.used == (int(m.array[1:-1]) if m.array else 1)
+        whole = m.used == elements(m)
         if open_run and sum(member_size(g, align) for g in gap) <= RUN_BYTES:
             out[-1].pieces += [Piece(g, True) for g in gap]
         else:

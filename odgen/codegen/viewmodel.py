@@ -35,7 +35,7 @@ from ..model.pdo import default_mapped
 from ..model.datatypes import BASIC_TYPES, DataType
 from ..cnames import COMMENT_WIDTH, comment, identifier, string_literal
 from .packing import packable, packs_values
-from .spread import Run, runs
+from .spread import Run, member_size, runs
 from ..model.cia301 import RESTORE, STORE
 from ..place.options import PersistOptions
 from ..place.persistence import PersistView, persist_view
@@ -397,7 +397,7 @@ def _check_block_size(b: _Builder, struct: StorageStruct) -> None:
 
 
 def member_bytes(m: Member) -> int:
-    return ALIGN[m.ctype] * (int(m.array[1:-1]) if m.array else 1)
+    return member_size(m, ALIGN)
 
 
 def _generated_symbols(view: DictView) -> set[str]:
