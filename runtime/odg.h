@@ -88,7 +88,7 @@ extern "C" {
 #ifndef ODG_CFG_PERSIST_MIGRATION /* a persistence group migrated at boot ("ODG2" images) */
 #define ODG_CFG_PERSIST_MIGRATION 1
 #endif
-#ifndef ODG_CFG_PERSIST_TWO_PASS /* the two-pass boot: a migrated group among two or more */
+#ifndef ODG_CFG_PERSIST_TWO_PASS /* the ordered boot: a migrated group among two or more */
 #define ODG_CFG_PERSIST_TWO_PASS ODG_CFG_PERSIST_MIGRATION
 #endif
 

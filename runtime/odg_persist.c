@@ -117,6 +117,62 @@ static void booted(const odg_dict_t *d, uint8_t g, const odg_boot_t *b, odg_boot
     }
 }
 
+/* Boot group `g` (on an NV smaller than the dictionary's, `fits` 0: NV_ERROR, nothing
+ * written) and record what it found. */
+static void boot_one(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, int fits,
+                     odg_boot_status_t *st, odg_boot_t *boot, odg_abort_t *ac)
+{
+    odg_boot_t b = {ODG_BOOT_NV_ERROR, 0, 0, 0, 0, 0};
+    if (fits) {
+        b.status = (uint8_t)boot_group(d, nv, g, &b);
+    }
+    booted(d, g, &b, st, boot, ac);
+}
+
+#if ODG_CFG_PERSIST_TWO_PASS
+#define DONE(done, g) (((done)[(g) >> 3] >> ((g) & 7u)) & 1u)
+
+/* Whether the region of group `g` holds the newest image of another group still to boot (the NV
+ * map changed): g's boot, its store and the clearing of its region, would write over it before
+ * that group moved it home. */
+static int holds_newest(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, const uint8_t *done)
+{
+    const odg_group_t *gr = &d->groups[g];
+    uint8_t h;
+    for (h = 0; h < d->n_groups; h++) {
+        if (h != g && !DONE(done, h) && odg_described_newest_(d, nv, h) - gr->nv_addr < gr->region) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* Boot the groups in rounds: a group boots once its region holds the newest image of no group
+ * still to boot, so that each group moves its image home before another group's boot writes
+ * over it, however the images were displaced (a chain: A's newest in B's region, B's in C's).
+ * A round that boots none (images displaced in a cycle) boots the first group left. */
+static void boot_ordered(const odg_dict_t *d, const odg_nv_driver_t *nv, int fits,
+                         odg_boot_status_t *st, odg_boot_t *boot, odg_abort_t *ac)
+{
+    uint8_t done[32], g; /* the groups booted */
+    unsigned left = d->n_groups;
+    int careful = fits, progressed;
+    memset(done, 0, sizeof done);
+    while (left > 0u) {
+        for (g = 0, progressed = 0; g < d->n_groups; g++) {
+            if (DONE(done, g) || (careful && holds_newest(d, nv, g, done))) {
+                continue;
+            }
+            done[g >> 3] = (uint8_t)(done[g >> 3] | 1u << (g & 7u));
+            left--;
+            progressed = careful = fits;
+            boot_one(d, nv, g, fits, st, boot, ac);
+        }
+        careful = fits && progressed;
+    }
+}
+#endif
+
 /* Attach the layer and boot every group; the statuses into `st`, the counts into `boot`
  * (either may be NULL). */
 static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_nv_driver_t *nv,
@@ -124,11 +180,7 @@ static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_
 {
     odg_abort_t ac = nv != NULL ? ODG_OK : ODG_ABORT_DATA_STORE;
     odg_state_t *s = dict->state;
-    uint8_t g;
-    int fits, pass;
-#if ODG_CFG_PERSIST_TWO_PASS
-    uint8_t done[32]; /* the groups booted in the first pass */
-#endif
+    int fits;
     if (nv != NULL) {
         p->client.command = command;
         p->client.changed = NULL;
@@ -141,29 +193,15 @@ static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_
 #endif
     fits = nv_fits(dict, nv);
 #if ODG_CFG_PERSIST_TWO_PASS
-    /* two passes: first the groups whose newest image lies outside their region (in a region
-     * of another group, after the NV map changed), which move it home before that group's
-     * boot writes over it; then the others. With one group (ODG_CFG_PERSIST_TWO_PASS 0) no
-     * other boot writes over its image: one pass. */
-    memset(done, 0, sizeof done);
-    for (pass = fits ? 0 : 1; pass < 2; pass++) {
+    boot_ordered(dict, nv, fits, st, boot, &ac);
 #else
-    for (pass = 1; pass < 2; pass++) {
-#endif
+    { /* one group: no other group's boot can write over its image */
+        uint8_t g;
         for (g = 0; g < dict->n_groups; g++) {
-            odg_boot_t b = {ODG_BOOT_NV_ERROR, 0, 0, 0, 0, 0};
-#if ODG_CFG_PERSIST_TWO_PASS
-            if ((done[g >> 3] >> (g & 7u)) & 1u || (pass == 0 && !odg_described_displaced_(dict, nv, g))) {
-                continue;
-            }
-            done[g >> 3] = (uint8_t)(done[g >> 3] | 1u << (g & 7u));
-#endif
-            if (fits) { /* an NV smaller than the dictionary's: NV_ERROR, nothing written */
-                b.status = (uint8_t)boot_group(dict, nv, g, &b);
-            }
-            booted(dict, g, &b, st, boot, &ac);
+            boot_one(dict, nv, g, fits, st, boot, &ac);
         }
     }
+#endif
     odg_changed(dict, NULL);
     return ac;
 }

@@ -764,13 +764,13 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
     return st;
 }
 
-/* Whether the newest image of group `g` lies outside its region: 1 yes, 0 no (or no image, or
- * a group without migration). */
-int odg_described_displaced_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
+/* Where the newest valid image of group `g` lies; 0xFFFFFFFF when none (or it cannot be read,
+ * or the driver failed, or the group has no migration). */
+uint32_t odg_described_newest_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
 {
     const odg_group_t *gr = &d->groups[g];
     found_t f;
-    return ODG_MIGRATES_(gr) && newest(d, nv, gr, &f) == 1 && f.at - gr->nv_addr >= gr->region;
+    return ODG_MIGRATES_(gr) && newest(d, nv, gr, &f) == 1 ? f.at : 0xFFFFFFFFu;
 }
 
 #else

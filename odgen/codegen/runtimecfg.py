@@ -71,7 +71,7 @@ def runtime_config(view: DictView) -> list[Switch]:
         ("ODG_CFG_PERSIST_ODG1", "persistence groups without migration", persisted[:1] if not migration else []),
         ("ODG_CFG_PERSIST_MIGRATION", "persistence groups migrated at boot", persisted[:1] if migration else []),
         # with one group no other group's boot can write over its image before it moves home
-        ("ODG_CFG_PERSIST_TWO_PASS", "a migrated group among two or more (the two-pass boot)",
+        ("ODG_CFG_PERSIST_TWO_PASS", "a migrated group among two or more (the ordered boot)",
          persisted[:1] if migration and len(view.groups) > 1 else []),
     ]
     switches = [Switch(macro, what, bool(where), _first(view, where)) for macro, what, where in needs]

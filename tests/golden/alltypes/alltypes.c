@@ -41,7 +41,7 @@
 #error "alltypes uses persistence groups migrated at boot: build the runtime with ODG_CFG_PERSIST_MIGRATION 1 (alltypes_config.h)"
 #endif
 #if !ODG_CFG_PERSIST_TWO_PASS
-#error "alltypes uses a migrated group among two or more (the two-pass boot): build the runtime with ODG_CFG_PERSIST_TWO_PASS 1 (alltypes_config.h)"
+#error "alltypes uses a migrated group among two or more (the ordered boot): build the runtime with ODG_CFG_PERSIST_TWO_PASS 1 (alltypes_config.h)"
 #endif
 #if !ODG_CFG_HASH
 #error "alltypes uses lookup by perfect hash: build the runtime with ODG_CFG_HASH 1 (alltypes_config.h)"

@@ -26,7 +26,7 @@
 #define ODG_CFG_PERSIST_STATUS 0 /* boot status object */
 #define ODG_CFG_PERSIST_ODG1 0 /* persistence groups without migration */
 #define ODG_CFG_PERSIST_MIGRATION 1 /* persistence groups migrated at boot: 0x1017sub0 */
-#define ODG_CFG_PERSIST_TWO_PASS 1 /* a migrated group among two or more (the two-pass boot): 0x1017sub0 */
+#define ODG_CFG_PERSIST_TWO_PASS 1 /* a migrated group among two or more (the ordered boot): 0x1017sub0 */
 #define ODG_CFG_HASH 1 /* lookup by perfect hash: --lookup hash */
 #define ODG_CFG_UNHASHED 0 /* lookup by generated find or binary search */
 

@@ -29,7 +29,7 @@
 #error "io_node_persist uses persistence groups migrated at boot: build the runtime with ODG_CFG_PERSIST_MIGRATION 1 (io_node_persist_config.h)"
 #endif
 #if !ODG_CFG_PERSIST_TWO_PASS
-#error "io_node_persist uses a migrated group among two or more (the two-pass boot): build the runtime with ODG_CFG_PERSIST_TWO_PASS 1 (io_node_persist_config.h)"
+#error "io_node_persist uses a migrated group among two or more (the ordered boot): build the runtime with ODG_CFG_PERSIST_TWO_PASS 1 (io_node_persist_config.h)"
 #endif
 #if !ODG_CFG_HASH
 #error "io_node_persist uses lookup by perfect hash: build the runtime with ODG_CFG_HASH 1 (io_node_persist_config.h)"
