@@ -98,10 +98,10 @@ static void report(const odg_dict_t *d, uint8_t g, const odg_boot_t *b)
     }
 }
 
-/* What the boot of group `g` found, into the dictionary's state, the status object, `st` and
- * `boot` (either may be NULL), and *ac (HARDWARE on NV_ERROR). */
+/* What the boot of group `g` found, into the dictionary's state, the status object, `st`
+ * (when not NULL) and *ac (HARDWARE on NV_ERROR). */
 static void booted(const odg_dict_t *d, uint8_t g, const odg_boot_t *b, odg_boot_status_t *st,
-                   odg_boot_t *boot, odg_abort_t *ac)
+                   odg_abort_t *ac)
 {
     odg_state_t *s = d->state;
     s->boot_seen = (uint8_t)(s->boot_seen | 1u << b->status);
@@ -111,9 +111,6 @@ static void booted(const odg_dict_t *d, uint8_t g, const odg_boot_t *b, odg_boot
     report(d, g, b);
     if (st != NULL) {
         st[g] = (odg_boot_status_t)b->status;
-    }
-    if (boot != NULL) {
-        boot[g] = *b;
     }
 }
 
@@ -151,17 +148,19 @@ static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_
     for (pass = 1; pass < 2; pass++) {
 #endif
         for (g = 0; g < dict->n_groups; g++) {
-            odg_boot_t b = {ODG_BOOT_NV_ERROR, 0, 0, 0, 0, 0};
+            odg_boot_t own, *b = boot != NULL ? &boot[g] : &own; /* the counts straight into `boot` */
 #if ODG_CFG_PERSIST_TWO_PASS
             if ((done[g >> 3] >> (g & 7u)) & 1u || (pass == 0 && !odg_described_displaced_(dict, nv, g))) {
                 continue;
             }
             done[g >> 3] = (uint8_t)(done[g >> 3] | 1u << (g & 7u));
 #endif
+            b->status = ODG_BOOT_NV_ERROR;
+            b->kept = b->converted = b->defaulted = b->dropped = b->added = 0;
             if (fits) { /* an NV smaller than the dictionary's: NV_ERROR, nothing written */
-                b.status = (uint8_t)boot_group(dict, nv, g, &b);
+                b->status = (uint8_t)boot_group(dict, nv, g, b);
             }
-            booted(dict, g, &b, st, boot, &ac);
+            booted(dict, g, b, st, &ac);
         }
     }
     odg_changed(dict, NULL);
