@@ -12,12 +12,10 @@
 #include "odg_persist_migrate.h"
 
 /* Store group `g` (restore = 0) in the format of its group, "ODG2" with a layout, else "ODG1";
- * or make its next boot use the defaults (restore = 1). */
+ * or make its next boot use the defaults (restore = 1). `nv` is a driver and `g` a group: the
+ * callers check (the command once for all its groups). */
 static odg_abort_t act(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, int restore)
 {
-    if (nv == NULL || g >= d->n_groups) {
-        return ODG_ABORT_DATA_STORE;
-    }
 #if ODG_CFG_PERSIST_MIGRATION
     if (ODG_MIGRATES_(&d->groups[g])) {
         return restore ? odg_described_erase_(d, nv, g) : odg_described_store_(d, nv, g);
@@ -40,7 +38,7 @@ static int nv_fits(const odg_dict_t *d, const odg_nv_driver_t *nv)
 static odg_abort_t command(odg_client_t *self, const odg_dict_t *d, uint8_t sub, int restore)
 {
     const odg_nv_driver_t *nv = ((const odg_persist_t *)(const void *)self)->nv;
-    odg_abort_t ac = ODG_ABORT_DATA_STORE, r;
+    odg_abort_t ac = ODG_OK, r;
     uint8_t g, any = 0;
     if (!nv_fits(d, nv)) {
         return ODG_ABORT_DATA_STORE;
@@ -48,11 +46,11 @@ static odg_abort_t command(odg_client_t *self, const odg_dict_t *d, uint8_t sub,
     for (g = 0; g < d->n_groups; g++) {
         if (sub == 1u || d->groups[g].store_sub == sub) {
             r = act(d, nv, g, restore); /* every group, even past one that failed */
-            ac = !any || ac == ODG_OK ? r : ac;
+            ac = ac == ODG_OK ? r : ac;
             any = 1;
         }
     }
-    return ac;
+    return any ? ac : ODG_ABORT_DATA_STORE;
 }
 
 /* The driver of the persistence layer attached to `d` (the client with its `command`; the
@@ -66,14 +64,21 @@ static const odg_nv_driver_t *driver(const odg_dict_t *d)
     return c != NULL ? ((const odg_persist_t *)(const void *)c)->nv : NULL;
 }
 
+/* act on group `g` with the attached driver: DATA_STORE when none is attached, or no group `g` */
+static odg_abort_t act_attached(const odg_dict_t *d, uint8_t g, int restore)
+{
+    const odg_nv_driver_t *nv = driver(d);
+    return nv == NULL || g >= d->n_groups ? ODG_ABORT_DATA_STORE : act(d, nv, g, restore);
+}
+
 odg_abort_t odg_persist_store(const odg_dict_t *dict, uint8_t g)
 {
-    return act(dict, driver(dict), g, 0);
+    return act_attached(dict, g, 0);
 }
 
 odg_abort_t odg_persist_restore(const odg_dict_t *dict, uint8_t g)
 {
-    return act(dict, driver(dict), g, 1);
+    return act_attached(dict, g, 1);
 }
 
 static odg_boot_status_t boot_group(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g,
