@@ -126,7 +126,7 @@ static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_
 {
     odg_abort_t ac = nv != NULL ? ODG_OK : ODG_ABORT_DATA_STORE;
     odg_state_t *s = dict->state;
-    uint8_t g;
+    unsigned g; /* a group's number (below 256): no narrowing at every turn */
     int fits, pass;
 #if ODG_CFG_PERSIST_TWO_PASS
     uint8_t done[32]; /* the groups booted in the first pass */
@@ -155,7 +155,7 @@ static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_
         for (g = 0; g < dict->n_groups; g++) {
             odg_boot_t own, *b = boot != NULL ? &boot[g] : &own; /* the counts straight into `boot` */
 #if ODG_CFG_PERSIST_TWO_PASS
-            if ((done[g >> 3] >> (g & 7u)) & 1u || (pass == 0 && !odg_described_displaced_(dict, nv, g))) {
+            if ((done[g >> 3] >> (g & 7u)) & 1u || (pass == 0 && !odg_described_displaced_(dict, nv, (uint8_t)g))) {
                 continue;
             }
             done[g >> 3] = (uint8_t)(done[g >> 3] | 1u << (g & 7u));
@@ -163,9 +163,9 @@ static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_
             b->status = ODG_BOOT_NV_ERROR;
             b->kept = b->converted = b->defaulted = b->dropped = b->added = 0;
             if (fits) { /* an NV smaller than the dictionary's: NV_ERROR, nothing written */
-                b->status = (uint8_t)boot_group(dict, nv, g, b);
+                b->status = (uint8_t)boot_group(dict, nv, (uint8_t)g, b);
             }
-            booted(dict, g, b, st, &ac);
+            booted(dict, (uint8_t)g, b, st, &ac);
         }
     }
     odg_changed(dict, NULL);
