@@ -119,10 +119,10 @@ uint8_t odg_add_sat_(uint8_t total, uint16_t n)
 
 uint32_t odg_persist_nv_size(const odg_dict_t *dict)
 {
+    const odg_group_t *gr = dict->groups;
     uint32_t end = 0, e;
-    uint8_t g;
-    for (g = 0; g < dict->n_groups; g++) {
-        const odg_group_t *gr = &dict->groups[g];
+    unsigned n;
+    for (n = dict->n_groups; n > 0u; n--, gr++) {
         e = gr->nv_addr + (ODG_MIGRATES_(gr) ? gr->region : 2u * ODG_PERSIST_SLOT_SIZE(gr->size));
         end = e > end ? e : end;
     }
