@@ -442,7 +442,7 @@ odg_abort_t odg_described_erase_(const odg_dict_t *d, const odg_nv_driver_t *nv,
         e = k == 2 && at < end && e > end ? end : e; /* one that cannot be read: its header */
         if (at < end) {
             lo = at;
-            hi = e > end ? end : e;
+            hi = e; /* past the end: nothing after it */
         }
     }
     fail = fail || walk(d, nv, gr, &f, 1, at) < 0;
@@ -478,7 +478,7 @@ static int scrub(const odg_nv_driver_t *nv, const odg_group_t *gr)
         }
         half = half == 0u ? 32u : 2u * half;
     } while (half < gr->region);
-    return odg_clear_(nv, pos < end ? pos : end, end) ? -1 : 0;
+    return odg_clear_(nv, pos, end) ? -1 : 0; /* nothing when pos is past the end */
 }
 
 /* ---- boot migration: docs/persistence.md section 3, odgen/persist/migration.py ----------- */
