@@ -91,7 +91,7 @@ OUTLINE static uint32_t value_size(const uint8_t *rec)
 typedef struct recs {
     const odg_dict_t *d;
     const odg_entry_t *e; /* the entry of the current sub-entry */
-    uint16_t pos;         /* position in dict->subs after its descriptor */
+    unsigned pos;         /* position in dict->subs after its descriptor */
     uint16_t left;        /* records still to come */
     uint8_t storage;      /* ODG_S_PERSIST | group << 2 */
     const odg_sub_t *of;  /* the descriptor of the packed elements walked last (done when
