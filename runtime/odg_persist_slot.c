@@ -81,10 +81,10 @@ int odg_crc_ok_(const odg_nv_driver_t *nv, uint32_t addr, const uint8_t *h, uint
 int odg_slot_blank_(const odg_nv_driver_t *nv, uint32_t addr, uint32_t size)
 {
     uint8_t chunk[ODG_PERSIST_CHUNK_];
-    uint32_t off, n, i;
-    for (off = 0; off < size; off += n) {
-        n = size - off < ODG_PERSIST_CHUNK_ ? size - off : ODG_PERSIST_CHUNK_;
-        if (nv->read(nv->ctx, addr + off, chunk, n) != 0) {
+    uint32_t n, i;
+    for (; size > 0u; addr += n, size -= n) {
+        n = size < ODG_PERSIST_CHUNK_ ? size : ODG_PERSIST_CHUNK_;
+        if (nv->read(nv->ctx, addr, chunk, n) != 0) {
             return -1;
         }
         for (i = 0; i < n; i++) {
