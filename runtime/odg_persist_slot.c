@@ -61,15 +61,11 @@ int odg_hdr_read_(const odg_nv_driver_t *nv, uint32_t addr, uint8_t *h, uint32_t
 int odg_crc_ok_(const odg_nv_driver_t *nv, uint32_t addr, const uint8_t *h, uint32_t n,
                   uint32_t len, uint8_t *dst)
 {
-    uint8_t chunk[ODG_PERSIST_CHUNK_];
-    uint32_t crc = odg_crc32(0, h, n - 4u), off, k;
-    for (off = 0; off < len; off += k) {
-        uint8_t *p = dst ? dst + off : chunk;
-        k = len - off;
-        if (dst == NULL && k > ODG_PERSIST_CHUNK_) {
-            k = ODG_PERSIST_CHUNK_;
-        }
-        if (nv->read(nv->ctx, addr + n + off, p, k) != 0) {
+    uint8_t chunk[ODG_PERSIST_CHUNK_], *p = dst != NULL ? dst : chunk;
+    uint32_t crc = odg_crc32(0, h, n - 4u), k;
+    for (addr += n; len > 0u; addr += k, len -= k) {
+        k = dst == NULL && len > ODG_PERSIST_CHUNK_ ? ODG_PERSIST_CHUNK_ : len; /* into dst at once */
+        if (nv->read(nv->ctx, addr, p, k) != 0) {
             return -1;
         }
         crc = odg_crc32(crc, p, k);
