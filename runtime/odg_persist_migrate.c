@@ -645,25 +645,26 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
                    uint16_t n[5])
 {
     uint8_t st[REC];
-    uint32_t ra = at + DESCRIBED_HDR + 2u, rend, vo, key, fkey, cnt; /* ra: the next record's address */
+    /* ra: the next record's address; in: the address of the record in st (rend: none) */
+    uint32_t ra = at + DESCRIBED_HDR + 2u, rend, vo, key, fkey, cnt, in;
     const odg_sub_t *s;
     recs_t fw;
     long high;
-    int have = 0, r;
+    int r;
     if (nv->read(nv->ctx, ra - 2u, st, 2) != 0) {
         return -1;
     }
     cnt = get16(st);
     rend = ra + REC * cnt; /* past the records, where the values start */
-    vo = rend;
+    vo = in = rend;
     for (recs_start(&fw, d, g); (s = recs_next(&fw)) != NULL;) {
         r = ADDED;
         fkey = (uint32_t)fw.e->index << 8 | s->sub; /* the firmware record's key */
         while (ra != rend) { /* stored entries before this key are no longer in the group */
-            if (!have && nv->read(nv->ctx, ra, st, REC) != 0) {
+            if (in != ra && nv->read(nv->ctx, ra, st, REC) != 0) {
                 return -1;
             }
-            have = 1;
+            in = ra;
             key = rec_key(st);
             if (key > fkey) {
                 break; /* not stored: the default */
@@ -682,7 +683,6 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
             }
             vo += value_size(st);
             ra += REC;
-            have = 0;
             if (key == fkey) {
                 break;
             }
