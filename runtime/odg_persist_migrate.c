@@ -476,7 +476,7 @@ static int scrub(const odg_nv_driver_t *nv, const odg_group_t *gr)
             e = addr + extent(t);
             pos = e > pos ? e : pos;
         }
-        half = half == 0u ? 32u : 2u * half;
+        half = 2u * half > 32u ? 2u * half : 32u; /* 0, 32, 64, ... */
     } while (half < gr->region);
     return odg_clear_(nv, pos, end) ? -1 : 0; /* nothing when pos is past the end */
 }
