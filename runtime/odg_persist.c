@@ -119,9 +119,18 @@ static void booted(const odg_dict_t *d, uint8_t g, const odg_boot_t *b, odg_boot
     }
 }
 
+/* odg_persist_init and odg_persist_boot each get their own copy of the boot, without the
+ * output they do not have: a program calls one of them, and its copy links smaller than one
+ * shared by both (measured on Cortex-M4). */
+#if defined(__GNUC__)
+#define EACH_ITS_OWN __attribute__((always_inline)) inline
+#else
+#define EACH_ITS_OWN inline
+#endif
+
 /* Attach the layer and boot every group; the statuses into `st`, the counts into `boot`
  * (either may be NULL). */
-static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_nv_driver_t *nv,
+static EACH_ITS_OWN odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_nv_driver_t *nv,
                             odg_boot_status_t *st, odg_boot_t *boot)
 {
     odg_abort_t ac = nv != NULL ? ODG_OK : ODG_ABORT_DATA_STORE;
