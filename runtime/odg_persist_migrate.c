@@ -718,14 +718,16 @@ static odg_boot_status_t described_no_image(const odg_nv_driver_t *nv, const odg
 /* The counts of a boot that migrated an image, into `b` and the totals of the EMCY. */
 static void count(odg_state_t *s, odg_boot_t *b, const uint16_t n[5])
 {
-    int i;
+    unsigned i, t;
     b->kept = n[KEPT];
     b->converted = n[CONVERTED];
     b->defaulted = n[DEFAULTED];
     b->dropped = n[DROPPED];
     b->added = n[ADDED];
     for (i = 0; i < 3; i++) { /* entries defaulted, dropped, converted */
-        s->boot_counts[i] = odg_add_sat_(s->boot_counts[i], n[i + 1]);
+        t = s->boot_counts[i] + (unsigned)n[i + 1u]; /* odg_add_sat_ inline: no call, and a build
+                                                       * without the status object links none */
+        s->boot_counts[i] = (uint8_t)(t > 255u ? 255u : t);
     }
     if (n[DEFAULTED] || n[DROPPED]) { /* values stored and not served */
         s->boot_seen = (uint8_t)(s->boot_seen | ODG_BOOT_ENTRIES_LOST);
