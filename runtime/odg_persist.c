@@ -12,12 +12,10 @@
 #include "odg_persist_migrate.h"
 
 /* Store group `g` (restore = 0) in the format of its group, "ODG2" with a layout, else "ODG1";
- * or make its next boot use the defaults (restore = 1). */
+ * or make its next boot use the defaults (restore = 1). `nv` is a driver and `g` a group: the
+ * callers check (the command once for all its groups). */
 static odg_abort_t act(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, int restore)
 {
-    if (nv == NULL || g >= d->n_groups) {
-        return ODG_ABORT_DATA_STORE;
-    }
 #if ODG_CFG_PERSIST_MIGRATION
     if (ODG_MIGRATES_(&d->groups[g])) {
         return restore ? odg_described_erase_(d, nv, g) : odg_described_store_(d, nv, g);
@@ -40,7 +38,7 @@ static int nv_fits(const odg_dict_t *d, const odg_nv_driver_t *nv)
 static odg_abort_t command(odg_client_t *self, const odg_dict_t *d, uint8_t sub, int restore)
 {
     const odg_nv_driver_t *nv = ((const odg_persist_t *)(const void *)self)->nv;
-    odg_abort_t ac = ODG_ABORT_DATA_STORE, r;
+    odg_abort_t ac = ODG_OK, r;
     uint8_t g, any = 0;
     if (!nv_fits(d, nv)) {
         return ODG_ABORT_DATA_STORE;
@@ -48,11 +46,11 @@ static odg_abort_t command(odg_client_t *self, const odg_dict_t *d, uint8_t sub,
     for (g = 0; g < d->n_groups; g++) {
         if (sub == 1u || d->groups[g].store_sub == sub) {
             r = act(d, nv, g, restore); /* every group, even past one that failed */
-            ac = !any || ac == ODG_OK ? r : ac;
+            ac = ac == ODG_OK ? r : ac;
             any = 1;
         }
     }
-    return ac;
+    return any ? ac : ODG_ABORT_DATA_STORE;
 }
 
 /* The driver of the persistence layer attached to `d` (the client with its `command`; the
@@ -66,14 +64,21 @@ static const odg_nv_driver_t *driver(const odg_dict_t *d)
     return c != NULL ? ((const odg_persist_t *)(const void *)c)->nv : NULL;
 }
 
+/* act on group `g` with the attached driver: DATA_STORE when none is attached, or no group `g` */
+static odg_abort_t act_attached(const odg_dict_t *d, uint8_t g, int restore)
+{
+    const odg_nv_driver_t *nv = driver(d);
+    return nv == NULL || g >= d->n_groups ? ODG_ABORT_DATA_STORE : act(d, nv, g, restore);
+}
+
 odg_abort_t odg_persist_store(const odg_dict_t *dict, uint8_t g)
 {
-    return act(dict, driver(dict), g, 0);
+    return act_attached(dict, g, 0);
 }
 
 odg_abort_t odg_persist_restore(const odg_dict_t *dict, uint8_t g)
 {
-    return act(dict, driver(dict), g, 1);
+    return act_attached(dict, g, 1);
 }
 
 static odg_boot_status_t boot_group(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g,
@@ -98,10 +103,10 @@ static void report(const odg_dict_t *d, uint8_t g, const odg_boot_t *b)
     }
 }
 
-/* What the boot of group `g` found, into the dictionary's state, the status object, `st` and
- * `boot` (either may be NULL), and *ac (HARDWARE on NV_ERROR). */
+/* What the boot of group `g` found, into the dictionary's state, the status object, `st`
+ * (when not NULL) and *ac (HARDWARE on NV_ERROR). */
 static void booted(const odg_dict_t *d, uint8_t g, const odg_boot_t *b, odg_boot_status_t *st,
-                   odg_boot_t *boot, odg_abort_t *ac)
+                   odg_abort_t *ac)
 {
     odg_state_t *s = d->state;
     s->boot_seen = (uint8_t)(s->boot_seen | 1u << b->status);
@@ -112,9 +117,6 @@ static void booted(const odg_dict_t *d, uint8_t g, const odg_boot_t *b, odg_boot
     if (st != NULL) {
         st[g] = (odg_boot_status_t)b->status;
     }
-    if (boot != NULL) {
-        boot[g] = *b;
-    }
 }
 
 /* Boot group `g` (on an NV smaller than the dictionary's, `fits` 0: NV_ERROR, nothing
@@ -122,11 +124,13 @@ static void booted(const odg_dict_t *d, uint8_t g, const odg_boot_t *b, odg_boot
 static void boot_one(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, int fits,
                      odg_boot_status_t *st, odg_boot_t *boot, odg_abort_t *ac)
 {
-    odg_boot_t b = {ODG_BOOT_NV_ERROR, 0, 0, 0, 0, 0};
+    odg_boot_t own, *b = boot != NULL ? &boot[g] : &own; /* the counts straight into `boot` */
+    b->status = ODG_BOOT_NV_ERROR;
+    b->kept = b->converted = b->defaulted = b->dropped = b->added = 0;
     if (fits) {
-        b.status = (uint8_t)boot_group(d, nv, g, &b);
+        b->status = (uint8_t)boot_group(d, nv, g, b);
     }
-    booted(d, g, &b, st, boot, ac);
+    booted(d, g, b, st, ac);
 }
 
 #if ODG_CFG_PERSIST_TWO_PASS
@@ -196,9 +200,9 @@ static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_
     boot_ordered(dict, nv, fits, st, boot, &ac);
 #else
     { /* one group: no other group's boot can write over its image */
-        uint8_t g;
+        unsigned g; /* below 256: no narrowing at every turn */
         for (g = 0; g < dict->n_groups; g++) {
-            boot_one(dict, nv, g, fits, st, boot, &ac);
+            boot_one(dict, nv, (uint8_t)g, fits, st, boot, &ac);
         }
     }
 #endif

@@ -91,7 +91,7 @@ OUTLINE static uint32_t value_size(const uint8_t *rec)
 typedef struct recs {
     const odg_dict_t *d;
     const odg_entry_t *e; /* the entry of the current sub-entry */
-    uint16_t pos;         /* position in dict->subs after its descriptor */
+    unsigned pos;         /* position in dict->subs after its descriptor */
     uint16_t left;        /* records still to come */
     uint8_t storage;      /* ODG_S_PERSIST | group << 2 */
     const odg_sub_t *of;  /* the descriptor of the packed elements walked last (done when
@@ -442,7 +442,7 @@ odg_abort_t odg_described_erase_(const odg_dict_t *d, const odg_nv_driver_t *nv,
         e = k == 2 && at < end && e > end ? end : e; /* one that cannot be read: its header */
         if (at < end) {
             lo = at;
-            hi = e > end ? end : e;
+            hi = e; /* past the end: nothing after it */
         }
     }
     fail = fail || walk(d, nv, gr, &f, 1, at) < 0;
@@ -476,9 +476,9 @@ static int scrub(const odg_nv_driver_t *nv, const odg_group_t *gr)
             e = addr + extent(t);
             pos = e > pos ? e : pos;
         }
-        half = half == 0u ? 32u : 2u * half;
+        half = 2u * half > 32u ? 2u * half : 32u; /* 0, 32, 64, ... */
     } while (half < gr->region);
-    return odg_clear_(nv, pos < end ? pos : end, end) ? -1 : 0;
+    return odg_clear_(nv, pos, end) ? -1 : 0; /* nothing when pos is past the end */
 }
 
 /* ---- boot migration: docs/persistence.md section 3, odgen/persist/migration.py ----------- */
@@ -645,25 +645,26 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
                    uint16_t n[5])
 {
     uint8_t st[REC];
-    uint32_t ra = at + DESCRIBED_HDR + 2u, rend, vo, key, fkey, cnt; /* ra: the next record's address */
+    /* ra: the next record's address; in: the address of the record in st (rend: none) */
+    uint32_t ra = at + DESCRIBED_HDR + 2u, rend, vo, key, fkey, cnt, in;
     const odg_sub_t *s;
     recs_t fw;
     long high;
-    int have = 0, r;
+    int r;
     if (nv->read(nv->ctx, ra - 2u, st, 2) != 0) {
         return -1;
     }
     cnt = get16(st);
     rend = ra + REC * cnt; /* past the records, where the values start */
-    vo = rend;
+    vo = in = rend;
     for (recs_start(&fw, d, g); (s = recs_next(&fw)) != NULL;) {
         r = ADDED;
         fkey = (uint32_t)fw.e->index << 8 | s->sub; /* the firmware record's key */
         while (ra != rend) { /* stored entries before this key are no longer in the group */
-            if (!have && nv->read(nv->ctx, ra, st, REC) != 0) {
+            if (in != ra && nv->read(nv->ctx, ra, st, REC) != 0) {
                 return -1;
             }
-            have = 1;
+            in = ra;
             key = rec_key(st);
             if (key > fkey) {
                 break; /* not stored: the default */
@@ -682,7 +683,6 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
             }
             vo += value_size(st);
             ra += REC;
-            have = 0;
             if (key == fkey) {
                 break;
             }
@@ -718,14 +718,16 @@ static odg_boot_status_t described_no_image(const odg_nv_driver_t *nv, const odg
 /* The counts of a boot that migrated an image, into `b` and the totals of the EMCY. */
 static void count(odg_state_t *s, odg_boot_t *b, const uint16_t n[5])
 {
-    int i;
+    unsigned i, t;
     b->kept = n[KEPT];
     b->converted = n[CONVERTED];
     b->defaulted = n[DEFAULTED];
     b->dropped = n[DROPPED];
     b->added = n[ADDED];
     for (i = 0; i < 3; i++) { /* entries defaulted, dropped, converted */
-        s->boot_counts[i] = odg_add_sat_(s->boot_counts[i], n[i + 1]);
+        t = s->boot_counts[i] + (unsigned)n[i + 1u]; /* odg_add_sat_ inline: no call, and a build
+                                                       * without the status object links none */
+        s->boot_counts[i] = (uint8_t)(t > 255u ? 255u : t);
     }
     if (n[DEFAULTED] || n[DROPPED]) { /* values stored and not served */
         s->boot_seen = (uint8_t)(s->boot_seen | ODG_BOOT_ENTRIES_LOST);

@@ -61,15 +61,11 @@ int odg_hdr_read_(const odg_nv_driver_t *nv, uint32_t addr, uint8_t *h, uint32_t
 int odg_crc_ok_(const odg_nv_driver_t *nv, uint32_t addr, const uint8_t *h, uint32_t n,
                   uint32_t len, uint8_t *dst)
 {
-    uint8_t chunk[ODG_PERSIST_CHUNK_];
-    uint32_t crc = odg_crc32(0, h, n - 4u), off, k;
-    for (off = 0; off < len; off += k) {
-        uint8_t *p = dst ? dst + off : chunk;
-        k = len - off;
-        if (dst == NULL && k > ODG_PERSIST_CHUNK_) {
-            k = ODG_PERSIST_CHUNK_;
-        }
-        if (nv->read(nv->ctx, addr + n + off, p, k) != 0) {
+    uint8_t chunk[ODG_PERSIST_CHUNK_], *p = dst != NULL ? dst : chunk;
+    uint32_t crc = odg_crc32(0, h, n - 4u), k;
+    for (addr += n; len > 0u; addr += k, len -= k) {
+        k = dst == NULL && len > ODG_PERSIST_CHUNK_ ? ODG_PERSIST_CHUNK_ : len; /* into dst at once */
+        if (nv->read(nv->ctx, addr, p, k) != 0) {
             return -1;
         }
         crc = odg_crc32(crc, p, k);
@@ -81,10 +77,10 @@ int odg_crc_ok_(const odg_nv_driver_t *nv, uint32_t addr, const uint8_t *h, uint
 int odg_slot_blank_(const odg_nv_driver_t *nv, uint32_t addr, uint32_t size)
 {
     uint8_t chunk[ODG_PERSIST_CHUNK_];
-    uint32_t off, n, i;
-    for (off = 0; off < size; off += n) {
-        n = size - off < ODG_PERSIST_CHUNK_ ? size - off : ODG_PERSIST_CHUNK_;
-        if (nv->read(nv->ctx, addr + off, chunk, n) != 0) {
+    uint32_t n, i;
+    for (; size > 0u; addr += n, size -= n) {
+        n = size < ODG_PERSIST_CHUNK_ ? size : ODG_PERSIST_CHUNK_;
+        if (nv->read(nv->ctx, addr, chunk, n) != 0) {
             return -1;
         }
         for (i = 0; i < n; i++) {
@@ -119,10 +115,10 @@ uint8_t odg_add_sat_(uint8_t total, uint16_t n)
 
 uint32_t odg_persist_nv_size(const odg_dict_t *dict)
 {
+    const odg_group_t *gr = dict->groups;
     uint32_t end = 0, e;
-    uint8_t g;
-    for (g = 0; g < dict->n_groups; g++) {
-        const odg_group_t *gr = &dict->groups[g];
+    unsigned n;
+    for (n = dict->n_groups; n > 0u; n--, gr++) {
         e = gr->nv_addr + (ODG_MIGRATES_(gr) ? gr->region : 2u * ODG_PERSIST_SLOT_SIZE(gr->size));
         end = e > end ? e : end;
     }
