@@ -92,22 +92,44 @@ DICT_PARTS = {"sub-entry descriptors": "od_subs", "entries": "od_entries", "rese
 NOT_MET = """\
 Where the goals are not met (hash, the default lookup; DS301 unless named; 2026-11-27):
 
-- **Dictionary + access with persistence and boot migration** (DS301 6484 B against 5308 B,
-  demoDevice 8424 B against 7132 B). The persistence layer links 3744 B (the layer 410, slots
-  and CRC 544, the migration 2790; demoDevice 4512 B), against about 1764 B that CANopenNode's
-  CO_storage, CO_storageEeprom and CRC-16 add (5308 - 3544). The dictionary and the core alone
-  are at 71% of CANopenNode's (the row without persistence), and the layer without migration is
-  within CANopenNode's figure (the row with `migration = false`: 85%). Meeting 100% with
-  migration needs the migration at about half its size. What it links beyond CANopenNode's
-  storage: stored values survive a firmware update that changes the layout (entry by entry
-  kept, widened, defaulted, dropped or added, checked against the current limits), images are
-  found where an older NV map put them (the places a region that grew or shrank left them, the
-  two-pass boot of several groups, the scrub of a region after boot), and a power-safe A/B
-  commit with read-back. The code is spread evenly over these features (none of them is more
-  than about 300 B), so what is left needs a smaller contract, not smaller code. The notes'
-  figure of the same row, 5768 B (bsearch, 2026-11-23), was measured before the stored-values
-  rule set was merged, which added about 1.6 KB here.
-- Measured for this row on 2026-11-27, and what became of it:
+- **Dictionary + access with persistence and boot migration** (DS301 5780 B against 5308 B,
+  109%; demoDevice 7692 B against 7132 B, 108%). The persistence layer links 3288 B (the layer
+  370, slots and CRC 432, the migration 2486; demoDevice 3998 B), against about 1764 B that
+  CANopenNode's CO_storage, CO_storageEeprom and CRC-16 add (5308 - 3544). The dictionary and
+  the core alone are at 64% of CANopenNode's (the row without persistence), and the layer without
+  migration is well within CANopenNode's figure (the row with `migration = false`: 78%). What it
+  links beyond CANopenNode's storage: stored values survive a firmware update that changes the
+  layout (entry by entry kept, widened, defaulted, dropped or added, checked against the current
+  limits), images are found where an older NV map put them (the places a region that grew or
+  shrank left them, the ordered boot of several groups, the scrub of a region after boot), and a
+  power-safe A/B commit with read-back. After today's rounds the code is spread evenly over these
+  features and the last rounds found a few bytes each: closing the last 472 B (demoDevice 560 B)
+  needs a smaller contract or a structural change (below), not smaller code. The notes' figure
+  of the same row, 5768 B (bsearch, 2026-11-23), was measured before the stored-values rule set
+  was merged, which added about 1.6 KB here.
+- Measured for this row on 2026-11-27 (second half of the day), and what became of it:
+  - A persistence group's defaults are the runs of its mirror that are not all zero
+    (`NAME_persist_GROUP_defaults`, placed by a (start, end) table) instead of a whole copy of the
+    mirror: DS301's defaults 432 -> 104 B of FLASH; DS301 with persistence -228 B (without -252 B,
+    whole device -240 B).
+  - `odg_init` adds the node-id to `$NODEID` values in one loop, which a group's defaults share,
+    instead of a statement per value in the generated reset (tried and dropped earlier because an
+    older generated file would add the node-id twice; a generated file now checks `ODG_TABLES`):
+    -56 B with persistence, +20 B without.
+  - The migration in two rounds of behaviour-preserving rewrites (header words read inline,
+    the place walk reading the NV size itself, results in one struct, a few helpers kept out of
+    line, dropped entries counted once, the layer's boot writing counts straight into the
+    caller's array, ...): DS301 -448 B, demoDevice -604 B in all.
+  - A correctness fix cost demoDevice +72 B (DS301 boots its one group alone): the groups boot in
+    dependency order, since a chain of displaced images (found by `make fuzz`) let one group's
+    boot clear another's newest image before it moved home.
+  - Structural changes not made yet: ARRAYs and RECORDs alike in everything but their offsets
+    (the four RPDO and TPDO communication and mapping records) could share one descriptor list,
+    about -250 B on these rows and much more on devices with many PDOs; it touches the lookup,
+    the layout walk of the migration and the table check.
+  - Tried and dropped: one switch for 16-bit hash tables and one for dictionaries without sparse
+    entries (-12 B and 0 B here: not worth two more configurations).
+- Measured for this row on 2026-11-27 (first half of the day), and what became of it:
   - One walk over a group's places serves store, erase, scrub and boot: -208 B, then +64 B to
     keep the boot's peak stack where it was; later the walk lost its list of images (0x1011
     erases the images past the region on a second walk, the scrub visits the region's places in
@@ -125,28 +147,27 @@ Where the goals are not met (hash, the default lookup; DS301 unless named; 2026-
   - A correctness fix cost +28 B (demoDevice +72 B): sub 0 of an entry whose highest sub-index
     changed follows it only when its stored value would be kept or widened (a value narrowed
     there is a loss, now reported).
-  - Tried and dropped: the node-id added to $NODEID values by one loop in `odg_init` instead of a
-    statement per value in the generated reset (-60 B with persistence, +12 B without; it changes
-    what a generated reset must do, so an older generated file would add the node-id twice);
-    the header word reader inline (-8 B); the walk's three passes over the layout as one
-    function (+48 B); the record walk without its count of records left (+16 B).
+  - Tried then, made later in the day (above): the node-id added by one loop in `odg_init`
+    (-60 B then); the header word reader inline (-8 B then, more with the later rewrites).
+    Tried and dropped: the walk's three passes over the layout as one function (+48 B); the
+    record walk without its count of records left (+16 B).
   - Earlier: `odg_verify` is not linked by a firmware that does not call it; CRC-32 bit by bit
     (44 B, no table); hash links 88 B more than bsearch, which misses the lookup goal; the
     persisted group's defaults as generated code instead of a table (-296 B) would need a
     per-value default for the readers of single defaults (`odg_comm.c`, `odg_verify`, the "ODG1"
     limit re-check) that costs what it saves.
 
-The **whole device** meets its goal since 2026-11-27 (13960 B against 14021 B, 85% of 16496 B;
-with SDO block transfer, odgen's default, 15000 B). It was 15204 B in the morning: the services
+The **whole device** meets its goal since 2026-11-27: 13280 B against 14021 B (81% of 16496 B;
+with SDO block transfer, odgen's default, 14320 B). It was 15204 B in the morning: the services
 -656 B (SDO 1152 -> 784 B: a build without strings or domains leaves the streamed transfers
 out, one whose values are all numbers of at most 4 bytes answers every upload expedited; PDO,
 EMCY, heartbeat, SYNC and communication values each a little smaller), the LSS configuration in
 a record store of its own instead of "ODG1" slots (-192 B) and the LSS slave and that store
--130 B, the migration about -210 B (as above), the packed commands -48 B. Its services link 7002 B
-(`odg_pdo.c` 1988, `odg_node.c` 1054, `odg_err.c` 1012, `odg_sdo.c` 784, `odg_hb.c` 694,
-`odg_lss.c` 674, `odg_comm.c` 406, `odg_sync.c` 240, `odg_node_io.c` 118, `odg_time.c` 32),
-the persistence 4100 B (the LSS record store 356 of it), the dictionary 1621 B and the core
-940 B. RAM, 1772 B (32%), meets its goal too.
+-130 B, the migration and the layer about -800 B, the defaults as runs -240 B, the packed
+commands -48 B. Its services link 6992 B (`odg_pdo.c` 1988, `odg_node.c` 1054, `odg_err.c`
+1012, `odg_sdo.c` 784, `odg_hb.c` 694, `odg_lss.c` 674, `odg_comm.c` 396, `odg_sync.c` 240,
+`odg_node_io.c` 118, `odg_time.c` 32), the persistence 3672 B (the LSS record store 356 of it),
+the dictionary 1221 B and the core 1092 B. RAM, 1772 B (32%), meets its goal too.
 
 Earlier shrinks, measured the same way (the figures of their day, with an NV driver of three empty
 functions and before the stored-values rule set):
