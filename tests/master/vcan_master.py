@@ -24,7 +24,9 @@ import subprocess
 import sys
 import threading
 import time
+from collections.abc import Callable
 from pathlib import Path
+from typing import TypeVar
 
 import canopen
 from canopen.sdo.exceptions import SdoAbortedError, SdoCommunicationError
@@ -71,6 +73,23 @@ def wait_for(what: str, check) -> None:
     raise AssertionError(f"not within {DEADLINE:g} s: {what}{last}")
 
 
+T = TypeVar("T")
+
+
+def ask(transfer: Callable[[], T]) -> T:
+    """An SDO transfer, asked again after a communication error: on a loaded machine a request
+    that timed out may be answered late, and its answer taken for the next request's (canopen
+    then reports an unexpected response). Aborts are answers and pass through."""
+    end = time.monotonic() + DEADLINE
+    while True:
+        try:
+            return transfer()
+        except SdoCommunicationError:
+            if time.monotonic() > end:
+                raise
+            time.sleep(0.2)  # the late answer arrives and is dropped before the next request
+
+
 def configured_values(dcf: str, node_id: int) -> dict[tuple[int, int], bytes]:
     """Each entry the DCF configures (a ParameterValue), as the bytes its SDO server holds."""
     od = canopen.import_od(dcf, node_id)
@@ -99,10 +118,10 @@ def check_pdos(remote: dict, plan: dict) -> int:
         for n, ((pi, ps, size), (ci, cs, _)) in enumerate(pairs, 1):
             sent = bytes([n] * size)
             try:
-                remote[producer].sdo.download(pi, ps, sent)
+                ask(lambda: remote[producer].sdo.download(pi, ps, sent))  # noqa: B023
             except SdoAbortedError:  # read-only on the producer: the value it holds
-                sent = remote[producer].sdo.upload(pi, ps)
-            remote[consumer].sdo.download(ci, cs, bytes(b ^ 0xFF for b in sent))
+                sent = ask(lambda: remote[producer].sdo.upload(pi, ps))  # noqa: B023
+            ask(lambda: remote[consumer].sdo.download(ci, cs, bytes(b ^ 0xFF for b in sent)))  # noqa: B023
             where = f"node {producer} 0x{pi:04X}sub{ps} -> node {consumer} 0x{ci:04X}sub{cs}"
             wait_for(f"{where}: {sent.hex()}", lambda: remote[consumer].sdo.upload(ci, cs) == sent)  # noqa: B023
             flowed += 1
@@ -149,7 +168,7 @@ def main() -> None:
         def configured(node_id: int) -> bool:
             assert values[node_id], f"node {node_id}: nothing configured"
             for (index, sub), data in values[node_id].items():
-                got = remote[node_id].sdo.upload(index, sub)
+                got = ask(lambda: remote[node_id].sdo.upload(index, sub))  # noqa: B023
                 assert got == data, f"node {node_id} 0x{index:04X}sub{sub}: {got.hex()} != {data.hex()}"
             return True
 
@@ -172,7 +191,7 @@ def main() -> None:
         assert states.state.get(wrong) == 0x7F, f"node {wrong} state {states.state.get(wrong)}"
         # a slave reset by NMT comes back with its defaults and is configured again
         again = plan["reset"]
-        remote[again].sdo.download(0x1017, 0, b"\x10\x27")  # so that only a new download restores it
+        ask(lambda: remote[again].sdo.download(0x1017, 0, b"\x10\x27"))  # so that only a new download restores it
         booted = states.bootups.get(again, 0)
         remote[again].nmt.send_command(0x81)
         wait_for("the reset slave's boot-up", lambda: states.bootups.get(again, 0) > booted)
