@@ -1174,8 +1174,6 @@ static void test_verify(void)
     CHECK_EQ(odg_verify(&td, &bad), ODG_OK);
 }
 
-/* Values are found through the dictionary's blocks, not at fixed addresses: a copy of td with
- * other ROM, RAM and group structs reads and writes those. */
 /* odg_group_defaults: every window of a mirror whose defaults are three runs, against the
  * mirror spelled out, with the bytes around the window untouched. */
 static void test_group_defaults(void)
@@ -1207,6 +1205,8 @@ static void test_group_defaults(void)
     }
 }
 
+/* Values are found through the dictionary's blocks, not at fixed addresses: a copy of td with
+ * other ROM, RAM and group structs reads and writes those. */
 static void test_blocks(void)
 {
     static td_rom_t rom2;
