@@ -136,23 +136,27 @@ static void boot_one(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, 
 #if ODG_CFG_PERSIST_TWO_PASS
 #define DONE(done, g) (((done)[(g) >> 3] >> ((g) & 7u)) & 1u)
 
-/* Whether the region of group `g` holds the newest image of another group still to boot (the NV
- * map changed): g's boot, its store and the clearing of its region, would write over it before
- * that group moved it home. */
+/* Whether the region of group `g` holds any byte of the newest image of another group still to
+ * boot (the NV map changed): g's boot, its store and the clearing of its region, would write over
+ * it before that group moved it home. */
 static int holds_newest(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, const uint8_t *done)
 {
     const odg_group_t *gr = &d->groups[g];
+    uint32_t start, end;
     uint8_t h;
     for (h = 0; h < d->n_groups; h++) {
-        if (h != g && !DONE(done, h) && odg_described_newest_(d, nv, h) - gr->nv_addr < gr->region) {
-            return 1;
+        if (h != g && !DONE(done, h)) {
+            start = odg_described_newest_(d, nv, h, &end);
+            if (start < gr->nv_addr + gr->region && end > gr->nv_addr) {
+                return 1;
+            }
         }
     }
     return 0;
 }
 
-/* Boot the groups in rounds: a group boots once its region holds the newest image of no group
- * still to boot, so that each group moves its image home before another group's boot writes
+/* Boot the groups in rounds: a group boots once its region holds no byte of the newest image of
+ * a group still to boot, so that each group moves its image home before another group's boot writes
  * over it, however the images were displaced (a chain: A's newest in B's region, B's in C's).
  * A round that boots none (images displaced in a cycle) boots the first group left. */
 static void boot_ordered(const odg_dict_t *d, const odg_nv_driver_t *nv, int fits,
