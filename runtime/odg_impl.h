@@ -37,6 +37,16 @@ typedef uint32_t odg_num_t;
 #define ODG_LE32(p) \
     ((uint32_t)(p)[0] | (uint32_t)(p)[1] << 8 | (uint32_t)(p)[2] << 16 | (uint32_t)(p)[3] << 24)
 
+/* `v` as the little-endian bytes of an UNSIGNED32 from `p` on, written byte by byte (ODG_LE32
+ * reads them back): any alignment, any byte order. */
+static inline void odg_put_le32_(uint8_t *p, uint32_t v)
+{
+    p[0] = (uint8_t)v;
+    p[1] = (uint8_t)(v >> 8);
+    p[2] = (uint8_t)(v >> 16);
+    p[3] = (uint8_t)(v >> 24);
+}
+
 /* Native value of a numeric sub-entry of wire size `size` (1..8, 1..4 without ODG_CFG_INT64),
  * zero-extended from its C type (uint8_t, uint16_t, uint32_t for 3..4, uint64_t for 5..8;
  * float/double as bits). */

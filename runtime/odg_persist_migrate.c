@@ -60,15 +60,6 @@ static int streamed(uint8_t t)
     return t < 0x1Cu && (BIT(t) & STREAMS) != 0u;
 }
 
-/* odg_put32_ inline: -Os makes it one store where the core allows, less than a call. */
-static void put32(uint8_t *p, uint32_t v)
-{
-    p[0] = (uint8_t)v;
-    p[1] = (uint8_t)(v >> 8);
-    p[2] = (uint8_t)(v >> 16);
-    p[3] = (uint8_t)(v >> 24);
-}
-
 static uint16_t get16(const uint8_t *p)
 {
     return (uint16_t)(p[0] | (unsigned)p[1] << 8);
@@ -399,11 +390,11 @@ odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv,
     if (DESCRIBED_HDR + size > half) {
         return ODG_ABORT_DATA_STORE; /* odg_verify: never for a generated dictionary */
     }
-    put32(h, DESCRIBED_MAGIC);
-    put32(h + 4, seq);
-    put32(h + 8, tagged_id(gr));
-    put32(h + 12, gr->region);
-    put32(h + 16, size);
+    odg_put_le32_(h, DESCRIBED_MAGIC);
+    odg_put_le32_(h + 4, seq);
+    odg_put_le32_(h + 8, tagged_id(gr));
+    odg_put_le32_(h + 12, gr->region);
+    odg_put_le32_(h + 16, size);
     o.nv = nv;
     o.addr = addr + DESCRIBED_HDR;
     o.crc = odg_crc32(0, h, 20);
@@ -419,7 +410,7 @@ odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv,
     }
     flush(&o);
     /* the CRC covers the bytes written; the read-back below checks that they landed */
-    put32(h + 20, o.crc);
+    odg_put_le32_(h + 20, o.crc);
     if (o.fail || nv->write(nv->ctx, addr + 4u, h + 4, DESCRIBED_HDR - 4u) != 0 ||
         nv->write(nv->ctx, addr, h, 4u) != 0 || !reads_back(nv, gr, addr, h)) {
         return ODG_ABORT_HARDWARE;

@@ -27,10 +27,7 @@ uint32_t odg_crc32(uint32_t crc, const void *data, uint32_t len)
 
 void odg_put32_(uint8_t *p, uint32_t v)
 {
-    p[0] = (uint8_t)v;
-    p[1] = (uint8_t)(v >> 8);
-    p[2] = (uint8_t)(v >> 16);
-    p[3] = (uint8_t)(v >> 24);
+    odg_put_le32_(p, v);
 }
 
 uint32_t odg_get32_(const uint8_t *p)

@@ -28,14 +28,6 @@
 #define LONG_VALUES (T_STREAM != 0u || ODG_CFG_INT64)
 
 
-static void put32(uint8_t *p, uint32_t v)
-{
-    p[0] = (uint8_t)v;
-    p[1] = (uint8_t)(v >> 8);
-    p[2] = (uint8_t)(v >> 16);
-    p[3] = (uint8_t)(v >> 24);
-}
-
 #if ODG_NODE_SDO_BLOCK
 /* CRC-16-CCITT of CiA 301 block transfers: polynomial 0x1021, initial value 0, MSB first. */
 static uint16_t crc16(uint16_t crc, const uint8_t *p, uint32_t len)
@@ -55,8 +47,8 @@ static uint16_t crc16(uint16_t crc, const uint8_t *p, uint32_t len)
 static void send8(odg_node_t *n, uint8_t b0, uint32_t mid, uint32_t tail)
 {
     uint8_t d[8];
-    put32(d, mid << 8 | b0);
-    put32(d + 4, tail);
+    odg_put_le32_(d, mid << 8 | b0);
+    odg_put_le32_(d + 4, tail);
     (void)odg_io_send_(n, n->sdo_tx, d, 8);
 }
 

@@ -2,6 +2,7 @@
 /*
  * odg_sdo_client.c - SDO client channel: expedited and segmented transfers. See odg_sdo_client.h.
  */
+#include "odg_impl.h"
 #include "odg_sdo_client.h"
 
 /* odg_sdoc_t.phase: the answer the channel waits for */
@@ -9,14 +10,6 @@
 #define WAIT_DL_SEG 2u  /* 0x20 | toggle: segment taken */
 #define WAIT_UL_INIT 3u /* 0x4x: upload initiated (expedited: done) */
 #define WAIT_UL_SEG 4u  /* a segment */
-
-static void put32(uint8_t *p, uint32_t v)
-{
-    p[0] = (uint8_t)v;
-    p[1] = (uint8_t)(v >> 8);
-    p[2] = (uint8_t)(v >> 16);
-    p[3] = (uint8_t)(v >> 24);
-}
 
 uint32_t odg_sdoc_u32(const uint8_t *wire, uint32_t n)
 {
@@ -64,7 +57,7 @@ void odg_sdoc_abort(odg_sdoc_t *ch, uint32_t code)
     if (ch->state != ODG_SDOC_BUSY) {
         return;
     }
-    put32(b, code);
+    odg_put_le32_(b, code);
     (void)send_frame(ch, 0x80u, b, 1);
     finish(ch, code);
 }
@@ -147,7 +140,7 @@ static odg_abort_t begin_download(odg_sdoc_t *ch)
         }
         sent = send_frame(ch, (uint8_t)(0x23u | (4u - ch->total) << 2), b, 1);
     } else {
-        put32(b, ch->total);
+        odg_put_le32_(b, ch->total);
         sent = send_frame(ch, 0x21u, b, 1);
     }
     if (sent != 0) {

@@ -588,8 +588,9 @@ def _value_member(b: _Builder, view: DictView, target: StorageStruct, key: tuple
     ctype = _CTYPES[dtype.code]
     kind = dtype.kind
     if kind in ("vstring", "ostring", "ustring"):
-        array, init, size = _string_init(dtype, value, placement.capacity)
-        used, head = _head(string_default(dtype, value), 4 if kind == "ustring" else 2)
+        data = string_default(dtype, value)
+        array, init, size = _string_init(dtype, data, placement.capacity)
+        used, head = _head(data, 4 if kind == "ustring" else 2)
         target.members.append(Member(member, ctype, array, init, note, ALIGN[ctype], key, used, head))
     elif kind == "domain":
         return _domain(b, view, target, member, value, placement, note, key)
@@ -603,9 +604,8 @@ def _value_member(b: _Builder, view: DictView, target: StorageStruct, key: tuple
     return f"offsetof({target.type_name}, {member})", size
 
 
-def _string_init(dtype: DataType, value: Value | None, capacity: int | None) -> tuple[str, str, int]:
-    """A string's C array suffix, initializer and capacity in bytes."""
-    data = string_default(dtype, value)
+def _string_init(dtype: DataType, data: bytes | list[int], capacity: int | None) -> tuple[str, str, int]:
+    """A string's C array suffix, initializer and capacity in bytes, from its default as stored."""
     cap = string_capacity(dtype, data, capacity)
     if dtype.kind == "vstring":
         assert isinstance(data, bytes)
