@@ -24,6 +24,9 @@
  * less than a call of odg_get32_ (measured on Cortex-M4). */
 #define DESCRIBED_HDR ODG_PERSIST_HEADER2_SIZE
 #define DESCRIBED_MAGIC 0x3247444Fu /* "ODG2" */
+/* What described_read keeps of a valid slot: its header and then the image's record count, so
+ * that the migration need not read the count again */
+#define HEAD (DESCRIBED_HDR + 2u)
 #define REC 6u             /* a layout descriptor record: index u16, sub u8, type u8, length u16 */
 
 /* The numeric types by CiA 301 code: wire size in the low nibble (0 for strings, domains and
@@ -164,7 +167,8 @@ static int our_id(const odg_group_t *gr, uint32_t id)
     return id == tagged_id(gr) || id == gr->id;
 }
 
-/* Read and check the "ODG2" slot at `addr` (header into `h`) as an image of group `gr`: its id,
+/* Read and check the "ODG2" slot at `addr` (header into `h`, HEAD bytes: the record count
+ * after it when valid) as an image of group `gr`: its id,
  * and at slot A or at the middle of the region it names. A valid image has a descriptor of
  * records with increasing keys whose values fill it. 1 valid, 0 not, -1 the driver failed, 2
  * a header of ours whose image runs past the region and cannot be read there: an image of a
@@ -188,10 +192,10 @@ static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint
     if (v != 1) {
         return v; /* 0 a CRC error, -1 the driver failed */
     }
-    if (nv->read(nv->ctx, addr + DESCRIBED_HDR, c, 2) != 0) {
+    if (nv->read(nv->ctx, addr + DESCRIBED_HDR, h + DESCRIBED_HDR, 2) != 0) {
         return -1;
     }
-    cnt = get16(c);
+    cnt = get16(h + DESCRIBED_HDR);
     addr += DESCRIBED_HDR + 2u; /* the records */
     for (rend = addr + REC * cnt, sum = 2u + REC * cnt; addr != rend && sum <= len; addr += REC) {
         if (nv->read(nv->ctx, addr, c, REC) != 0) {
@@ -211,7 +215,7 @@ static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint
 static int reads_back(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t addr,
                       const uint8_t *h)
 {
-    uint8_t t[DESCRIBED_HDR];
+    uint8_t t[HEAD];
     return described_read(nv, gr, addr, t) == 1 && ODG_LE32(t + 20) == ODG_LE32(h + 20);
 }
 
@@ -245,10 +249,11 @@ static uint32_t named(const odg_group_t *gr, const uint8_t *a)
     return ODG_LE32(a) == DESCRIBED_MAGIC && our_id(gr, ODG_LE32(a + 8)) ? ODG_LE32(a + 12) / 2u : 0u;
 }
 
-/* An image found: where it is, and its header (one argument for both: fewer on the stack). */
+/* An image found: where it is, and its header and record count (HEAD; one argument for both:
+ * fewer on the stack). */
 typedef struct found {
     uint32_t at;
-    uint8_t h[DESCRIBED_HDR];
+    uint8_t h[HEAD];
 } found_t;
 
 /* The newest image of group `gr` of `d` at its places inside the dictionary's NV (up to its
@@ -260,7 +265,7 @@ typedef struct found {
 static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_t *gr, found_t *f,
                 int wipe, uint32_t keep)
 {
-    uint8_t t[DESCRIBED_HDR];
+    uint8_t t[HEAD];
     /* far: the place slot A names (0 until slot A is read: slot A is never past the NV) */
     uint32_t half = 0u, addr, end = odg_persist_nv_size(d), far = 0u;
     int v, k = 0;
@@ -286,7 +291,7 @@ static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_
         if (!k || ODG_NEWER_(ODG_LE32(t + 4), ODG_LE32(f->h + 4))) {
             k = v;
             f->at = addr;
-            odg_copy(f->h, t, DESCRIBED_HDR);
+            odg_copy(f->h, t, HEAD);
         }
     } while ((half = next_place(gr, half)) != 0u);
     return k;
@@ -451,7 +456,7 @@ odg_abort_t odg_described_erase_(const odg_dict_t *d, const odg_nv_driver_t *nv,
  * -1 when the driver failed. */
 static int scrub(const odg_nv_driver_t *nv, const odg_group_t *gr)
 {
-    uint8_t t[DESCRIBED_HDR];
+    uint8_t t[HEAD];
     uint32_t end = gr->nv_addr + gr->region, pos = gr->nv_addr, half = 0u, addr, e;
     int v;
     do {
@@ -628,24 +633,20 @@ static uint8_t fw_highest(const recs_t *fw)
     return high;
 }
 
-/* Every entry of group `g` from the image at `at`, merged by key with the firmware's layout;
- * the mirror holds the defaults before. Counts into n[KEPT .. ADDED]; -1 when the driver
- * failed. Sub 0 of an entry whose highest sub-index changed follows it (the default,
- * converted). */
-static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, uint32_t at,
+/* Every entry of group `g` from the valid image `f` (its record count read with its header),
+ * merged by key with the firmware's layout; the mirror holds the defaults before. Counts into
+ * n[KEPT .. ADDED]; -1 when the driver failed. Sub 0 of an entry whose highest sub-index
+ * changed follows it (the default, converted). */
+static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, const found_t *f,
                    uint16_t n[5])
 {
     uint8_t st[REC];
     /* ra: the next record's address; in: the address of the record in st (rend: none) */
-    uint32_t ra = at + DESCRIBED_HDR + 2u, rend, vo, key, fkey, cnt, in;
+    uint32_t ra = f->at + HEAD, rend, vo, key, fkey, cnt = get16(f->h + DESCRIBED_HDR), in;
     const odg_sub_t *s;
     recs_t fw;
     long high;
     int r;
-    if (nv->read(nv->ctx, ra - 2u, st, 2) != 0) {
-        return -1;
-    }
-    cnt = get16(st);
     rend = ra + REC * cnt; /* past the records, where the values start */
     vo = in = rend;
     for (recs_start(&fw, d, g); (s = recs_next(&fw)) != NULL;) {
@@ -738,7 +739,7 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
     int k = newest(d, nv, gr, &f);
     odg_defaults_(d, g); /* the mirror starts from the defaults (RAM only: no NV access) */
     if (k == 1) {
-        if (migrate(d, nv, g, f.at, n) == 0 && reads_back(nv, gr, f.at, f.h)) {
+        if (migrate(d, nv, g, &f, n) == 0 && reads_back(nv, gr, f.at, f.h)) {
             st = n[DEFAULTED] || n[DROPPED] || n[CONVERTED] || n[ADDED] ? ODG_BOOT_MIGRATED : ODG_BOOT_LOADED;
         }
     } else if (k >= 0) { /* 2: the newest image cannot be read: its values are lost */
