@@ -547,34 +547,42 @@ static int read_stream(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg
     return n < used ? CONVERTED : KEPT;
 }
 
-/* Whether the stored entry `st` is a number the firmware's sub-entry `s` keeps or converts: the
- * same type, or an integer widened, with its type's length (migration.py: KEEP or CONVERT); its
- * stored type's num_type (never 0) then, else 0. Else it is narrowed, retyped, or of a length
- * that does not fit its type: defaulted. */
+/* carried's answer for a string or domain of the same type, beside num_type's bits; never in a
+ * build without them (STREAMS) */
+#define STREAM 0x40u
+#define AS_STREAM(a) (STREAMS != 0u && (a) == STREAM)
+
+/* How the stored entry `st` carries into the firmware's sub-entry `s`: as a string or domain
+ * of the same type (STREAM: kept or resized), or as a number of the same type, or an integer
+ * widened, with its type's length (migration.py: KEEP or CONVERT): its stored type's num_type
+ * (never 0); else 0: it is narrowed, retyped, or of a length that does not fit its type, and
+ * defaulted. One answer for the value's read and for the test of a sub 0 that follows. */
 static unsigned carried(const odg_sub_t *s, const uint8_t *st)
 {
     unsigned a = num_of(st[3]), b = num_of(s->type), sl = get16(st + 4);
     /* a widened integer: UNSIGNEDn -> UNSIGNEDm, INTEGERn -> INTEGERm, UNSIGNEDn -> INTEGERm
      * with m > n */
     int widens = (a & b & NUM_INT) && (b & 0xFu) > (a & 0xFu) && !(a & ~b & NUM_SIGNED);
+    if (s->type == st[3] && STREAMED(s->type)) {
+        return STREAM;
+    }
     return (s->type == st[3] || widens) && sl != 0u && sl == (a & 0xFu) ? a : 0u;
 }
 
 /* Read the firmware's sub-entry `s` (at `pos` in dict->subs) from the stored entry `st`, whose
- * value lies at `addr` (emit_value's counterpart): kept, converted, or defaulted (the mirror
- * keeps the default). */
+ * value lies at `addr` (emit_value's counterpart), carried as `a` says (carried): kept,
+ * converted, or defaulted (the mirror keeps the default). */
 static int read_value(const odg_dict_t *d, const odg_nv_driver_t *nv, uint32_t pos,
-                      const odg_sub_t *s, const uint8_t *st, uint32_t addr)
+                      const odg_sub_t *s, const uint8_t *st, uint32_t addr, unsigned a)
 {
     uint32_t sl = get16(st + 4), i;
     uint8_t c[8];
     odg_num_t v;
-    unsigned a;
-    if (s->type == st[3] && STREAMED(s->type)) {
+    if (AS_STREAM(a)) {
         return read_stream(d, nv, s, sl, addr);
     }
     /* a number of a type this build serves: no wider than odg_num_t (ODG_CFG_INT64) */
-    if ((a = carried(s, st)) == 0u) {
+    if (a == 0u) {
         return DEFAULTED;
     }
     if (nv->read(nv->ctx, addr, c, sl) != 0) {
@@ -609,15 +617,12 @@ static long stored_highest(const odg_nv_driver_t *nv, uint32_t ra, uint32_t rend
     return high;
 }
 
-/* Whether sub 0 stored as `st` follows the firmware's entry when its highest sub-index changed:
- * only a value kept as it is (a string of the same capacity too) or widened follows; one
- * narrowed or retyped is defaulted, one resized is resized (migration.py: plan). */
-static int follows(const odg_sub_t *s, const uint8_t *st)
+/* Whether sub 0 stored as `st`, carried as `a`, follows the firmware's entry when its highest
+ * sub-index changed: only a value kept as it is (a string of the same capacity too) or widened
+ * follows; one narrowed or retyped is defaulted, one resized is resized (migration.py: plan). */
+static int follows(const odg_sub_t *s, const uint8_t *st, unsigned a)
 {
-    if (s->type == st[3] && STREAMED(s->type)) {
-        return get16(st + 4) == s->size;
-    }
-    return carried(s, st) != 0u;
+    return AS_STREAM(a) ? get16(st + 4) == s->size : a != 0u;
 }
 
 /* The highest sub-index among the firmware's records of the entry whose sub 0 the layout walk
@@ -646,6 +651,7 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, co
     const odg_sub_t *s;
     recs_t fw;
     long high;
+    unsigned a;
     int r;
     rend = ra + REC * cnt; /* past the records, where the values start */
     vo = in = rend;
@@ -663,13 +669,14 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, co
             }
             /* a key before it: no longer in the group, dropped (counted at the end) */
             if (key == fkey) {
-                if ((fkey & 0xFFu) == 0u && follows(s, st) &&
+                a = carried(s, st);
+                if ((fkey & 0xFFu) == 0u && follows(s, st, a) &&
                     (high = stored_highest(nv, ra + REC, rend, fw.e->index)) != (long)fw_highest(&fw)) {
                     if (high < 0) {
                         return -1;
                     }
                     r = CONVERTED; /* the count follows the entry: its default */
-                } else if ((r = read_value(d, nv, fw.pos - 1u, s, st, vo)) == FAILED) {
+                } else if ((r = read_value(d, nv, fw.pos - 1u, s, st, vo, a)) == FAILED) {
                     return -1;
                 }
             }
