@@ -626,16 +626,14 @@ static int follows(const odg_sub_t *s, const uint8_t *st, unsigned a)
 }
 
 /* The highest sub-index among the firmware's records of the entry whose sub 0 the layout walk
- * `fw` is at (0 when none follows): read ahead on a copy of the walk. */
+ * `fw` is at (0 when none follows): the sub of the entry's last sub-entry in the group (a packed
+ * descriptor's is its last element's), found from the entry's end back to sub 0 at the latest. */
 static uint8_t fw_highest(const recs_t *fw)
 {
-    recs_t r = *fw;
-    const odg_sub_t *s;
-    uint8_t high = 0;
-    while ((s = recs_next(&r)) != NULL && r.e == fw->e) {
-        high = s->sub;
+    const odg_sub_t *s = &fw->d->subs[fw->e->first + fw->e->count];
+    while ((--s)->storage != fw->storage) {
     }
-    return high;
+    return s->sub;
 }
 
 /* Every entry of group `g` from the valid image `f` (its record count read with its header),
