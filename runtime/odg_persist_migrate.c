@@ -172,18 +172,24 @@ static int our_id(const odg_group_t *gr, uint32_t id)
  * and at slot A or at the middle of the region it names. A valid image has a descriptor of
  * records with increasing keys whose values fill it. 1 valid, 0 not, -1 the driver failed, 2
  * a header of ours whose image runs past the region and cannot be read there: an image of a
- * larger region on an NV that ends before it, which is a loss, never "nothing there". */
+ * larger region on an NV that ends before it, which is a loss, never "nothing there".
+ * A header that is not of this group (no "ODG2", another id) names no region: its region word
+ * in `h` is made 0, so that the place walk reads the place slot A names without checking the
+ * header again (named). */
 static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t addr, uint8_t *h)
 {
     uint8_t c[REC];
     uint32_t len, region, cnt, sum, prev = 0, rend;
     int v = odg_hdr_read_(nv, addr, h, DESCRIBED_HDR, DESCRIBED_MAGIC);
+    if (v != 1 || !our_id(gr, ODG_LE32(h + 8))) {
+        odg_put_le32_(h + 12, 0u);
+        return v < 0 ? -1 : 0;
+    }
     region = ODG_LE32(h + 12);
     len = ODG_LE32(h + 16);
-    if (v != 1 || region > 0x01000000u || region / 2u < DESCRIBED_HDR + 2u || len < 2u ||
-        len > region / 2u - DESCRIBED_HDR ||
-        !our_id(gr, ODG_LE32(h + 8)) || (addr != gr->nv_addr && addr - gr->nv_addr != region / 2u)) {
-        return v < 0 ? -1 : 0;
+    if (region > 0x01000000u || region / 2u < DESCRIBED_HDR + 2u || len < 2u ||
+        len > region / 2u - DESCRIBED_HDR || (addr != gr->nv_addr && addr - gr->nv_addr != region / 2u)) {
+        return 0;
     }
     v = odg_crc_ok_(nv, addr, h, DESCRIBED_HDR, len, NULL);
     if (v < 0 && addr + DESCRIBED_HDR + len > gr->nv_addr + gr->region) {
@@ -242,11 +248,12 @@ static uint32_t extent(const uint8_t *h)
     return (DESCRIBED_HDR + ODG_LE32(h + 16) + ODG_PERSIST_ALIGN - 1u) & ~((uint32_t)ODG_PERSIST_ALIGN - 1u);
 }
 
-/* The place (as `half`) slot A's header `a` names, read, not checked: the middle of the region
- * it was written for when it is a header of this group, else 0 (slot A itself). */
-static uint32_t named(const odg_group_t *gr, const uint8_t *a)
+/* The place (as `half`) slot A's header `a` names, as described_read left it (the image not
+ * checked): the middle of the region it was written for when it is a header of this group,
+ * else 0 (slot A itself). */
+static uint32_t named(const uint8_t *a)
 {
-    return ODG_LE32(a) == DESCRIBED_MAGIC && our_id(gr, ODG_LE32(a + 8)) ? ODG_LE32(a + 12) / 2u : 0u;
+    return ODG_LE32(a + 12) / 2u;
 }
 
 /* An image found: where it is, and its header and record count (HEAD; one argument for both:
@@ -280,7 +287,7 @@ static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_
             return -1;
         }
         if (half == 0u) {
-            far = named(gr, t);
+            far = named(t);
         }
         if (v <= 0) {
             continue;
