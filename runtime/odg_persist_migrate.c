@@ -705,8 +705,8 @@ static odg_boot_status_t described_no_image(const odg_nv_driver_t *nv, const odg
 {
     uint8_t t[4];
     uint32_t half = gr->region / 2u, addr = gr->nv_addr;
-    int k, v;
-    for (k = 0; k < 2; k++, addr += half) {
+    int v;
+    for (; addr < gr->nv_addr + gr->region; addr += half) { /* slot A, then B (a region is two halves) */
         v = odg_slot_blank_(nv, addr, half);
         if (v == 0) {
             v = odg_hdr_read_(nv, addr, t, 4u, ODG_PERSIST_ODG1_MAGIC);
