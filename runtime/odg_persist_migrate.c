@@ -752,7 +752,9 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
     odg_defaults_(d, g); /* the mirror starts from the defaults (RAM only: no NV access) */
     if (k == 1) {
         if (migrate(d, nv, g, &f, n) == 0 && reads_back(nv, gr, f.at, f.h)) {
-            st = n[DEFAULTED] || n[DROPPED] || n[CONVERTED] || n[ADDED] ? ODG_BOOT_MIGRATED : ODG_BOOT_LOADED;
+            /* LOADED: every stored entry kept (each is matched once at most, so none was
+             * defaulted, dropped or converted) and none added */
+            st = n[KEPT] != get16(f.h + DESCRIBED_HDR) || n[ADDED] ? ODG_BOOT_MIGRATED : ODG_BOOT_LOADED;
         }
     } else if (k >= 0) { /* 2: the newest image cannot be read: its values are lost */
         st = k == 2 ? ODG_BOOT_DAMAGED : described_no_image(nv, gr);
