@@ -182,7 +182,7 @@ static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint
     uint32_t len, region, cnt, sum, prev = 0, rend;
     int v = odg_hdr_read_(nv, addr, h, DESCRIBED_HDR, DESCRIBED_MAGIC);
     if (v != 1 || !our_id(gr, ODG_LE32(h + 8))) {
-        odg_put_le32_(h + 12, 0u);
+        memset(h + 12, 0, 4);
         return v < 0 ? -1 : 0;
     }
     region = ODG_LE32(h + 12);
