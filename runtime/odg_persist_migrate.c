@@ -329,9 +329,9 @@ static void flush(out_t *o)
     o->n = 0;
 }
 
-/* The `n` low bytes of `v`, little endian (`n` first: no argument on the stack when `v` has 64
- * bits). */
-static void emit(out_t *o, uint32_t n, odg_num_t v)
+/* The `n` (up to 4) low bytes of `v`, little endian: 32 bits, so that no call passes a 64-bit
+ * value (emit_value splits a wider number). */
+static void emit(out_t *o, uint32_t n, uint32_t v)
 {
     while (n-- > 0u) {
         o->buf[o->n++] = (uint8_t)v;
@@ -348,6 +348,7 @@ static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
 {
     uint32_t i, n = s->size, keep = n, zero = 0;
     const uint8_t *p;
+    odg_num_t v;
     if (IS(s->type, ODG_T_DOMAIN)) {
         const odg_domain_t *dm = &d->domains[s->offset];
         keep = *dm->length;
@@ -359,7 +360,13 @@ static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
         p = odg_value_(d, s);
     }
     if (!STREAMED(s->type)) {
-        emit(o, n, odg_num_get_(p, n));
+        v = odg_num_get_(p, n);
+        if (ODG_CFG_INT64 && n > 4u) { /* the low 32 bits first */
+            emit(o, 4, (uint32_t)v);
+            v = v >> 16 >> 16; /* twice 16: no shift by the width of a 32-bit odg_num_t */
+            n -= 4u;
+        }
+        emit(o, n, (uint32_t)v);
     } else if (IS(s->type, ODG_T_UNICODE_STRING)) {
         for (i = 0; i < n; i += 2u) {
             uint16_t u;
