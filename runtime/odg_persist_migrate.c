@@ -187,8 +187,11 @@ static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint
     }
     region = ODG_LE32(h + 12);
     len = ODG_LE32(h + 16);
-    if (region > 0x01000000u || region / 2u < DESCRIBED_HDR + 2u || len < 2u ||
-        len > region / 2u - DESCRIBED_HDR || (addr != gr->nv_addr && addr - gr->nv_addr != region / 2u)) {
+    /* len from 2 (the record count) up to what half the region holds after the header: one
+     * unsigned compare, len below 2 wraps round */
+    if (region > 0x01000000u || region / 2u < DESCRIBED_HDR + 2u ||
+        len - 2u > region / 2u - DESCRIBED_HDR - 2u ||
+        (addr != gr->nv_addr && addr - gr->nv_addr != region / 2u)) {
         return 0;
     }
     v = odg_crc_ok_(nv, addr, h, DESCRIBED_HDR, len, NULL);
