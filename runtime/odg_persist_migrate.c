@@ -24,6 +24,9 @@
  * less than a call of odg_get32_ (measured on Cortex-M4). */
 #define DESCRIBED_HDR ODG_PERSIST_HEADER2_SIZE
 #define DESCRIBED_MAGIC 0x3247444Fu /* "ODG2" */
+/* What described_read keeps of a valid slot: its header and then the image's record count, so
+ * that the migration need not read the count again */
+#define HEAD (DESCRIBED_HDR + 2u)
 #define REC 6u             /* a layout descriptor record: index u16, sub u8, type u8, length u16 */
 
 /* The numeric types by CiA 301 code: wire size in the low nibble (0 for strings, domains and
@@ -164,22 +167,32 @@ static int our_id(const odg_group_t *gr, uint32_t id)
     return id == tagged_id(gr) || id == gr->id;
 }
 
-/* Read and check the "ODG2" slot at `addr` (header into `h`) as an image of group `gr`: its id,
+/* Read and check the "ODG2" slot at `addr` (header into `h`, HEAD bytes: the record count
+ * after it when valid) as an image of group `gr`: its id,
  * and at slot A or at the middle of the region it names. A valid image has a descriptor of
  * records with increasing keys whose values fill it. 1 valid, 0 not, -1 the driver failed, 2
  * a header of ours whose image runs past the region and cannot be read there: an image of a
- * larger region on an NV that ends before it, which is a loss, never "nothing there". */
+ * larger region on an NV that ends before it, which is a loss, never "nothing there".
+ * A header that is not of this group (no "ODG2", another id) names no region: its region word
+ * in `h` is made 0, so that the place walk reads the place slot A names without checking the
+ * header again (named). */
 static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t addr, uint8_t *h)
 {
     uint8_t c[REC];
     uint32_t len, region, cnt, sum, prev = 0, rend;
     int v = odg_hdr_read_(nv, addr, h, DESCRIBED_HDR, DESCRIBED_MAGIC);
+    if (v != 1 || !our_id(gr, ODG_LE32(h + 8))) {
+        memset(h + 12, 0, 4);
+        return v < 0 ? -1 : 0;
+    }
     region = ODG_LE32(h + 12);
     len = ODG_LE32(h + 16);
-    if (v != 1 || region > 0x01000000u || region / 2u < DESCRIBED_HDR + 2u || len < 2u ||
-        len > region / 2u - DESCRIBED_HDR ||
-        !our_id(gr, ODG_LE32(h + 8)) || (addr != gr->nv_addr && addr - gr->nv_addr != region / 2u)) {
-        return v < 0 ? -1 : 0;
+    /* len from 2 (the record count) up to what half the region holds after the header: one
+     * unsigned compare, len below 2 wraps round */
+    if (region > 0x01000000u || region / 2u < DESCRIBED_HDR + 2u ||
+        len - 2u > region / 2u - DESCRIBED_HDR - 2u ||
+        (addr != gr->nv_addr && addr - gr->nv_addr != region / 2u)) {
+        return 0;
     }
     v = odg_crc_ok_(nv, addr, h, DESCRIBED_HDR, len, NULL);
     if (v < 0 && addr + DESCRIBED_HDR + len > gr->nv_addr + gr->region) {
@@ -188,10 +201,10 @@ static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint
     if (v != 1) {
         return v; /* 0 a CRC error, -1 the driver failed */
     }
-    if (nv->read(nv->ctx, addr + DESCRIBED_HDR, c, 2) != 0) {
+    if (nv->read(nv->ctx, addr + DESCRIBED_HDR, h + DESCRIBED_HDR, 2) != 0) {
         return -1;
     }
-    cnt = get16(c);
+    cnt = get16(h + DESCRIBED_HDR);
     addr += DESCRIBED_HDR + 2u; /* the records */
     for (rend = addr + REC * cnt, sum = 2u + REC * cnt; addr != rend && sum <= len; addr += REC) {
         if (nv->read(nv->ctx, addr, c, REC) != 0) {
@@ -211,7 +224,7 @@ static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint
 static int reads_back(const odg_nv_driver_t *nv, const odg_group_t *gr, uint32_t addr,
                       const uint8_t *h)
 {
-    uint8_t t[DESCRIBED_HDR];
+    uint8_t t[HEAD];
     return described_read(nv, gr, addr, t) == 1 && ODG_LE32(t + 20) == ODG_LE32(h + 20);
 }
 
@@ -238,17 +251,19 @@ static uint32_t extent(const uint8_t *h)
     return (DESCRIBED_HDR + ODG_LE32(h + 16) + ODG_PERSIST_ALIGN - 1u) & ~((uint32_t)ODG_PERSIST_ALIGN - 1u);
 }
 
-/* The place (as `half`) slot A's header `a` names, read, not checked: the middle of the region
- * it was written for when it is a header of this group, else 0 (slot A itself). */
-static uint32_t named(const odg_group_t *gr, const uint8_t *a)
+/* The place (as `half`) slot A's header `a` names, as described_read left it (the image not
+ * checked): the middle of the region it was written for when it is a header of this group,
+ * else 0 (slot A itself). */
+static uint32_t named(const uint8_t *a)
 {
-    return ODG_LE32(a) == DESCRIBED_MAGIC && our_id(gr, ODG_LE32(a + 8)) ? ODG_LE32(a + 12) / 2u : 0u;
+    return ODG_LE32(a + 12) / 2u;
 }
 
-/* An image found: where it is, and its header (one argument for both: fewer on the stack). */
+/* An image found: where it is, and its header and record count (HEAD; one argument for both:
+ * fewer on the stack). */
 typedef struct found {
     uint32_t at;
-    uint8_t h[DESCRIBED_HDR];
+    uint8_t h[HEAD];
 } found_t;
 
 /* The newest image of group `gr` of `d` at its places inside the dictionary's NV (up to its
@@ -260,7 +275,7 @@ typedef struct found {
 static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_t *gr, found_t *f,
                 int wipe, uint32_t keep)
 {
-    uint8_t t[DESCRIBED_HDR];
+    uint8_t t[HEAD];
     /* far: the place slot A names (0 until slot A is read: slot A is never past the NV) */
     uint32_t half = 0u, addr, end = odg_persist_nv_size(d), far = 0u;
     int v, k = 0;
@@ -275,7 +290,7 @@ static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_
             return -1;
         }
         if (half == 0u) {
-            far = named(gr, t);
+            far = named(t);
         }
         if (v <= 0) {
             continue;
@@ -286,7 +301,7 @@ static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_
         if (!k || ODG_NEWER_(ODG_LE32(t + 4), ODG_LE32(f->h + 4))) {
             k = v;
             f->at = addr;
-            odg_copy(f->h, t, DESCRIBED_HDR);
+            odg_copy(f->h, t, HEAD);
         }
     } while ((half = next_place(gr, half)) != 0u);
     return k;
@@ -317,9 +332,9 @@ static void flush(out_t *o)
     o->n = 0;
 }
 
-/* The `n` low bytes of `v`, little endian (`n` first: no argument on the stack when `v` has 64
- * bits). */
-static void emit(out_t *o, uint32_t n, odg_num_t v)
+/* The `n` (up to 4) low bytes of `v`, little endian: 32 bits, so that no call passes a 64-bit
+ * value (emit_value splits a wider number). */
+static void emit(out_t *o, uint32_t n, uint32_t v)
 {
     while (n-- > 0u) {
         o->buf[o->n++] = (uint8_t)v;
@@ -336,6 +351,7 @@ static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
 {
     uint32_t i, n = s->size, keep = n, zero = 0;
     const uint8_t *p;
+    odg_num_t v;
     if (IS(s->type, ODG_T_DOMAIN)) {
         const odg_domain_t *dm = &d->domains[s->offset];
         keep = *dm->length;
@@ -347,7 +363,13 @@ static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
         p = odg_value_(d, s);
     }
     if (!STREAMED(s->type)) {
-        emit(o, n, odg_num_get_(p, n));
+        v = odg_num_get_(p, n);
+        if (ODG_CFG_INT64 && n > 4u) { /* the low 32 bits first */
+            emit(o, 4, (uint32_t)v);
+            v = v >> 16 >> 16; /* twice 16: no shift by the width of a 32-bit odg_num_t */
+            n -= 4u;
+        }
+        emit(o, n, (uint32_t)v);
     } else if (IS(s->type, ODG_T_UNICODE_STRING)) {
         for (i = 0; i < n; i += 2u) {
             uint16_t u;
@@ -451,7 +473,7 @@ odg_abort_t odg_described_erase_(const odg_dict_t *d, const odg_nv_driver_t *nv,
  * -1 when the driver failed. */
 static int scrub(const odg_nv_driver_t *nv, const odg_group_t *gr)
 {
-    uint8_t t[DESCRIBED_HDR];
+    uint8_t t[HEAD];
     uint32_t end = gr->nv_addr + gr->region, pos = gr->nv_addr, half = 0u, addr, e;
     int v;
     do {
@@ -542,34 +564,42 @@ static int read_stream(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg
     return n < used ? CONVERTED : KEPT;
 }
 
-/* Whether the stored entry `st` is a number the firmware's sub-entry `s` keeps or converts: the
- * same type, or an integer widened, with its type's length (migration.py: KEEP or CONVERT); its
- * stored type's num_type (never 0) then, else 0. Else it is narrowed, retyped, or of a length
- * that does not fit its type: defaulted. */
+/* carried's answer for a string or domain of the same type, beside num_type's bits; never in a
+ * build without them (STREAMS) */
+#define STREAM 0x40u
+#define AS_STREAM(a) (STREAMS != 0u && (a) == STREAM)
+
+/* How the stored entry `st` carries into the firmware's sub-entry `s`: as a string or domain
+ * of the same type (STREAM: kept or resized), or as a number of the same type, or an integer
+ * widened, with its type's length (migration.py: KEEP or CONVERT): its stored type's num_type
+ * (never 0); else 0: it is narrowed, retyped, or of a length that does not fit its type, and
+ * defaulted. One answer for the value's read and for the test of a sub 0 that follows. */
 static unsigned carried(const odg_sub_t *s, const uint8_t *st)
 {
     unsigned a = num_of(st[3]), b = num_of(s->type), sl = get16(st + 4);
     /* a widened integer: UNSIGNEDn -> UNSIGNEDm, INTEGERn -> INTEGERm, UNSIGNEDn -> INTEGERm
      * with m > n */
     int widens = (a & b & NUM_INT) && (b & 0xFu) > (a & 0xFu) && !(a & ~b & NUM_SIGNED);
+    if (s->type == st[3] && STREAMED(s->type)) {
+        return STREAM;
+    }
     return (s->type == st[3] || widens) && sl != 0u && sl == (a & 0xFu) ? a : 0u;
 }
 
 /* Read the firmware's sub-entry `s` (at `pos` in dict->subs) from the stored entry `st`, whose
- * value lies at `addr` (emit_value's counterpart): kept, converted, or defaulted (the mirror
- * keeps the default). */
+ * value lies at `addr` (emit_value's counterpart), carried as `a` says (carried): kept,
+ * converted, or defaulted (the mirror keeps the default). */
 static int read_value(const odg_dict_t *d, const odg_nv_driver_t *nv, uint32_t pos,
-                      const odg_sub_t *s, const uint8_t *st, uint32_t addr)
+                      const odg_sub_t *s, const uint8_t *st, uint32_t addr, unsigned a)
 {
     uint32_t sl = get16(st + 4), i;
     uint8_t c[8];
     odg_num_t v;
-    unsigned a;
-    if (s->type == st[3] && STREAMED(s->type)) {
+    if (AS_STREAM(a)) {
         return read_stream(d, nv, s, sl, addr);
     }
     /* a number of a type this build serves: no wider than odg_num_t (ODG_CFG_INT64) */
-    if ((a = carried(s, st)) == 0u) {
+    if (a == 0u) {
         return DEFAULTED;
     }
     if (nv->read(nv->ctx, addr, c, sl) != 0) {
@@ -604,48 +634,40 @@ static long stored_highest(const odg_nv_driver_t *nv, uint32_t ra, uint32_t rend
     return high;
 }
 
-/* Whether sub 0 stored as `st` follows the firmware's entry when its highest sub-index changed:
- * only a value kept as it is (a string of the same capacity too) or widened follows; one
- * narrowed or retyped is defaulted, one resized is resized (migration.py: plan). */
-static int follows(const odg_sub_t *s, const uint8_t *st)
+/* Whether sub 0 stored as `st`, carried as `a`, follows the firmware's entry when its highest
+ * sub-index changed: only a value kept as it is (a string of the same capacity too) or widened
+ * follows; one narrowed or retyped is defaulted, one resized is resized (migration.py: plan). */
+static int follows(const odg_sub_t *s, const uint8_t *st, unsigned a)
 {
-    if (s->type == st[3] && STREAMED(s->type)) {
-        return get16(st + 4) == s->size;
-    }
-    return carried(s, st) != 0u;
+    return AS_STREAM(a) ? get16(st + 4) == s->size : a != 0u;
 }
 
 /* The highest sub-index among the firmware's records of the entry whose sub 0 the layout walk
- * `fw` is at (0 when none follows): read ahead on a copy of the walk. */
+ * `fw` is at (0 when none follows): the sub of the entry's last sub-entry in the group (a packed
+ * descriptor's is its last element's), found from the entry's end back to sub 0 at the latest. */
 static uint8_t fw_highest(const recs_t *fw)
 {
-    recs_t r = *fw;
-    const odg_sub_t *s;
-    uint8_t high = 0;
-    while ((s = recs_next(&r)) != NULL && r.e == fw->e) {
-        high = s->sub;
+    const odg_sub_t *s = &fw->d->subs[fw->e->first + fw->e->count];
+    while ((--s)->storage != fw->storage) {
     }
-    return high;
+    return s->sub;
 }
 
-/* Every entry of group `g` from the image at `at`, merged by key with the firmware's layout;
- * the mirror holds the defaults before. Counts into n[KEPT .. ADDED]; -1 when the driver
- * failed. Sub 0 of an entry whose highest sub-index changed follows it (the default,
- * converted). */
-static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, uint32_t at,
+/* Every entry of group `g` from the valid image `f` (its record count read with its header),
+ * merged by key with the firmware's layout; the mirror holds the defaults before. Counts into
+ * n[KEPT .. ADDED]; -1 when the driver failed. Sub 0 of an entry whose highest sub-index
+ * changed follows it (the default, converted). */
+static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, const found_t *f,
                    uint16_t n[5])
 {
     uint8_t st[REC];
     /* ra: the next record's address; in: the address of the record in st (rend: none) */
-    uint32_t ra = at + DESCRIBED_HDR + 2u, rend, vo, key, fkey, cnt, in;
+    uint32_t ra = f->at + HEAD, rend, vo, key, fkey, cnt = get16(f->h + DESCRIBED_HDR), in;
     const odg_sub_t *s;
     recs_t fw;
     long high;
+    unsigned a;
     int r;
-    if (nv->read(nv->ctx, ra - 2u, st, 2) != 0) {
-        return -1;
-    }
-    cnt = get16(st);
     rend = ra + REC * cnt; /* past the records, where the values start */
     vo = in = rend;
     for (recs_start(&fw, d, g); (s = recs_next(&fw)) != NULL;) {
@@ -662,13 +684,14 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, ui
             }
             /* a key before it: no longer in the group, dropped (counted at the end) */
             if (key == fkey) {
-                if ((fkey & 0xFFu) == 0u && follows(s, st) &&
+                a = carried(s, st);
+                if ((fkey & 0xFFu) == 0u && follows(s, st, a) &&
                     (high = stored_highest(nv, ra + REC, rend, fw.e->index)) != (long)fw_highest(&fw)) {
                     if (high < 0) {
                         return -1;
                     }
                     r = CONVERTED; /* the count follows the entry: its default */
-                } else if ((r = read_value(d, nv, fw.pos - 1u, s, st, vo)) == FAILED) {
+                } else if ((r = read_value(d, nv, fw.pos - 1u, s, st, vo, a)) == FAILED) {
                     return -1;
                 }
             }
@@ -692,8 +715,8 @@ static odg_boot_status_t described_no_image(const odg_nv_driver_t *nv, const odg
 {
     uint8_t t[4];
     uint32_t half = gr->region / 2u, addr = gr->nv_addr;
-    int k, v;
-    for (k = 0; k < 2; k++, addr += half) {
+    int v;
+    for (; addr < gr->nv_addr + gr->region; addr += half) { /* slot A, then B (a region is two halves) */
         v = odg_slot_blank_(nv, addr, half);
         if (v == 0) {
             v = odg_hdr_read_(nv, addr, t, 4u, ODG_PERSIST_ODG1_MAGIC);
@@ -738,8 +761,10 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
     int k = newest(d, nv, gr, &f);
     odg_defaults_(d, g); /* the mirror starts from the defaults (RAM only: no NV access) */
     if (k == 1) {
-        if (migrate(d, nv, g, f.at, n) == 0 && reads_back(nv, gr, f.at, f.h)) {
-            st = n[DEFAULTED] || n[DROPPED] || n[CONVERTED] || n[ADDED] ? ODG_BOOT_MIGRATED : ODG_BOOT_LOADED;
+        if (migrate(d, nv, g, &f, n) == 0 && reads_back(nv, gr, f.at, f.h)) {
+            /* LOADED: every stored entry kept (each is matched once at most, so none was
+             * defaulted, dropped or converted) and none added */
+            st = n[KEPT] != get16(f.h + DESCRIBED_HDR) || n[ADDED] ? ODG_BOOT_MIGRATED : ODG_BOOT_LOADED;
         }
     } else if (k >= 0) { /* 2: the newest image cannot be read: its values are lost */
         st = k == 2 ? ODG_BOOT_DAMAGED : described_no_image(nv, gr);
