@@ -103,16 +103,12 @@ static void report(const odg_dict_t *d, uint8_t g, const odg_boot_t *b)
     }
 }
 
-/* What the boot of group `g` found, into the dictionary's state, the status object, `st`
- * (when not NULL) and *ac (HARDWARE on NV_ERROR). */
-static void booted(const odg_dict_t *d, uint8_t g, const odg_boot_t *b, odg_boot_status_t *st,
-                   odg_abort_t *ac)
+/* What the boot of group `g` found, into the dictionary's state (boot_all answers HARDWARE
+ * from its NV_ERROR bit), the status object and `st` (when not NULL). */
+static void booted(const odg_dict_t *d, uint8_t g, const odg_boot_t *b, odg_boot_status_t *st)
 {
     odg_state_t *s = d->state;
     s->boot_seen = (uint8_t)(s->boot_seen | 1u << b->status);
-    if (b->status == ODG_BOOT_NV_ERROR && *ac == ODG_OK) {
-        *ac = ODG_ABORT_HARDWARE;
-    }
     report(d, g, b);
     if (st != NULL) {
         st[g] = (odg_boot_status_t)b->status;
@@ -122,7 +118,7 @@ static void booted(const odg_dict_t *d, uint8_t g, const odg_boot_t *b, odg_boot
 /* Boot group `g` (on an NV smaller than the dictionary's, `fits` 0: NV_ERROR, nothing
  * written) and record what it found. */
 static void boot_one(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, int fits,
-                     odg_boot_status_t *st, odg_boot_t *boot, odg_abort_t *ac)
+                     odg_boot_status_t *st, odg_boot_t *boot)
 {
     odg_boot_t own, *b = boot != NULL ? &boot[g] : &own; /* the counts straight into `boot` */
     b->status = ODG_BOOT_NV_ERROR;
@@ -130,7 +126,7 @@ static void boot_one(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, 
     if (fits) {
         b->status = (uint8_t)boot_group(d, nv, g, b);
     }
-    booted(d, g, b, st, ac);
+    booted(d, g, b, st);
 }
 
 #if ODG_CFG_PERSIST_TWO_PASS
@@ -160,7 +156,7 @@ static int holds_newest(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t 
  * over it, however the images were displaced (a chain: A's newest in B's region, B's in C's).
  * A round that boots none (images displaced in a cycle) boots the first group left. */
 static void boot_ordered(const odg_dict_t *d, const odg_nv_driver_t *nv, int fits,
-                         odg_boot_status_t *st, odg_boot_t *boot, odg_abort_t *ac)
+                         odg_boot_status_t *st, odg_boot_t *boot)
 {
     uint8_t done[32], g; /* the groups booted */
     unsigned left = d->n_groups;
@@ -174,7 +170,7 @@ static void boot_ordered(const odg_dict_t *d, const odg_nv_driver_t *nv, int fit
             done[g >> 3] = (uint8_t)(done[g >> 3] | 1u << (g & 7u));
             left--;
             progressed = careful = fits;
-            boot_one(d, nv, g, fits, st, boot, ac);
+            boot_one(d, nv, g, fits, st, boot);
         }
         careful = fits && progressed;
     }
@@ -186,7 +182,6 @@ static void boot_ordered(const odg_dict_t *d, const odg_nv_driver_t *nv, int fit
 static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_nv_driver_t *nv,
                             odg_boot_status_t *st, odg_boot_t *boot)
 {
-    odg_abort_t ac = nv != NULL ? ODG_OK : ODG_ABORT_DATA_STORE;
     odg_state_t *s = dict->state;
     int fits;
     if (nv != NULL) {
@@ -201,17 +196,19 @@ static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_
 #endif
     fits = nv_fits(dict, nv);
 #if ODG_CFG_PERSIST_TWO_PASS
-    boot_ordered(dict, nv, fits, st, boot, &ac);
+    boot_ordered(dict, nv, fits, st, boot);
 #else
     { /* one group: no other group's boot can write over its image */
         unsigned g; /* below 256: no narrowing at every turn */
         for (g = 0; g < dict->n_groups; g++) {
-            boot_one(dict, nv, (uint8_t)g, fits, st, boot, &ac);
+            boot_one(dict, nv, (uint8_t)g, fits, st, boot);
         }
     }
 #endif
     odg_changed(dict, NULL);
-    return ac;
+    /* boot_seen has bit NV_ERROR once a group booted NV_ERROR (a migration adds only ENTRIES_LOST) */
+    return nv == NULL ? ODG_ABORT_DATA_STORE
+                      : (s->boot_seen & 1u << ODG_BOOT_NV_ERROR) != 0u ? ODG_ABORT_HARDWARE : ODG_OK;
 }
 
 odg_abort_t odg_persist_boot(odg_persist_t *p, const odg_dict_t *dict, const odg_nv_driver_t *nv,
