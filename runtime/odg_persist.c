@@ -154,25 +154,27 @@ static int holds_newest(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t 
 /* Boot the groups in rounds: a group boots once its region holds no byte of the newest image of
  * a group still to boot, so that each group moves its image home before another group's boot writes
  * over it, however the images were displaced (a chain: A's newest in B's region, B's in C's).
- * A round that boots none (images displaced in a cycle) boots the first group left. */
+ * A round that boots none (images displaced in a cycle) boots the first group left. One loop over
+ * the groups, round after round: `careful` is 2 once a group booted in this round, 1 in a round
+ * after one that booted (or the first), 0 in a round after one that booted none, until it boots
+ * one; always 0 when the NV is too small (no NV read: every group boots NV_ERROR in index order). */
 static void boot_ordered(const odg_dict_t *d, const odg_nv_driver_t *nv, int fits,
                          odg_boot_status_t *st, odg_boot_t *boot)
 {
-    uint8_t done[32], g; /* the groups booted */
-    unsigned left = d->n_groups;
-    int careful = fits, progressed;
+    uint8_t done[32]; /* the groups booted */
+    unsigned g = 0, left = d->n_groups, careful = (unsigned)fits;
     memset(done, 0, sizeof done);
     while (left > 0u) {
-        for (g = 0, progressed = 0; g < d->n_groups; g++) {
-            if (DONE(done, g) || (careful && holds_newest(d, nv, g, done))) {
-                continue;
-            }
+        if (!DONE(done, g) && (careful == 0u || !holds_newest(d, nv, (uint8_t)g, done))) {
             done[g >> 3] = (uint8_t)(done[g >> 3] | 1u << (g & 7u));
             left--;
-            progressed = careful = fits;
-            boot_one(d, nv, g, fits, st, boot);
+            careful = 2u * (unsigned)fits;
+            boot_one(d, nv, (uint8_t)g, fits, st, boot);
         }
-        careful = fits && progressed;
+        if (++g == d->n_groups) { /* the next round */
+            g = 0;
+            careful >>= 1;
+        }
     }
 }
 #endif
