@@ -103,30 +103,24 @@ static void report(const odg_dict_t *d, uint8_t g, const odg_boot_t *b)
     }
 }
 
-/* What the boot of group `g` found, into the dictionary's state (boot_all answers HARDWARE
- * from its NV_ERROR bit), the status object and `st` (when not NULL). */
-static void booted(const odg_dict_t *d, uint8_t g, const odg_boot_t *b, odg_boot_status_t *st)
-{
-    odg_state_t *s = d->state;
-    s->boot_seen = (uint8_t)(s->boot_seen | 1u << b->status);
-    report(d, g, b);
-    if (st != NULL) {
-        st[g] = (odg_boot_status_t)b->status;
-    }
-}
-
 /* Boot group `g` (on an NV smaller than the dictionary's, `fits` 0: NV_ERROR, nothing
- * written) and record what it found. */
+ * written) and record what it found: in the dictionary's state (boot_all answers HARDWARE from
+ * its NV_ERROR bit), the status object, `st` and `boot` (when not NULL). */
 static void boot_one(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, int fits,
                      odg_boot_status_t *st, odg_boot_t *boot)
 {
     odg_boot_t own, *b = boot != NULL ? &boot[g] : &own; /* the counts straight into `boot` */
-    b->status = ODG_BOOT_NV_ERROR;
-    b->kept = b->converted = b->defaulted = b->dropped = b->added = 0;
+    odg_boot_status_t r = ODG_BOOT_NV_ERROR;
+    memset(b, 0, sizeof *b); /* the counts of a boot that migrated nothing */
     if (fits) {
-        b->status = (uint8_t)boot_group(d, nv, g, b);
+        r = boot_group(d, nv, g, b);
     }
-    booted(d, g, b, st);
+    b->status = (uint8_t)r;
+    d->state->boot_seen = (uint8_t)(d->state->boot_seen | 1u << r);
+    report(d, g, b);
+    if (st != NULL) {
+        st[g] = r;
+    }
 }
 
 #if ODG_CFG_PERSIST_TWO_PASS
