@@ -24,12 +24,13 @@ static odg_abort_t act(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g
     return restore ? odg_fixed_erase_(d, nv, g) : odg_fixed_store_(d, nv, g);
 }
 
-/* Whether the NV behind `nv` holds the dictionary's NAME_NV_SIZE bytes (its last byte reads). */
-static int nv_fits(const odg_dict_t *d, const odg_nv_driver_t *nv)
+/* `nv` when the NV behind it holds the dictionary's NAME_NV_SIZE bytes (its last byte reads),
+ * else NULL: the callers then touch no NV. */
+static const odg_nv_driver_t *fitting(const odg_dict_t *d, const odg_nv_driver_t *nv)
 {
     uint32_t size = odg_persist_nv_size(d);
     uint8_t c;
-    return nv != NULL && (size == 0u || nv->read(nv->ctx, size - 1u, &c, 1) == 0);
+    return nv != NULL && (size == 0u || nv->read(nv->ctx, size - 1u, &c, 1) == 0) ? nv : NULL;
 }
 
 /* 0x1010 / 0x1011 sub `sub`, handed over by the core: sub 1 acts on every group, another on
@@ -37,10 +38,10 @@ static int nv_fits(const odg_dict_t *d, const odg_nv_driver_t *nv)
  * the answer); DATA_STORE when none has it, or the NV is smaller than the dictionary's. */
 static odg_abort_t command(odg_client_t *self, const odg_dict_t *d, uint8_t sub, int restore)
 {
-    const odg_nv_driver_t *nv = ((const odg_persist_t *)(const void *)self)->nv;
+    const odg_nv_driver_t *nv = fitting(d, ((const odg_persist_t *)(const void *)self)->nv);
     odg_abort_t ac = ODG_OK, r;
     uint8_t g, any = 0;
-    if (!nv_fits(d, nv)) {
+    if (nv == NULL) {
         return ODG_ABORT_DATA_STORE;
     }
     for (g = 0; g < d->n_groups; g++) {
@@ -103,16 +104,16 @@ static void report(const odg_dict_t *d, uint8_t g, const odg_boot_t *b)
     }
 }
 
-/* Boot group `g` (on an NV smaller than the dictionary's, `fits` 0: NV_ERROR, nothing
- * written) and record what it found: in the dictionary's state (boot_all answers HARDWARE from
- * its NV_ERROR bit), the status object, `st` and `boot` (when not NULL). */
-static void boot_one(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, int fits,
+/* Boot group `g` (`nv` NULL, no driver or an NV smaller than the dictionary's: NV_ERROR,
+ * nothing read or written) and record what it found: in the dictionary's state (boot_all
+ * answers HARDWARE from its NV_ERROR bit), the status object, `st` and `boot` (when not NULL). */
+static void boot_one(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g,
                      odg_boot_status_t *st, odg_boot_t *boot)
 {
     odg_boot_t own, *b = boot != NULL ? &boot[g] : &own; /* the counts straight into `boot` */
     odg_boot_status_t r = ODG_BOOT_NV_ERROR;
     memset(b, 0, sizeof *b); /* the counts of a boot that migrated nothing */
-    if (fits) {
+    if (nv != NULL) {
         r = boot_group(d, nv, g, b);
     }
     b->status = (uint8_t)r;
@@ -151,19 +152,19 @@ static int holds_newest(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t 
  * A round that boots none (images displaced in a cycle) boots the first group left. One loop over
  * the groups, round after round: `careful` is 2 once a group booted in this round, 1 in a round
  * after one that booted (or the first), 0 in a round after one that booted none, until it boots
- * one; always 0 when the NV is too small (no NV read: every group boots NV_ERROR in index order). */
-static void boot_ordered(const odg_dict_t *d, const odg_nv_driver_t *nv, int fits,
+ * one; always 0 when `nv` is NULL (no NV read: every group boots NV_ERROR in index order). */
+static void boot_ordered(const odg_dict_t *d, const odg_nv_driver_t *nv,
                          odg_boot_status_t *st, odg_boot_t *boot)
 {
     uint8_t done[32]; /* the groups booted */
-    unsigned g = 0, left = d->n_groups, careful = (unsigned)fits;
+    unsigned g = 0, left = d->n_groups, careful = nv != NULL ? 1u : 0u;
     memset(done, 0, sizeof done);
     while (left > 0u) {
         if (!DONE(done, g) && (careful == 0u || !holds_newest(d, nv, (uint8_t)g, done))) {
             done[g >> 3] = (uint8_t)(done[g >> 3] | 1u << (g & 7u));
             left--;
-            careful = 2u * (unsigned)fits;
-            boot_one(d, nv, (uint8_t)g, fits, st, boot);
+            careful = nv != NULL ? 2u : 0u;
+            boot_one(d, nv, (uint8_t)g, st, boot);
         }
         if (++g == d->n_groups) { /* the next round */
             g = 0;
@@ -179,7 +180,7 @@ static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_
                             odg_boot_status_t *st, odg_boot_t *boot)
 {
     odg_state_t *s = dict->state;
-    int fits;
+    const odg_nv_driver_t *fit; /* nv, or NULL on an NV smaller than the dictionary's */
     if (nv != NULL) {
         p->client.command = command;
         p->client.changed = NULL;
@@ -190,14 +191,14 @@ static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_
 #if ODG_CFG_PERSIST_MIGRATION /* the counts of entries a migration converted, defaulted, dropped */
     s->boot_counts[0] = s->boot_counts[1] = s->boot_counts[2] = 0;
 #endif
-    fits = nv_fits(dict, nv);
+    fit = fitting(dict, nv);
 #if ODG_CFG_PERSIST_TWO_PASS
-    boot_ordered(dict, nv, fits, st, boot);
+    boot_ordered(dict, fit, st, boot);
 #else
     { /* one group: no other group's boot can write over its image */
         unsigned g; /* below 256: no narrowing at every turn */
         for (g = 0; g < dict->n_groups; g++) {
-            boot_one(dict, nv, (uint8_t)g, fits, st, boot);
+            boot_one(dict, fit, (uint8_t)g, st, boot);
         }
     }
 #endif
