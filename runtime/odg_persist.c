@@ -160,8 +160,9 @@ static void boot_ordered(const odg_dict_t *d, const odg_nv_driver_t *nv,
     unsigned g = 0, left = d->n_groups, careful = nv != NULL ? 1u : 0u;
     memset(done, 0, sizeof done);
     while (left > 0u) {
-        if (!DONE(done, g) && (careful == 0u || !holds_newest(d, nv, (uint8_t)g, done))) {
-            done[g >> 3] = (uint8_t)(done[g >> 3] | 1u << (g & 7u));
+        uint8_t *at = &done[g >> 3], bit = (uint8_t)(1u << (g & 7u)); /* g's bit in `done` */
+        if (!(*at & bit) && (careful == 0u || !holds_newest(d, nv, (uint8_t)g, done))) {
+            *at = (uint8_t)(*at | bit);
             left--;
             careful = nv != NULL ? 2u : 0u;
             boot_one(d, nv, (uint8_t)g, st, boot);
