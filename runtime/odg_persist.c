@@ -33,25 +33,24 @@ static const odg_nv_driver_t *fitting(const odg_dict_t *d, const odg_nv_driver_t
     return nv != NULL && (size == 0u || nv->read(nv->ctx, size - 1u, &c, 1) == 0) ? nv : NULL;
 }
 
+#define NOT_ACTED 1u /* no group acted yet (no abort code is 1) */
+
 /* 0x1010 / 0x1011 sub `sub`, handed over by the core: sub 1 acts on every group, another on
  * the groups with that store_sub, each of them even past one that fails (the first failure is
- * the answer); DATA_STORE when none has it, or the NV is smaller than the dictionary's. */
+ * the answer); DATA_STORE when none has it, or the NV is smaller than the dictionary's (`nv`
+ * NULL: no group acts). `ac` stays NOT_ACTED until a group acted, then holds the first failure. */
 static odg_abort_t command(odg_client_t *self, const odg_dict_t *d, uint8_t sub, int restore)
 {
     const odg_nv_driver_t *nv = fitting(d, ((const odg_persist_t *)(const void *)self)->nv);
-    odg_abort_t ac = ODG_OK, r;
-    uint8_t g, any = 0;
-    if (nv == NULL) {
-        return ODG_ABORT_DATA_STORE;
-    }
-    for (g = 0; g < d->n_groups; g++) {
+    odg_abort_t ac = NOT_ACTED, r;
+    unsigned g; /* below 256: no narrowing at every turn */
+    for (g = 0; nv != NULL && g < d->n_groups; g++) {
         if (sub == 1u || d->groups[g].store_sub == sub) {
-            r = act(d, nv, g, restore); /* every group, even past one that failed */
-            ac = ac == ODG_OK ? r : ac;
-            any = 1;
+            r = act(d, nv, (uint8_t)g, restore); /* every group, even past one that failed */
+            ac = ac == ODG_OK || ac == NOT_ACTED ? r : ac;
         }
     }
-    return any ? ac : ODG_ABORT_DATA_STORE;
+    return ac == NOT_ACTED ? ODG_ABORT_DATA_STORE : ac;
 }
 
 /* The driver of the persistence layer attached to `d` (the client with its `command`; the
