@@ -129,14 +129,14 @@ static void boot_one(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g,
 /* Whether the region of group `g` holds any byte of the newest image of another group still to
  * boot (the NV map changed): g's boot, its store and the clearing of its region, would write over
  * it before that group moved it home. */
-static int holds_newest(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, const uint8_t *done)
+static int holds_newest(const odg_dict_t *d, const odg_nv_driver_t *nv, unsigned g, const uint8_t *done)
 {
     const odg_group_t *gr = &d->groups[g];
     uint32_t start, end;
-    uint8_t h;
+    unsigned h; /* below 256: no narrowing at every turn */
     for (h = 0; h < d->n_groups; h++) {
         if (h != g && !DONE(done, h)) {
-            start = odg_described_newest_(d, nv, h, &end);
+            start = odg_described_newest_(d, nv, (uint8_t)h, &end);
             if (start < gr->nv_addr + gr->region && end > gr->nv_addr) {
                 return 1;
             }
@@ -160,7 +160,7 @@ static void boot_ordered(const odg_dict_t *d, const odg_nv_driver_t *nv,
     memset(done, 0, sizeof done);
     while (left > 0u) {
         uint8_t *at = &done[g >> 3], bit = (uint8_t)(1u << (g & 7u)); /* g's bit in `done` */
-        if (!(*at & bit) && (careful == 0u || !holds_newest(d, nv, (uint8_t)g, done))) {
+        if (!(*at & bit) && (careful == 0u || !holds_newest(d, nv, g, done))) {
             *at = (uint8_t)(*at | bit);
             left--;
             careful = nv != NULL ? 2u : 0u;
