@@ -106,18 +106,18 @@ static void report(const odg_dict_t *d, uint8_t g, const odg_boot_t *b)
 /* Boot group `g` (`nv` NULL, no driver or an NV smaller than the dictionary's: NV_ERROR,
  * nothing read or written) and record what it found: in the dictionary's state (boot_all
  * answers HARDWARE from its NV_ERROR bit), the status object, `st` and `boot` (when not NULL). */
-static void boot_one(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g,
+static void boot_one(const odg_dict_t *d, const odg_nv_driver_t *nv, unsigned g,
                      odg_boot_status_t *st, odg_boot_t *boot)
 {
     odg_boot_t own, *b = boot != NULL ? &boot[g] : &own; /* the counts straight into `boot` */
     odg_boot_status_t r = ODG_BOOT_NV_ERROR;
     memset(b, 0, sizeof *b); /* the counts of a boot that migrated nothing */
     if (nv != NULL) {
-        r = boot_group(d, nv, g, b);
+        r = boot_group(d, nv, (uint8_t)g, b);
     }
     b->status = (uint8_t)r;
     d->state->boot_seen = (uint8_t)(d->state->boot_seen | 1u << r);
-    report(d, g, b);
+    report(d, (uint8_t)g, b);
     if (st != NULL) {
         st[g] = r;
     }
@@ -164,7 +164,7 @@ static void boot_ordered(const odg_dict_t *d, const odg_nv_driver_t *nv,
             *at = (uint8_t)(*at | bit);
             left--;
             careful = nv != NULL ? 2u : 0u;
-            boot_one(d, nv, (uint8_t)g, st, boot);
+            boot_one(d, nv, g, st, boot);
         }
         if (++g == d->n_groups) { /* the next round */
             g = 0;
@@ -198,7 +198,7 @@ static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_
     { /* one group: no other group's boot can write over its image */
         unsigned g; /* below 256: no narrowing at every turn */
         for (g = 0; g < dict->n_groups; g++) {
-            boot_one(dict, fit, (uint8_t)g, st, boot);
+            boot_one(dict, fit, g, st, boot);
         }
     }
 #endif
