@@ -151,19 +151,19 @@ static int holds_newest(const odg_dict_t *d, const odg_nv_driver_t *nv, unsigned
  * A round that boots none (images displaced in a cycle) boots the first group left. One loop over
  * the groups, round after round: `careful` is 2 once a group booted in this round, 1 in a round
  * after one that booted (or the first), 0 in a round after one that booted none, until it boots
- * one; always 0 when `nv` is NULL (no NV read: every group boots NV_ERROR in index order). */
+ * one. Without `nv` (no NV read) every group boots NV_ERROR in index order. */
 static void boot_ordered(const odg_dict_t *d, const odg_nv_driver_t *nv,
                          odg_boot_status_t *st, odg_boot_t *boot)
 {
     uint8_t done[32]; /* the groups booted */
-    unsigned g = 0, left = d->n_groups, careful = nv != NULL ? 1u : 0u;
+    unsigned g = 0, left = d->n_groups, careful = 1;
     memset(done, 0, sizeof done);
     while (left > 0u) {
         uint8_t *at = &done[g >> 3], bit = (uint8_t)(1u << (g & 7u)); /* g's bit in `done` */
-        if (!(*at & bit) && (careful == 0u || !holds_newest(d, nv, g, done))) {
+        if (!(*at & bit) && (nv == NULL || careful == 0u || !holds_newest(d, nv, g, done))) {
             *at = (uint8_t)(*at | bit);
             left--;
-            careful = nv != NULL ? 2u : 0u;
+            careful = 2;
             boot_one(d, nv, g, st, boot);
         }
         if (++g == d->n_groups) { /* the next round */
