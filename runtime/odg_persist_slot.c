@@ -99,7 +99,7 @@ int odg_wipe_(const odg_nv_driver_t *nv, uint32_t from, uint32_t to)
 int odg_clear_(const odg_nv_driver_t *nv, uint32_t from, uint32_t to)
 {
     int v = from < to ? odg_slot_blank_(nv, from, to - from) : 1;
-    return v < 0 || (v == 0 && odg_wipe_(nv, from, to));
+    return v == 0 ? odg_wipe_(nv, from, to) : v < 0;
 }
 
 /* total + n, at most 255 */
