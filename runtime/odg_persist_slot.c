@@ -89,13 +89,15 @@ int odg_slot_blank_(const odg_nv_driver_t *nv, uint32_t addr, uint32_t size)
     return 1;
 }
 
-/* Erase the bytes from `from` up to `to` (none when to <= from): whether the driver failed. */
+/* Erase the bytes from `from` up to `to` (none when to <= from): whether the driver failed, as
+ * the driver answered (not 0 when it failed; the callers only test it). */
 int odg_wipe_(const odg_nv_driver_t *nv, uint32_t from, uint32_t to)
 {
-    return from < to && nv->erase(nv->ctx, from, to - from) != 0;
+    return from < to ? nv->erase(nv->ctx, from, to - from) : 0;
 }
 
-/* Erase the bytes from `from` up to `to` that are not erased yet: whether the driver failed. */
+/* Erase the bytes from `from` up to `to` that are not erased yet: whether the driver failed (not
+ * 0, as odg_wipe_). */
 int odg_clear_(const odg_nv_driver_t *nv, uint32_t from, uint32_t to)
 {
     int v = from < to ? odg_slot_blank_(nv, from, to - from) : 1;
