@@ -74,14 +74,14 @@ int odg_crc_ok_(const odg_nv_driver_t *nv, uint32_t addr, const uint8_t *h, uint
 int odg_slot_blank_(const odg_nv_driver_t *nv, uint32_t addr, uint32_t size)
 {
     uint8_t chunk[ODG_PERSIST_CHUNK_];
-    uint32_t n, i;
-    for (; size > 0u; addr += n, size -= n) {
+    uint32_t n;
+    while (size > 0u) {
         n = size < ODG_PERSIST_CHUNK_ ? size : ODG_PERSIST_CHUNK_;
         if (nv->read(nv->ctx, addr, chunk, n) != 0) {
             return -1;
         }
-        for (i = 0; i < n; i++) {
-            if (chunk[i] != 0xFFu) {
+        for (addr += n, size -= n; n > 0u; n--) { /* the chunk's bytes from its last */
+            if (chunk[n - 1u] != 0xFFu) {
                 return 0;
             }
         }
