@@ -149,24 +149,25 @@ static int holds_newest(const odg_dict_t *d, const odg_nv_driver_t *nv, unsigned
  * a group still to boot, so that each group moves its image home before another group's boot writes
  * over it, however the images were displaced (a chain: A's newest in B's region, B's in C's).
  * A round that boots none (images displaced in a cycle) boots the first group left. One loop over
- * the groups, round after round: `careful` is 2 once a group booted in this round, 1 in a round
- * after one that booted (or the first), 0 in a round after one that booted none, until it boots
- * one. Without `nv` (no NV read) every group boots NV_ERROR in index order. */
+ * the groups, round after round, with `careful`: 2 once a group booted in this round, 1 in the
+ * first round and after a round that booted, 0 after a round that booted none (the first group
+ * left then boots unchecked). A round begun at 0 that boots none found no group left: the loop ends
+ * there, two rounds after the last boot (they read no NV). Without `nv` (no NV read) every group
+ * boots NV_ERROR in index order. */
 static void boot_ordered(const odg_dict_t *d, const odg_nv_driver_t *nv,
                          odg_boot_status_t *st, odg_boot_t *boot)
 {
     uint8_t done[32]; /* the groups booted */
-    unsigned g = 0, left = d->n_groups, careful = 1;
+    unsigned g = 0, careful = 1;
     memset(done, 0, sizeof done);
-    while (left > 0u) {
+    while (g < d->n_groups) {
         uint8_t *at = &done[g >> 3], bit = (uint8_t)(1u << (g & 7u)); /* g's bit in `done` */
         if (!(*at & bit) && (nv == NULL || careful == 0u || !holds_newest(d, nv, g, done))) {
             *at = (uint8_t)(*at | bit);
-            left--;
             careful = 2;
             boot_one(d, nv, g, st, boot);
         }
-        if (++g == d->n_groups) { /* the next round */
+        if (++g == d->n_groups && careful != 0u) { /* the next round */
             g = 0;
             careful >>= 1;
         }
