@@ -124,53 +124,29 @@ static void boot_one(const odg_dict_t *d, const odg_nv_driver_t *nv, unsigned g,
 }
 
 #if ODG_CFG_PERSIST_TWO_PASS
-#define DONE(done, g) (((done)[(g) >> 3] >> ((g) & 7u)) & 1u)
-
-/* Whether the region of group `g` holds any byte of the newest image of another group still to
- * boot (the NV map changed): g's boot, its store and the clearing of its region, would write over
- * it before that group moved it home. */
-static int holds_newest(const odg_dict_t *d, const odg_nv_driver_t *nv, unsigned g, const uint8_t *done)
-{
-    const odg_group_t *gr = &d->groups[g];
-    uint32_t start, end;
-    unsigned h; /* below 256: no narrowing at every turn */
-    for (h = 0; h < d->n_groups; h++) {
-        if (h != g && !DONE(done, h)) {
-            start = odg_described_newest_(d, nv, (uint8_t)h, &end);
-            if (start < gr->nv_addr + gr->region && end > gr->nv_addr) {
-                return 1;
-            }
-        }
-    }
-    return 0;
-}
-
-/* Boot the groups in rounds: a group boots once its region holds no byte of the newest image of
- * a group still to boot, so that each group moves its image home before another group's boot writes
- * over it, however the images were displaced (a chain: A's newest in B's region, B's in C's).
- * A round that boots none (images displaced in a cycle) boots the first group left. One loop over
- * the groups, round after round, with `careful`: 2 once a group booted in this round, 1 in the
- * first round and after a round that booted, 0 after a round that booted none (the first group
- * left then boots unchecked). A round begun at 0 that boots none found no group left: the loop ends
- * there, two rounds after the last boot (they read no NV). Without `nv` (no NV read) every group
- * boots NV_ERROR in index order. */
+/* Boot the groups in the order of their regions in NV, the lowest first. A group's boot writes
+ * only inside its own region, and a group finds its images only at places from its region's
+ * start on; so an image of group h that lies in the region of group g (the NV map changed) starts
+ * before that region ends, and h's region, which does not overlap g's, lies before g's. Booting
+ * by address, h has moved its image home before g's boot (its store and the clearing of its
+ * region) writes over it, however the images were displaced (a chain: A's newest in B's region,
+ * B's in C's), and no image of g lies in the region of a group that booted before g. Regions
+ * do not overlap (odg_verify), so their starts differ. */
 static void boot_ordered(const odg_dict_t *d, const odg_nv_driver_t *nv,
                          odg_boot_status_t *st, odg_boot_t *boot)
 {
-    uint8_t done[32]; /* the groups booted */
-    unsigned g = 0, careful = 1;
-    memset(done, 0, sizeof done);
-    while (g < d->n_groups) {
-        uint8_t *at = &done[g >> 3], bit = (uint8_t)(1u << (g & 7u)); /* g's bit in `done` */
-        if (!(*at & bit) && (nv == NULL || careful == 0u || !holds_newest(d, nv, g, done))) {
-            *at = (uint8_t)(*at | bit);
-            careful = 2;
-            boot_one(d, nv, g, st, boot);
+    uint32_t after = 0; /* the region start of the group booted last */
+    unsigned n, g, next;
+    for (n = 0; n < d->n_groups; n++) {
+        next = d->n_groups;
+        for (g = 0; g < d->n_groups; g++) { /* the lowest region above the last booted */
+            uint32_t at = d->groups[g].nv_addr;
+            if ((n == 0u || at > after) && (next == d->n_groups || at < d->groups[next].nv_addr)) {
+                next = g;
+            }
         }
-        if (++g == d->n_groups && careful != 0u) { /* the next round */
-            g = 0;
-            careful >>= 1;
-        }
+        after = d->groups[next].nv_addr;
+        boot_one(d, nv, next, st, boot);
     }
 }
 #endif
