@@ -24,33 +24,33 @@ static odg_abort_t act(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g
     return restore ? odg_fixed_erase_(d, nv, g) : odg_fixed_store_(d, nv, g);
 }
 
-/* Whether the NV behind `nv` holds the dictionary's NAME_NV_SIZE bytes (its last byte reads). */
-static int nv_fits(const odg_dict_t *d, const odg_nv_driver_t *nv)
+/* `nv` when the NV behind it holds the dictionary's NAME_NV_SIZE bytes (its last byte reads),
+ * else NULL: the callers then touch no NV. */
+static const odg_nv_driver_t *fitting(const odg_dict_t *d, const odg_nv_driver_t *nv)
 {
     uint32_t size = odg_persist_nv_size(d);
     uint8_t c;
-    return nv != NULL && (size == 0u || nv->read(nv->ctx, size - 1u, &c, 1) == 0);
+    return nv != NULL && (size == 0u || nv->read(nv->ctx, size - 1u, &c, 1) == 0) ? nv : NULL;
 }
+
+#define NOT_ACTED 1u /* no group acted yet (no abort code is 1) */
 
 /* 0x1010 / 0x1011 sub `sub`, handed over by the core: sub 1 acts on every group, another on
  * the groups with that store_sub, each of them even past one that fails (the first failure is
- * the answer); DATA_STORE when none has it, or the NV is smaller than the dictionary's. */
+ * the answer); DATA_STORE when none has it, or the NV is smaller than the dictionary's (`nv`
+ * NULL: no group acts). `ac` stays NOT_ACTED until a group acted, then holds the first failure. */
 static odg_abort_t command(odg_client_t *self, const odg_dict_t *d, uint8_t sub, int restore)
 {
-    const odg_nv_driver_t *nv = ((const odg_persist_t *)(const void *)self)->nv;
-    odg_abort_t ac = ODG_OK, r;
-    uint8_t g, any = 0;
-    if (!nv_fits(d, nv)) {
-        return ODG_ABORT_DATA_STORE;
-    }
-    for (g = 0; g < d->n_groups; g++) {
+    const odg_nv_driver_t *nv = fitting(d, ((const odg_persist_t *)(const void *)self)->nv);
+    odg_abort_t ac = NOT_ACTED, r;
+    unsigned g; /* below 256: no narrowing at every turn */
+    for (g = 0; nv != NULL && g < d->n_groups; g++) {
         if (sub == 1u || d->groups[g].store_sub == sub) {
-            r = act(d, nv, g, restore); /* every group, even past one that failed */
-            ac = ac == ODG_OK ? r : ac;
-            any = 1;
+            r = act(d, nv, (uint8_t)g, restore); /* every group, even past one that failed */
+            ac = ac == ODG_OK || ac == NOT_ACTED ? r : ac;
         }
     }
-    return any ? ac : ODG_ABORT_DATA_STORE;
+    return ac == NOT_ACTED ? ODG_ABORT_DATA_STORE : ac;
 }
 
 /* The driver of the persistence layer attached to `d` (the client with its `command`; the
@@ -103,80 +103,50 @@ static void report(const odg_dict_t *d, uint8_t g, const odg_boot_t *b)
     }
 }
 
-/* What the boot of group `g` found, into the dictionary's state, the status object, `st`
- * (when not NULL) and *ac (HARDWARE on NV_ERROR). */
-static void booted(const odg_dict_t *d, uint8_t g, const odg_boot_t *b, odg_boot_status_t *st,
-                   odg_abort_t *ac)
-{
-    odg_state_t *s = d->state;
-    s->boot_seen = (uint8_t)(s->boot_seen | 1u << b->status);
-    if (b->status == ODG_BOOT_NV_ERROR && *ac == ODG_OK) {
-        *ac = ODG_ABORT_HARDWARE;
-    }
-    report(d, g, b);
-    if (st != NULL) {
-        st[g] = (odg_boot_status_t)b->status;
-    }
-}
-
-/* Boot group `g` (on an NV smaller than the dictionary's, `fits` 0: NV_ERROR, nothing
- * written) and record what it found. */
-static void boot_one(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, int fits,
-                     odg_boot_status_t *st, odg_boot_t *boot, odg_abort_t *ac)
+/* Boot group `g` (`nv` NULL, no driver or an NV smaller than the dictionary's: NV_ERROR,
+ * nothing read or written) and record what it found: in the dictionary's state (boot_all
+ * answers HARDWARE from its NV_ERROR bit), the status object, `st` and `boot` (when not NULL). */
+static void boot_one(const odg_dict_t *d, const odg_nv_driver_t *nv, unsigned g,
+                     odg_boot_status_t *st, odg_boot_t *boot)
 {
     odg_boot_t own, *b = boot != NULL ? &boot[g] : &own; /* the counts straight into `boot` */
-    b->status = ODG_BOOT_NV_ERROR;
-    b->kept = b->converted = b->defaulted = b->dropped = b->added = 0;
-    if (fits) {
-        b->status = (uint8_t)boot_group(d, nv, g, b);
+    odg_boot_status_t r = ODG_BOOT_NV_ERROR;
+    memset(b, 0, sizeof *b); /* the counts of a boot that migrated nothing */
+    if (nv != NULL) {
+        r = boot_group(d, nv, (uint8_t)g, b);
     }
-    booted(d, g, b, st, ac);
+    b->status = (uint8_t)r;
+    d->state->boot_seen = (uint8_t)(d->state->boot_seen | 1u << r);
+    report(d, (uint8_t)g, b);
+    if (st != NULL) {
+        st[g] = r;
+    }
 }
 
 #if ODG_CFG_PERSIST_TWO_PASS
-#define DONE(done, g) (((done)[(g) >> 3] >> ((g) & 7u)) & 1u)
-
-/* Whether the region of group `g` holds any byte of the newest image of another group still to
- * boot (the NV map changed): g's boot, its store and the clearing of its region, would write over
- * it before that group moved it home. */
-static int holds_newest(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, const uint8_t *done)
+/* Boot the groups in the order of their regions in NV, the lowest first. A group's boot writes
+ * only inside its own region, and a group finds its images only at places from its region's
+ * start on; so an image of group h that lies in the region of group g (the NV map changed) starts
+ * before that region ends, and h's region, which does not overlap g's, lies before g's. Booting
+ * by address, h has moved its image home before g's boot (its store and the clearing of its
+ * region) writes over it, however the images were displaced (a chain: A's newest in B's region,
+ * B's in C's), and no image of g lies in the region of a group that booted before g. Regions
+ * do not overlap (odg_verify), so their starts differ. */
+static void boot_ordered(const odg_dict_t *d, const odg_nv_driver_t *nv,
+                         odg_boot_status_t *st, odg_boot_t *boot)
 {
-    const odg_group_t *gr = &d->groups[g];
-    uint32_t start, end;
-    uint8_t h;
-    for (h = 0; h < d->n_groups; h++) {
-        if (h != g && !DONE(done, h)) {
-            start = odg_described_newest_(d, nv, h, &end);
-            if (start < gr->nv_addr + gr->region && end > gr->nv_addr) {
-                return 1;
+    uint32_t after = 0; /* the region start of the group booted last */
+    unsigned n, g, next;
+    for (n = 0; n < d->n_groups; n++) {
+        next = d->n_groups;
+        for (g = 0; g < d->n_groups; g++) { /* the lowest region above the last booted */
+            uint32_t at = d->groups[g].nv_addr;
+            if ((n == 0u || at > after) && (next == d->n_groups || at < d->groups[next].nv_addr)) {
+                next = g;
             }
         }
-    }
-    return 0;
-}
-
-/* Boot the groups in rounds: a group boots once its region holds no byte of the newest image of
- * a group still to boot, so that each group moves its image home before another group's boot writes
- * over it, however the images were displaced (a chain: A's newest in B's region, B's in C's).
- * A round that boots none (images displaced in a cycle) boots the first group left. */
-static void boot_ordered(const odg_dict_t *d, const odg_nv_driver_t *nv, int fits,
-                         odg_boot_status_t *st, odg_boot_t *boot, odg_abort_t *ac)
-{
-    uint8_t done[32], g; /* the groups booted */
-    unsigned left = d->n_groups;
-    int careful = fits, progressed;
-    memset(done, 0, sizeof done);
-    while (left > 0u) {
-        for (g = 0, progressed = 0; g < d->n_groups; g++) {
-            if (DONE(done, g) || (careful && holds_newest(d, nv, g, done))) {
-                continue;
-            }
-            done[g >> 3] = (uint8_t)(done[g >> 3] | 1u << (g & 7u));
-            left--;
-            progressed = careful = fits;
-            boot_one(d, nv, g, fits, st, boot, ac);
-        }
-        careful = fits && progressed;
+        after = d->groups[next].nv_addr;
+        boot_one(d, nv, next, st, boot);
     }
 }
 #endif
@@ -186,9 +156,8 @@ static void boot_ordered(const odg_dict_t *d, const odg_nv_driver_t *nv, int fit
 static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_nv_driver_t *nv,
                             odg_boot_status_t *st, odg_boot_t *boot)
 {
-    odg_abort_t ac = nv != NULL ? ODG_OK : ODG_ABORT_DATA_STORE;
     odg_state_t *s = dict->state;
-    int fits;
+    const odg_nv_driver_t *fit; /* nv, or NULL on an NV smaller than the dictionary's */
     if (nv != NULL) {
         p->client.command = command;
         p->client.changed = NULL;
@@ -199,19 +168,21 @@ static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_
 #if ODG_CFG_PERSIST_MIGRATION /* the counts of entries a migration converted, defaulted, dropped */
     s->boot_counts[0] = s->boot_counts[1] = s->boot_counts[2] = 0;
 #endif
-    fits = nv_fits(dict, nv);
+    fit = fitting(dict, nv);
 #if ODG_CFG_PERSIST_TWO_PASS
-    boot_ordered(dict, nv, fits, st, boot, &ac);
+    boot_ordered(dict, fit, st, boot);
 #else
     { /* one group: no other group's boot can write over its image */
         unsigned g; /* below 256: no narrowing at every turn */
         for (g = 0; g < dict->n_groups; g++) {
-            boot_one(dict, nv, (uint8_t)g, fits, st, boot, &ac);
+            boot_one(dict, fit, g, st, boot);
         }
     }
 #endif
     odg_changed(dict, NULL);
-    return ac;
+    /* boot_seen has bit NV_ERROR once a group booted NV_ERROR (a migration adds only ENTRIES_LOST) */
+    return nv == NULL ? ODG_ABORT_DATA_STORE
+                      : (s->boot_seen & 1u << ODG_BOOT_NV_ERROR) != 0u ? ODG_ABORT_HARDWARE : ODG_OK;
 }
 
 odg_abort_t odg_persist_boot(odg_persist_t *p, const odg_dict_t *dict, const odg_nv_driver_t *nv,

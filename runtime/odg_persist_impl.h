@@ -34,7 +34,7 @@ int odg_hdr_read_(const odg_nv_driver_t *nv, uint32_t addr, uint8_t *h, uint32_t
 int odg_crc_ok_(const odg_nv_driver_t *nv, uint32_t addr, const uint8_t *h, uint32_t n, uint32_t len,
                 uint8_t *dst);
 int odg_slot_blank_(const odg_nv_driver_t *nv, uint32_t addr, uint32_t size);
-int odg_wipe_(const odg_nv_driver_t *nv, uint32_t from, uint32_t to);
+int odg_wipe_(const odg_nv_driver_t *nv, uint32_t from, uint32_t to); /* failed: not 0 */
 int odg_clear_(const odg_nv_driver_t *nv, uint32_t from, uint32_t to);
 uint8_t odg_add_sat_(uint8_t total, uint16_t n);
 void odg_defaults_(const odg_dict_t *d, uint8_t g);

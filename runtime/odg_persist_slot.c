@@ -49,7 +49,7 @@ int odg_hdr_read_(const odg_nv_driver_t *nv, uint32_t addr, uint8_t *h, uint32_t
     if (nv->read(nv->ctx, addr, h, n) != 0) {
         return -1;
     }
-    return odg_get32_(h) == magic;
+    return ODG_LE32(h) == magic; /* inline: one load where the core allows, less than a call */
 }
 
 /* Whether the CRC-32 that ends the `n`-byte header `h` of the slot at `addr` matches the header
@@ -74,14 +74,14 @@ int odg_crc_ok_(const odg_nv_driver_t *nv, uint32_t addr, const uint8_t *h, uint
 int odg_slot_blank_(const odg_nv_driver_t *nv, uint32_t addr, uint32_t size)
 {
     uint8_t chunk[ODG_PERSIST_CHUNK_];
-    uint32_t n, i;
-    for (; size > 0u; addr += n, size -= n) {
+    uint32_t n;
+    while (size > 0u) {
         n = size < ODG_PERSIST_CHUNK_ ? size : ODG_PERSIST_CHUNK_;
         if (nv->read(nv->ctx, addr, chunk, n) != 0) {
             return -1;
         }
-        for (i = 0; i < n; i++) {
-            if (chunk[i] != 0xFFu) {
+        for (addr += n, size -= n; n > 0u; n--) { /* the chunk's bytes from its last */
+            if (chunk[n - 1u] != 0xFFu) {
                 return 0;
             }
         }
@@ -89,17 +89,19 @@ int odg_slot_blank_(const odg_nv_driver_t *nv, uint32_t addr, uint32_t size)
     return 1;
 }
 
-/* Erase the bytes from `from` up to `to` (none when to <= from): whether the driver failed. */
+/* Erase the bytes from `from` up to `to` (none when to <= from): whether the driver failed, as
+ * the driver answered (not 0 when it failed; the callers only test it). */
 int odg_wipe_(const odg_nv_driver_t *nv, uint32_t from, uint32_t to)
 {
-    return from < to && nv->erase(nv->ctx, from, to - from) != 0;
+    return from < to ? nv->erase(nv->ctx, from, to - from) : 0;
 }
 
-/* Erase the bytes from `from` up to `to` that are not erased yet: whether the driver failed. */
+/* Erase the bytes from `from` up to `to` that are not erased yet: whether the driver failed (not
+ * 0, as odg_wipe_). */
 int odg_clear_(const odg_nv_driver_t *nv, uint32_t from, uint32_t to)
 {
     int v = from < to ? odg_slot_blank_(nv, from, to - from) : 1;
-    return v < 0 || (v == 0 && odg_wipe_(nv, from, to));
+    return v == 0 ? odg_wipe_(nv, from, to) : v < 0;
 }
 
 /* total + n, at most 255 */
