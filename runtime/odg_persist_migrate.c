@@ -782,21 +782,6 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
     return st;
 }
 
-/* Where the newest valid image of group `g` starts, and in *end where its bytes end; 0xFFFFFFFF
- * and 0 when there is none (or it cannot be read, or the driver failed, or the group has no
- * migration). */
-uint32_t odg_described_newest_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, uint32_t *end)
-{
-    const odg_group_t *gr = &d->groups[g];
-    found_t f;
-    if (ODG_MIGRATES_(gr) && newest(d, nv, gr, &f) == 1) {
-        *end = f.at + extent(f.h);
-        return f.at;
-    }
-    *end = 0u;
-    return 0xFFFFFFFFu;
-}
-
 #else
 typedef int odg_persist_migrate_unused_; /* ISO C: a translation unit declares something */
 #endif /* ODG_CFG_PERSIST_MIGRATION */
