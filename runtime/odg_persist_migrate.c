@@ -769,9 +769,13 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
     } else if (k >= 0) { /* 2: the newest image cannot be read: its values are lost */
         st = k == 2 ? ODG_BOOT_DAMAGED : described_no_image(nv, gr);
     }
-    /* a migrated image, or the defaults, are stored at once with the A/B commit */
+    /* a migrated image, or the defaults, are stored at once with the A/B commit; so is an image
+     * loaded from past the region (after a rollback to a smaller region), which lies in the region
+     * of a group placed after this one: that group's boot would write over it */
     if (st != ODG_BOOT_NV_ERROR &&
-        ((st != ODG_BOOT_LOADED && odg_described_store_(d, nv, g) != ODG_OK) || scrub(nv, gr) != 0)) {
+        (((st != ODG_BOOT_LOADED || f.at + extent(f.h) > gr->nv_addr + gr->region) &&
+          odg_described_store_(d, nv, g) != ODG_OK) ||
+         scrub(nv, gr) != 0)) {
         st = ODG_BOOT_NV_ERROR;
     }
     if (st == ODG_BOOT_NV_ERROR) {
