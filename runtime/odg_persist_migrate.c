@@ -771,9 +771,12 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
     }
     /* a migrated image, or the defaults, are stored at once with the A/B commit; so is an image
      * loaded from past the region (after a rollback to a smaller region), which lies in the region
-     * of a group placed after this one: that group's boot would write over it */
+     * of a group placed after this one: that group's boot would write over it (an image loaded
+     * unchanged has the size of this layout's, which fits half the region, and the places inside
+     * the region are its middle and the places before it: it lies past the region when it starts
+     * there) */
     if (st != ODG_BOOT_NV_ERROR &&
-        (((st != ODG_BOOT_LOADED || f.at + extent(f.h) > gr->nv_addr + gr->region) &&
+        (((st != ODG_BOOT_LOADED || f.at - gr->nv_addr >= gr->region) &&
           odg_described_store_(d, nv, g) != ODG_OK) ||
          scrub(nv, gr) != 0)) {
         st = ODG_BOOT_NV_ERROR;
