@@ -79,6 +79,18 @@ def test_an_image_loaded_from_past_the_region_is_moved_home(tmp_path: Path) -> N
         assert boot.groups[1]["status"] == LOADED  # comm (the groups by name: app, comm)
 
 
+def test_slot_b_of_a_region_above_64_kib_is_found_when_the_region_changes(tmp_path: Path) -> None:
+    """comm pinned to 128 KiB, then to 256 KiB: its newest store, in the old slot B (64 KiB into
+    the region), is found by the new firmware although it is at no place of its region."""
+    pins = '[[group]]\nname = "comm"\nregion = {}\n\n'
+    v1 = app(Param(0x2000, U32, "app", 0), options=pins.format(0x20000))
+    v2 = app(Param(0x2000, U32, "app", 0), options=pins.format(0x40000))
+    stores = [c for k in range(1, 4) for c in (f"set 1017 00 {k:02X}00", "save")]  # slots B, A, B
+    violations, boots, _ = run_script([v1, v2], ["nv 300000", "boot 0", *stores, "boot 1", "boot 1"], tmp_path)
+    assert not violations, "\n".join(map(str, violations))
+    assert [b.values[(0x1017, 0)] for b in boots[1:]] == ["0300", "0300"]
+
+
 def test_sequence_4_save_works_after_a_rollback_on_the_same_nv(tmp_path: Path) -> None:
     """v1 app 2 entries; v2 adds 12 UNSIGNED32; one NV for both. v1 store -> v2 boot -> v2
     store -> v1 boot: the drop is reported once, then saves work and nothing more is reported,
