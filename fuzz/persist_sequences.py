@@ -17,7 +17,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from tests.persist_model import run_set  # noqa: E402
+from tests.persist_model import run_set, set_seed_of  # noqa: E402
 
 REGRESSIONS = Path(__file__).resolve().parents[1] / "tests" / "fixtures" / "persist_model" / "regressions.txt"
 PER_SET = 100
@@ -31,7 +31,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     started, failing, steps, done = time.monotonic(), [], 0, 0
     for k in range((args.sequences + PER_SET - 1) // PER_SET):
-        set_seed = args.seed * 1_000_003 + k
+        set_seed = set_seed_of(args.seed, k)
         count = min(PER_SET, args.sequences - done)
         violations, n = run_set(set_seed, count)
         done, steps = done + count, steps + n

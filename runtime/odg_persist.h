@@ -26,10 +26,12 @@ extern "C" {
 #endif
 #define ODG_PERSIST_HEADER_SIZE 20u
 #define ODG_PERSIST_HEADER2_SIZE 24u
-/* The largest region of another firmware version whose slot B (named by slot A's header) boot
- * looks for; a power of two (docs/persistence.md). */
+/* The largest region of another firmware version whose slot B boot looks for; a power of two
+ * (docs/persistence.md). By default the largest region the options file allows (16 MiB), so that
+ * a group whose region changes between two sizes above 64 KiB still finds its slot B: the places
+ * past the NV cost no read. */
 #ifndef ODG_PERSIST_MAX_REGION
-#define ODG_PERSIST_MAX_REGION 0x10000u
+#define ODG_PERSIST_MAX_REGION 0x1000000u
 #endif /* "ODG2": magic, sequence, id, region, length, CRC */
 #define ODG_PERSIST_SLOT_SIZE(size)                                                     \
     ((((uint32_t)(size)) + ODG_PERSIST_HEADER_SIZE + ((uint32_t)ODG_PERSIST_ALIGN - 1u)) \

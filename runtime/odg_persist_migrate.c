@@ -769,9 +769,16 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
     } else if (k >= 0) { /* 2: the newest image cannot be read: its values are lost */
         st = k == 2 ? ODG_BOOT_DAMAGED : described_no_image(nv, gr);
     }
-    /* a migrated image, or the defaults, are stored at once with the A/B commit */
+    /* a migrated image, or the defaults, are stored at once with the A/B commit; so is an image
+     * loaded from past the region (after a rollback to a smaller region), which lies in the region
+     * of a group placed after this one: that group's boot would write over it (an image loaded
+     * unchanged has the size of this layout's, which fits half the region, and the places inside
+     * the region are its middle and the places before it: it lies past the region when it starts
+     * there) */
     if (st != ODG_BOOT_NV_ERROR &&
-        ((st != ODG_BOOT_LOADED && odg_described_store_(d, nv, g) != ODG_OK) || scrub(nv, gr) != 0)) {
+        (((st != ODG_BOOT_LOADED || f.at - gr->nv_addr >= gr->region) &&
+          odg_described_store_(d, nv, g) != ODG_OK) ||
+         scrub(nv, gr) != 0)) {
         st = ODG_BOOT_NV_ERROR;
     }
     if (st == ODG_BOOT_NV_ERROR) {
@@ -780,21 +787,6 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
         count(d->state, b, n);
     }
     return st;
-}
-
-/* Where the newest valid image of group `g` starts, and in *end where its bytes end; 0xFFFFFFFF
- * and 0 when there is none (or it cannot be read, or the driver failed, or the group has no
- * migration). */
-uint32_t odg_described_newest_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, uint32_t *end)
-{
-    const odg_group_t *gr = &d->groups[g];
-    found_t f;
-    if (ODG_MIGRATES_(gr) && newest(d, nv, gr, &f) == 1) {
-        *end = f.at + extent(f.h);
-        return f.at;
-    }
-    *end = 0u;
-    return 0xFFFFFFFFu;
 }
 
 #else

@@ -18,11 +18,6 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
 odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g);
 /* 0x1011: erase the group's images so that its next boot uses the defaults. */
 odg_abort_t odg_described_erase_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g);
-/* Where the group's newest valid image starts, and in *end where it ends (the boot order:
- * odg_persist.c); 0xFFFFFFFF and 0 when there is none. */
-uint32_t odg_described_newest_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, uint32_t *end);
-#else
-#define odg_described_newest_(d, nv, g, end) (*(end) = 0u, 0xFFFFFFFFu)
 #endif
 
 #endif /* ODG_PERSIST_MIGRATE_H */

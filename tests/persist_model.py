@@ -3,7 +3,8 @@ against the rule set of docs/persistence.md ("The rule set") and odgen/place/mig
 
 A *layout set* is a few firmware versions of one device (v0..vK-1), each derived from the one
 before by random changes (add, remove, widen, narrow, retype, move between groups, change limits,
-resize strings and arrays, grow and shrink a region). They are generated and compiled once into
+resize strings and arrays, grow and shrink a region; one set in three pins regions to powers of
+two, [[group]] region). They are generated and compiled once into
 one host program (tests/runtime/model_main.c) over an in-memory NOR model of NV. A *sequence* is a
 blank NV of one version's NAME_NV_SIZE (sometimes less; or a driver that shows each version
 its own NAME_NV_SIZE of the same memory), then random steps: boot a version
@@ -55,6 +56,7 @@ NARROWER = {U32: (U16, U8), U16: (U8,), I32: (I16,)}
 RETYPED = {U16: (I16,), I16: (U16,), U32: (I32,), I32: (U32,), U8: (VS,), VS: (U16,)}
 POOL = tuple(range(0x2000, 0x2010))
 BULK = 0x2200  # a large ARRAY of UNSIGNED32: grows and shrinks a region
+PINNED = 1 << 40  # a set seed with this bit pins regions ([[group]] region) in its versions
 
 
 @dataclass(frozen=True)
@@ -73,6 +75,7 @@ class Version:
     params: dict[int, Param]
     heartbeat: int = 1000
     options: str = ""  # more options-file text ([persist], [[group]] regions)
+    pins: dict[str, int] = field(default_factory=dict)  # [[group]] regions pinned, by group name
 
 
 # -- firmware versions -------------------------------------------------------------------------
@@ -151,6 +154,18 @@ def versions(rng: random.Random, count: int) -> list[Version]:
     return out
 
 
+def pin(rng: random.Random, vs: list[Version]) -> None:
+    """Pin the regions of some groups of some versions to powers of two ([[group]] region): a
+    pinned region keeps its size whatever the layout, and changes only when the next version pins
+    another size (or none), so slots sit where no default region puts them (build() doubles a pin
+    the group has outgrown)."""
+    for v in vs:
+        if rng.random() < 0.7:
+            present = sorted({p.group for p in v.params.values()} | {"comm"})
+            chosen = rng.sample(present, rng.randrange(1, len(present) + 1))
+            v.pins = {g: rng.choice((64, 128, 256, 512, 1024, 64, 128, 0x20000)) for g in chosen}
+
+
 def eds(v: Version) -> str:
     params = sorted(v.params.values(), key=lambda p: p.index)
     lines = [HEADER.format(heartbeat=v.heartbeat), "[ManufacturerObjects]", f"SupportedObjects={len(params)}"]
@@ -175,7 +190,8 @@ def _var(p: Param) -> list[str]:
 
 
 def options(v: Version) -> str:
-    text = v.options + '[[entry]]\nmatch = "0x1017"\nstorage = "persist:comm"\n'
+    text = v.options + "".join(f'[[group]]\nname = "{g}"\nregion = {r}\n\n' for g, r in sorted(v.pins.items()))
+    text += '[[entry]]\nmatch = "0x1017"\nstorage = "persist:comm"\n'
     for p in sorted(v.params.values(), key=lambda p: p.index):
         text += f'\n[[entry]]\nmatch = "0x{p.index:04X}"\nstorage = "persist:{p.group}"\n'
         if p.capacity:
@@ -201,6 +217,10 @@ def build(vs: list[Version], work: Path) -> tuple[Path, list[Firmware]]:
         (work / f"{name}.toml").write_text(options(v), encoding="utf-8")
         request = Request(work / f"{name}.eds", name=name, options=work / f"{name}.toml")
         result = generate(request)
+        while not result.files and min(v.pins.values(), default=1 << 16) < 1 << 16:  # a group outgrew its pin
+            v.pins = {g: 2 * r if r < 1 << 16 else r for g, r in v.pins.items()}
+            (work / f"{name}.toml").write_text(options(v), encoding="utf-8")
+            result = generate(request)
         assert result.files, [d.text() for d in result.refused]
         for fname, text in result.files.items():
             (work / fname).write_text(text, encoding="utf-8")
@@ -624,10 +644,15 @@ def run(seed: int, sets: int, sequences: int, work: Path | None = None) -> tuple
     out: list[Violation] = []
     steps = 0
     for s in range(sets):
-        found, n = run_set(seed * 1000003 + s, sequences, work)
+        found, n = run_set(set_seed_of(seed, s), sequences, work)
         out += found
         steps += n
     return out, steps
+
+
+def set_seed_of(seed: int, k: int) -> int:
+    """The seed of a run's k-th layout set: one set in three pins regions (PINNED)."""
+    return seed * 1000003 + k + (PINNED if k % 3 == 2 else 0)
 
 
 def run_set(set_seed: int, sequences: int, work: Path | None = None) -> tuple[list[Violation], int]:
@@ -635,7 +660,7 @@ def run_set(set_seed: int, sequences: int, work: Path | None = None) -> tuple[li
     out: list[Violation] = []
     with tempfile.TemporaryDirectory(dir=work) as tmp:
         rng = random.Random(set_seed)
-        exe, fws = build(versions(rng, 4), Path(tmp))
+        exe, fws = build(_versions(rng, set_seed), Path(tmp))
         _defaults(exe, fws)
         scripts = [script(rng, fws) for _ in range(sequences)]
         lines = execute(exe, [st[0] for sc in scripts for st in sc])
@@ -647,6 +672,14 @@ def run_set(set_seed: int, sequences: int, work: Path | None = None) -> tuple[li
             at = checker.feed(st, lines, at)
         out += checker.violations
     return out, sum(len(sc) for sc in scripts)
+
+
+def _versions(rng: random.Random, set_seed: int) -> list[Version]:
+    """The 4 versions of a layout set, their regions pinned when the seed says so (PINNED)."""
+    vs = versions(rng, 4)
+    if set_seed & PINNED:
+        pin(rng, vs)
+    return vs
 
 
 def run_script(vs: list[Version], commands: list[str], work: Path) -> tuple[list[Violation], list[Boot], list[str]]:
@@ -689,7 +722,7 @@ def trace(set_seed: int, sequence: int) -> str:
     violation (`python -c 'from tests.persist_model import trace; print(trace(SET_SEED, N))'`)."""
     with tempfile.TemporaryDirectory() as tmp:
         rng = random.Random(set_seed)
-        exe, fws = build(versions(rng, 4), Path(tmp))
+        exe, fws = build(_versions(rng, set_seed), Path(tmp))
         _defaults(exe, fws)
         scripts = [script(rng, fws) for _ in range(sequence + 1)]
         commands = [st[0] for st in scripts[sequence]]

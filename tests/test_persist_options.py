@@ -116,6 +116,8 @@ def test_generated_without_migration_and_with_status(tmp_path: Path) -> None:
     ('[[group]]\nname = "app"\nregion = 64\n', "persistence group app needs"),
     ('[[group]]\nname = "nosuch"\nregion = 64\n', "[[group]] nosuch names no persistence group"),
     ('[persist]\nalign = 256\n\n[[group]]\nname = "app"\nregion = 768\n', "is not a multiple of [persist] align"),
+    ('[[group]]\nname = "app"\nregion = 192\n', "is not a power of two; with migration a group looks for its "
+     "images at the middle of power-of-two regions (docs/persistence.md, section 1): pin 128 or 256 bytes"),
 ])
 def test_generation_refuses(tmp_path: Path, extra: str, words: str) -> None:
     refused, files, found = generated(tmp_path, extra)

@@ -47,11 +47,11 @@ def test_sequence_2_a_rollback_never_locks_a_group(tmp_path: Path) -> None:
 
 
 def test_sequence_3_a_moved_group_is_never_served_a_stale_image(tmp_path: Path) -> None:
-    """v1 comm {0x1017} in 128 bytes, app in 128; v2's comm takes 192, so app's region starts at
+    """v1 comm {0x1017} in 128 bytes, app in 256; v2's comm takes 256, so app's region starts at
     its old slot B. App stored four times (1..4): v2 never serves 3, and says what it lost."""
-    pins = '[[group]]\nname = "comm"\nregion = {}\n\n[[group]]\nname = "app"\nregion = 128\n\n'
+    pins = '[[group]]\nname = "comm"\nregion = {}\n\n[[group]]\nname = "app"\nregion = 256\n\n'
     v1 = app(Param(0x2000, U32, "app", 0), options=pins.format(128))
-    v2 = app(Param(0x2000, U32, "app", 0), options=pins.format(192))
+    v2 = app(Param(0x2000, U32, "app", 0), options=pins.format(256))
     stores = [c for k in range(1, 5) for c in (f"set 2000 00 {k:02X}000000", "save")]
     violations, boots, _ = run_script([v1, v2], ["nv 512", "boot 0", *stores, "boot 1", "boot 1"], tmp_path)
     assert not violations, "\n".join(map(str, violations))
@@ -59,6 +59,36 @@ def test_sequence_3_a_moved_group_is_never_served_a_stale_image(tmp_path: Path) 
     assert moved.values[(0x2000, 0)] in ("04000000", "00000000")
     assert moved.groups[0]["status"] == DAMAGED and moved.seen[0] & LOST_BITS
     assert boots[2].groups[0]["status"] == LOADED and not boots[2].seen[0] & LOST_BITS
+
+
+def test_an_image_loaded_from_past_the_region_is_moved_home(tmp_path: Path) -> None:
+    """v1 pins comm to 256 bytes, v2 to 128 with app right after it: comm's newest store, in v1's
+    slot B (byte 128), lies in v2's app region. v2 loads it unchanged (LOADED), and must move it
+    home before app's boot (its defaults stored, its region cleared) writes over it; else the next
+    boot serves comm's store before (slot A)."""
+    pins = '[[group]]\nname = "comm"\nregion = {}\n\n[[group]]\nname = "app"\nregion = 512\n\n'
+    v1 = app(Param(0x2000, U32, "app", 0), options=pins.format(256))
+    v2 = app(Param(0x2000, U32, "app", 0), options=pins.format(128))
+    stores = [c for k in range(1, 4) for c in (f"set 1017 00 {k:02X}00", "save")]  # slots B, A, B
+    violations, boots, answers = run_script([v1, v2], ["nv 1024", "boot 0", *stores, "boot 1", "boot 1", "boot 1"],
+                                            tmp_path)
+    assert not violations, "\n".join(map(str, violations))
+    assert answers.count(SAVE_OK) == 3
+    for boot in boots[1:]:
+        assert boot.values[(0x1017, 0)] == "0300"
+        assert boot.groups[1]["status"] == LOADED  # comm (the groups by name: app, comm)
+
+
+def test_slot_b_of_a_region_above_64_kib_is_found_when_the_region_changes(tmp_path: Path) -> None:
+    """comm pinned to 128 KiB, then to 256 KiB: its newest store, in the old slot B (64 KiB into
+    the region), is found by the new firmware although it is at no place of its region."""
+    pins = '[[group]]\nname = "comm"\nregion = {}\n\n'
+    v1 = app(Param(0x2000, U32, "app", 0), options=pins.format(0x20000))
+    v2 = app(Param(0x2000, U32, "app", 0), options=pins.format(0x40000))
+    stores = [c for k in range(1, 4) for c in (f"set 1017 00 {k:02X}00", "save")]  # slots B, A, B
+    violations, boots, _ = run_script([v1, v2], ["nv 300000", "boot 0", *stores, "boot 1", "boot 1"], tmp_path)
+    assert not violations, "\n".join(map(str, violations))
+    assert [b.values[(0x1017, 0)] for b in boots[1:]] == ["0300", "0300"]
 
 
 def test_sequence_4_save_works_after_a_rollback_on_the_same_nv(tmp_path: Path) -> None:

@@ -87,6 +87,11 @@ def persist_view(od: ObjectDictionary, placements: Placements,
             diags.add(GEN001, Loc(od.source), f"persistence group {name}: half its pinned region ({region.size // 2} "
                       f"bytes) is not a multiple of [persist] align = {persist.align}; pin a region of "
                       f"{2 * (persist.align or DEFAULT_ALIGN)} bytes or a multiple of it")
+        elif persist.migration and name in persist.regions and region.size & (region.size - 1):
+            low = 1 << (region.size.bit_length() - 1)
+            diags.add(GEN001, Loc(od.source), f"persistence group {name}: its pinned region of {region.size} bytes "
+                      "is not a power of two; with migration a group looks for its images at the middle of "
+                      f"power-of-two regions (docs/persistence.md, section 1): pin {low} or {2 * low} bytes")
         group = GroupNv(name, region.offset, region.size, zlib.crc32(name.encode("ascii")))
         group.n_layout = len(layouts[name].entries) if persist.migration else 0
         view.groups[name] = group

@@ -25,7 +25,7 @@
 #include "nv_fault.h"
 #include "versions.h" /* VERSIONS[], NV_SIZES[], N_VERSIONS */
 
-#define NV_MAX 65536u
+#define NV_MAX 0x80000u /* room for regions above 64 KiB (ODG_PERSIST_MAX_REGION) */
 
 static uint8_t mem[NV_MAX];
 static nv_fault_t nv;
