@@ -90,23 +90,45 @@ DICT_PARTS = {"sub-entry descriptors": "od_subs", "entries": "od_entries", "rese
               "dictionary": "od", "groups": "od_groups"}
 
 NOT_MET = """\
-Where the goals are not met (hash, the default lookup; DS301 unless named; 2026-11-27):
+Where the goals are not met (hash, the default lookup; DS301 unless named; 2026-11-28):
 
-- **Dictionary + access with persistence and boot migration** (DS301 5780 B against 5308 B,
-  109%; demoDevice 7744 B against 7132 B, 109%). The persistence layer links 3288 B (the layer
-  370, slots and CRC 432, the migration 2486; demoDevice 4050 B), against about 1764 B that
+- **Dictionary + access with persistence and boot migration** (DS301 5652 B against 5308 B,
+  106%; demoDevice 7396 B against 7132 B, 104%). The persistence layer links 3162 B (the layer
+  346, slots and CRC 412, the migration 2404; demoDevice 3706 B), against about 1764 B that
   CANopenNode's CO_storage, CO_storageEeprom and CRC-16 add (5308 - 3544). The dictionary and
   the core alone are at 64% of CANopenNode's (the row without persistence), and the layer without
   migration is well within CANopenNode's figure (the row with `migration = false`: 78%). What it
   links beyond CANopenNode's storage: stored values survive a firmware update that changes the
   layout (entry by entry kept, widened, defaulted, dropped or added, checked against the current
   limits), images are found where an older NV map put them (the places a region that grew or
-  shrank left them, the ordered boot of several groups, the scrub of a region after boot), and a
-  power-safe A/B commit with read-back. After today's rounds the code is spread evenly over these
-  features and the last rounds found a few bytes each: closing the last 472 B (demoDevice 612 B)
-  needs a smaller contract or a structural change (below), not smaller code. The notes' figure
-  of the same row, 5768 B (bsearch, 2026-11-23), was measured before the stored-values rule set
-  was merged, which added about 1.6 KB here.
+  shrank left them, the boot of several groups in the order of their regions, the scrub of a
+  region after boot), and a power-safe A/B commit with read-back. The code is spread evenly over
+  these features and the last rounds found a few bytes each: closing the last 344 B (demoDevice
+  264 B) needs a smaller contract or a structural change (below), not smaller code. The notes'
+  figure of the same row, 5768 B (bsearch, 2026-11-23), was measured before the stored-values
+  rule set was merged, which added about 1.6 KB here.
+- Measured for this row on 2026-11-28, and what became of it:
+  - Two more rounds of behaviour-preserving rewrites: the migration DS301 -100 B, demoDevice
+    -104 B (the record count kept from the slot check, one answer for how a stored entry carries,
+    the region word of a foreign header cleared so that the place walk does not check it again,
+    ...); the layer and the slots DS301 -44 B, demoDevice -96 B (the NV size check hands back the
+    driver, the command's "none acted" as a value no abort code has, a tail call in the clear, ...).
+  - The groups boot in the order of their regions in NV instead of in rounds that looked for
+    every other group's newest image: a group finds its images only from its region's start on
+    and writes only inside its region, so an image in another group's region belongs to a group
+    placed before it. demoDevice -172 B, no NV read for the order, and no case left without a safe
+    order (the "cycle" gap documented before cannot arise).
+  - Correctness fixes found by the persistence model once it pins regions: an image loaded
+    unchanged from past the group's region is stored home (+16 B; the next group's boot wrote over
+    it), and boot looks for slot B of regions up to 16 MiB (0 B). A pinned region of a group with
+    migration must be a power of two (generation refuses others: 0 B in the runtime).
+  - Structural change considered and not made: ARRAYs and RECORDs alike in everything but their
+    offsets (the RPDO and TPDO communication and mapping records) sharing one descriptor list
+    saves about 336 B of descriptors on DS301, but finding an element's offset needs the record's
+    place in its run and the step of each member size: with the 6-byte entry that is a walk back
+    over the run and over the first record's descriptors at every lookup of such an entry (about
+    +60 instructions, which breaks the lookup goal, 65 of 71 instructions), and with an offset in
+    each entry (+2 B per entry) the saving drops to about 200 B and the lookup still pays a test.
 - Measured for this row on 2026-11-27 (second half of the day), and what became of it:
   - A persistence group's defaults are the runs of its mirror that are not all zero
     (`NAME_persist_GROUP_defaults`, placed by a (start, end) table) instead of a whole copy of the
@@ -124,10 +146,8 @@ Where the goals are not met (hash, the default lookup; DS301 unless named; 2026-
     in dependency order (a group once its region holds no byte of another group's newest image),
     since a chain of displaced images, and an image whose tail reached into a third region (both
     found by `make fuzz`), let one group's boot clear another's newest image before it moved home.
-  - Structural changes not made yet: ARRAYs and RECORDs alike in everything but their offsets
-    (the four RPDO and TPDO communication and mapping records) could share one descriptor list,
-    about -250 B on these rows and much more on devices with many PDOs; it touches the lookup,
-    the layout walk of the migration and the table check.
+  - Structural change considered then: ARRAYs and RECORDs alike in everything but their offsets
+    sharing one descriptor list (measured against the lookup goal on 2026-11-28, above).
   - Tried and dropped: one switch for 16-bit hash tables and one for dictionaries without sparse
     entries (-12 B and 0 B here: not worth two more configurations).
 - Measured for this row on 2026-11-27 (first half of the day), and what became of it:
@@ -158,8 +178,9 @@ Where the goals are not met (hash, the default lookup; DS301 unless named; 2026-
     per-value default for the readers of single defaults (`odg_comm.c`, `odg_verify`, the "ODG1"
     limit re-check) that costs what it saves.
 
-The **whole device** meets its goal since 2026-11-27: 13280 B against 14021 B (81% of 16496 B;
-with SDO block transfer, odgen's default, 14320 B). It was 15204 B in the morning: the services
+The **whole device** meets its goal since 2026-11-27: 13152 B against 14021 B (80% of 16496 B;
+with SDO block transfer, odgen's default, 14192 B; 2026-11-28: -128 B, the migration and the
+layer). It was 15204 B on the morning of 2026-11-27: the services
 -656 B (SDO 1152 -> 784 B: a build without strings or domains leaves the streamed transfers
 out, one whose values are all numbers of at most 4 bytes answers every upload expedited; PDO,
 EMCY, heartbeat, SYNC and communication values each a little smaller), the LSS configuration in
@@ -167,7 +188,7 @@ a record store of its own instead of "ODG1" slots (-192 B) and the LSS slave and
 -130 B, the migration and the layer about -800 B, the defaults as runs -240 B, the packed
 commands -48 B. Its services link 6992 B (`odg_pdo.c` 1988, `odg_node.c` 1054, `odg_err.c`
 1012, `odg_sdo.c` 784, `odg_hb.c` 694, `odg_lss.c` 674, `odg_comm.c` 396, `odg_sync.c` 240,
-`odg_node_io.c` 118, `odg_time.c` 32), the persistence 3672 B (the LSS record store 356 of it),
+`odg_node_io.c` 118, `odg_time.c` 32), the persistence 3546 B (the LSS record store 356 of it),
 the dictionary 1221 B and the core 1092 B. RAM, 1772 B (32%), meets its goal too.
 
 Earlier shrinks, measured the same way (the figures of their day, with an NV driver of three empty
