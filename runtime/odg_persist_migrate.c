@@ -770,13 +770,11 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
         st = k == 2 ? ODG_BOOT_DAMAGED : described_no_image(nv, gr);
     }
     /* a migrated image, or the defaults, are stored at once with the A/B commit; so is an image
-     * loaded from past the region (after a rollback to a smaller region), which lies in the region
-     * of a group placed after this one: that group's boot would write over it (an image loaded
-     * unchanged has the size of this layout's, which fits half the region, and the places inside
-     * the region are its middle and the places before it: it lies past the region when it starts
-     * there) */
+     * loaded that reaches past the region (after a rollback to a smaller region; its strings
+     * may have a larger capacity than this layout's, with nothing cut): it lies in part in the
+     * region of a group placed after this one, whose boot would write over it */
     if (st != ODG_BOOT_NV_ERROR &&
-        (((st != ODG_BOOT_LOADED || f.at - gr->nv_addr >= gr->region) &&
+        (((st != ODG_BOOT_LOADED || f.at + extent(f.h) > gr->nv_addr + gr->region) &&
           odg_described_store_(d, nv, g) != ODG_OK) ||
          scrub(nv, gr) != 0)) {
         st = ODG_BOOT_NV_ERROR;

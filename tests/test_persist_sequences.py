@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from .persist_model import (DAMAGED, DEFAULTS, LOADED, LOST_BITS, MIGRATED, NV_ERROR, U8, U16, U32, Param,
+from .persist_model import (DAMAGED, DEFAULTS, LOADED, LOST_BITS, MIGRATED, NV_ERROR, U8, U16, U32, VS, Param,
                             Version, run_script)
 
 pytestmark = pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
@@ -77,6 +77,21 @@ def test_an_image_loaded_from_past_the_region_is_moved_home(tmp_path: Path) -> N
     for boot in boots[1:]:
         assert boot.values[(0x1017, 0)] == "0300"
         assert boot.groups[1]["status"] == LOADED  # comm (the groups by name: app, comm)
+
+
+def test_an_image_loaded_that_reaches_past_the_region_is_moved_home(tmp_path: Path) -> None:
+    """v1 gives app a string of 200 bytes in a region of 1024, v2 one of 8 in 128, with aux after
+    it: app's newest store, in slot A, is loaded unchanged (its short string fits) but reaches past
+    v2's region into aux's; it must be stored home before aux's boot clears it, else the next boot
+    serves app's store before (slot B of the old region, which slot A's header names)."""
+    v1 = app(Param(0x2000, VS, "app", "ab", capacity=200), Param(0x2001, U32, "aux", 0),
+             options='[[group]]\nname = "app"\nregion = 1024\n\n')
+    v2 = app(Param(0x2000, VS, "app", "ab", capacity=8), Param(0x2001, U32, "aux", 0),
+             options='[[group]]\nname = "app"\nregion = 128\n\n')
+    stores = [c for text in (b"aa", b"bb") for c in (f"set 2000 00 {text.hex()}", "save")]  # slots B, A
+    violations, boots, _ = run_script([v1, v2], ["nv 4096", "boot 0", *stores, "boot 1", "boot 1"], tmp_path)
+    assert not violations, "\n".join(map(str, violations))
+    assert [b.values[(0x2000, 0)][:4] for b in boots[1:]] == ["6262", "6262"]
 
 
 def test_slot_b_of_a_region_above_64_kib_is_found_when_the_region_changes(tmp_path: Path) -> None:
