@@ -405,9 +405,17 @@ odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv,
     if (k > 0) {
         /* the slot beside the newest; should the newest be an image of a larger region that
          * reaches into it (after a rollback), it is written over: it was read (and migrated) at
-         * boot, and keeping it would refuse every store for good */
+         * boot, and keeping it would refuse every store for good. A power cut before the new
+         * image is committed then loses both, so the group's other images past the region (of
+         * the larger region: slot B, which slot A's header names) are erased first: the next
+         * boot finds none of them and reports the loss, never serves an older store. Only an
+         * image in slot A can reach into slot B: one at another place of the region is of a
+         * region at most half as large, and ends before the middle. */
         seq = ODG_LE32(t.h + 4) + 1u;
         addr = t.at == gr->nv_addr + half ? gr->nv_addr : gr->nv_addr + half;
+        if (t.at == gr->nv_addr && extent(t.h) > half && walk(d, nv, gr, &t, 1, t.at) < 0) {
+            return ODG_ABORT_HARDWARE;
+        }
     }
     if (DESCRIBED_HDR + size > half) {
         return ODG_ABORT_DATA_STORE; /* odg_verify: never for a generated dictionary */

@@ -94,6 +94,27 @@ def test_an_image_loaded_that_reaches_past_the_region_is_moved_home(tmp_path: Pa
     assert [b.values[(0x2000, 0)][:4] for b in boots[1:]] == ["6262", "6262"]
 
 
+def test_a_power_cut_while_the_newest_is_written_over_never_serves_an_older_store(tmp_path: Path) -> None:
+    """As above: app's newest store (slot A, string capacity 200) reaches into slot B of v2's
+    smaller region, so v2's store home writes over it. A power cut at any point of that store
+    leaves the newest, the new image, or neither; with neither, the boot must not find app's
+    older store (slot B of the old region, past v2's NV, which slot A's header names): it
+    reports the loss (DAMAGED) with the default."""
+    v1 = app(Param(0x2000, VS, "app", "ab", capacity=200), Param(0x2001, U32, "aux", 0),
+             options='[[group]]\nname = "app"\nregion = 1024\n\n')
+    v2 = app(Param(0x2000, VS, "app", "ab", capacity=8), Param(0x2001, U32, "aux", 0),
+             options='[[group]]\nname = "app"\nregion = 128\n\n')
+    stores = [c for text in (b"aa", b"bb") for c in (f"set 2000 00 {text.hex()}", "save")]  # slots B, A
+    cuts = range(0, 420, 4)
+    commands = [c for n in cuts for c in ("nv 4096", "boot 0", *stores, f"cut {n}", "boot 1", "power", "boot 1")]
+    _, boots, _ = run_script([v1, v2], commands, tmp_path)
+    after = boots[2::3]  # the boot after each power cut
+    assert len(after) == len(cuts)
+    served = {(b.values[(0x2000, 0)][:4], b.groups[0]["status"]) for b in after}
+    assert served <= {("6262", LOADED), ("6162", DAMAGED)}, served  # "bb", or the default and the loss
+    assert ("6162", DAMAGED) in served  # some cut fell inside the store
+
+
 def test_slot_b_of_a_region_above_64_kib_is_found_when_the_region_changes(tmp_path: Path) -> None:
     """comm pinned to 128 KiB, then to 256 KiB: its newest store, in the old slot B (64 KiB into
     the region), is found by the new firmware although it is at no place of its region."""
