@@ -276,8 +276,11 @@ static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_
                 int wipe, uint32_t keep)
 {
     uint8_t t[HEAD];
-    /* far: the place slot A names (0 until slot A is read: slot A is never past the NV) */
-    uint32_t half = 0u, addr, end = odg_persist_nv_size(d), far = 0u;
+    /* far: the place slot A names (0 until slot A is read: slot A is never past the NV);
+     * inside: the bytes of slot A's valid image, at whose places lies no image of ours (a store
+     * there would have broken slot A's image): a value of it, an OCTET_STRING say, that looks
+     * like one is never taken */
+    uint32_t half = 0u, addr, end = odg_persist_nv_size(d), far = 0u, inside = 0u;
     int v, k = 0;
     f->at = gr->nv_addr;
     do {
@@ -292,7 +295,7 @@ static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_
         if (half == 0u) {
             far = named(t);
         }
-        if (v <= 0) {
+        if (v <= 0 || half < inside) {
             continue;
         }
         if (wipe && v == 1 && half >= gr->region && addr != keep && odg_wipe_(nv, addr, addr + extent(t))) {
@@ -302,6 +305,9 @@ static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_
             k = v;
             f->at = addr;
             odg_copy(f->h, t, HEAD);
+        }
+        if (half == 0u && v == 1) {
+            inside = extent(t);
         }
     } while ((half = next_place(gr, half)) != 0u);
     return k;

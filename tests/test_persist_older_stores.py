@@ -1,0 +1,114 @@
+"""Regressions: sequences through the C runtime (tests/runtime/model_main.c) after which a boot
+once served a value of an older store, against rule 1 of docs/persistence.md ("newest or
+default"): power cuts while a store writes over the newest image's tail, and a stored
+OCTET_STRING holding an image of its own group. Each asserts the values served explicitly: the
+model's checker is lenient about images past NAME_NV_SIZE, and run_script does not tell it which
+steps a power cut interrupts."""
+
+from __future__ import annotations
+
+import re
+import shutil
+import struct
+import zlib
+from pathlib import Path
+
+import pytest
+
+from .persist_model import I16, U16, U32, VS, Param, Version, build, run_script
+
+pytestmark = pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
+
+OCTET_STRING = 0x0A
+
+
+def app(*params: Param, options: str = "") -> Version:
+    return Version({p.index: p for p in params}, options=options)
+
+
+def pins(**regions: int) -> str:
+    return "".join(f'[[group]]\nname = "{g}"\nregion = {r}\n\n' for g, r in regions.items())
+
+
+def stores(index: int, values: list[str]) -> list[str]:
+    return [c for v in values for c in (f"set {index:04X} 00 {v}", "save")]
+
+
+def test_a_power_cut_in_a_rollback_s_first_boot_serves_no_older_store(tmp_path: Path) -> None:
+    """Default regions on one NV of v1's NAME_NV_SIZE: v1 adds an ARRAY of 3 UNSIGNED16 to comm
+    (region 128 -> 256) and stores 0x1017 = 1, 2, 3 (slot B, A, B after its migration store;
+    the last in slot A, 72 bytes, past v0's slot B at byte 64). v0's first boot migrates it and
+    stores it into slot B, erasing slot A's last 8 bytes; a power cut there leaves slot A's header
+    naming region 256, and the next boot takes 2 from v1's slot B (byte 128, in v0's aux region,
+    which aux had not cleared yet)."""
+    v0 = app(Param(0x2000, I16, "aux", 0), Param(0x2009, U16, "aux", 0))
+    v1 = app(Param(0x2000, I16, "aux", 0), Param(0x2009, U16, "aux", 0), Param(0x2003, U16, "comm", 1, elements=3))
+    cmds = ["nv 512", "boot 0", "boot 1", *stores(0x1017, ["0100", "0200", "0300"]), "cut 0", "boot 0", "power",
+            "boot 0"]
+    violations, boots, _ = run_script([v0, v1], cmds, tmp_path)
+    assert boots[-1].values[(0x1017, 0)] in ("0300", "E803")
+    assert not [v for v in violations if v.rule == "R1"], "\n".join(map(str, violations))
+
+
+def test_a_power_cut_in_the_rollback_s_migration_store_serves_no_older_store(tmp_path: Path) -> None:
+    """v2 adds a bulk array to app (default region 2048), v1 has none (128); v1's aux region
+    (pinned 2048) covers v2's app slot B, so every image lies inside v1's NAME_NV_SIZE. v2 stores
+    1, 2, 3 (slot B, A, B... the last in slot A, reaching past v1's region). v1's first boot
+    migrates it and stores it into slot B, erasing the tail of slot A; a power cut there leaves
+    slot A's header naming region 2048, and the next boot takes 2 from v2's slot B."""
+    bulk = Param(0x2200, U32, "app", 1, elements=30)
+    v1 = app(Param(0x2000, U32, "app", 0), Param(0x2001, U32, "aux", 0), options=pins(aux=2048))
+    v2 = app(Param(0x2000, U32, "app", 0), bulk, Param(0x2001, U32, "aux", 0))
+    cmds = ["nv 2304", "boot 0", "boot 1", *stores(0x2000, ["01000000", "02000000", "03000000"]),
+            "cut 0", "boot 0", "power", "boot 0", "boot 0"]
+    _, boots, _ = run_script([v1, v2], cmds, tmp_path)
+    assert [b.values[(0x2000, 0)] for b in boots[-2:]] in (["03000000"] * 2, ["00000000"] * 2)
+
+
+def test_a_power_cut_in_the_store_home_of_a_loaded_image_serves_no_older_store(tmp_path: Path) -> None:
+    """The versions of test_an_image_loaded_that_reaches_past_the_region_is_moved_home: app's
+    string of 200 bytes in a region of 1024 (v1), 8 bytes in 128 (v2). v2 loads "bb" (slot A,
+    reaching past its region) and stores it home into slot B, erasing slot A's tail; a power cut
+    there, and the next boot serves "aa" from v1's slot B, which slot A's header names (the doc
+    says DAMAGED)."""
+    v1 = app(Param(0x2000, VS, "app", "ab", capacity=200), Param(0x2001, U32, "aux", 0), options=pins(app=1024))
+    v2 = app(Param(0x2000, VS, "app", "ab", capacity=8), Param(0x2001, U32, "aux", 0), options=pins(app=128))
+    cmds = ["nv 4096", "boot 0", *stores(0x2000, ["6161", "6262"]), "cut 0", "boot 1", "power", "boot 1"]
+    _, boots, _ = run_script([v1, v2], cmds, tmp_path)
+    assert boots[-1].values[(0x2000, 0)][:4] in ("6262", "6162")
+
+
+def test_a_power_cut_in_a_save_after_a_rollback_serves_no_older_store(tmp_path: Path) -> None:
+    """app's string of 200 bytes in a region of 512 (v1), 8 bytes in 256 (v2). v1 stores "aa"
+    (slot B, byte 256) and "bb" (slot A, 232 bytes). v2 loads "bb" unchanged and inside its region
+    (not stored home), but it reaches into v2's slot B (byte 128). v2's next save erases slot B,
+    so the tail of its newest image: a power cut there, and the next boot serves "aa", which the
+    broken slot A's header still names (LOADED, no loss reported)."""
+    v1 = app(Param(0x2000, VS, "app", "ab", capacity=200), options=pins(app=512))
+    v2 = app(Param(0x2000, VS, "app", "ab", capacity=8), options=pins(app=256))
+    cmds = ["nv 4096", "boot 0", *stores(0x2000, ["6161", "6262"]), "boot 1", "set 2000 00 6363", "cut 0", "save",
+            "power", "boot 1"]
+    _, boots, _ = run_script([v1, v2], cmds, tmp_path)
+    assert boots[-1].values[(0x2000, 0)][:4] in ("6262", "6363", "6162")
+
+
+def test_a_stored_octet_string_is_never_taken_for_an_image(tmp_path: Path) -> None:
+    """An OCTET_STRING value holding a valid image of its own group (plain group id, header
+    naming region 128) at byte 64 of slot A, a place the walk visits for slot B of a region of
+    128: the next boot takes it as the newest and serves 0x2001 = 0x0BAD, never stored."""
+    v1 = app(Param(0x2000, OCTET_STRING, "app", "", capacity=100), Param(0x2001, U32, "app", 0))
+    work = tmp_path / "ids"
+    work.mkdir()
+    build([v1], work)
+    found = re.search(r"_NV_APP_REGION, \.id = 0x([0-9A-F]+)u", (work / "v0.c").read_text(encoding="utf-8"))
+    assert found is not None
+    image = struct.pack("<H", 1) + struct.pack("<HBBH", 0x2001, 0, U32, 4) + struct.pack("<I", 0xBAD)
+    head = b"ODG2" + struct.pack("<IIII", 1000, int(found.group(1), 16), 128, len(image))
+    payload = bytes(26) + head + struct.pack("<I", zlib.crc32(head + image)) + image  # 38 + 26 = byte 64
+    payload += bytes(100 - len(payload))
+    run = tmp_path / "run"
+    run.mkdir()
+    _, boots, _ = run_script([v1], ["nv 4096", "boot 0", f"set 2000 00 {payload.hex()}", "save", "save", "boot 0"],
+                             run)
+    assert boots[-1].values[(0x2001, 0)] == "00000000"
+    assert boots[-1].values[(0x2000, 0)] == payload.hex().upper()
