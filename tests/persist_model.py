@@ -154,6 +154,16 @@ def versions(rng: random.Random, count: int) -> list[Version]:
     return out
 
 
+def version(*params: Param, options: str = "", pins: dict[str, int] | None = None, heartbeat: int = 1000) -> Version:
+    """A version of one's own (the sequence tests): its parameters, options text and pinned regions."""
+    return Version({p.index: p for p in params}, heartbeat, options, dict(pins or {}))
+
+
+def saves(index: int, values: list[str]) -> list[str]:
+    """Commands that write each value (hex) to `index` sub 0 and save it (0x1010), in turn."""
+    return [c for v in values for c in (f"set {index:04X} 00 {v}", "save")]
+
+
 def pin(rng: random.Random, vs: list[Version]) -> None:
     """Pin the regions of some groups of some versions to powers of two ([[group]] region): a
     pinned region keeps its size whatever the layout, and changes only when the next version pins

@@ -3,7 +3,8 @@ once served a value of an older store, against rule 1 of docs/persistence.md ("n
 default"): power cuts while a store writes over the newest image's tail, and a stored
 OCTET_STRING holding an image of its own group. Each asserts the values served explicitly: the
 model's checker is lenient about images past NAME_NV_SIZE, and run_script does not tell it which
-steps a power cut interrupts."""
+steps a power cut interrupts. The power cut in the store home of a loaded image is
+test_persist_sequences.py's test_a_power_cut_while_the_newest_is_written_over_never_serves_an_older_store."""
 
 from __future__ import annotations
 
@@ -15,23 +16,12 @@ from pathlib import Path
 
 import pytest
 
-from .persist_model import I16, U16, U32, VS, Param, Version, build, run_script
+from .persist_model import I16, U16, U32, VS, Param, build, run_script, saves
+from .persist_model import version as app
 
 pytestmark = pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
 
 OCTET_STRING = 0x0A
-
-
-def app(*params: Param, options: str = "") -> Version:
-    return Version({p.index: p for p in params}, options=options)
-
-
-def pins(**regions: int) -> str:
-    return "".join(f'[[group]]\nname = "{g}"\nregion = {r}\n\n' for g, r in regions.items())
-
-
-def stores(index: int, values: list[str]) -> list[str]:
-    return [c for v in values for c in (f"set {index:04X} 00 {v}", "save")]
 
 
 def test_a_power_cut_in_a_rollback_s_first_boot_serves_no_older_store(tmp_path: Path) -> None:
@@ -43,7 +33,7 @@ def test_a_power_cut_in_a_rollback_s_first_boot_serves_no_older_store(tmp_path: 
     which aux had not cleared yet)."""
     v0 = app(Param(0x2000, I16, "aux", 0), Param(0x2009, U16, "aux", 0))
     v1 = app(Param(0x2000, I16, "aux", 0), Param(0x2009, U16, "aux", 0), Param(0x2003, U16, "comm", 1, elements=3))
-    cmds = ["nv 512", "boot 0", "boot 1", *stores(0x1017, ["0100", "0200", "0300"]), "cut 0", "boot 0", "power",
+    cmds = ["nv 512", "boot 0", "boot 1", *saves(0x1017, ["0100", "0200", "0300"]), "cut 0", "boot 0", "power",
             "boot 0"]
     violations, boots, _ = run_script([v0, v1], cmds, tmp_path)
     assert boots[-1].values[(0x1017, 0)] in ("0300", "E803")
@@ -57,25 +47,12 @@ def test_a_power_cut_in_the_rollback_s_migration_store_serves_no_older_store(tmp
     migrates it and stores it into slot B, erasing the tail of slot A; a power cut there leaves
     slot A's header naming region 2048, and the next boot takes 2 from v2's slot B."""
     bulk = Param(0x2200, U32, "app", 1, elements=30)
-    v1 = app(Param(0x2000, U32, "app", 0), Param(0x2001, U32, "aux", 0), options=pins(aux=2048))
+    v1 = app(Param(0x2000, U32, "app", 0), Param(0x2001, U32, "aux", 0), pins={"aux": 2048})
     v2 = app(Param(0x2000, U32, "app", 0), bulk, Param(0x2001, U32, "aux", 0))
-    cmds = ["nv 2304", "boot 0", "boot 1", *stores(0x2000, ["01000000", "02000000", "03000000"]),
+    cmds = ["nv 2304", "boot 0", "boot 1", *saves(0x2000, ["01000000", "02000000", "03000000"]),
             "cut 0", "boot 0", "power", "boot 0", "boot 0"]
     _, boots, _ = run_script([v1, v2], cmds, tmp_path)
     assert [b.values[(0x2000, 0)] for b in boots[-2:]] in (["03000000"] * 2, ["00000000"] * 2)
-
-
-def test_a_power_cut_in_the_store_home_of_a_loaded_image_serves_no_older_store(tmp_path: Path) -> None:
-    """The versions of test_an_image_loaded_that_reaches_past_the_region_is_moved_home: app's
-    string of 200 bytes in a region of 1024 (v1), 8 bytes in 128 (v2). v2 loads "bb" (slot A,
-    reaching past its region) and stores it home into slot B, erasing slot A's tail; a power cut
-    there, and the next boot serves "aa" from v1's slot B, which slot A's header names (the doc
-    says DAMAGED)."""
-    v1 = app(Param(0x2000, VS, "app", "ab", capacity=200), Param(0x2001, U32, "aux", 0), options=pins(app=1024))
-    v2 = app(Param(0x2000, VS, "app", "ab", capacity=8), Param(0x2001, U32, "aux", 0), options=pins(app=128))
-    cmds = ["nv 4096", "boot 0", *stores(0x2000, ["6161", "6262"]), "cut 0", "boot 1", "power", "boot 1"]
-    _, boots, _ = run_script([v1, v2], cmds, tmp_path)
-    assert boots[-1].values[(0x2000, 0)][:4] in ("6262", "6162")
 
 
 def test_a_power_cut_in_a_save_after_a_rollback_serves_no_older_store(tmp_path: Path) -> None:
@@ -84,9 +61,9 @@ def test_a_power_cut_in_a_save_after_a_rollback_serves_no_older_store(tmp_path: 
     (not stored home), but it reaches into v2's slot B (byte 128). v2's next save erases slot B,
     so the tail of its newest image: a power cut there, and the next boot serves "aa", which the
     broken slot A's header still names (LOADED, no loss reported)."""
-    v1 = app(Param(0x2000, VS, "app", "ab", capacity=200), options=pins(app=512))
-    v2 = app(Param(0x2000, VS, "app", "ab", capacity=8), options=pins(app=256))
-    cmds = ["nv 4096", "boot 0", *stores(0x2000, ["6161", "6262"]), "boot 1", "set 2000 00 6363", "cut 0", "save",
+    v1 = app(Param(0x2000, VS, "app", "ab", capacity=200), pins={"app": 512})
+    v2 = app(Param(0x2000, VS, "app", "ab", capacity=8), pins={"app": 256})
+    cmds = ["nv 4096", "boot 0", *saves(0x2000, ["6161", "6262"]), "boot 1", "set 2000 00 6363", "cut 0", "save",
             "power", "boot 1"]
     _, boots, _ = run_script([v1, v2], cmds, tmp_path)
     assert boots[-1].values[(0x2000, 0)][:4] in ("6262", "6363", "6162")

@@ -10,16 +10,13 @@ from pathlib import Path
 import pytest
 
 from .persist_model import (DAMAGED, DEFAULTS, LOADED, LOST_BITS, MIGRATED, NV_ERROR, U8, U16, U32, VS, Param,
-                            Version, run_script)
+                            Version, run_script, saves)
+from .persist_model import version as app
 
 pytestmark = pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
 
 SAVE_OK = "save 00000000"
 LOAD_OK = "load 00000000"
-
-
-def app(*params: Param, **kw: object) -> Version:
-    return Version({p.index: p for p in params}, **kw)  # type: ignore[arg-type]
 
 
 def small() -> Version:
@@ -49,10 +46,9 @@ def test_sequence_2_a_rollback_never_locks_a_group(tmp_path: Path) -> None:
 def test_sequence_3_a_moved_group_is_never_served_a_stale_image(tmp_path: Path) -> None:
     """v1 comm {0x1017} in 128 bytes, app in 256; v2's comm takes 256, so app's region starts at
     its old slot B. App stored four times (1..4): v2 never serves 3, and says what it lost."""
-    pins = '[[group]]\nname = "comm"\nregion = {}\n\n[[group]]\nname = "app"\nregion = 256\n\n'
-    v1 = app(Param(0x2000, U32, "app", 0), options=pins.format(128))
-    v2 = app(Param(0x2000, U32, "app", 0), options=pins.format(256))
-    stores = [c for k in range(1, 5) for c in (f"set 2000 00 {k:02X}000000", "save")]
+    v1 = app(Param(0x2000, U32, "app", 0), pins={"comm": 128, "app": 256})
+    v2 = app(Param(0x2000, U32, "app", 0), pins={"comm": 256, "app": 256})
+    stores = saves(0x2000, [f"{k:02X}000000" for k in range(1, 5)])
     violations, boots, _ = run_script([v1, v2], ["nv 512", "boot 0", *stores, "boot 1", "boot 1"], tmp_path)
     assert not violations, "\n".join(map(str, violations))
     moved = boots[1]
@@ -66,10 +62,9 @@ def test_an_image_loaded_from_past_the_region_is_moved_home(tmp_path: Path) -> N
     slot B (byte 128), lies in v2's app region. v2 loads it unchanged (LOADED), and must move it
     home before app's boot (its defaults stored, its region cleared) writes over it; else the next
     boot serves comm's store before (slot A)."""
-    pins = '[[group]]\nname = "comm"\nregion = {}\n\n[[group]]\nname = "app"\nregion = 512\n\n'
-    v1 = app(Param(0x2000, U32, "app", 0), options=pins.format(256))
-    v2 = app(Param(0x2000, U32, "app", 0), options=pins.format(128))
-    stores = [c for k in range(1, 4) for c in (f"set 1017 00 {k:02X}00", "save")]  # slots B, A, B
+    v1 = app(Param(0x2000, U32, "app", 0), pins={"comm": 256, "app": 512})
+    v2 = app(Param(0x2000, U32, "app", 0), pins={"comm": 128, "app": 512})
+    stores = saves(0x1017, ["0100", "0200", "0300"])  # slots B, A, B
     violations, boots, answers = run_script([v1, v2], ["nv 1024", "boot 0", *stores, "boot 1", "boot 1", "boot 1"],
                                             tmp_path)
     assert not violations, "\n".join(map(str, violations))
@@ -79,17 +74,23 @@ def test_an_image_loaded_from_past_the_region_is_moved_home(tmp_path: Path) -> N
         assert boot.groups[1]["status"] == LOADED  # comm (the groups by name: app, comm)
 
 
+def string_shrinks() -> list[Version]:
+    """v1 gives app a string of 200 bytes in a region of 1024, v2 one of 8 in 128, with aux after
+    it (STRING_STORES stores "aa" in slot B, then "bb" in slot A: 232 bytes, past v2's region)."""
+    return [app(Param(0x2000, VS, "app", "ab", capacity=200), Param(0x2001, U32, "aux", 0), pins={"app": 1024}),
+            app(Param(0x2000, VS, "app", "ab", capacity=8), Param(0x2001, U32, "aux", 0), pins={"app": 128})]
+
+
+STRING_STORES = saves(0x2000, [b"aa".hex(), b"bb".hex()])
+
+
 def test_an_image_loaded_that_reaches_past_the_region_is_moved_home(tmp_path: Path) -> None:
     """v1 gives app a string of 200 bytes in a region of 1024, v2 one of 8 in 128, with aux after
     it: app's newest store, in slot A, is loaded unchanged (its short string fits) but reaches past
     v2's region into aux's; it must be stored home before aux's boot clears it, else the next boot
     serves app's store before (slot B of the old region, which slot A's header names)."""
-    v1 = app(Param(0x2000, VS, "app", "ab", capacity=200), Param(0x2001, U32, "aux", 0),
-             options='[[group]]\nname = "app"\nregion = 1024\n\n')
-    v2 = app(Param(0x2000, VS, "app", "ab", capacity=8), Param(0x2001, U32, "aux", 0),
-             options='[[group]]\nname = "app"\nregion = 128\n\n')
-    stores = [c for text in (b"aa", b"bb") for c in (f"set 2000 00 {text.hex()}", "save")]  # slots B, A
-    violations, boots, _ = run_script([v1, v2], ["nv 4096", "boot 0", *stores, "boot 1", "boot 1"], tmp_path)
+    violations, boots, _ = run_script(string_shrinks(), ["nv 4096", "boot 0", *STRING_STORES, "boot 1", "boot 1"],
+                                      tmp_path)
     assert not violations, "\n".join(map(str, violations))
     assert [b.values[(0x2000, 0)][:4] for b in boots[1:]] == ["6262", "6262"]
 
@@ -100,14 +101,9 @@ def test_a_power_cut_while_the_newest_is_written_over_never_serves_an_older_stor
     leaves the newest, the new image, or neither; with neither, the boot must not find app's
     older store (slot B of the old region, past v2's NV, which slot A's header names): it
     reports the loss (DAMAGED) with the default."""
-    v1 = app(Param(0x2000, VS, "app", "ab", capacity=200), Param(0x2001, U32, "aux", 0),
-             options='[[group]]\nname = "app"\nregion = 1024\n\n')
-    v2 = app(Param(0x2000, VS, "app", "ab", capacity=8), Param(0x2001, U32, "aux", 0),
-             options='[[group]]\nname = "app"\nregion = 128\n\n')
-    stores = [c for text in (b"aa", b"bb") for c in (f"set 2000 00 {text.hex()}", "save")]  # slots B, A
     cuts = range(0, 420, 4)
-    commands = [c for n in cuts for c in ("nv 4096", "boot 0", *stores, f"cut {n}", "boot 1", "power", "boot 1")]
-    _, boots, _ = run_script([v1, v2], commands, tmp_path)
+    commands = [c for n in cuts for c in ("nv 4096", "boot 0", *STRING_STORES, f"cut {n}", "boot 1", "power", "boot 1")]
+    _, boots, _ = run_script(string_shrinks(), commands, tmp_path)
     after = boots[2::3]  # the boot after each power cut
     assert len(after) == len(cuts)
     served = {(b.values[(0x2000, 0)][:4], b.groups[0]["status"]) for b in after}
@@ -118,10 +114,9 @@ def test_a_power_cut_while_the_newest_is_written_over_never_serves_an_older_stor
 def test_slot_b_of_a_region_above_64_kib_is_found_when_the_region_changes(tmp_path: Path) -> None:
     """comm pinned to 128 KiB, then to 256 KiB: its newest store, in the old slot B (64 KiB into
     the region), is found by the new firmware although it is at no place of its region."""
-    pins = '[[group]]\nname = "comm"\nregion = {}\n\n'
-    v1 = app(Param(0x2000, U32, "app", 0), options=pins.format(0x20000))
-    v2 = app(Param(0x2000, U32, "app", 0), options=pins.format(0x40000))
-    stores = [c for k in range(1, 4) for c in (f"set 1017 00 {k:02X}00", "save")]  # slots B, A, B
+    v1 = app(Param(0x2000, U32, "app", 0), pins={"comm": 0x20000})
+    v2 = app(Param(0x2000, U32, "app", 0), pins={"comm": 0x40000})
+    stores = saves(0x1017, ["0100", "0200", "0300"])  # slots B, A, B
     violations, boots, _ = run_script([v1, v2], ["nv 300000", "boot 0", *stores, "boot 1", "boot 1"], tmp_path)
     assert not violations, "\n".join(map(str, violations))
     assert [b.values[(0x1017, 0)] for b in boots[1:]] == ["0300", "0300"]
