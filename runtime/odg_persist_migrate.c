@@ -189,7 +189,7 @@ static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint
     len = ODG_LE32(h + 16);
     /* len from 2 (the record count) up to what half the region holds after the header: one
      * unsigned compare, len below 2 wraps round */
-    if (region > 0x01000000u || region / 2u < DESCRIBED_HDR + 2u ||
+    if (region > 0x01000001u || region / 2u < DESCRIBED_HDR + 2u || /* 16 MiB, a load mark */
         len - 2u > region / 2u - DESCRIBED_HDR - 2u ||
         (addr != gr->nv_addr && addr - gr->nv_addr != region / 2u)) {
         return 0;
@@ -394,8 +394,16 @@ static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
 /* Write the mirror of group `g` as its newest image: into slot A when the newest is in slot B
  * of the current region, else into that slot B (past the whole old region when the region
  * grew). Slot A, which names the old region, stays until the newest is in the current slot B,
- * so an image in the old slot B is found until then. */
-odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
+ * so an image in the old slot B is found until then.
+ * With `load` (0x1011) the image is a mark (bit 0 of its region word) that makes the next
+ * boot serve the defaults (DEFAULTS), and then the rest of the region is erased. A power cut
+ * before the mark is committed leaves the newest image as it was; after, the mark is the
+ * newest: never an older store. Erasing the rest of the region leaves nothing older for a
+ * rollback firmware that cannot see the mark (past its NV); an image past the region is older
+ * than the mark, and every firmware whose NV holds that image finds the mark too (at slot A or
+ * the middle of a power-of-two region, below it). One store for both commands: smaller than
+ * an erase that must order its wipes so that no older image outlives the newest. */
+odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, int load)
 {
     const odg_group_t *gr = &d->groups[g];
     uint8_t h[DESCRIBED_HDR];
@@ -429,7 +437,7 @@ odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv,
     odg_put_le32_(h, DESCRIBED_MAGIC);
     odg_put_le32_(h + 4, seq);
     odg_put_le32_(h + 8, tagged_id(gr));
-    odg_put_le32_(h + 12, gr->region);
+    odg_put_le32_(h + 12, gr->region | (uint32_t)load);
     odg_put_le32_(h + 16, size);
     o.nv = nv;
     o.addr = addr + DESCRIBED_HDR;
@@ -448,34 +456,12 @@ odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv,
     /* the CRC covers the bytes written; the read-back below checks that they landed */
     odg_put_le32_(h + 20, o.crc);
     if (o.fail || nv->write(nv->ctx, addr + 4u, h + 4, DESCRIBED_HDR - 4u) != 0 ||
-        nv->write(nv->ctx, addr, h, 4u) != 0 || !reads_back(nv, gr, addr, h)) {
+        nv->write(nv->ctx, addr, h, 4u) != 0 || !reads_back(nv, gr, addr, h) ||
+        (load && (odg_wipe_(nv, gr->nv_addr, addr) ||
+                  odg_wipe_(nv, addr + extent(h), gr->nv_addr + gr->region)))) {
         return ODG_ABORT_HARDWARE;
     }
     return ODG_OK;
-}
-
-/* Make the next boot of group `g` use the defaults: erase its images past the region first,
- * then the region but the newest image, then the newest, so that a power cut in between leaves
- * the newest (as if nothing happened), never an older one. */
-odg_abort_t odg_described_erase_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
-{
-    const odg_group_t *gr = &d->groups[g];
-    found_t f;
-    uint32_t end = gr->nv_addr + gr->region, at, e = 0u, lo = end, hi = end;
-    int k = newest(d, nv, gr, &f), fail = k < 0;
-    at = f.at;
-    if (k > 0) {
-        e = at + extent(f.h);
-        e = k == 2 && at < end && e > end ? end : e; /* one that cannot be read: its header */
-        if (at < end) {
-            lo = at;
-            hi = e; /* past the end: nothing after it */
-        }
-    }
-    fail = fail || walk(d, nv, gr, &f, 1, at) < 0;
-    /* the newest last (none: e is 0, nothing to erase) */
-    fail = fail || odg_wipe_(nv, gr->nv_addr, lo) || odg_wipe_(nv, hi, end) || odg_wipe_(nv, at, e);
-    return fail ? ODG_ABORT_HARDWARE : ODG_OK;
 }
 
 /* After a boot of group `gr`: erase what its region holds besides its own images (at its
@@ -774,7 +760,10 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
     odg_boot_status_t st = ODG_BOOT_NV_ERROR;
     int k = newest(d, nv, gr, &f);
     odg_defaults_(d, g); /* the mirror starts from the defaults (RAM only: no NV access) */
-    if (k == 1) {
+    if (k == 1 && (f.h[12] & 1u)) {
+        st = ODG_BOOT_DEFAULTS; /* the mark of a "load" (0x1011), no counts */
+        k = 0;
+    } else if (k == 1) {
         if (migrate(d, nv, g, &f, n) == 0 && reads_back(nv, gr, f.at, f.h)) {
             /* LOADED: every stored entry kept (each is matched once at most, so none was
              * defaulted, dropped or converted) and none added */
@@ -789,7 +778,7 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
      * region of a group placed after this one, whose boot would write over it */
     if (st != ODG_BOOT_NV_ERROR &&
         (((st != ODG_BOOT_LOADED || f.at + extent(f.h) > gr->nv_addr + gr->region) &&
-          odg_described_store_(d, nv, g) != ODG_OK) ||
+          odg_described_store_(d, nv, g, 0) != ODG_OK) ||
          scrub(nv, gr) != 0)) {
         st = ODG_BOOT_NV_ERROR;
     }

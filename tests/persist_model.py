@@ -467,7 +467,10 @@ class Checker:
                 self.nv.partial = self.nv.partial or any(
                     i is not None and i.region[0] + i.region[1] > self.nv.size for i in self.nv.images.get(g, []))
                 self.nv.images[g] = [None]
-                self.nv.placed.pop((g, fw.regions[g][0]), None)
+                # the load's mark (docs/persistence.md section 2): an image of the defaults at
+                # the region's place, the only one left there; like every image, one a rollback
+                # that cannot see the newer ones may come back to
+                self.nv.placed[(g, fw.regions[g][0])] = [Image(GroupLayout(g), {}, fw.regions[g])]
 
     @staticmethod
     def _lost(fw: Firmware, g: str, image: Image | None, got: dict[tuple[int, int], str],
