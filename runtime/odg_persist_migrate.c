@@ -395,14 +395,13 @@ static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
  * of the current region, else into that slot B (past the whole old region when the region
  * grew). Slot A, which names the old region, stays until the newest is in the current slot B,
  * so an image in the old slot B is found until then.
- * With `load` (0x1011) the image is a mark (bit 0 of its region word) that makes the next
- * boot serve the defaults (DEFAULTS), and then the rest of the region is erased. A power cut
- * before the mark is committed leaves the newest image as it was; after, the mark is the
- * newest: never an older store. Erasing the rest of the region leaves nothing older for a
- * rollback firmware that cannot see the mark (past its NV); an image past the region is older
- * than the mark, and every firmware whose NV holds that image finds the mark too (at slot A or
- * the middle of a power-of-two region, below it). One store for both commands: smaller than
- * an erase that must order its wipes so that no older image outlives the newest. */
+ * With `load` (0x1011) the image is a mark (bit 0 of its region word set) that makes the next
+ * boot serve the defaults (DEFAULTS): stored as a save is, so that every firmware that would
+ * find a save finds the mark, and a power cut leaves the newest image or the mark. One store
+ * for both commands: smaller than an erase that must order its wipes so that no older image
+ * outlives the newest, and a rollback that cannot see past its NV finds the mark through slot
+ * A's header as it finds a save (an erased slot A would name nothing, and its stores would
+ * start their sequence over below the mark's). */
 odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, int load)
 {
     const odg_group_t *gr = &d->groups[g];
@@ -456,9 +455,7 @@ odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv,
     /* the CRC covers the bytes written; the read-back below checks that they landed */
     odg_put_le32_(h + 20, o.crc);
     if (o.fail || nv->write(nv->ctx, addr + 4u, h + 4, DESCRIBED_HDR - 4u) != 0 ||
-        nv->write(nv->ctx, addr, h, 4u) != 0 || !reads_back(nv, gr, addr, h) ||
-        (load && (odg_wipe_(nv, gr->nv_addr, addr) ||
-                  odg_wipe_(nv, addr + extent(h), gr->nv_addr + gr->region)))) {
+        nv->write(nv->ctx, addr, h, 4u) != 0 || !reads_back(nv, gr, addr, h)) {
         return ODG_ABORT_HARDWARE;
     }
     return ODG_OK;
