@@ -266,12 +266,19 @@ typedef struct found {
     uint8_t h[HEAD];
 } found_t;
 
+/* The bytes of a slot header, rounded up to the slot alignment: erasing them is enough to make
+ * an image invalid (its magic is gone), and leaves the rest of its bytes where they are. */
+#define HDR_EXTENT ((DESCRIBED_HDR + ODG_PERSIST_ALIGN - 1u) & ~((uint32_t)ODG_PERSIST_ALIGN - 1u))
+
 /* The newest image of group `gr` of `d` at its places inside the dictionary's NV (up to its
  * NAME_NV_SIZE) and the place slot A's header names past it (the slot B of a larger region a
  * later firmware used): 1 valid, 2 a header of ours whose image cannot be read (described_read
  * says 2), 0 none, -1 the driver failed inside the region (a failing read past it means no NV
- * there); its address (nv_addr when none) and its header in *f. With `wipe`, the valid
- * images past the region other than at `keep` are erased on the way (-1 when that fails). */
+ * there); its address (nv_addr when none) and its header in *f. With `wipe`, the headers of
+ * the valid images past the region other than at `keep` are erased on the way (-1 when that
+ * fails): past the region lies the region of a group that boots later, and the rest of such
+ * an image is what tells that group's boot that its region held bytes of another (a loss,
+ * DAMAGED), where an erased region would be a first boot. */
 static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_t *gr, found_t *f,
                 int wipe, uint32_t keep)
 {
@@ -298,7 +305,7 @@ static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_
         if (v <= 0 || half < inside) {
             continue;
         }
-        if (wipe && v == 1 && half >= gr->region && addr != keep && odg_wipe_(nv, addr, addr + extent(t))) {
+        if (wipe && v == 1 && half >= gr->region && addr != keep && odg_wipe_(nv, addr, addr + HDR_EXTENT)) {
             return -1;
         }
         if (!k || ODG_NEWER_(ODG_LE32(t + 4), ODG_LE32(f->h + 4))) {
