@@ -18,7 +18,7 @@ static odg_abort_t act(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g
 {
 #if ODG_CFG_PERSIST_MIGRATION
     if (ODG_MIGRATES_(&d->groups[g])) {
-        return restore ? odg_described_erase_(d, nv, g) : odg_described_store_(d, nv, g);
+        return odg_described_store_(d, nv, g, restore);
     }
 #endif
     return restore ? odg_fixed_erase_(d, nv, g) : odg_fixed_store_(d, nv, g);

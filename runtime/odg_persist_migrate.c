@@ -189,7 +189,7 @@ static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint
     len = ODG_LE32(h + 16);
     /* len from 2 (the record count) up to what half the region holds after the header: one
      * unsigned compare, len below 2 wraps round */
-    if (region > 0x01000000u || region / 2u < DESCRIBED_HDR + 2u ||
+    if (region > 0x01000001u || region / 2u < DESCRIBED_HDR + 2u || /* 16 MiB, a load mark */
         len - 2u > region / 2u - DESCRIBED_HDR - 2u ||
         (addr != gr->nv_addr && addr - gr->nv_addr != region / 2u)) {
         return 0;
@@ -266,12 +266,19 @@ typedef struct found {
     uint8_t h[HEAD];
 } found_t;
 
+/* The bytes of a slot header, rounded up to the slot alignment: erasing them is enough to make
+ * an image invalid (its magic is gone), and leaves the rest of its bytes where they are. */
+#define HDR_EXTENT ((DESCRIBED_HDR + ODG_PERSIST_ALIGN - 1u) & ~((uint32_t)ODG_PERSIST_ALIGN - 1u))
+
 /* The newest image of group `gr` of `d` at its places inside the dictionary's NV (up to its
  * NAME_NV_SIZE) and the place slot A's header names past it (the slot B of a larger region a
  * later firmware used): 1 valid, 2 a header of ours whose image cannot be read (described_read
  * says 2), 0 none, -1 the driver failed inside the region (a failing read past it means no NV
- * there); its address (nv_addr when none) and its header in *f. With `wipe`, the valid
- * images past the region other than at `keep` are erased on the way (-1 when that fails). */
+ * there); its address (nv_addr when none) and its header in *f. With `wipe`, the headers of
+ * the valid images past the region other than at `keep` are erased on the way (-1 when that
+ * fails): past the region lies the region of a group that boots later, and the rest of such
+ * an image is what tells that group's boot that its region held bytes of another (a loss,
+ * DAMAGED), where an erased region would be a first boot. */
 static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_t *gr, found_t *f,
                 int wipe, uint32_t keep)
 {
@@ -298,7 +305,7 @@ static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_
         if (v <= 0 || half < inside) {
             continue;
         }
-        if (wipe && v == 1 && half >= gr->region && addr != keep && odg_wipe_(nv, addr, addr + extent(t))) {
+        if (wipe && v == 1 && half >= gr->region && addr != keep && odg_wipe_(nv, addr, addr + HDR_EXTENT)) {
             return -1;
         }
         if (!k || ODG_NEWER_(ODG_LE32(t + 4), ODG_LE32(f->h + 4))) {
@@ -394,8 +401,15 @@ static void emit_value(out_t *o, const odg_dict_t *d, const odg_sub_t *s)
 /* Write the mirror of group `g` as its newest image: into slot A when the newest is in slot B
  * of the current region, else into that slot B (past the whole old region when the region
  * grew). Slot A, which names the old region, stays until the newest is in the current slot B,
- * so an image in the old slot B is found until then. */
-odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
+ * so an image in the old slot B is found until then.
+ * With `load` (0x1011) the image is a mark (bit 0 of its region word set) that makes the next
+ * boot serve the defaults (DEFAULTS): stored as a save is, so that every firmware that would
+ * find a save finds the mark, and a power cut leaves the newest image or the mark. One store
+ * for both commands: smaller than an erase that must order its wipes so that no older image
+ * outlives the newest, and a rollback that cannot see past its NV finds the mark through slot
+ * A's header as it finds a save (an erased slot A would name nothing, and its stores would
+ * start their sequence over below the mark's). */
+odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, int load)
 {
     const odg_group_t *gr = &d->groups[g];
     uint8_t h[DESCRIBED_HDR];
@@ -429,7 +443,7 @@ odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv,
     odg_put_le32_(h, DESCRIBED_MAGIC);
     odg_put_le32_(h + 4, seq);
     odg_put_le32_(h + 8, tagged_id(gr));
-    odg_put_le32_(h + 12, gr->region);
+    odg_put_le32_(h + 12, gr->region | (uint32_t)load);
     odg_put_le32_(h + 16, size);
     o.nv = nv;
     o.addr = addr + DESCRIBED_HDR;
@@ -452,30 +466,6 @@ odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv,
         return ODG_ABORT_HARDWARE;
     }
     return ODG_OK;
-}
-
-/* Make the next boot of group `g` use the defaults: erase its images past the region first,
- * then the region but the newest image, then the newest, so that a power cut in between leaves
- * the newest (as if nothing happened), never an older one. */
-odg_abort_t odg_described_erase_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g)
-{
-    const odg_group_t *gr = &d->groups[g];
-    found_t f;
-    uint32_t end = gr->nv_addr + gr->region, at, e = 0u, lo = end, hi = end;
-    int k = newest(d, nv, gr, &f), fail = k < 0;
-    at = f.at;
-    if (k > 0) {
-        e = at + extent(f.h);
-        e = k == 2 && at < end && e > end ? end : e; /* one that cannot be read: its header */
-        if (at < end) {
-            lo = at;
-            hi = e; /* past the end: nothing after it */
-        }
-    }
-    fail = fail || walk(d, nv, gr, &f, 1, at) < 0;
-    /* the newest last (none: e is 0, nothing to erase) */
-    fail = fail || odg_wipe_(nv, gr->nv_addr, lo) || odg_wipe_(nv, hi, end) || odg_wipe_(nv, at, e);
-    return fail ? ODG_ABORT_HARDWARE : ODG_OK;
 }
 
 /* After a boot of group `gr`: erase what its region holds besides its own images (at its
@@ -774,7 +764,10 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
     odg_boot_status_t st = ODG_BOOT_NV_ERROR;
     int k = newest(d, nv, gr, &f);
     odg_defaults_(d, g); /* the mirror starts from the defaults (RAM only: no NV access) */
-    if (k == 1) {
+    if (k == 1 && (f.h[12] & 1u)) {
+        st = ODG_BOOT_DEFAULTS; /* the mark of a "load" (0x1011), no counts */
+        k = 0;
+    } else if (k == 1) {
         if (migrate(d, nv, g, &f, n) == 0 && reads_back(nv, gr, f.at, f.h)) {
             /* LOADED: every stored entry kept (each is matched once at most, so none was
              * defaulted, dropped or converted) and none added */
@@ -789,7 +782,7 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
      * region of a group placed after this one, whose boot would write over it */
     if (st != ODG_BOOT_NV_ERROR &&
         (((st != ODG_BOOT_LOADED || f.at + extent(f.h) > gr->nv_addr + gr->region) &&
-          odg_described_store_(d, nv, g) != ODG_OK) ||
+          odg_described_store_(d, nv, g, 0) != ODG_OK) ||
          scrub(nv, gr) != 0)) {
         st = ODG_BOOT_NV_ERROR;
     }

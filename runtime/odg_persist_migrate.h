@@ -14,10 +14,9 @@
  * firmware's layout, store the result when anything changed, clear the rest of its region. */
 odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g,
                                       odg_boot_t *b);
-/* 0x1010: the mirror as the group's newest image. */
-odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g);
-/* 0x1011: erase the group's images so that its next boot uses the defaults. */
-odg_abort_t odg_described_erase_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g);
+/* 0x1010 (load 0): the mirror as the group's newest image; 0x1011 (load 1): a mark as the
+ * newest image, so that the group's next boot uses the defaults. */
+odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, int load);
 #endif
 
 #endif /* ODG_PERSIST_MIGRATE_H */

@@ -284,8 +284,8 @@ class Nv:
     # images a firmware left behind: written at a place its NV map does not cover at all (past its
     # NAME_NV_SIZE), which nothing erases; docs/persistence.md says they may come back
     stale: dict[str, list[Image]] = field(default_factory=dict)
-    # a load (0x1011) by a firmware that could not see all of an image it erases (a driver
-    # showing it less NV) leaves the rest: what a later firmware finds there is not known
+    # a firmware booted that could not see all of an image (past the NV its driver shows, or
+    # past its NAME_NV_SIZE): what a later firmware finds there is not known exactly
     partial: bool = False
 
 
@@ -445,7 +445,7 @@ class Checker:
         if cut and self.working():
             for g in groups:
                 old = self.nv.images.get(g, [None])
-                new: list[Image | None] = [self._image(fw, g)] if word == "save" else [None]
+                new: list[Image | None] = [self._image(fw, g) if word == "save" else self._mark(fw, g)]
                 self.nv.images[g] = old + new
                 self.nv.written.setdefault(g, set()).add(fw.regions[g])
             self.dirty = True
@@ -461,13 +461,7 @@ class Checker:
             self.bad("R4", f"{word} on working NV aborts 0x{abort:08X}")
             return
         for g in groups:
-            if word == "save":
-                self._commit(fw, g, self._image(fw, g))
-            else:
-                self.nv.partial = self.nv.partial or any(
-                    i is not None and i.region[0] + i.region[1] > self.nv.size for i in self.nv.images.get(g, []))
-                self.nv.images[g] = [None]
-                self.nv.placed.pop((g, fw.regions[g][0]), None)
+            self._commit(fw, g, self._image(fw, g) if word == "save" else self._mark(fw, g))
 
     @staticmethod
     def _lost(fw: Firmware, g: str, image: Image | None, got: dict[tuple[int, int], str],
@@ -510,6 +504,12 @@ class Checker:
 
     def _image(self, fw: Firmware, g: str) -> Image:
         return Image(fw.layouts[g], dict(self.served[g]), fw.regions[g])
+
+    @staticmethod
+    def _mark(fw: Firmware, g: str) -> Image:
+        """A load's mark (docs/persistence.md section 2): stored as a save is, its boot serves
+        the defaults (DEFAULTS): an image of no entries, every entry new."""
+        return Image(GroupLayout(g), {}, fw.regions[g])
 
     def cut_boot(self, k: int) -> None:
         fw = self.fws[k]
@@ -631,7 +631,7 @@ class Checker:
         if wrong:
             k = wrong[0]
             self.bad("R2", f"{tag}: 0x{k[0]:04X}sub{k[1]} serves {got[k]!r}, migrate() {want[k][0]!r}")
-        if image is None:
+        if image is None or not image.layout.entries:  # nothing stored, or a load's mark
             if b["status"] != DEFAULTS:
                 self.bad("R2", f"{tag}: nothing stored, status {b['status']} (not DEFAULTS)")
             return

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 
-from .persist_model import I16, U16, U32, VS, Param, build, run_script, saves
+from .persist_model import DAMAGED, I16, LOST_BITS, U16, U32, VS, Param, build, run_script, saves
 from .persist_model import version as app
 
 pytestmark = pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
@@ -89,3 +89,24 @@ def test_a_stored_octet_string_is_never_taken_for_an_image(tmp_path: Path) -> No
                              run)
     assert boots[-1].values[(0x2001, 0)] == "00000000"
     assert boots[-1].values[(0x2000, 0)] == payload.hex().upper()
+
+
+def test_a_store_that_erases_an_image_past_its_region_leaves_the_next_group_its_loss(tmp_path: Path) -> None:
+    """v1 has comm (256 bytes) and app (256 bytes, after it); v2 has comm alone in 512 bytes, and
+    its stores lie over app's region. v1 stores app, v2 boots (comm's migrated image in its slot
+    B, over app's region) and stores (comm's newest in slot A, reaching past v1's comm region).
+    Back on v1, comm's store writes over that newest, and first invalidates its own older image
+    in app's region: app must still see that its region held another group's bytes (DAMAGED,
+    the loss reported), not a blank region (a first boot). A load by v2 instead of the store
+    gives the same."""
+    v1 = app(Param(0x2000, U32, "app", 0), pins={"comm": 256, "app": 256})
+    v2 = app(*[Param(0x2100 + k, U32, "comm", 0) for k in range(20)], pins={"comm": 512})
+    for last in ("save", "load"):
+        work = tmp_path / last
+        work.mkdir()
+        violations, boots, _ = run_script([v1, v2], ["nv 2048", "boot 0", *saves(0x2000, ["05000000"]), "boot 1",
+                                                     last, "boot 0"], work)
+        assert not violations, "\n".join(map(str, violations))
+        back = boots[-1]
+        assert back.groups[0]["status"] == DAMAGED and back.seen[0] & LOST_BITS  # app (the groups by name)
+        assert back.values[(0x2000, 0)] == "00000000"

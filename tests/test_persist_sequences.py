@@ -111,6 +111,38 @@ def test_a_power_cut_while_the_newest_is_written_over_never_serves_an_older_stor
     assert ("6162", DAMAGED) in served  # some cut fell inside the store
 
 
+def test_a_power_cut_in_a_load_serves_the_newest_or_the_defaults_never_an_older_store(tmp_path: Path) -> None:
+    """A load stores its mark as a save stores an image. App stores 1, 2, 3 (slots A, B, A: the
+    older 2 beside the newest, where the mark goes); a power cut at any NV step of the load
+    leaves 3 (LOADED) or the mark (DEFAULTS), never 2 or 1."""
+    v1 = app(Param(0x2000, U32, "app", 0), pins={"app": 256})
+    stores = saves(0x2000, ["01000000", "02000000", "03000000"])
+    cuts = range(0, 400, 3)
+    commands = [c for n in cuts for c in ("nv 4096", "boot 0", *stores, f"cut {n}", "load", "power", "boot 0")]
+    _, boots, _ = run_script([v1], commands, tmp_path)
+    after = boots[1::2]  # the boot after each power cut
+    served = {(b.values[(0x2000, 0)], b.groups[0]["status"]) for b in after}
+    assert served <= {("03000000", LOADED), ("00000000", DEFAULTS)}, served
+    assert ("03000000", LOADED) in served and ("00000000", DEFAULTS) in served  # cuts before and after the mark
+
+
+def test_a_rollback_finds_the_load_mark_past_its_nv_and_stores_after_it(tmp_path: Path) -> None:
+    """v2 (app pinned to 512 bytes) boots (its defaults in slot A), stores 1 (slot B) and 2 (slot
+    A), and loads: the mark goes to slot B, past v1's NAME_NV_SIZE (app pinned to 256). v1 finds
+    it through slot A's header (DEFAULTS), and its own stores follow it: v1 stores 5, and v2 then
+    serves 5. Had the load erased slot A, v1 would not find the mark, would number its stores
+    from 1, and v2 would take the mark for the newest and serve the default."""
+    v1 = app(Param(0x2000, U32, "app", 0), pins={"app": 256})
+    v2 = app(Param(0x2000, U32, "app", 0), pins={"app": 512})
+    commands = ["nv 4096", "boot 1", *saves(0x2000, ["01000000", "02000000"]), "load", "boot 0",
+                *saves(0x2000, ["05000000"]), "boot 1"]
+    violations, boots, answers = run_script([v1, v2], commands, tmp_path)
+    assert not violations, "\n".join(map(str, violations))
+    assert LOAD_OK in answers
+    assert [(b.values[(0x2000, 0)], b.groups[0]["status"]) for b in boots[1:]] == [
+        ("00000000", DEFAULTS), ("05000000", LOADED)]
+
+
 def test_slot_b_of_a_region_above_64_kib_is_found_when_the_region_changes(tmp_path: Path) -> None:
     """comm pinned to 128 KiB, then to 256 KiB: its newest store, in the old slot B (64 KiB into
     the region), is found by the new firmware although it is at no place of its region."""
