@@ -128,7 +128,6 @@ uint32_t odg_persist_nv_size(const odg_dict_t *dict)
  * odg_init does for the whole dictionary). */
 void odg_defaults_(const odg_dict_t *d, uint8_t g)
 {
-    const odg_group_t *gr = &d->groups[g];
-    odg_group_defaults(gr, 0, gr->size, gr->mirror);
+    odg_group_reset(&d->groups[g]);
     odg_add_node_id_(d, ODG_S_PERSIST | (unsigned)g << 2);
 }
