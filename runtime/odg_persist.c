@@ -24,19 +24,27 @@ static odg_abort_t act(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g
     return restore ? odg_fixed_erase_(d, nv, g) : odg_fixed_store_(d, nv, g);
 }
 
+/* `nv` when the NV behind it holds the dictionary's NAME_NV_SIZE bytes (its last byte reads),
+ * else NULL: the callers then touch no NV. */
+static const odg_nv_driver_t *fitting(const odg_dict_t *d, const odg_nv_driver_t *nv)
+{
+    uint32_t size = odg_persist_nv_size(d);
+    uint8_t c;
+    return nv != NULL && (size == 0u || nv->read(nv->ctx, size - 1u, &c, 1) == 0) ? nv : NULL;
+}
+
 #define NOT_ACTED 1u /* no group acted yet (no abort code is 1) */
 
 /* 0x1010 / 0x1011 sub `sub`, handed over by the core: sub 1 acts on every group, another on
  * the groups with that store_sub, each of them even past one that fails (the first failure is
- * the answer); DATA_STORE when none has it. The layer is attached only on an NV that holds the
- * dictionary's (boot_all): elsewhere the core answers DATA_STORE. `ac` stays NOT_ACTED until a
- * group acted, then holds the first failure. */
+ * the answer); DATA_STORE when none has it, or the NV is smaller than the dictionary's (`nv`
+ * NULL: no group acts). `ac` stays NOT_ACTED until a group acted, then holds the first failure. */
 static odg_abort_t command(odg_client_t *self, const odg_dict_t *d, uint8_t sub, int restore)
 {
-    const odg_nv_driver_t *nv = ((const odg_persist_t *)(const void *)self)->nv;
+    const odg_nv_driver_t *nv = fitting(d, ((const odg_persist_t *)(const void *)self)->nv);
     odg_abort_t ac = NOT_ACTED, r;
     unsigned g; /* below 256: no narrowing at every turn */
-    for (g = 0; g < d->n_groups; g++) {
+    for (g = 0; nv != NULL && g < d->n_groups; g++) {
         if (sub == 1u || d->groups[g].store_sub == sub) {
             r = act(d, nv, (uint8_t)g, restore); /* every group, even past one that failed */
             ac = ac == ODG_OK || ac == NOT_ACTED ? r : ac;
@@ -145,27 +153,23 @@ static void boot_ordered(const odg_dict_t *d, const odg_nv_driver_t *nv,
 #endif
 
 /* Attach the layer and boot every group; the statuses into `st`, the counts into `boot`
- * (either may be NULL). The NV must hold the dictionary's NAME_NV_SIZE bytes (its last byte
- * reads): else no group reads or writes it (each boots NV_ERROR) and the layer stays detached,
- * so that 0x1010 / 0x1011 and odg_persist_store / _restore abort DATA_STORE. */
+ * (either may be NULL). */
 static odg_abort_t boot_all(odg_persist_t *p, const odg_dict_t *dict, const odg_nv_driver_t *nv,
                             odg_boot_status_t *st, odg_boot_t *boot)
 {
     odg_state_t *s = dict->state;
-    uint32_t size = odg_persist_nv_size(dict);
-    uint8_t c;
-    const odg_nv_driver_t *fit = /* nv, or NULL on an NV smaller than the dictionary's */
-        nv != NULL && (size == 0u || nv->read(nv->ctx, size - 1u, &c, 1) == 0) ? nv : NULL;
-    if (fit != NULL) {
+    const odg_nv_driver_t *fit; /* nv, or NULL on an NV smaller than the dictionary's */
+    if (nv != NULL) {
         p->client.command = command;
         p->client.changed = NULL;
-        p->nv = fit;
+        p->nv = nv;
         odg_attach(dict, &p->client);
     }
     s->boot_seen = 0;
 #if ODG_CFG_PERSIST_MIGRATION /* the counts of entries a migration converted, defaulted, dropped */
     s->boot_counts[0] = s->boot_counts[1] = s->boot_counts[2] = 0;
 #endif
+    fit = fitting(dict, nv);
 #if ODG_CFG_PERSIST_TWO_PASS
     boot_ordered(dict, fit, st, boot);
 #else

@@ -80,9 +80,7 @@ typedef struct odg_persist {
  * NV; a group without a valid image keeps the mirror odg_init's reset produced and writes it
  * to NV. Status per group goes into `boot` (may be NULL; dict->n_groups entries) and
  * dict->state->boot_seen; then the clients hear odg_changed(NULL). HARDWARE when a group's NV
- * failed (that group runs on defaults); DATA_STORE, nothing attached, when `nv` is NULL. On an
- * NV smaller than the dictionary's (the last byte of odg_persist_nv_size does not read) nothing
- * is attached either (until the next boot) and every group boots NV_ERROR: HARDWARE. */
+ * failed (that group runs on defaults); DATA_STORE, nothing attached, when `nv` is NULL. */
 odg_abort_t odg_persist_init(odg_persist_t *p, const odg_dict_t *dict, const odg_nv_driver_t *nv,
                              odg_boot_status_t *boot);
 
@@ -99,8 +97,7 @@ uint32_t odg_persist_nv_size(const odg_dict_t *dict);
 uint32_t odg_persist_slot_size(uint32_t size);
 
 /* Store group `g` (its RAM mirror) into the older of its two slots, newest sequence, with the
- * driver of the attached odg_persist_t; DATA_STORE when none is attached (no driver, or an NV
- * smaller than the dictionary's at boot). */
+ * driver of the attached odg_persist_t; DATA_STORE when none is attached. */
 odg_abort_t odg_persist_store(const odg_dict_t *dict, uint8_t g);
 
 /* Make the next boot of group `g` use the defaults (invalidates both slots). */

@@ -774,22 +774,6 @@ static void test_nv_errors(void)
             CHECK_EQ_AT(memcmp(nvm.mem, snap, 2 * SLOT_COMM), 0, n);
         }
     }
-    /* the first read (the NV's last byte: does it hold the dictionary's?) fails: every group
-     * boots NV_ERROR and the layer stays detached until the next boot, so that save, load and
-     * odg_persist_store / _restore write nothing even once the reads work again */
-    memcpy(nvm.mem, snap, NV_SIZE);
-    power_on();
-    nvm.reads = 0;
-    nvm.fail_read_at = 1;
-    nvm.corrupt_read = 0;
-    CHECK_EQ(start(NODE, &drv, bs), ODG_ABORT_HARDWARE);
-    CHECK(bs[0] == ODG_BOOT_NV_ERROR && bs[1] == ODG_BOOT_NV_ERROR);
-    CHECK_EQ(nvm.reads, 1);
-    CHECK_EQ(command(0x1010, 1, "save"), ODG_ABORT_DATA_STORE);
-    CHECK_EQ(command(0x1011, 1, "load"), ODG_ABORT_DATA_STORE);
-    CHECK_EQ(odg_persist_store(&td, TD_GROUP_COMM), ODG_ABORT_DATA_STORE);
-    CHECK_EQ(odg_persist_restore(&td, TD_GROUP_COMM), ODG_ABORT_DATA_STORE);
-    CHECK(memcmp(nvm.mem, snap, NV_SIZE) == 0);
     /* every read fails */
     memcpy(nvm.mem, snap, NV_SIZE);
     power_on();
