@@ -720,6 +720,11 @@ void odg_copy(void *dst, const void *src, uint32_t n)
     }
 }
 
+void odg_group_reset(const odg_group_t *g)
+{
+    odg_group_defaults(g, 0, g->size, g->mirror);
+}
+
 void odg_group_defaults(const odg_group_t *g, uint32_t from, uint32_t n, void *dst)
 {
     const uint16_t *r = g->spread;

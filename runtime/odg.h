@@ -439,6 +439,10 @@ void odg_copy(void *dst, const void *src, uint32_t n);
  * of $NODEID values) into `dst`: the whole mirror from 0, or one value from its offset. */
 void odg_group_defaults(const odg_group_t *g, uint32_t from, uint32_t n, void *dst);
 
+/* The whole mirror of group `g` to its defaults: odg_group_defaults(g, 0, g->size, g->mirror),
+ * one argument for each call of a generated reset. */
+void odg_group_reset(const odg_group_t *g);
+
 /* The end of member `m` of struct type `T`: where the runs of a group's defaults end. */
 #define ODG_END(T, m) (offsetof(T, m) + sizeof(((T *)0)->m))
 

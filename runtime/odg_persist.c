@@ -135,17 +135,18 @@ static void boot_one(const odg_dict_t *d, const odg_nv_driver_t *nv, unsigned g,
 static void boot_ordered(const odg_dict_t *d, const odg_nv_driver_t *nv,
                          odg_boot_status_t *st, odg_boot_t *boot)
 {
-    uint32_t after = 0; /* the region start of the group booted last */
-    unsigned n, g, next;
+    uint32_t from = 0, low, at; /* from: past the region start of the group booted last */
+    unsigned n, g, next = 0;
     for (n = 0; n < d->n_groups; n++) {
-        next = d->n_groups;
-        for (g = 0; g < d->n_groups; g++) { /* the lowest region above the last booted */
-            uint32_t at = d->groups[g].nv_addr;
-            if ((n == 0u || at > after) && (next == d->n_groups || at < d->groups[next].nv_addr)) {
+        low = 0xFFFFFFFFu;
+        for (g = 0; g < d->n_groups; g++) { /* the lowest region start from `from` on */
+            at = d->groups[g].nv_addr;
+            if (at >= from && at <= low) {
+                low = at;
                 next = g;
             }
         }
-        after = d->groups[next].nv_addr;
+        from = low + 1u; /* wraps to 0 only after a region at the last address, booted last */
         boot_one(d, nv, next, st, boot);
     }
 }

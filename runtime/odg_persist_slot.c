@@ -59,15 +59,18 @@ int odg_crc_ok_(const odg_nv_driver_t *nv, uint32_t addr, const uint8_t *h, uint
                   uint32_t len, uint8_t *dst)
 {
     uint8_t chunk[ODG_PERSIST_CHUNK_], *p = dst != NULL ? dst : chunk;
-    uint32_t crc = odg_crc32(0, h, n - 4u), k;
-    for (addr += n; len > 0u; addr += k, len -= k) {
+    uint32_t crc, k;
+    n -= 4u; /* the bytes before the CRC */
+    crc = odg_crc32(0, h, n);
+    for (addr += n + 4u; len > 0u; addr += k, len -= k) {
         k = dst == NULL && len > ODG_PERSIST_CHUNK_ ? ODG_PERSIST_CHUNK_ : len; /* into dst at once */
         if (nv->read(nv->ctx, addr, p, k) != 0) {
             return -1;
         }
         crc = odg_crc32(crc, p, k);
     }
-    return crc == odg_get32_(h + n - 4u);
+    h += n; /* ODG_LE32 inline, from one pointer: one load where the core allows */
+    return crc == ODG_LE32(h);
 }
 
 /* Whether the slot at `addr` is erased (every byte 0xFF): 1 yes, 0 no, -1 the driver failed. */
@@ -128,7 +131,6 @@ uint32_t odg_persist_nv_size(const odg_dict_t *dict)
  * odg_init does for the whole dictionary). */
 void odg_defaults_(const odg_dict_t *d, uint8_t g)
 {
-    const odg_group_t *gr = &d->groups[g];
-    odg_group_defaults(gr, 0, gr->size, gr->mirror);
+    odg_group_reset(&d->groups[g]);
     odg_add_node_id_(d, ODG_S_PERSIST | (unsigned)g << 2);
 }

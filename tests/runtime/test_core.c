@@ -1196,6 +1196,10 @@ static void test_group_defaults(void)
             CHECK(out[0] == 0xA5u && out[n + 1u] == 0xA5u && memcmp(out + 1, whole + from, n) == 0);
         }
     }
+    memset(out, 0xA5, sizeof out); /* odg_group_reset: the whole mirror, nothing around it */
+    g.mirror = out + 1;
+    odg_group_reset(&g);
+    CHECK(out[0] == 0xA5u && out[sizeof whole + 1u] == 0xA5u && memcmp(out + 1, whole, sizeof whole) == 0);
     g.defaults = NULL; /* no run at all: every byte zero, and `defaults` is never read */
     g.spread = spread + 6;
     memset(out, 0xA5, sizeof out);

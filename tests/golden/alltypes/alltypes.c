@@ -294,8 +294,8 @@ ODG_ATTR_ROM static const uint8_t alltypes_hash_disp[16] = {
 
 static void alltypes_reset(const odg_dict_t *dict)
 {
-    odg_group_defaults(&alltypes_groups[0], 0, (uint32_t)sizeof alltypes_persist_app, &alltypes_persist_app);
-    odg_group_defaults(&alltypes_groups[1], 0, (uint32_t)sizeof alltypes_persist_comm, &alltypes_persist_comm);
+    odg_group_reset(&alltypes_groups[0]); /* alltypes_persist_app */
+    odg_group_reset(&alltypes_groups[1]); /* alltypes_persist_comm */
     odg_copy(&alltypes_ram, &alltypes_ram_defaults, (uint32_t)sizeof alltypes_ram);
     (void)dict; /* odg_init adds the node-id to $NODEID values after this */
 }

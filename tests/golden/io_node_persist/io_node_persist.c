@@ -217,8 +217,8 @@ ODG_ATTR_ROM static const uint8_t io_node_persist_hash_disp[8] = {
 
 static void io_node_persist_reset(const odg_dict_t *dict)
 {
-    odg_group_defaults(&io_node_persist_groups[0], 0, (uint32_t)sizeof io_node_persist_persist_app, &io_node_persist_persist_app);
-    odg_group_defaults(&io_node_persist_groups[1], 0, (uint32_t)sizeof io_node_persist_persist_comm, &io_node_persist_persist_comm);
+    odg_group_reset(&io_node_persist_groups[0]); /* io_node_persist_persist_app */
+    odg_group_reset(&io_node_persist_groups[1]); /* io_node_persist_persist_comm */
     odg_copy(&io_node_persist_ram, &io_node_persist_ram_defaults, (uint32_t)sizeof io_node_persist_ram);
     (void)dict; /* odg_init adds the node-id to $NODEID values after this */
 }
