@@ -329,7 +329,7 @@ static uint32_t hash_slot(const odg_dict_t *d, uint16_t index)
 {
     uint32_t h = (uint32_t)index * d->hash_mul, mask = d->hash_mask;
     uint32_t top = h >> d->hash_top_shift, base = h >> d->hash_shift;
-    if (d->hash_bits > 8u) {
+    if (ODG_CFG_HASH_WIDE && d->hash_bits > 8u) {
         const uint16_t *disp = (const uint16_t *)d->hash_disp;
         return ((const uint16_t *)d->hash_slots)[(base ^ disp[top]) & mask];
     }

@@ -99,6 +99,9 @@ extern "C" {
 #ifndef ODG_CFG_HASH /* lookup by a generated perfect hash (odgen --lookup hash) */
 #define ODG_CFG_HASH 1
 #endif
+#ifndef ODG_CFG_HASH_WIDE /* a perfect hash of more than 256 slots: uint16_t tables */
+#define ODG_CFG_HASH_WIDE 1
+#endif
 #ifndef ODG_CFG_UNHASHED /* lookup by a generated find (--lookup switch) or binary search */
 #define ODG_CFG_UNHASHED 1
 #endif

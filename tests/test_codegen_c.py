@@ -51,6 +51,22 @@ def test_all_types_storage_classes_and_hooks(cc: str, lookup: str) -> None:
     _assert_passed(run_check(request, cc=_compiler(cc)))
 
 
+def test_a_hash_of_more_than_256_slots_finds_every_entry(tmp_path: Path) -> None:
+    """300 entries need a perfect hash of 512 slots, whose tables are uint16_t: the dictionary
+    turns ODG_CFG_HASH_WIDE on (a smaller one leaves that path out), and the self-test finds
+    every entry through it."""
+    base = (GEN / "plain.eds").read_text(encoding="utf-8").split("[ManufacturerObjects]")[0]
+    extra = "".join(f"\n[{0x2000 + k:04X}]\nParameterName=Value {k}\nObjectType=0x7\nDataType=0x0007\n"
+                    f"AccessType=rw\nDefaultValue={k}\nPDOMapping=0\n" for k in range(300))
+    listed = "".join(f"{k + 1}=0x{0x2000 + k:04X}\n" for k in range(300))
+    eds = tmp_path / "wide.eds"
+    eds.write_text(f"{base}\n[ManufacturerObjects]\nSupportedObjects=300\n{listed}{extra}", encoding="utf-8")
+    request = Request(eds, name="wide", lookup="hash")
+    assert "#define ODG_CFG_HASH_WIDE 1" in generate(request).files["wide_config.h"]
+    assert "#define ODG_CFG_HASH_WIDE 0" in generate(Request(GEN / "plain.eds", lookup="hash")).files["plain_config.h"]
+    _assert_passed(run_check(request, cc=_compiler("gcc")))
+
+
 def test_all_types_under_sanitizers() -> None:
     _assert_passed(run_check(ALLTYPES, cc=_compiler("clang"), cflags=SANITIZE))
 

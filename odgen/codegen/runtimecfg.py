@@ -80,7 +80,10 @@ def runtime_config(view: DictView) -> list[Switch]:
             entry = next(e for e in view.entries if "ODG_E_PACKED" in e.code)
             switch.why = f"0x{entry.index:04X}sub1..{view.subs[entry.first + 1].sub}"
     hashed = view.lookup == "hash"
+    wide = view.hash is not None and view.hash.bits > 8  # else uint8_t tables: no uint16_t path
     return switches + [Switch("ODG_CFG_HASH", "lookup by perfect hash", hashed, "--lookup hash" if hashed else ""),
+                       Switch("ODG_CFG_HASH_WIDE", "a perfect hash of more than 256 slots", wide,
+                              f"{len(view.entries)} entries" if wide else ""),
                        Switch("ODG_CFG_UNHASHED", "lookup by generated find or binary search", not hashed,
                               f"--lookup {view.lookup}" if not hashed else "")]
 

@@ -369,10 +369,10 @@ def build(od: ObjectDictionary, placements: Placements, persist: PersistOptions,
     for block in view.structs:
         _check_block_size(b, block)
     view.persist = persist_view(od, placements, persist, diags)
-    view.config = runtime_config(view)
-    view.node = node_limits(view, od, lss, dict(node_caps or {}), diags, sdo_block)
     if lookup == "hash":
         view.hash = perfect_hash([e.index for e in view.entries])
+    view.config = runtime_config(view)
+    view.node = node_limits(view, od, lss, dict(node_caps or {}), diags, sdo_block)
     return view
 
 

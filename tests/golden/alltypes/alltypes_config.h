@@ -28,6 +28,7 @@
 #define ODG_CFG_PERSIST_MIGRATION 1 /* persistence groups migrated at boot: 0x1017sub0 */
 #define ODG_CFG_PERSIST_TWO_PASS 1 /* a migrated group among two or more (the ordered boot): 0x1017sub0 */
 #define ODG_CFG_HASH 1 /* lookup by perfect hash: --lookup hash */
+#define ODG_CFG_HASH_WIDE 0 /* a perfect hash of more than 256 slots */
 #define ODG_CFG_UNHASHED 0 /* lookup by generated find or binary search */
 
 /* The node layer (odg_node.h): what this dictionary needs, lowered by the options' [node] keys. */

@@ -28,6 +28,7 @@
 #define ODG_CFG_PERSIST_MIGRATION 0 /* persistence groups migrated at boot */
 #define ODG_CFG_PERSIST_TWO_PASS 0 /* a migrated group among two or more (the ordered boot) */
 #define ODG_CFG_HASH 0 /* lookup by perfect hash */
+#define ODG_CFG_HASH_WIDE 0 /* a perfect hash of more than 256 slots */
 #define ODG_CFG_UNHASHED 1 /* lookup by generated find or binary search: --lookup bsearch */
 
 /* The node layer (odg_node.h): what this dictionary needs, lowered by the options' [node] keys. */
