@@ -711,26 +711,19 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, co
     return 0;
 }
 
-/* No image of ours: DEFAULTS when the region is blank (a first boot, or after a restore);
- * SIGNATURE for an "ODG1" image (the format before: its commit mark where a slot starts); else
- * DAMAGED: corrupt bytes, another group's image or this group's written at another place (the
- * NV map changed), all losses. */
+/* No image of ours: DEFAULTS when the region is blank (a first boot, or a region that moved
+ * onto erased NV); SIGNATURE for an "ODG1" image (the format before: its commit mark where the
+ * region starts, at its slot A); else DAMAGED: corrupt bytes, another group's image or this
+ * group's written at another place (the NV map changed), all losses. */
 static odg_boot_status_t described_no_image(const odg_nv_driver_t *nv, const odg_group_t *gr)
 {
     uint8_t t[4];
-    uint32_t half = gr->region / 2u, addr = gr->nv_addr;
-    int v;
-    for (; addr < gr->nv_addr + gr->region; addr += half) { /* slot A, then B (a region is two halves) */
-        v = odg_slot_blank_(nv, addr, half);
-        if (v == 0) {
-            v = odg_hdr_read_(nv, addr, t, 4u, ODG_PERSIST_ODG1_MAGIC);
-            return v < 0 ? ODG_BOOT_NV_ERROR : (v ? ODG_BOOT_SIGNATURE : ODG_BOOT_DAMAGED);
-        }
-        if (v < 0) {
-            return ODG_BOOT_NV_ERROR;
-        }
+    int v = odg_slot_blank_(nv, gr->nv_addr, gr->region);
+    if (v == 0) {
+        v = odg_hdr_read_(nv, gr->nv_addr, t, 4u, ODG_PERSIST_ODG1_MAGIC);
+        return v < 0 ? ODG_BOOT_NV_ERROR : (v ? ODG_BOOT_SIGNATURE : ODG_BOOT_DAMAGED);
     }
-    return ODG_BOOT_DEFAULTS;
+    return v < 0 ? ODG_BOOT_NV_ERROR : ODG_BOOT_DEFAULTS;
 }
 
 /* The counts of a boot that migrated an image, into `b` and the totals of the EMCY. */
