@@ -180,7 +180,7 @@ static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint
 {
     uint8_t c[REC];
     uint32_t len, region, cnt, sum, prev = 0, rend;
-    int v = odg_hdr_read_(nv, addr, h, DESCRIBED_HDR, DESCRIBED_MAGIC);
+    int v = odg_hdr_read_(nv, addr, h, HEAD, DESCRIBED_MAGIC); /* the record count too */
     if (v != 1 || !our_id(gr, ODG_LE32(h + 8))) {
         memset(h + 12, 0, 4);
         return v < 0 ? -1 : 0;
@@ -200,9 +200,6 @@ static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint
     }
     if (v != 1) {
         return v; /* 0 a CRC error, -1 the driver failed */
-    }
-    if (nv->read(nv->ctx, addr + DESCRIBED_HDR, h + DESCRIBED_HDR, 2) != 0) {
-        return -1;
     }
     cnt = get16(h + DESCRIBED_HDR);
     addr += DESCRIBED_HDR + 2u; /* the records */
@@ -291,7 +288,7 @@ static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_
     int v, k = 0;
     f->at = gr->nv_addr;
     do {
-        if (half != far && gr->nv_addr + half + DESCRIBED_HDR > end) {
+        if (half != far && gr->nv_addr + half + HEAD > end) {
             continue; /* past the dictionary's NV */
         }
         addr = gr->nv_addr + half;
