@@ -180,7 +180,7 @@ static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint
 {
     uint8_t c[REC];
     uint32_t len, region, cnt, sum, prev = 0, rend;
-    int v = odg_hdr_read_(nv, addr, h, DESCRIBED_HDR, DESCRIBED_MAGIC);
+    int v = odg_hdr_read_(nv, addr, h, HEAD, DESCRIBED_MAGIC); /* the record count too */
     if (v != 1 || !our_id(gr, ODG_LE32(h + 8))) {
         memset(h + 12, 0, 4);
         return v < 0 ? -1 : 0;
@@ -200,9 +200,6 @@ static int described_read(const odg_nv_driver_t *nv, const odg_group_t *gr, uint
     }
     if (v != 1) {
         return v; /* 0 a CRC error, -1 the driver failed */
-    }
-    if (nv->read(nv->ctx, addr + DESCRIBED_HDR, h + DESCRIBED_HDR, 2) != 0) {
-        return -1;
     }
     cnt = get16(h + DESCRIBED_HDR);
     addr += DESCRIBED_HDR + 2u; /* the records */
@@ -291,7 +288,7 @@ static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_
     int v, k = 0;
     f->at = gr->nv_addr;
     do {
-        if (half != far && gr->nv_addr + half + DESCRIBED_HDR > end) {
+        if (half != far && gr->nv_addr + half + HEAD > end) {
             continue; /* past the dictionary's NV */
         }
         addr = gr->nv_addr + half;
@@ -711,26 +708,19 @@ static int migrate(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g, co
     return 0;
 }
 
-/* No image of ours: DEFAULTS when the region is blank (a first boot, or after a restore);
- * SIGNATURE for an "ODG1" image (the format before: its commit mark where a slot starts); else
- * DAMAGED: corrupt bytes, another group's image or this group's written at another place (the
- * NV map changed), all losses. */
+/* No image of ours: DEFAULTS when the region is blank (a first boot, or a region that moved
+ * onto erased NV); SIGNATURE for an "ODG1" image (the format before: its commit mark where the
+ * region starts, at its slot A); else DAMAGED: corrupt bytes, another group's image or this
+ * group's written at another place (the NV map changed), all losses. */
 static odg_boot_status_t described_no_image(const odg_nv_driver_t *nv, const odg_group_t *gr)
 {
     uint8_t t[4];
-    uint32_t half = gr->region / 2u, addr = gr->nv_addr;
-    int v;
-    for (; addr < gr->nv_addr + gr->region; addr += half) { /* slot A, then B (a region is two halves) */
-        v = odg_slot_blank_(nv, addr, half);
-        if (v == 0) {
-            v = odg_hdr_read_(nv, addr, t, 4u, ODG_PERSIST_ODG1_MAGIC);
-            return v < 0 ? ODG_BOOT_NV_ERROR : (v ? ODG_BOOT_SIGNATURE : ODG_BOOT_DAMAGED);
-        }
-        if (v < 0) {
-            return ODG_BOOT_NV_ERROR;
-        }
+    int v = odg_slot_blank_(nv, gr->nv_addr, gr->region);
+    if (v == 0) {
+        v = odg_hdr_read_(nv, gr->nv_addr, t, 4u, ODG_PERSIST_ODG1_MAGIC);
+        return v < 0 ? ODG_BOOT_NV_ERROR : (v ? ODG_BOOT_SIGNATURE : ODG_BOOT_DAMAGED);
     }
-    return ODG_BOOT_DEFAULTS;
+    return v < 0 ? ODG_BOOT_NV_ERROR : ODG_BOOT_DEFAULTS;
 }
 
 /* The counts of a boot that migrated an image, into `b` and the totals of the EMCY. */

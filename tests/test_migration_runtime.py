@@ -420,3 +420,19 @@ def test_damaged_only_when_bytes_are_corrupt(tmp_path: Path) -> None:
     assert got.seen[0] == 1 << DAMAGED | 1 << LOADED
     assert got.values[(0x1017, 0)] == "FA00"
     assert all(got.values[(i, 0)] == fresh.values[(i, 0)] for i in BASE_VALUES)
+
+
+def test_migration_switched_on_reports_an_odg1_image_as_signature(tmp_path: Path) -> None:
+    """v1 without migration stores "ODG1" images; v2, the same layout with migration, finds
+    app's image (its commit mark where the region starts) and boots SIGNATURE with the defaults
+    and the loss reported; after its store the next boot loads. comm, unchanged, too."""
+    case = CASES["unchanged"]
+    v1, _ = firmware(tmp_path, "v1", case.v1, 1000, False, "[persist]\nmigration = false\n")
+    v2, _ = firmware(tmp_path, "v2", case.v1, 1000, False)
+    nv = tmp_path / "od.nv"
+    run(v1, nv, *(_set(k, h) for k, h in case.stored.items()), "set:1017:00:FA00", "store", "dump")
+    fresh = run(v2, tmp_path / "fresh.nv", "dump")
+    got = run(v2, nv, "dump")
+    assert [g["status"] for g in got.groups] == [SIGNATURE, SIGNATURE] and got.seen[0] & 1 << SIGNATURE
+    assert got.values == fresh.values
+    assert [g["status"] for g in run(v2, nv, "dump").groups] == [LOADED, LOADED]
