@@ -23,6 +23,7 @@ from odgen.assets import runtime_dir
 from odgen.cli import main
 
 from .cprog import build, compiler
+from .test_migration_runtime import LOADED, Param, eds, firmware, run
 from .test_target_cores import _check, _core
 
 HEAD = """[FileInfo]
@@ -266,3 +267,30 @@ def test_self_test_reads_and_writes_every_member(files: tuple[Path, Path], core:
     assert code == 0, out[-3000:]
     passed = check.SUMMARY.findall(out)
     assert passed and int(passed[-1][0]) > 200 and passed[-1][1] == "0", out[-2000:]
+
+
+# NV images written by the runtime before the shared runs (tests/fixtures/nv/shared_*.nv, never
+# regenerated): alike ARRAYs and VARs, whose image records are their members' values in index
+# order, which the layout walk over the shared lists gives as before.
+FIX = Path(__file__).resolve().parent / "fixtures" / "nv"
+NV_PARAMS = (*(Param(0x2040 + k, U16, str(k), elements=3) for k in range(4)),
+             *(Param(0x2050 + k, U32, str(k)) for k in range(5)))
+NV_STORED = {**{(0x2040 + k, s): f"{k:02X}{s:02X}" for k in range(4) for s in (1, 2, 3)},
+             **{(0x2050 + k, 0): f"{k + 1:02X}00A0B0" for k in range(5)}}
+
+
+@pytest.mark.parametrize("fmt", ["odg2", "odg1"])
+def test_images_stored_before_the_shared_runs_load(fmt: str, tmp_path: Path) -> None:
+    assert eds(NV_PARAMS, 1000, False) == (FIX / "shared.eds").read_text(encoding="utf-8")
+    exe, _ = firmware(tmp_path, fmt, NV_PARAMS, 1000, False, "[persist]\nmigration = false\n" if fmt == "odg1" else "")
+    assert "ODG_E_SHARED" in (tmp_path / fmt / "od.c").read_text(encoding="utf-8")
+    nv = tmp_path / "od.nv"
+    nv.write_bytes((FIX / f"shared_{fmt}.nv").read_bytes())
+    got = run(exe, nv, "dump")
+    assert [g["status"] for g in got.groups] == [LOADED, LOADED], got.groups
+    want = {}
+    for line in (FIX / f"shared_{fmt}.txt").read_text(encoding="utf-8").splitlines():
+        index, sub, *value = line.split()
+        want[(int(index, 16), int(sub, 16))] = value[0] if value else ""
+    assert got.values == want
+    assert all(want[key] == value for key, value in NV_STORED.items())
