@@ -170,6 +170,22 @@ def test_without_the_odd_one_the_run_goes_on(files: tuple[Path, Path], tmp_path:
     assert len({entries[i][0] for i in range(0x2020, 0x2024)}) == 1
 
 
+def test_a_hook_or_a_limit_keeps_an_entry_out_of_a_run(files: tuple[Path, Path], tmp_path: Path) -> None:
+    """Hooks and limits are found by descriptor position, which the members of a run share."""
+    section = "[2031]\nParameterName=Gap neighbour 2031"
+    text = description().replace(section, section.replace("\n", "\nLowLimit=1\n"))
+    assert "LowLimit=1" in text
+    (tmp_path / "apart.eds").write_text(text, encoding="utf-8")
+    options = files[1].read_text(encoding="utf-8") + '\n[[entry]]\nmatch = "0x1402sub5"\nhooks = ["post_write"]\n'
+    (tmp_path / "apart.toml").write_text(options, encoding="utf-8")
+    assert main(["generate", str(tmp_path / "apart.eds"), "--options", str(tmp_path / "apart.toml"), "--name", "od",
+                 "-o", str(tmp_path)]) == 0
+    entries = _codes((tmp_path / "od.c").read_text(encoding="utf-8"))
+    shared = {i for i, (_, code) in entries.items() if "ODG_E_SHARED" in code}
+    assert {0x1400, 0x1401} <= shared and entries[0x1400][0] == entries[0x1401][0]
+    assert {0x1402, 0x1403, 0x2030, 0x2031}.isdisjoint(shared)
+
+
 # Writes a distinct value to each number through odg_set and finds it in the value's own struct
 # member (the accessor macros of od.h), after checking every $NODEID value has the node-id added.
 DRIVER = r"""
