@@ -329,7 +329,8 @@ static uint32_t hash_slot(const odg_dict_t *d, uint16_t index)
 {
     uint32_t h = (uint32_t)index * d->hash_mul, mask = d->hash_mask;
     uint32_t top = h >> d->hash_top_shift, base = h >> d->hash_shift;
-    if (ODG_CFG_HASH_WIDE && d->hash_bits > 8u) {
+    if (ODG_CFG_HASH_WIDE && d->hash_bits > 8u) { /* a build without such tables keeps fewer
+                                                   * values in registers */
         const uint16_t *disp = (const uint16_t *)d->hash_disp;
         return ((const uint16_t *)d->hash_slots)[(base ^ disp[top]) & mask];
     }
@@ -337,9 +338,37 @@ static uint32_t hash_slot(const odg_dict_t *d, uint16_t index)
 }
 #endif
 
+/* Position of sub-index `sub` among entry `e`'s descriptors (from e->first); e->count and
+ * above when absent. */
+static inline uint32_t sub_index(const odg_dict_t *dict, const odg_entry_t *e, uint8_t sub)
+{
+    uint32_t k = sub;
+    if (!(e->code & ODG_E_DENSE)) {
+        for (k = 0; k < e->count && dict->subs[e->first + k].sub != sub; k++) {
+        }
+    }
+    return k;
+}
+
+#if ODG_CFG_SHARED
+const odg_sub_t *odg_sub_at_(const odg_dict_t *d, const odg_entry_t *e, uint32_t pos,
+                             odg_sub_t *copy)
+{
+    const odg_sub_t *s = &d->subs[pos];
+    if (!(e->code & ODG_E_SHARED)) {
+        return s;
+    }
+    *copy = *s;
+    copy->offset = (uint16_t)(s->offset + (uint32_t)e->index * (uint32_t)(s->size >> 8));
+    copy->size = (uint16_t)(s->size & 0xFFu);
+    return copy;
+}
+#endif
+
 #if ODG_CFG_PACKED
-/* Element `sub` (> 0) of a packed ARRAY or RECORD: a descriptor of its own, in the reference.
- * Out of line: the lookup of every other sub-entry pays one bit test for it. */
+/* Element `sub` (> 0) of a packed ARRAY or RECORD: a descriptor of its own, in the reference
+ * (made from the member's copy of the shared descriptor in a shared run). Out of line: the
+ * lookup of every other sub-entry pays one bit test for it. */
 ODG_NOINLINE_
 static odg_abort_t find_element(const odg_dict_t *dict, const odg_entry_t *e, uint8_t sub,
                                 odg_ref_t *ref)
@@ -348,7 +377,7 @@ static odg_abort_t find_element(const odg_dict_t *dict, const odg_entry_t *e, ui
     if (sub > dict->subs[k].sub) {
         return ODG_ABORT_NO_SUB;
     }
-    odg_element_(&dict->subs[k], sub, &ref->elem);
+    odg_element_(odg_sub_at_(dict, e, k, &ref->elem), sub, &ref->elem);
     ref->dict = dict;
     ref->entry = e;
     ref->sub = &ref->elem;
@@ -361,16 +390,13 @@ static odg_abort_t find_element(const odg_dict_t *dict, const odg_entry_t *e, ui
 static inline odg_abort_t find_sub(const odg_dict_t *dict, const odg_entry_t *e, uint8_t sub,
                                    odg_ref_t *ref)
 {
-    uint32_t k = sub;
+    uint32_t k;
 #if ODG_CFG_PACKED
     if (sub > 0u && (e->code & ODG_E_PACKED)) {
         return find_element(dict, e, sub, ref);
     }
 #endif
-    if (!(e->code & ODG_E_DENSE)) {
-        for (k = 0; k < e->count && dict->subs[e->first + k].sub != sub; k++) {
-        }
-    }
+    k = sub_index(dict, e, sub);
     if (k >= e->count) {
         return ODG_ABORT_NO_SUB;
     }
@@ -379,6 +405,11 @@ static inline odg_abort_t find_sub(const odg_dict_t *dict, const odg_entry_t *e,
     ref->entry = e;
     ref->sub = &dict->subs[k];
     ref->sub_pos = (uint16_t)k;
+#if ODG_CFG_SHARED
+    if (e->code & ODG_E_SHARED) { /* a member of a shared run: a copy, out of line */
+        ref->sub = odg_sub_at_(dict, e, k, &ref->elem);
+    }
+#endif
     return ODG_OK;
 }
 
@@ -701,12 +732,16 @@ odg_abort_t odg_init(const odg_dict_t *dict, uint8_t node_id)
  * reset: smaller as soon as the persistence layer links it for a group's defaults. */
 void odg_add_node_id_(const odg_dict_t *d, unsigned storage)
 {
+    const odg_entry_t *e;
+    odg_sub_t m;
     uint32_t p;
-    for (p = 0; p < d->n_subs; p++) {
-        const odg_sub_t *s = &d->subs[p];
-        if ((s->attr & ODG_A_NODEID) && (storage == ODG_ALL_STORAGE_ || s->storage == storage)) {
-            uint8_t *v = odg_value_(d, s);
-            odg_num_put_(v, s->size, odg_num_get_(v, s->size) + d->state->node_id);
+    for (e = d->entries; e < d->entries + d->n_entries; e++) {
+        for (p = e->first; p < (uint32_t)e->first + e->count; p++) {
+            const odg_sub_t *s = odg_sub_at_(d, e, p, &m); /* each member of a shared run */
+            if ((s->attr & ODG_A_NODEID) && (storage == ODG_ALL_STORAGE_ || s->storage == storage)) {
+                uint8_t *v = odg_value_(d, s);
+                odg_num_put_(v, s->size, odg_num_get_(v, s->size) + d->state->node_id);
+            }
         }
     }
 }

@@ -72,6 +72,9 @@ extern "C" {
 #ifndef ODG_CFG_PACKED /* ARRAYs and RECORDs whose elements share one descriptor (ODG_E_PACKED) */
 #define ODG_CFG_PACKED 1
 #endif
+#ifndef ODG_CFG_SHARED /* runs of alike entries that share their descriptors (ODG_E_SHARED) */
+#define ODG_CFG_SHARED 1
+#endif
 #ifndef ODG_CFG_PERSIST_STREAMS /* strings or domains in a migrated persistence group */
 #define ODG_CFG_PERSIST_STREAMS 1
 #endif
@@ -99,7 +102,7 @@ extern "C" {
 #ifndef ODG_CFG_HASH /* lookup by a generated perfect hash (odgen --lookup hash) */
 #define ODG_CFG_HASH 1
 #endif
-#ifndef ODG_CFG_HASH_WIDE /* a perfect hash of more than 256 slots: uint16_t tables */
+#ifndef ODG_CFG_HASH_WIDE /* a perfect hash of more than 256 slots (16-bit tables) */
 #define ODG_CFG_HASH_WIDE 1
 #endif
 #ifndef ODG_CFG_UNHASHED /* lookup by a generated find (--lookup switch) or binary search */
@@ -255,7 +258,8 @@ typedef struct odg_domain {
  * ODG_S_COMMAND entries have no value (offset 0). */
 typedef struct odg_sub {
     uint16_t offset;   /* see above */
-    uint16_t size;     /* wire size in bytes; capacity for strings and domains */
+    uint16_t size;     /* wire size in bytes; capacity for strings and domains (in the list of a
+                        * shared run, ODG_E_SHARED: the stride in the high byte) */
     uint8_t sub;       /* sub-index */
     uint8_t type;      /* enum odg_type */
     uint8_t attr;      /* ODG_A_* */
@@ -278,12 +282,21 @@ typedef struct odg_sub {
 /* Bytes from one packed element to the next: the size of the C type of a number of wire size
  * `size` (uint32_t for 3 bytes, uint64_t / double for 5..8). */
 #define ODG_STRIDE(size) ((size) == 3u ? 4u : ((size) > 4u ? 8u : (uint32_t)(size)))
+/* A run of entries of consecutive indices, alike in every sub-entry but their values (count,
+ * object code, and per sub-entry its sub-index, type, size, access, PDO mapping, $NODEID and
+ * storage; numbers only, no hooks, limits or commands), shares one list of descriptors: each
+ * member has ODG_E_SHARED, and the `first` and `count` of the first member. In the list, `size`
+ * holds the wire size in its low byte and in its high byte the stride: the member of index i
+ * holds that value at offset + i * stride (modulo 2^16; `offset` is so biased that this is the
+ * first member's place at its index). odg_find hands out a copy of the descriptor made for the
+ * member (odg_ref_t.elem: wire size, offset), with ODG_E_PACKED the copy made for the element. */
+#define ODG_E_SHARED   0x20u
 
 typedef struct odg_entry {
     uint16_t index;
     uint16_t first;  /* position of its first odg_sub_t in odg_dict_t.subs */
     uint8_t count;   /* number of sub-entries (1 for VAR) */
-    uint8_t code;    /* ODG_OBJ_* | ODG_E_DENSE */
+    uint8_t code;    /* ODG_OBJ_* | ODG_E_DENSE | ODG_E_PACKED | ODG_E_SHARED */
 } odg_entry_t;
 
 /* Limits as raw 64-bit patterns, read by the entry's type: signed types as int64_t,
@@ -416,8 +429,9 @@ typedef struct odg_dict {
 } odg_dict_t;
 
 /* A located sub-entry: what odg_find returns and the other calls take. For an element of a
- * packed ARRAY (ODG_E_PACKED), `sub` points to `elem`, the shared descriptor made for that
- * element, inside the reference itself: a copy of a reference is valid while the original is. */
+ * packed ARRAY (ODG_E_PACKED) or a member of a shared run (ODG_E_SHARED), `sub` points to
+ * `elem`, the descriptor made for that element or member from the shared one, inside the
+ * reference itself: a copy of a reference is valid while the original is. */
 typedef struct odg_ref {
     const odg_dict_t *dict;
     const odg_entry_t *entry;

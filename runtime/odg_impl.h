@@ -87,4 +87,14 @@ static inline void odg_element_(const odg_sub_t *s, uint8_t k, odg_sub_t *out)
     out->offset = (uint16_t)(s->offset + (uint32_t)(k - 1u) * ODG_STRIDE(s->size));
 }
 
+/* The descriptor at position `pos` (first .. first + count - 1) of entry `e` as that entry
+ * holds it: dict->subs[pos], or for a member of a shared run (ODG_E_SHARED) a copy in `copy`
+ * with the member's offset. Walks over the entries take each sub-entry through it. */
+#if ODG_CFG_SHARED
+const odg_sub_t *odg_sub_at_(const odg_dict_t *d, const odg_entry_t *e, uint32_t pos,
+                             odg_sub_t *copy);
+#else
+#define odg_sub_at_(d, e, pos, copy) ((void)(e), (void)(copy), &(d)->subs[pos])
+#endif
+
 #endif /* ODG_IMPL_H */

@@ -106,12 +106,12 @@ static uint16_t recheck(const odg_dict_t *d, uint8_t g)
 {
     uint8_t storage = (uint8_t)(ODG_S_PERSIST | (unsigned)g << 2);
     uint16_t n = 0, e, p;
-    odg_sub_t el;
+    odg_sub_t el, m;
     uint8_t k;
     for (e = 0; e < d->n_entries; e++) {
         const odg_entry_t *en = &d->entries[e];
         for (p = en->first; p < en->first + en->count; p++) {
-            const odg_sub_t *s = &d->subs[p];
+            const odg_sub_t *s = odg_sub_at_(d, en, p, &m); /* each member of a shared run */
             if (s->storage != storage) {
                 continue;
             }

@@ -79,9 +79,10 @@ OUTLINE static uint32_t value_size(const uint8_t *rec)
     return get16(rec + 4) + (rec[3] == ODG_T_DOMAIN ? 4u : 0u);
 }
 
-/* The firmware's layout descriptor of a group: its persisted sub-entries in dict->subs order
- * (each element of a packed ARRAY in turn), each a record (index, sub, type, length) read from
- * the tables (odg_verify: n_layout of them). */
+/* The firmware's layout descriptor of a group: its persisted sub-entries entry by entry in
+ * dict->subs order (each element of a packed ARRAY in turn, each member of a shared run with
+ * its own values), each a record (index, sub, type, length) read from the tables (odg_verify:
+ * n_layout of them). */
 typedef struct recs {
     const odg_dict_t *d;
     const odg_entry_t *e; /* the entry of the current sub-entry */
@@ -91,13 +92,14 @@ typedef struct recs {
     const odg_sub_t *of;  /* the descriptor of the packed elements walked last (done when
                            * elem.sub is its sub), or NULL */
     odg_sub_t elem;       /* the descriptor made for an element of a packed ARRAY */
+    odg_sub_t member;     /* the descriptor made for a member of a shared run (ODG_E_SHARED) */
 } recs_t;
 
 static void recs_start(recs_t *r, const odg_dict_t *d, uint8_t g)
 {
     r->d = d;
     r->e = d->entries;
-    r->pos = 0;
+    r->pos = d->entries[0].first;
     r->left = d->groups[g].n_layout;
     r->storage = (uint8_t)(ODG_S_PERSIST | (unsigned)g << 2);
     r->of = NULL;
@@ -107,16 +109,21 @@ static void recs_start(recs_t *r, const odg_dict_t *d, uint8_t g)
 static const odg_sub_t *recs_next(recs_t *r)
 {
     const odg_dict_t *d = r->d;
+    const odg_entry_t *end = d->entries + d->n_entries;
     const odg_sub_t *s = &r->elem;
     while (r->left > 0u) {
         if (ODG_CFG_PACKED && r->of != NULL && r->elem.sub < r->of->sub) {
             odg_element_(r->of, (uint8_t)(r->elem.sub + 1u), &r->elem);
             s = &r->elem;
-        } else if (r->pos < d->n_subs) {
-            s = &d->subs[r->pos++];
-            while ((uint32_t)r->e->first + r->e->count < r->pos) {
-                r->e++;
+        } else if (r->e < end) {
+            r->of = NULL; /* it may point to r->member, made anew below */
+            if (r->pos >= (uint32_t)r->e->first + r->e->count) { /* the entry's last: the next */
+                if (++r->e < end) {
+                    r->pos = r->e->first;
+                }
+                continue;
             }
+            s = odg_sub_at_(d, r->e, r->pos++, &r->member);
             if (s->storage != r->storage) {
                 continue;
             }
@@ -645,7 +652,8 @@ static int follows(const odg_sub_t *s, const uint8_t *st, unsigned a)
 
 /* The highest sub-index among the firmware's records of the entry whose sub 0 the layout walk
  * `fw` is at (0 when none follows): the sub of the entry's last sub-entry in the group (a packed
- * descriptor's is its last element's), found from the entry's end back to sub 0 at the latest. */
+ * descriptor's is its last element's), found from the entry's end back to sub 0 at the latest
+ * (the members of a shared run have the run's sub-indices and storage). */
 static uint8_t fw_highest(const recs_t *fw)
 {
     const odg_sub_t *s = &fw->d->subs[fw->e->first + fw->e->count];

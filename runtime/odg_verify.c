@@ -230,7 +230,8 @@ static int pos_table_ok(const odg_dict_t *d, const void *base, uint32_t layout, 
  * limits or $NODEID, whose last element lies where a value may (or N "save" or "load" commands). */
 static int packed_ok(const odg_dict_t *d, const odg_entry_t *e)
 {
-    const odg_sub_t *s = &d->subs[e->first + 1u];
+    odg_sub_t m;
+    const odg_sub_t *s = odg_sub_at_(d, e, e->first + 1u, &m); /* of a shared run's member: its own */
     odg_ref_t r;
     if (!(e->code & ODG_E_PACKED)) {
         return 1;
@@ -251,6 +252,27 @@ static int packed_ok(const odg_dict_t *d, const odg_entry_t *e)
         r.sub = s; /* "save" or "load" commands: no value, the shared descriptor is checked */
     }
     return (uint32_t)s->offset + (s->sub - 1u) * ODG_STRIDE(s->size) <= 0xFFFFu && sub_ok(&r);
+}
+
+/* A shared run's list (ODG_E_SHARED): numbers without hooks, limits or commands, each member's
+ * value apart from the next's (where each member's value lies is checked with each sub-entry:
+ * sub_ok). */
+static int shared_ok(const odg_dict_t *d, const odg_entry_t *e)
+{
+    const odg_sub_t *s;
+    uint32_t p;
+    if (!ODG_CFG_SHARED) {
+        return 0;
+    }
+    for (p = e->first; p < (uint32_t)e->first + e->count; p++) {
+        s = &d->subs[p];
+        if ((s->attr & (ODG_A_HOOK | ODG_A_LIMIT)) || ODG_S_CLASS(s->storage) == ODG_S_COMMAND ||
+            s->type >= sizeof wire_size || wire_size[s->type] == 0u || (s->size & 0xFFu) > 8u ||
+            (uint32_t)(s->size >> 8) < ODG_STRIDE(s->size & 0xFFu)) { /* values would overlap */
+            return 0;
+        }
+    }
+    return 1;
 }
 
 /* NV bytes group `g` uses: its region, or two "ODG1" slots without a layout descriptor. */
@@ -275,7 +297,8 @@ static int layout_ok(const odg_dict_t *d, uint8_t gi)
     for (e = 0; e < d->n_entries; e++) {
         const odg_entry_t *en = &d->entries[e];
         for (p = en->first; p < (uint32_t)en->first + en->count; p++) {
-            const odg_sub_t *s = &d->subs[p];
+            odg_sub_t m;
+            const odg_sub_t *s = odg_sub_at_(d, en, p, &m); /* a shared run's: its own size */
             if (s->storage != (uint8_t)(ODG_S_PERSIST | (unsigned)gi << 2)) {
                 continue;
             }
@@ -308,7 +331,7 @@ static int found_alone(const odg_dict_t *d, const odg_entry_t *e)
 static int hash_ok(const odg_dict_t *d)
 {
     uint32_t k, n;
-    if (d->hash_disp == NULL || d->hash_bits == 0u || d->hash_bits > 16u) {
+    if (d->hash_disp == NULL || d->hash_bits == 0u || d->hash_bits > (ODG_CFG_HASH_WIDE ? 16u : 8u)) {
         return 0;
     }
     n = (uint32_t)1u << d->hash_bits; /* 1u has 16 bits where int has */
@@ -360,12 +383,17 @@ odg_abort_t odg_verify(const odg_dict_t *dict, uint16_t *bad_index)
     }
     for (i = 0; i < d->n_entries; i++) {
         const odg_entry_t *e = &d->entries[i];
+        /* a later member of a shared run: the list of the member before, at the next index */
+        int shared = (e->code & ODG_E_SHARED) != 0u;
+        int later = shared && i > 0u && (e[-1].code & ODG_E_SHARED) && e[-1].first == e->first;
         *bad_index = e->index;
-        if ((i > 0u && e->index <= e[-1].index) || e->first != next || e->count == 0u ||
-            (uint32_t)e->first + e->count > d->n_subs) {
+        if ((i > 0u && e->index <= e[-1].index) || (!later && e->first != next) ||
+            (later && (e->count != e[-1].count || e->code != e[-1].code ||
+                       e->index != e[-1].index + 1u)) ||
+            e->count == 0u || (uint32_t)e->first + e->count > d->n_subs) {
             return ODG_ABORT_INTERNAL;
         }
-        if (!packed_ok(d, e)) {
+        if (!packed_ok(d, e) || (shared && !shared_ok(d, e))) {
             return ODG_ABORT_INTERNAL;
         }
         for (k = 0; k < e->count; k++) {
@@ -373,15 +401,15 @@ odg_abort_t odg_verify(const odg_dict_t *dict, uint16_t *bad_index)
             r.dict = d;
             r.entry = e;
             r.sub_pos = (uint16_t)(e->first + k);
-            r.sub = &d->subs[r.sub_pos];
-            if ((k > 0u && r.sub->sub <= r.sub[-1].sub) ||
+            r.sub = odg_sub_at_(d, e, r.sub_pos, &r.elem);
+            if ((k > 0u && r.sub->sub <= d->subs[r.sub_pos - 1u].sub) ||
                 ((e->code & ODG_E_DENSE) && r.sub->sub != k && !(e->code & ODG_E_PACKED)) ||
                 !sub_ok(&r)) {
                 return ODG_ABORT_INTERNAL;
             }
             hooked += (r.sub->attr & ODG_A_HOOK) ? 1u : 0u;
         }
-        next += e->count;
+        next += later ? 0u : e->count;
     }
     *bad_index = 0xFFFFu;
     if (next != d->n_subs || hooked != d->n_hooks) {

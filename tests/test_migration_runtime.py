@@ -207,6 +207,15 @@ CASES = {
                               {**BASE_VALUES, 0x2030: "09"}),
     "var_becomes_array_narrowed": Case((Param(0x2030, U16, "7"), *BASE), (Param(0x2030, U16, "5", elements=3), *BASE),
                                        {**BASE_VALUES, 0x2030: "0900"}),
+    # alike entries of consecutive indices share their descriptors (sharing.py): the image still
+    # holds a record per member's value, in index order, as the layout in Python says
+    "shared_arrays_split": Case(tuple(Param(0x2040 + k, U16, str(k), elements=3) for k in range(4)),
+                                (*(Param(0x2040 + k, U16, str(k), elements=3) for k in (0, 1, 3)),
+                                 Param(0x2042, U32, "9", elements=3)),
+                                {(0x2040 + k, s): f"{k:02X}{s:02X}" for k in range(4) for s in (1, 3)}),
+    "shared_vars_gap": Case(tuple(Param(0x2050 + k, U32, str(k)) for k in range(5)),
+                            tuple(Param(0x2050 + k, U32, str(k)) for k in (0, 1, 3, 4)),
+                            {0x2050 + k: f"{k + 1:02X}00A0B0" for k in range(5)}),
     "downgrade": Case((Param(0x2000, U32, "7"), *BASE[1:], Param(0x2003, U32, "42")), BASE,
                       {**BASE_VALUES, 0x2000: "FA000000", 0x2003: "01020304"}),
 }

@@ -118,7 +118,7 @@ def test_portable_byte_order_path(program: str, tmp_path: Path) -> None:
 
 # Every ODG_CFG_* switch off (what a generated NAME_config.h may turn off), and the portable path.
 ALL_OFF = tuple(f"-DODG_CFG_{f}=0" for f in ("INT64", "STRINGS", "UNICODE", "DOMAINS", "HOOKS", "LIMITS",
-                                              "REAL_LIMITS", "GROUPS", "STORE", "HASH", "PACKED",
+                                              "REAL_LIMITS", "GROUPS", "STORE", "HASH", "HASH_WIDE", "PACKED", "SHARED",
                                               "PERSIST_STREAMS", "PERSIST_STATUS", "PERSIST_ODG1", "PERSIST_TWO_PASS",
                                               "PERSIST_MIGRATION"))
 

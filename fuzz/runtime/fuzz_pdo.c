@@ -26,17 +26,20 @@
 static uint32_t mappable[256];
 static unsigned n_mappable;
 
-/* Every sub-entry that may be mapped, as a mapping entry with its own length. */
+/* Every sub-entry that may be mapped, as a mapping entry with its own length: each entry's, as
+ * odg_find gives them (the members of a shared run have a list of descriptors in common). */
 static void collect(void)
 {
-    uint16_t p;
-    for (p = 0; p < DICT.n_subs && n_mappable < 256u; p++) {
-        const odg_sub_t *s = &DICT.subs[p];
-        uint8_t sub;
-        if (s->attr & (ODG_A_TPDO | ODG_A_RPDO)) {
-            uint16_t index = index_of(&DICT, p, &sub);
-            uint32_t bits = s->type == ODG_T_BOOLEAN ? 1u : 8u * s->size;
-            mappable[n_mappable++] = (uint32_t)index << 16 | (uint32_t)sub << 8 | bits;
+    const odg_entry_t *e;
+    uint32_t p;
+    for (e = DICT.entries; e < DICT.entries + DICT.n_entries; e++) {
+        for (p = e->first; p < (uint32_t)e->first + e->count && n_mappable < 256u; p++) {
+            odg_ref_t r;
+            if (odg_find(&DICT, e->index, DICT.subs[p].sub, &r) == ODG_OK &&
+                (r.sub->attr & (ODG_A_TPDO | ODG_A_RPDO))) {
+                uint32_t bits = r.sub->type == ODG_T_BOOLEAN ? 1u : 8u * r.sub->size;
+                mappable[n_mappable++] = (uint32_t)e->index << 16 | (uint32_t)r.sub->sub << 8 | bits;
+            }
         }
     }
 }

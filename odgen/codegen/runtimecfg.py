@@ -63,6 +63,8 @@ def runtime_config(view: DictView) -> list[Switch]:
         ("ODG_CFG_COMMAND", "0x1010 / 0x1011 commands", [p for p, s in subs if "ODG_S_COMMAND" in s.storage]),
         ("ODG_CFG_PACKED", "ARRAYs and RECORDs whose elements share one descriptor",
          [e.first + 1 for e in view.entries if "ODG_E_PACKED" in e.code]),
+        ("ODG_CFG_SHARED", "runs of alike entries that share their descriptors",
+         [e.first for e in view.entries if "ODG_E_SHARED" in e.code]),
         ("ODG_CFG_PERSIST_STREAMS", "strings or domains in a migrated persistence group",
          [p for p in persisted if view.subs[p].type in STREAMS] if migration else []),
         ("ODG_CFG_PERSIST_STATUS", "boot status object",
@@ -80,9 +82,9 @@ def runtime_config(view: DictView) -> list[Switch]:
             entry = next(e for e in view.entries if "ODG_E_PACKED" in e.code)
             switch.why = f"0x{entry.index:04X}sub1..{view.subs[entry.first + 1].sub}"
     hashed = view.lookup == "hash"
-    wide = view.hash is not None and view.hash.bits > 8  # else uint8_t tables: no uint16_t path
+    wide = view.hash is not None and view.hash.bits > 8
     return switches + [Switch("ODG_CFG_HASH", "lookup by perfect hash", hashed, "--lookup hash" if hashed else ""),
-                       Switch("ODG_CFG_HASH_WIDE", "a perfect hash of more than 256 slots", wide,
+                       Switch("ODG_CFG_HASH_WIDE", "a perfect hash of more than 256 slots (16-bit tables)", wide,
                               f"{len(view.entries)} entries" if wide else ""),
                        Switch("ODG_CFG_UNHASHED", "lookup by generated find or binary search", not hashed,
                               f"--lookup {view.lookup}" if not hashed else "")]

@@ -35,6 +35,7 @@ from ..model.pdo import default_mapped
 from ..model.datatypes import BASIC_TYPES, DataType
 from ..cnames import COMMENT_WIDTH, comment, identifier, string_literal
 from .packing import packable, packs_values
+from .sharing import SharedView, share
 from .spread import Run, member_size, runs
 from ..model.cia301 import RESTORE, STORE
 from ..place.options import PersistOptions
@@ -125,6 +126,12 @@ class SubView(NamedTuple):
     attr: str
     storage: str
     note: str
+    stride: int = 0  # in a shared run's list: bytes from one member's value to the next's (sharing.py)
+
+    @property
+    def size_field(self) -> str:
+        """`size` as the table holds it: with the stride in its high byte in a shared list."""
+        return f"{self.size} | {self.stride}u << 8" if self.stride else str(self.size)
 
 
 @dataclass
@@ -199,6 +206,7 @@ class DictView:
     groups: list[GroupView] = field(default_factory=list)
     domains: list[DomainView] = field(default_factory=list)
     packed: list[PackedView] = field(default_factory=list)
+    shared: list[SharedView] = field(default_factory=list)  # runs sharing descriptors (sharing.py)
     macros: list[tuple[str, str, str]] = field(default_factory=list)  # #define name value /* note */
     accessors: list[tuple[str, str]] = field(default_factory=list)  # #define name expression
     persist: PersistView | None = None  # NV regions, layouts, status object
@@ -361,6 +369,7 @@ def build(od: ObjectDictionary, placements: Placements, persist: PersistOptions,
         _entry(b, view, obj)
     if not view.entries:  # C99 has no zero-size arrays: empty tables would not compile
         diags.add(GEN009, Loc(od.source), "the description has no object from 0x1000 on: nothing to generate")
+    share(view)
     view.structs = [_sorted_struct(s) for _, s in sorted(b.structs.items(),
                                                          key=lambda kv: _struct_order(kv[0].replace(":", "_")))]
     view.groups = _groups(od, view)
@@ -369,7 +378,7 @@ def build(od: ObjectDictionary, placements: Placements, persist: PersistOptions,
     for block in view.structs:
         _check_block_size(b, block)
     view.persist = persist_view(od, placements, persist, diags)
-    if lookup == "hash":
+    if lookup == "hash":  # before the runtime's switches, one of which is its width
         view.hash = perfect_hash([e.index for e in view.entries])
     view.config = runtime_config(view)
     view.node = node_limits(view, od, lss, dict(node_caps or {}), diags, sdo_block)

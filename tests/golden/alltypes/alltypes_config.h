@@ -22,13 +22,14 @@
 #define ODG_CFG_GROUPS 1 /* persistence groups: 0x1017sub0 */
 #define ODG_CFG_COMMAND 1 /* 0x1010 / 0x1011 commands: 0x1010sub1 */
 #define ODG_CFG_PACKED 0 /* ARRAYs and RECORDs whose elements share one descriptor */
+#define ODG_CFG_SHARED 0 /* runs of alike entries that share their descriptors */
 #define ODG_CFG_PERSIST_STREAMS 0 /* strings or domains in a migrated persistence group */
 #define ODG_CFG_PERSIST_STATUS 0 /* boot status object */
 #define ODG_CFG_PERSIST_ODG1 0 /* persistence groups without migration */
 #define ODG_CFG_PERSIST_MIGRATION 1 /* persistence groups migrated at boot: 0x1017sub0 */
 #define ODG_CFG_PERSIST_TWO_PASS 1 /* a migrated group among two or more (the ordered boot): 0x1017sub0 */
 #define ODG_CFG_HASH 1 /* lookup by perfect hash: --lookup hash */
-#define ODG_CFG_HASH_WIDE 0 /* a perfect hash of more than 256 slots */
+#define ODG_CFG_HASH_WIDE 0 /* a perfect hash of more than 256 slots (16-bit tables) */
 #define ODG_CFG_UNHASHED 0 /* lookup by generated find or binary search */
 
 /* The node layer (odg_node.h): what this dictionary needs, lowered by the options' [node] keys. */
