@@ -28,7 +28,7 @@ static odg_abort_t act(const odg_dict_t *d, const odg_nv_driver_t *nv, uint8_t g
  * else NULL: the callers then touch no NV. */
 static const odg_nv_driver_t *fitting(const odg_dict_t *d, const odg_nv_driver_t *nv)
 {
-    uint32_t size = odg_persist_nv_size(d);
+    uint32_t size = ODG_NV_END_(d);
     uint8_t c;
     return nv != NULL && (size == 0u || nv->read(nv->ctx, size - 1u, &c, 1) == 0) ? nv : NULL;
 }

@@ -21,6 +21,15 @@
 #define ODG_MIGRATES_(g) 1
 #endif
 
+/* The end of the groups' NV (odg_persist_nv_size): a constant distance from the start of
+ * groups[0]'s region when NAME_config.h gives it (a dictionary whose groups all migrate: the
+ * generated C checks it against NAME_NV_SIZE, whatever NAME_NV_BASE), else computed. */
+#ifdef ODG_PERSIST_NV_TAIL
+#define ODG_NV_END_(d) ((d)->groups[0].nv_addr + ODG_PERSIST_NV_TAIL)
+#else
+#define ODG_NV_END_(d) odg_persist_nv_size(d)
+#endif
+
 #define ODG_PERSIST_ODG1_MAGIC 0x3147444Fu /* "ODG1" as a little-endian UNSIGNED32 */
 #define ODG_PERSIST_CHUNK_ 32u /* bytes read at a time when only checking a slot */
 

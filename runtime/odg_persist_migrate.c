@@ -291,7 +291,7 @@ static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_
      * inside: the bytes of slot A's valid image, at whose places lies no image of ours (a store
      * there would have broken slot A's image): a value of it, an OCTET_STRING say, that looks
      * like one is never taken */
-    uint32_t half = 0u, addr, end = odg_persist_nv_size(d), far = 0u, inside = 0u;
+    uint32_t half = 0u, addr, end = ODG_NV_END_(d), far = 0u, inside = 0u;
     int v, k = 0;
     f->at = gr->nv_addr;
     do {

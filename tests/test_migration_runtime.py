@@ -261,7 +261,8 @@ def options(params: tuple[Param, ...], extra: str = "") -> str:
 
 
 def firmware(tmp: Path, tag: str, params: tuple[Param, ...], heartbeat: int, reverse: bool,
-             extra_options: str = "", configured: bool = False) -> tuple[Path, dict[str, GroupLayout]]:
+             extra_options: str = "", configured: bool = False,
+             cflags: tuple[str, ...] = ()) -> tuple[Path, dict[str, GroupLayout]]:
     """Generate `od` from the parameters and build migrate_main on it; the program and its layouts.
     `configured`: the runtime built with the generated od_config.h (only what `od` uses)."""
     src = tmp / tag
@@ -277,7 +278,7 @@ def firmware(tmp: Path, tag: str, params: tuple[Param, ...], heartbeat: int, rev
                           cwd=ROOT, env=_env())
     assert done.returncode == 0, done.stdout + done.stderr
     exe = src / "migrate_main"
-    flags = ("-O1", '-DODG_CONFIG="od_config.h"') if configured else ("-O1",)
+    flags = ("-O1", '-DODG_CONFIG="od_config.h"', *cflags) if configured else ("-O1", *cflags)
     build("gcc", flags, (CTESTS / "migrate_main.c", src / "od.c", *toolchain.core_sources(),
                             RUNTIME / "odg_nv_file.c", CTESTS / "nv_fault.c"), (src, RUNTIME, CTESTS), exe)
     return exe, layouts
@@ -445,3 +446,19 @@ def test_migration_switched_on_reports_an_odg1_image_as_signature(tmp_path: Path
     assert [g["status"] for g in got.groups] == [SIGNATURE, SIGNATURE] and got.seen[0] & 1 << SIGNATURE
     assert got.values == fresh.values
     assert [g["status"] for g in run(v2, nv, "dump").groups] == [LOADED, LOADED]
+
+
+def test_groups_placed_from_an_nv_base_store_and_load_there(tmp_path: Path) -> None:
+    """OD_NV_BASE moves every region: the runtime built with od_config.h finds the end of the
+    groups' NV from the first group's region (ODG_PERSIST_NV_TAIL): a store lands past the base,
+    and the next boot loads it."""
+    case = CASES["unchanged"]
+    exe, _ = firmware(tmp_path, "v1", case.v1, 1000, False, configured=True, cflags=("-DOD_NV_BASE=1024u",))
+    config = (tmp_path / "v1" / "od_config.h").read_text(encoding="utf-8")
+    assert "#define ODG_PERSIST_NV_TAIL" in config
+    nv = tmp_path / "od.nv"
+    stored = run(exe, nv, *(_set(k, h) for k, h in case.stored.items()), "store", "dump")
+    image = nv.read_bytes()
+    assert set(image[:1024]) <= {0xFF} and b"ODG2" in image[1024:]
+    again = run(exe, nv, "dump")
+    assert [g["status"] for g in again.groups] == [LOADED, LOADED] and again.values == stored.values

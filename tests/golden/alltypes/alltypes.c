@@ -266,6 +266,10 @@ ODG_ATTR_RAM static odg_hook_slot_t alltypes_hook_slots[4] = {
     {.fn = NULL, .ctx = NULL}, /* 0x2103sub4 */
 };
 
+/* The runtime finds the end of the groups' NV from the first group's region (odg_persist_impl.h). */
+#ifdef ODG_PERSIST_NV_TAIL
+typedef char alltypes_assert_nv_tail[(ODG_PERSIST_NV_TAIL == ALLTYPES_NV_SIZE - ALLTYPES_NV_APP_OFFSET) ? 1 : -1];
+#endif
 /* Each slot is aligned: half a region is a multiple of ODG_PERSIST_ALIGN. */
 typedef char alltypes_assert_nv_align[(ALLTYPES_NV_APP_REGION / 2u % ODG_PERSIST_ALIGN == 0u && ALLTYPES_NV_COMM_REGION / 2u % ODG_PERSIST_ALIGN == 0u && 1) ? 1 : -1];
 

@@ -191,6 +191,10 @@ ODG_ATTR_RAM static odg_hook_slot_t io_node_persist_hook_slots[2] = {
     {.fn = io_node_apply_outputs, .ctx = NULL}, /* 0x6200sub1 */
 };
 
+/* The runtime finds the end of the groups' NV from the first group's region (odg_persist_impl.h). */
+#ifdef ODG_PERSIST_NV_TAIL
+typedef char io_node_persist_assert_nv_tail[(ODG_PERSIST_NV_TAIL == IO_NODE_PERSIST_NV_SIZE - IO_NODE_PERSIST_NV_APP_OFFSET) ? 1 : -1];
+#endif
 /* Each slot is aligned: half a region is a multiple of ODG_PERSIST_ALIGN. */
 typedef char io_node_persist_assert_nv_align[(IO_NODE_PERSIST_NV_APP_REGION / 2u % ODG_PERSIST_ALIGN == 0u && IO_NODE_PERSIST_NV_COMM_REGION / 2u % ODG_PERSIST_ALIGN == 0u && 1) ? 1 : -1];
 
