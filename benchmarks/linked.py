@@ -89,51 +89,55 @@ DICT_PARTS = {"sub-entry descriptors": "od_subs", "entries": "od_entries", "rese
               "persisted defaults": r"od_persist_\w+_(defaults|spread)", "lookup tables": r"od_(hash|find)\w*",
               "dictionary": "od", "groups": "od_groups"}
 
-NOT_MET = """\
-Where the goals are not met (hash, the default lookup; DS301 unless named; 2026-11-28):
+FOOTPRINT_NOTES = """\
+Every footprint goal above is met (hash, the default lookup; DS301 unless named; 2026-11-28). The
+rows with boot migration are the closest: DS301 5280 B against 5308 B (99%), demoDevice 7008 B
+against 7132 B (98%). The persistence layer links 3256 B for DS301 (the ELF minus the row without
+persistence; demoDevice 3808 B), against about 1764 B that CANopenNode's CO_storage,
+CO_storageEeprom and CRC-16 add (5308 - 3544); the dictionary and the core are at 57% of
+CANopenNode's (the row without persistence), which pays for the rest. What the layer links beyond
+CANopenNode's storage: stored values survive a firmware update that changes the layout (entry by
+entry kept, widened, defaulted, dropped or added, checked against the current limits), images are
+found where an older NV map put them (the places a region that grew or shrank left them, the boot
+of several groups in the order of their regions, the scrub of a region after boot), and a
+power-safe A/B commit with read-back.
 
-- **Dictionary + access with persistence and boot migration** (DS301 5728 B against 5308 B,
-  108%; demoDevice 7496 B against 7132 B, 105%). The persistence layer links 3238 B (the layer
-  346, slots and CRC 412, the migration 2480; demoDevice 3806 B), against about 1764 B that
-  CANopenNode's CO_storage, CO_storageEeprom and CRC-16 add (5308 - 3544). The dictionary and
-  the core alone are at 64% of CANopenNode's (the row without persistence), and the layer without
-  migration is well within CANopenNode's figure (the row with `migration = false`: 78%). What it
-  links beyond CANopenNode's storage: stored values survive a firmware update that changes the
-  layout (entry by entry kept, widened, defaulted, dropped or added, checked against the current
-  limits), images are found where an older NV map put them (the places a region that grew or
-  shrank left them, the boot of several groups in the order of their regions, the scrub of a
-  region after boot), and a power-safe A/B commit with read-back. The code is spread evenly over
-  these features and the last rounds found a few bytes each: closing the last 420 B (demoDevice
-  364 B) needs a smaller contract or a structural change (below), not smaller code. The notes'
-  figure of the same row, 5768 B (bsearch, 2026-11-23), was measured before the stored-values
-  rule set was merged, which added about 1.6 KB here.
-- Measured for this row on 2026-11-28, and what became of it:
+- How the rows with boot migration came within their goals on 2026-11-28 (DS301 5728 -> 5280 B,
+  demoDevice 7496 -> 7008 B):
+  - Runs of alike entries of consecutive indices (the RPDO and TPDO communication and mapping
+    records) share one list of sub-entry descriptors (`ODG_E_SHARED`): each shared descriptor
+    keeps the stride of its values in the high byte of `size` and an offset biased by the run's
+    first index, so a member's value is at offset + index * stride with no walk over the run.
+    DS301's descriptors 664 -> 312 B; the runtime +152 B (the lookup's copy into the reference,
+    the walks over the entries); -204 B on this row, -244 B without persistence. The copy costs
+    the lookup about 11 instructions on the entries of a run; `ODG_CFG_HASH_WIDE` (the 16-bit hash
+    tables' path only for hashes of more than 256 slots) gave back 9 (DS301 65 -> 68 instructions
+    per lookup in all, goal 71) and 12 B.
+  - A "load" (0x1011) stores a load mark as a "save" stores an image (bit 0 of its region word),
+    instead of an erase ordered so that no older image outlives the newest: -164 B (demoDevice
+    -156 B). A first version erased the rest of the region after the mark; `make fuzz`'s model
+    found that a rollback whose NV ended before the mark then missed it and numbered its stores
+    below it, and, once the mark no longer hid it behind another group's EMCY, that a store's
+    erase of its own image past its region left the next group's region blank (a loss reported as
+    a first boot, reachable with a store too): the mark is stored as a save is, and that erase
+    takes only the image's header.
+  - `NAME_config.h` of a dictionary with migration gives the end of the groups' NV as a distance
+    from the first group's region (`ODG_PERSIST_NV_TAIL`, checked by `NAME.c`): -24 B. A group
+    with no image checks its region blank in one pass and looks for an "ODG1" mark at its start
+    only, and the record count is read with the slot header: -40 B. `odg_group_reset`, the CRC
+    read inline and the ordered boot keeping the lowest start: -16 B (demoDevice -60 B).
+  - Tried and dropped: the boot counts copied as one block (0 B, demoDevice +12 B); the bsearch
+    lookup (88 B less, but it misses the lookup goal: 134 instructions).
+- Measured for this row earlier on 2026-11-28, and what became of it:
   - Two more rounds of behaviour-preserving rewrites: the migration DS301 -100 B, demoDevice
-    -104 B (the record count kept from the slot check, one answer for how a stored entry carries,
-    the region word of a foreign header cleared so that the place walk does not check it again,
-    ...); the layer and the slots DS301 -44 B, demoDevice -96 B (the NV size check hands back the
-    driver, the command's "none acted" as a value no abort code has, a tail call in the clear, ...).
+    -104 B; the layer and the slots DS301 -44 B, demoDevice -96 B.
   - The groups boot in the order of their regions in NV instead of in rounds that looked for
-    every other group's newest image: a group finds its images only from its region's start on
-    and writes only inside its region, so an image in another group's region belongs to a group
-    placed before it. demoDevice -172 B, no NV read for the order, and no case left without a safe
-    order (the "cycle" gap documented before cannot arise).
+    every other group's newest image: demoDevice -172 B, and no case left without a safe order.
   - Correctness fixes (rule 1: an older store, or values never stored, were served), +92 B in
-    all: an image loaded unchanged that reaches past the group's region is stored home (+24 B;
-    the next group's boot wrote over it), found by the persistence model once it pins regions; a
-    store that writes over the newest image (slot A of a larger region reaching into slot B)
-    erases the group's images past the region first (+44 B; a power cut in it served the older
-    store), and no image is taken inside slot A's valid image (+24 B; a stored OCTET_STRING could
-    hold one), both found by an adversarial review; boot looks for slot B of regions up to 16 MiB
-    (0 B). A pinned region of a group with migration must be a power of two (generation refuses
-    others: 0 B in the runtime).
-  - Structural change considered and not made: ARRAYs and RECORDs alike in everything but their
-    offsets (the RPDO and TPDO communication and mapping records) sharing one descriptor list
-    saves about 336 B of descriptors on DS301, but finding an element's offset needs the record's
-    place in its run and the step of each member size: with the 6-byte entry that is a walk back
-    over the run and over the first record's descriptors at every lookup of such an entry (about
-    +60 instructions, which breaks the lookup goal, 65 of 71 instructions), and with an offset in
-    each entry (+2 B per entry) the saving drops to about 200 B and the lookup still pays a test.
+    all: an image loaded unchanged that reaches past the group's region is stored home; a store
+    that writes over the newest image invalidates the group's images past the region first; no
+    image is taken inside slot A's valid image; boot looks for slot B of regions up to 16 MiB. A
+    pinned region of a group with migration must be a power of two.
 - Measured for this row on 2026-11-27 (second half of the day), and what became of it:
   - A persistence group's defaults are the runs of its mirror that are not all zero
     (`NAME_persist_GROUP_defaults`, placed by a (start, end) table) instead of a whole copy of the
@@ -152,9 +156,10 @@ Where the goals are not met (hash, the default lookup; DS301 unless named; 2026-
     since a chain of displaced images, and an image whose tail reached into a third region (both
     found by `make fuzz`), let one group's boot clear another's newest image before it moved home.
   - Structural change considered then: ARRAYs and RECORDs alike in everything but their offsets
-    sharing one descriptor list (measured against the lookup goal on 2026-11-28, above).
-  - Tried and dropped: one switch for 16-bit hash tables and one for dictionaries without sparse
-    entries (-12 B and 0 B here: not worth two more configurations).
+    sharing one descriptor list (made on 2026-11-28, above, without a walk over the run).
+  - Tried and dropped then: one switch for 16-bit hash tables and one for dictionaries without
+    sparse entries (-12 B and 0 B here); the first was taken up on 2026-11-28 (above), when it
+    also paid for the shared runs' lookup.
 - Measured for this row on 2026-11-27 (first half of the day), and what became of it:
   - One walk over a group's places serves store, erase, scrub and boot: -208 B, then +64 B to
     keep the boot's peak stack where it was; later the walk lost its list of images (0x1011
@@ -542,7 +547,7 @@ def markdown(rows: list[dict[str, object]], empty: tuple[int, int]) -> str:
               "| input | lookup | " + " | ".join(DICT_PARTS) + " |", "|---|---|" + "---:|" * len(DICT_PARTS)]
     lines += [f"| {r['input']} | {r['lookup']} | " + " | ".join(str(v) for v in r["dict_parts"].values()) + " |"  # type: ignore[attr-defined]
               for r in rows if "dict_parts" in r]
-    lines += ["", NOT_MET]
+    lines += ["", FOOTPRINT_NOTES]
     lines += ["", "CANopenNode v4 figures: " + METHOD + ".", ""]
     lines += [f"- {label}: {pub['what']}; odgen generates from `{pub['input']}`." for label, pub in PUBLISHED.items()]
     return "\n".join(lines) + "\n"
