@@ -57,6 +57,7 @@ RETYPED = {U16: (I16,), I16: (U16,), U32: (I32,), I32: (U32,), U8: (VS,), VS: (U
 POOL = tuple(range(0x2000, 0x2010))
 BULK = 0x2200  # a large ARRAY of UNSIGNED32: grows and shrinks a region
 PINNED = 1 << 40  # a set seed with this bit pins regions ([[group]] region) in its versions
+SWITCH_CUTS = 1 << 41  # ... and with this one its sequences cut the power in a new version's first boot
 
 
 @dataclass(frozen=True)
@@ -289,9 +290,11 @@ class Nv:
     partial: bool = False
 
 
-def script(rng: random.Random, fws: list[Firmware]) -> list[tuple[str, ...]]:
+def script(rng: random.Random, fws: list[Firmware], switch_cuts: bool = False) -> list[tuple[str, ...]]:
     """One sequence: a blank NV, then steps (each a tuple: the command and what the model needs).
-    Some sequences go back and forth between two versions (upgrade, rollback, upgrade ...)."""
+    Some sequences go back and forth between two versions (upgrade, rollback, upgrade ...). With
+    `switch_cuts`, the first boot of a version after another may be cut by a power failure (the
+    boot that migrates, stores home and scrubs)."""
     pair = rng.sample(range(len(fws)), 2) if rng.random() < 0.4 else None
     start = pair[0] if pair else rng.randrange(len(fws))
     size = rng.choice([fws[k].nv_size for k in (pair or range(len(fws)))])
@@ -305,6 +308,8 @@ def script(rng: random.Random, fws: list[Firmware]) -> list[tuple[str, ...]]:
         if r < 0.25:
             cur = (pair[1] if cur == pair[0] else pair[0]) if pair else rng.randrange(len(fws))
             steps += [(f"window {fws[cur].nv_size}",)] if window else []
+            if switch_cuts and rng.random() < 0.5:
+                steps += [(f"cut {rng.randrange(0, 600)}",), (f"boot {cur}", "cut"), ("power",)]
             steps.append((f"boot {cur}",))
         elif r < 0.6:
             for _ in range(rng.randrange(1, 4)):
@@ -396,6 +401,10 @@ class Checker:
         self.violations: list[Violation] = []
         self.step = 0
         self.dirty = False  # a cut left the current boot's RAM unknown until the next boot
+        # a boot was cut: the loss it found may have been replaced in NV (the migrated image, the
+        # defaults) before it could report it, and the next boot finds nothing to report (a
+        # known gap, docs/persistence.md section 4)
+        self.cut_boot_before = False
 
     def bad(self, rule: str, text: str) -> None:
         self.violations.append(Violation(self.seed, self.sequence, self.step, rule, text))
@@ -512,6 +521,7 @@ class Checker:
         return Image(GroupLayout(g), {}, fw.regions[g])
 
     def cut_boot(self, k: int) -> None:
+        self.cut_boot_before = True
         fw = self.fws[k]
         for g in GROUPS:
             if fw.layouts[g].entries and self.nv.size >= fw.nv_size:
@@ -602,7 +612,8 @@ class Checker:
                 self._commit(fw, g, self._as_served(fw, g))
         self.dirty = False
         emcy = bool(boot.seen[0] & LOST_BITS)
-        if lost and not emcy:
+        cut_before, self.cut_boot_before = self.cut_boot_before, False
+        if lost and not emcy and not cut_before:
             self.bad("R3", f"v{self.fws.index(fw)}: values stored and not served, and no loss reported "
                      f"(statuses {[b['status'] for b in boot.groups]}, seen 0x{boot.seen[0]:02X})")
         if stable and not possible and emcy:
@@ -661,8 +672,9 @@ def run(seed: int, sets: int, sequences: int, work: Path | None = None) -> tuple
 
 
 def set_seed_of(seed: int, k: int) -> int:
-    """The seed of a run's k-th layout set: one set in three pins regions (PINNED)."""
-    return seed * 1000003 + k + (PINNED if k % 3 == 2 else 0)
+    """The seed of a run's k-th layout set: one set in three pins regions (PINNED), and one set
+    in two cuts the power in first boots after a version change (SWITCH_CUTS)."""
+    return seed * 1000003 + k + (PINNED if k % 3 == 2 else 0) + (SWITCH_CUTS if k % 2 == 1 else 0)
 
 
 def run_set(set_seed: int, sequences: int, work: Path | None = None) -> tuple[list[Violation], int]:
@@ -672,7 +684,7 @@ def run_set(set_seed: int, sequences: int, work: Path | None = None) -> tuple[li
         rng = random.Random(set_seed)
         exe, fws = build(_versions(rng, set_seed), Path(tmp))
         _defaults(exe, fws)
-        scripts = [script(rng, fws) for _ in range(sequences)]
+        scripts = [script(rng, fws, bool(set_seed & SWITCH_CUTS)) for _ in range(sequences)]
         lines = execute(exe, [st[0] for sc in scripts for st in sc])
     at = 0
     for n, sc in enumerate(scripts):
@@ -734,7 +746,7 @@ def trace(set_seed: int, sequence: int) -> str:
         rng = random.Random(set_seed)
         exe, fws = build(_versions(rng, set_seed), Path(tmp))
         _defaults(exe, fws)
-        scripts = [script(rng, fws) for _ in range(sequence + 1)]
+        scripts = [script(rng, fws, bool(set_seed & SWITCH_CUTS)) for _ in range(sequence + 1)]
         commands = [st[0] for st in scripts[sequence]]
         lines = execute(exe, commands)
     out = [f"v{k}: nv_size {fw.nv_size} regions {fw.regions} "

@@ -10,10 +10,11 @@ from pathlib import Path
 
 import pytest
 
-from .persist_model import run_set
+from .persist_model import run_set, set_seed_of
 
 REGRESSIONS = Path(__file__).resolve().parent / "fixtures" / "persist_model" / "regressions.txt"
-SETS = 6  # layout sets (one build each) of 50 sequences: 300 sequences
+SETS = 6  # layout sets (one build each) of 50 sequences: 300 sequences (as make fuzz makes them:
+# some pin regions, some cut the power in a new version's first boot)
 SEQUENCES = 50
 
 pytestmark = pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
@@ -29,7 +30,7 @@ def regressions() -> list[tuple[int, int]]:
     return out
 
 
-@pytest.mark.parametrize("set_seed", [1_000_003 * 77 + k for k in range(SETS)])
+@pytest.mark.parametrize("set_seed", [set_seed_of(77, k) for k in range(SETS)])
 def test_random_sequences_keep_the_rule_set(set_seed: int) -> None:
     violations, steps = run_set(set_seed, SEQUENCES)
     assert steps > SEQUENCES * 4
