@@ -762,8 +762,10 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
     odg_boot_status_t st = ODG_BOOT_NV_ERROR;
     int k = newest(d, nv, gr, &f);
     odg_defaults_(d, g); /* the mirror starts from the defaults (RAM only: no NV access) */
-    if (k == 1 && (f.h[12] & 1u)) {
-        st = ODG_BOOT_DEFAULTS; /* the mark of a "load" (0x1011), no counts */
+    if (k > 0 && (f.h[12] & 1u)) {
+        /* the mark of a "load" (0x1011), no counts: also one whose image this firmware cannot
+         * read (2: past the NV its driver shows), as its committed header says what it is */
+        st = ODG_BOOT_DEFAULTS;
         k = 0;
     } else if (k == 1) {
         if (migrate(d, nv, g, &f, n) == 0 && reads_back(nv, gr, f.at, f.h)) {
