@@ -354,7 +354,8 @@ typedef struct odg_group {
     uint32_t nv_addr;        /* first of two slots, each odg_persist_slot_size(size) bytes */
     uint8_t store_sub;       /* its sub-index in 0x1010/0x1011 (1 = all groups) */
     /* Boot migration (docs/persistence.md): the number of records of the layout descriptor,
-     * one per persisted sub-entry of the group in dict->subs order (index u16, sub u8,
+     * one per persisted sub-entry of the group, entry by entry in index order (each member of
+     * a shared run, ODG_E_SHARED, with its own; index u16, sub u8,
      * type u8, length u16; little endian), which the runtime reads from the tables.
      * 0: "ODG1" images, the mirror byte for byte, and any layout change gives the defaults.
      * Else "ODG2" self-describing images in the group's own region of NV from nv_addr: slot A

@@ -317,7 +317,7 @@ static int walk(const odg_dict_t *d, const odg_nv_driver_t *nv, const odg_group_
             f->at = addr;
             odg_copy(f->h, t, HEAD);
         }
-        if (half == 0u && v == 1) {
+        if (half == 0u) { /* valid, or (2) unreadable past the NV: its header says how far it goes */
             inside = extent(t);
         }
     } while ((half = next_place(gr, half)) != 0u);
@@ -465,8 +465,12 @@ odg_abort_t odg_described_store_(const odg_dict_t *d, const odg_nv_driver_t *nv,
     flush(&o);
     /* the CRC covers the bytes written; the read-back below checks that they landed */
     odg_put_le32_(h + 20, o.crc);
+    /* when the newest was an image in slot A that runs past the NV this firmware's driver shows
+     * (2), its header goes once the new image is committed: it would hide the new image, which
+     * lies inside its bytes (the boot takes no image there) */
     if (o.fail || nv->write(nv->ctx, addr + 4u, h + 4, DESCRIBED_HDR - 4u) != 0 ||
-        nv->write(nv->ctx, addr, h, 4u) != 0 || !reads_back(nv, gr, addr, h)) {
+        nv->write(nv->ctx, addr, h, 4u) != 0 || !reads_back(nv, gr, addr, h) ||
+        (k == 2 && t.at == gr->nv_addr && nv->erase(nv->ctx, t.at, HDR_EXTENT) != 0)) {
         return ODG_ABORT_HARDWARE;
     }
     return ODG_OK;
@@ -762,8 +766,10 @@ odg_boot_status_t odg_described_boot_(const odg_dict_t *d, const odg_nv_driver_t
     odg_boot_status_t st = ODG_BOOT_NV_ERROR;
     int k = newest(d, nv, gr, &f);
     odg_defaults_(d, g); /* the mirror starts from the defaults (RAM only: no NV access) */
-    if (k == 1 && (f.h[12] & 1u)) {
-        st = ODG_BOOT_DEFAULTS; /* the mark of a "load" (0x1011), no counts */
+    if (k > 0 && (f.h[12] & 1u)) {
+        /* the mark of a "load" (0x1011), no counts: also one whose image this firmware cannot
+         * read (2: past the NV its driver shows), as its committed header says what it is */
+        st = ODG_BOOT_DEFAULTS;
         k = 0;
     } else if (k == 1) {
         if (migrate(d, nv, g, &f, n) == 0 && reads_back(nv, gr, f.at, f.h)) {

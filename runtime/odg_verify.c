@@ -138,7 +138,7 @@ static int sub_ok(const odg_ref_t *r)
             return 0;
         }
         g = &d->groups[ODG_S_GROUP(s->storage)];
-        base = g->defaults != NULL ? g->mirror : NULL;
+        base = g->mirror; /* its defaults are NULL when every one is zero (no runs: spread_ok) */
     }
     /* first where the value lies, before reading anything there */
     if (s->type == ODG_T_DOMAIN) {

@@ -32,6 +32,7 @@ import random
 import shutil
 import subprocess
 import tempfile
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
@@ -324,6 +325,49 @@ def script(rng: random.Random, fws: list[Firmware], switch_cuts: bool = False) -
                       ("power",), (f"boot {cur}",)]
         else:
             steps.append((f"boot {cur}",))
+    return steps
+
+
+def load_script(rng: random.Random, fws: list[Firmware]) -> list[tuple[str, ...]]:
+    """A sequence around the load mark (docs/persistence.md section 2): two versions in turn
+    (regions that grow and shrink; in two sequences of five a driver that shows each version its
+    own NAME_NV_SIZE), loads followed by a boot of the same version or of the other one, power
+    cuts during a load, a save and the boot after a load. A power cut during a boot is of the
+    version booted last: the model knows what such a boot leaves, not what the first boot of
+    another version reported before its power failed."""
+    pair = rng.sample(range(len(fws)), 2)
+    cur = pair[0]
+    window = rng.random() < 0.4
+    size = max(fws[k].nv_size for k in pair)
+    steps: list[tuple[str, ...]] = [(f"nv {fws[cur].nv_size if window else size}",), (f"boot {cur}",)]
+
+    def switch() -> None:
+        nonlocal cur
+        cur = pair[1] if cur == pair[0] else pair[0]
+        steps.extend([(f"window {fws[cur].nv_size}",)] if window else [])
+        steps.append((f"boot {cur}",))
+
+    def cut_boot() -> None:
+        steps.extend([(f"cut {rng.randrange(0, 600)}",), (f"boot {cur}", "cut"), ("power",), (f"boot {cur}",)])
+
+    for _ in range(rng.randrange(5, 16)):
+        r = rng.random()
+        if r < 0.2:
+            switch()
+        elif r < 0.4:
+            steps.extend(_set(rng, fws[cur]) for _ in range(rng.randrange(1, 3)))
+            steps.append(("save",))
+        elif r < 0.65:
+            steps.append(("load",))
+            if rng.random() < 0.5:
+                switch()
+            if rng.random() < 0.5:
+                cut_boot()
+        elif r < 0.85:
+            steps.extend([(f"cut {rng.randrange(0, 400)}",), (rng.choice(("save", "load", "load")), "cut"),
+                          ("power",), (f"boot {cur}",)])
+        else:
+            cut_boot()
     return steps
 
 
@@ -677,14 +721,18 @@ def set_seed_of(seed: int, k: int) -> int:
     return seed * 1000003 + k + (PINNED if k % 3 == 2 else 0) + (SWITCH_CUTS if k % 2 == 1 else 0)
 
 
-def run_set(set_seed: int, sequences: int, work: Path | None = None) -> tuple[list[Violation], int]:
-    """One layout set (`set_seed` makes its versions and sequences): the violations and the steps."""
+def run_set(set_seed: int, sequences: int, work: Path | None = None,
+            steps_of: Callable[[random.Random, list[Firmware]], list[tuple[str, ...]]] | None = None,
+            ) -> tuple[list[Violation], int]:
+    """One layout set (`set_seed` makes its versions and sequences): the violations and the steps.
+    `steps_of` makes each sequence (default `script`; `load_script` for sequences around loads)."""
     out: list[Violation] = []
     with tempfile.TemporaryDirectory(dir=work) as tmp:
         rng = random.Random(set_seed)
         exe, fws = build(_versions(rng, set_seed), Path(tmp))
         _defaults(exe, fws)
-        scripts = [script(rng, fws, bool(set_seed & SWITCH_CUTS)) for _ in range(sequences)]
+        scripts = [steps_of(rng, fws) if steps_of else script(rng, fws, bool(set_seed & SWITCH_CUTS))
+                   for _ in range(sequences)]
         lines = execute(exe, [st[0] for sc in scripts for st in sc])
     at = 0
     for n, sc in enumerate(scripts):

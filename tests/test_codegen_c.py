@@ -83,6 +83,24 @@ def test_persisted_strings_domains_and_a_blank_group_read_their_defaults() -> No
     _assert_passed(run_check(request, cc=_compiler("clang"), cflags=SANITIZE))
 
 
+@pytest.mark.parametrize("migration", ["true", "false"])
+def test_a_group_of_numbers_whose_defaults_are_all_zero_verifies(migration: str, tmp_path: Path) -> None:
+    """A group whose every default is zero has no defaults (`.defaults = NULL`, no runs): its
+    numbers lie in its mirror all the same, and odg_verify (run by the self-test) accepts them."""
+    base = (GEN / "plain.eds").read_text(encoding="utf-8").split("[ManufacturerObjects]")[0]
+    values = ((0x2000, 0x07), (0x2001, 0x0C))  # UNSIGNED32, TIME_OF_DAY
+    extra = "".join(f"\n[{index:04X}]\nParameterName=Zero {index:04X}\nObjectType=0x7\nDataType=0x{dtype:04X}\n"
+                    "AccessType=rw\nDefaultValue=0\nPDOMapping=0\n" for index, dtype in values)
+    eds = tmp_path / "zeros.eds"
+    eds.write_text(f"{base}\n[ManufacturerObjects]\nSupportedObjects=2\n1=0x2000\n2=0x2001\n{extra}", encoding="utf-8")
+    options = tmp_path / "zeros.toml"
+    options.write_text(f'[persist]\nmigration = {migration}\n\n[[entry]]\nmatch = ["0x2000", "0x2001"]\n'
+                       'storage = "persist:zeros"\n', encoding="utf-8")
+    request = Request(eds, name="zeros", options=options)
+    assert ".defaults = NULL, .spread = zeros_persist_zeros_spread" in generate(request).files["zeros.c"]
+    _assert_passed(run_check(request, cc=_compiler("gcc")))
+
+
 @pytest.mark.parametrize("case", sorted(GOLDEN_CASES))
 def test_golden_files(case: str) -> None:
     """Set ODGEN_UPDATE_GOLDEN=1 to rewrite tests/golden after an intended change."""

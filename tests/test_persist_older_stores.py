@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 
-from .persist_model import DAMAGED, I16, LOST_BITS, U16, U32, VS, Param, build, run_script, saves
+from .persist_model import DAMAGED, I16, LOADED, LOST_BITS, U16, U32, VS, Param, Version, build, run_script, saves
 from .persist_model import version as app
 
 pytestmark = pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
@@ -110,3 +110,57 @@ def test_a_store_that_erases_an_image_past_its_region_leaves_the_next_group_its_
         back = boots[-1]
         assert back.groups[0]["status"] == DAMAGED and back.seen[0] & LOST_BITS  # app (the groups by name)
         assert back.values[(0x2000, 0)] == "00000000"
+
+
+def _windowed_octet_string(tmp_path: Path) -> tuple[list[Version], list[str]]:
+    """v2 (app pinned to 512) stores an OCTET_STRING of 200 bytes holding, at byte 64 of slot A,
+    a valid image of its own group (plain group id, header naming region 128) that serves 0x2001
+    = 0x0BAD; v1 (app pinned to 128) sees through its driver only its own 256 bytes of NV, so
+    slot A's image runs past them: v1 cannot check it, and byte 64 is v1's slot B."""
+    v1 = app(Param(0x2001, U32, "app", 0), pins={"app": 128})
+    v2 = app(Param(0x2000, OCTET_STRING, "app", "", capacity=200), Param(0x2001, U32, "app", 0), pins={"app": 512})
+    work = tmp_path / "ids"
+    work.mkdir()
+    build([v1, v2], work)
+    found = re.search(r"_NV_APP_REGION, \.id = 0x([0-9A-F]+)u", (work / "v0.c").read_text(encoding="utf-8"))
+    assert found is not None
+    image = struct.pack("<H", 1) + struct.pack("<HBBH", 0x2001, 0, U32, 4) + struct.pack("<I", 0xBAD)
+    head = b"ODG2" + struct.pack("<IIII", 1000, int(found.group(1), 16), 128, len(image))
+    payload = bytes(26) + head + struct.pack("<I", zlib.crc32(head + image)) + image  # 38 + 26 = byte 64
+    payload += bytes(200 - len(payload))
+    return [v1, v2], ["nv 640", "boot 1", f"set 2000 00 {payload.hex()}", "save", "save", "window 256"]
+
+
+def test_an_octet_string_in_a_slot_a_image_past_a_windowed_rollback_s_nv_is_never_taken(tmp_path: Path) -> None:
+    """The boot takes no image inside slot A's image also when it cannot read that image to its
+    end (past the NV its driver shows): its header says how far it goes. v1 boots DAMAGED (v2's
+    values are lost to it) with the default, never 0x0BAD; its store home goes to slot B and
+    the unreadable slot A's header goes after it, so the next boot loads that store."""
+    versions, steps = _windowed_octet_string(tmp_path)
+    run = tmp_path / "run"
+    run.mkdir()
+    violations, boots, _ = run_script(versions, [*steps, "boot 0", "boot 0", "set 2001 00 05000000", "save", "boot 0"],
+                                      run)
+    assert not violations, "\n".join(map(str, violations))
+    rollback, again, saved = boots[1:]
+    assert rollback.values[(0x2001, 0)] == "00000000"
+    assert rollback.groups[0]["status"] == DAMAGED and rollback.seen[0] & LOST_BITS
+    assert again.groups[0]["status"] == LOADED and not again.seen[0] & LOST_BITS
+    assert saved.groups[0]["status"] == LOADED and saved.values[(0x2001, 0)] == "05000000"
+
+
+def test_a_power_cut_in_that_rollback_s_boot_never_serves_the_octet_string_s_image(tmp_path: Path) -> None:
+    """As above, with the power cut at every fifth byte v1's first boot programs or erases (its
+    store home, then the erase of slot A's header): the boot after serves the default or what
+    that store wrote, never 0x0BAD, and the boot after it loads."""
+    versions, steps = _windowed_octet_string(tmp_path)
+    cuts = range(0, 200, 5)
+    run = tmp_path / "run"
+    run.mkdir()
+    commands = [c for n in cuts for c in (*steps, f"cut {n}", "boot 0", "power", "boot 0", "boot 0")]
+    _, boots, _ = run_script(versions, commands, run)
+    per = len(boots) // len(cuts)
+    for k in range(len(cuts)):
+        after, last = boots[k * per + per - 2], boots[k * per + per - 1]
+        assert after.values[(0x2001, 0)] == "00000000" and last.values[(0x2001, 0)] == "00000000", cuts[k]
+        assert last.groups[0]["status"] == LOADED, (cuts[k], last.groups)

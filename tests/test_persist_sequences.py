@@ -350,3 +350,22 @@ def test_save_goes_on_past_a_failing_group(tmp_path: Path) -> None:
     after = boots[-1]
     assert after.values[(0x1017, 0)] == "F401"
     assert after.values[(0x2000, 0)] == "01"
+
+
+def test_a_load_mark_past_a_windowed_rollback_s_nv_is_a_mark_not_a_loss(tmp_path: Path) -> None:
+    """v2 (app pinned to 512 bytes, 21 more entries) stores its defaults (slot A), a save (slot B)
+    and loads: the mark goes to slot A and runs past the 256 bytes the driver shows v1 (app pinned
+    to 128). v1 reads the mark's header but cannot check its image: the newest is a load mark all
+    the same, so the group boots DEFAULTS (docs/persistence.md section 4) with no loss reported;
+    nothing stored was lost, as the user asked for the defaults."""
+    v1 = app(Param(0x2000, U32, "app", 0), pins={"app": 128})
+    v2 = app(Param(0x2000, U32, "app", 0), Param(0x2200, U32, "app", 1, elements=20), pins={"app": 512})
+    commands = ["nv 640", "boot 1", *saves(0x2000, ["07000000"]), "load", "window 256", "boot 0", "boot 0"]
+    violations, boots, answers = run_script([v1, v2], commands, tmp_path)
+    assert not violations, "\n".join(map(str, violations))
+    assert answers[-2:] == [LOAD_OK, "ok"]
+    rollback = boots[1]
+    assert rollback.values[(0x2000, 0)] == "00000000"
+    assert rollback.groups[0]["status"] == DEFAULTS, rollback.groups  # app (the groups by name: app, comm)
+    assert not rollback.seen[0] & LOST_BITS, rollback.seen
+    assert boots[2].groups[0]["status"] == LOADED and not boots[2].seen[0] & LOST_BITS
