@@ -498,9 +498,11 @@ class Checker:
         if cut and self.working():
             for g in groups:
                 old = self.nv.images.get(g, [None])
-                new: list[Image | None] = [self._image(fw, g) if word == "save" else self._mark(fw, g)]
-                self.nv.images[g] = old + new
+                image = self._image(fw, g) if word == "save" else self._mark(fw, g)
+                self.nv.images[g] = old + [image]
                 self.nv.written.setdefault(g, set()).add(fw.regions[g])
+                # it may be in NV, at the region's place, for a later rollback to come back to
+                self.nv.placed.setdefault((g, fw.regions[g][0]), []).append(image)
             self.dirty = True
             return
         if cut:
