@@ -91,9 +91,9 @@ DICT_PARTS = {"sub-entry descriptors": "od_subs", "entries": "od_entries", "rese
 
 FOOTPRINT_NOTES = """\
 Every footprint goal above is met (hash, the default lookup; DS301 unless named; 2026-11-28). The
-rows with boot migration are the closest: DS301 5280 B against 5308 B (99%), demoDevice 7008 B
-against 7132 B (98%). The persistence layer links 3256 B for DS301 (the ELF minus the row without
-persistence; demoDevice 3808 B), against about 1764 B that CANopenNode's CO_storage,
+rows with boot migration are the closest: DS301 5304 B against 5308 B (99.9%), demoDevice 7040 B
+against 7132 B (99%). The persistence layer links 3280 B for DS301 (the ELF minus the row without
+persistence; demoDevice 3840 B), against about 1764 B that CANopenNode's CO_storage,
 CO_storageEeprom and CRC-16 add (5308 - 3544); the dictionary and the core are at 57% of
 CANopenNode's (the row without persistence), which pays for the rest. What the layer links beyond
 CANopenNode's storage: stored values survive a firmware update that changes the layout (entry by
@@ -102,8 +102,8 @@ found where an older NV map put them (the places a region that grew or shrank le
 of several groups in the order of their regions, the scrub of a region after boot), and a
 power-safe A/B commit with read-back.
 
-- How the rows with boot migration came within their goals on 2026-11-28 (DS301 5728 -> 5280 B,
-  demoDevice 7496 -> 7008 B):
+- How the rows with boot migration came within their goals on 2026-11-28 (DS301 5728 -> 5304 B,
+  demoDevice 7496 -> 7040 B):
   - Runs of alike entries of consecutive indices (the RPDO and TPDO communication and mapping
     records) share one list of sub-entry descriptors (`ODG_E_SHARED`): each shared descriptor
     keeps the stride of its values in the high byte of `size` and an offset biased by the run's
@@ -126,8 +126,15 @@ power-safe A/B commit with read-back.
     with no image checks its region blank in one pass and looks for an "ODG1" mark at its start
     only, and the record count is read with the slot header: -40 B. `odg_group_reset`, the CRC
     read inline and the ordered boot keeping the lowest start: -16 B (demoDevice -60 B).
+  - An adversarial review of the shared runs and the load mark then fixed two promises, +24 B
+    (demoDevice +32 B): a load mark that a rollback's driver shows only in part (it lies past
+    the NV the driver shows) is a mark (`DEFAULTS`), not a loss; and no place inside slot A's image
+    is taken when that image runs past the NV the driver shows (a stored OCTET_STRING could hold
+    one), the store that follows erasing that header once its own image is committed.
   - Tried and dropped: the boot counts copied as one block (0 B, demoDevice +12 B); the bsearch
-    lookup (88 B less, but it misses the lookup goal: 134 instructions).
+    lookup (76 B less, but it misses the lookup goal: 134 instructions); the dictionary's fields
+    of features a build leaves out (about 20 B, but a runtime and a dictionary built with
+    different switches would then disagree on the struct's layout with no error).
 - Measured for this row earlier on 2026-11-28, and what became of it:
   - Two more rounds of behaviour-preserving rewrites: the migration DS301 -100 B, demoDevice
     -104 B; the layer and the slots DS301 -44 B, demoDevice -96 B.
