@@ -41,7 +41,7 @@ static odg_abort_t locate(input_t *in, uint8_t op, odg_ref_t *r)
         index = take16(in);
         sub = take(in);
     } else {
-        index = index_of(&DICT, (uint16_t)(take16(in) % DICT.n_subs), &sub);
+        index = index_of(&DICT, take16(in) % subs_of_entries(&DICT), &sub);
     }
     return odg_find(&DICT, index, sub, r);
 }

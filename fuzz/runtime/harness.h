@@ -226,20 +226,29 @@ static odg_hook_fn pick_hook(uint8_t b)
     return b % 3u == 0u ? NULL : (b % 3u == 1u ? hook_ok : hook_refuse);
 }
 
-/* The sub-entry at position `pos` of the dictionary, with its index, as odg_find gives it. */
-static uint16_t index_of(const odg_dict_t *d, uint16_t pos, uint8_t *sub)
+/* The number of sub-entry descriptors the entries hold, each member of a shared run
+ * (ODG_E_SHARED) counting its own: dict->n_subs when the dictionary has no run. */
+static uint32_t subs_of_entries(const odg_dict_t *d)
 {
-    uint16_t lo = 0, hi = d->n_entries;
-    while ((unsigned)hi - lo > 1u) {
-        uint16_t mid = (uint16_t)((lo + hi) / 2u);
-        if (d->entries[mid].first <= pos) {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
+    uint32_t n = 0, k;
+    for (k = 0; k < d->n_entries; k++) {
+        n += d->entries[k].count;
     }
-    *sub = d->subs[pos].sub;
-    return d->entries[lo].index;
+    return n;
+}
+
+/* The sub-entry numbered `k` (below subs_of_entries) of the entries in turn, with its index, as
+ * odg_find gives it: entry by entry, so that every member of a shared run is reached (they share
+ * their descriptors' positions); without runs, the sub-entry at position k of dict->subs. */
+static uint16_t index_of(const odg_dict_t *d, uint32_t k, uint8_t *sub)
+{
+    const odg_entry_t *e = d->entries;
+    while (k >= e->count) {
+        k -= e->count;
+        e++;
+    }
+    *sub = d->subs[e->first + k].sub;
+    return e->index;
 }
 
 /* Refers to every helper, so that a harness that does not call one compiles without
@@ -247,7 +256,8 @@ static uint16_t index_of(const odg_dict_t *d, uint16_t pos, uint8_t *sub)
 void harness_keep_(void);
 void harness_keep_(void)
 {
-    (void)take32, (void)sdo_write, (void)index_of, (void)pick_hook, (void)still_serving, (void)node_start;
+    (void)take32, (void)sdo_write, (void)index_of, (void)subs_of_entries, (void)pick_hook, (void)still_serving,
+        (void)node_start;
 }
 
 #endif /* HARNESS_H */
