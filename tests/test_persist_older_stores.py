@@ -74,21 +74,27 @@ def test_a_stored_octet_string_is_never_taken_for_an_image(tmp_path: Path) -> No
     naming region 128) at byte 64 of slot A, a place the walk visits for slot B of a region of
     128: the next boot takes it as the newest and serves 0x2001 = 0x0BAD, never stored."""
     v1 = app(Param(0x2000, OCTET_STRING, "app", "", capacity=100), Param(0x2001, U32, "app", 0))
-    work = tmp_path / "ids"
+    payload = _octet_string_holding_an_image([v1], tmp_path / "ids", 100)
+    run = tmp_path / "run"
+    run.mkdir()
+    _, boots, _ = run_script([v1], ["nv 4096", "boot 0", f"set 2000 00 {payload}", "save", "save", "boot 0"], run)
+    assert boots[-1].values[(0x2001, 0)] == "00000000"
+    assert boots[-1].values[(0x2000, 0)] == payload.upper()
+
+
+def _octet_string_holding_an_image(vs: list[Version], work: Path, capacity: int) -> str:
+    """An OCTET_STRING value of `capacity` bytes (hex) holding, from its byte 26, a valid image of
+    group app (plain group id, header naming region 128) that serves 0x2001 = 0x0BAD: once stored
+    in slot A, after the slot header and the record count and records before it (38 bytes), the
+    image lies at byte 64, a place the walk visits for slot B of a region of 128."""
     work.mkdir()
-    build([v1], work)
+    build(vs, work)
     found = re.search(r"_NV_APP_REGION, \.id = 0x([0-9A-F]+)u", (work / "v0.c").read_text(encoding="utf-8"))
     assert found is not None
     image = struct.pack("<H", 1) + struct.pack("<HBBH", 0x2001, 0, U32, 4) + struct.pack("<I", 0xBAD)
     head = b"ODG2" + struct.pack("<IIII", 1000, int(found.group(1), 16), 128, len(image))
     payload = bytes(26) + head + struct.pack("<I", zlib.crc32(head + image)) + image  # 38 + 26 = byte 64
-    payload += bytes(100 - len(payload))
-    run = tmp_path / "run"
-    run.mkdir()
-    _, boots, _ = run_script([v1], ["nv 4096", "boot 0", f"set 2000 00 {payload.hex()}", "save", "save", "boot 0"],
-                             run)
-    assert boots[-1].values[(0x2001, 0)] == "00000000"
-    assert boots[-1].values[(0x2000, 0)] == payload.hex().upper()
+    return (payload + bytes(capacity - len(payload))).hex()
 
 
 def test_a_store_that_erases_an_image_past_its_region_leaves_the_next_group_its_loss(tmp_path: Path) -> None:
@@ -119,16 +125,8 @@ def _windowed_octet_string(tmp_path: Path) -> tuple[list[Version], list[str]]:
     slot A's image runs past them: v1 cannot check it, and byte 64 is v1's slot B."""
     v1 = app(Param(0x2001, U32, "app", 0), pins={"app": 128})
     v2 = app(Param(0x2000, OCTET_STRING, "app", "", capacity=200), Param(0x2001, U32, "app", 0), pins={"app": 512})
-    work = tmp_path / "ids"
-    work.mkdir()
-    build([v1, v2], work)
-    found = re.search(r"_NV_APP_REGION, \.id = 0x([0-9A-F]+)u", (work / "v0.c").read_text(encoding="utf-8"))
-    assert found is not None
-    image = struct.pack("<H", 1) + struct.pack("<HBBH", 0x2001, 0, U32, 4) + struct.pack("<I", 0xBAD)
-    head = b"ODG2" + struct.pack("<IIII", 1000, int(found.group(1), 16), 128, len(image))
-    payload = bytes(26) + head + struct.pack("<I", zlib.crc32(head + image)) + image  # 38 + 26 = byte 64
-    payload += bytes(200 - len(payload))
-    return [v1, v2], ["nv 640", "boot 1", f"set 2000 00 {payload.hex()}", "save", "save", "window 256"]
+    payload = _octet_string_holding_an_image([v1, v2], tmp_path / "ids", 200)
+    return [v1, v2], ["nv 640", "boot 1", f"set 2000 00 {payload}", "save", "save", "window 256"]
 
 
 def test_an_octet_string_in_a_slot_a_image_past_a_windowed_rollback_s_nv_is_never_taken(tmp_path: Path) -> None:
