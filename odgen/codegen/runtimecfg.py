@@ -29,6 +29,11 @@ STREAMS = {*STRINGS, UNICODE, DOMAIN}
 REALS = {0x08, 0x11}
 
 
+def width(size: int) -> int:
+    """Bytes of the C type of a number of wire size `size` (ODG_STRIDE in runtime/odg.h)."""
+    return 4 if size == 3 else (8 if size > 4 else size)
+
+
 @dataclass
 class Switch:
     macro: str
@@ -164,7 +169,7 @@ def comm_bytes(view: DictView) -> int:
                     and s.size <= 8 and s.type not in STREAMS)
             if kept:
                 elements = packed.get(e.index, 1) if p == e.first + 1 and e.index in packed else 1
-                total += elements * (4 if s.size == 3 else 8 if s.size > 4 else s.size)
+                total += elements * width(s.size)
     return total
 
 

@@ -22,10 +22,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from .runtimecfg import STREAMS, width
+
 if TYPE_CHECKING:  # the view-model calls share() to finish a view
     from .viewmodel import DictView, EntryView, SubView
 
-STREAMS = {0x09, 0x0A, 0x0B, 0x0F}
 MAX_STRIDE = 0xFF  # the high byte of odg_sub_t.size
 
 
@@ -35,11 +36,6 @@ class SharedView:
     first: int  # index of the first member
     last: int
     checks: list[tuple[str, str, int]]  # (member's offset, first member's offset, bytes between)
-
-
-def width(size: int) -> int:
-    """Bytes of the C type of a number of wire size `size` (ODG_STRIDE)."""
-    return 4 if size == 3 else (8 if size > 4 else size)
 
 
 def _rows(subs: list[SubView], entry: EntryView) -> list[SubView]:
