@@ -44,7 +44,7 @@
 #define ODG_NODE_SDO_BLOCK 1 /* SDO block transfer (odg_sdo.c): served unless [node] sdo_block = false */
 
 /* The end of the persistence groups' NV, from the start of the first group's region: NAME_NV_SIZE
- * minus that region's offset (odg_persist.h; alltypes.c checks it). */
+ * minus that region's offset (odg_persist_impl.h; alltypes.c checks it). */
 #define ODG_PERSIST_NV_TAIL 1024u
 
 #endif /* ALLTYPES_CONFIG_H */
