@@ -29,21 +29,25 @@ RUNTIME = ROOT / "runtime"
 CTESTS = ROOT / "tests" / "runtime"
 LOADED, DEFAULTS, SIGNATURE, DAMAGED, MIGRATED = 0, 1, 2, 4, 5
 
-HEADER = """[FileInfo]
-FileName=od.eds
+
+
+def eds_head(file: str, description: str, product: str, rpdos: int = 0) -> str:
+    """The [FileInfo], [DeviceInfo] and [MandatoryObjects] (0x1000, 0x1001, 0x1018) of a test EDS."""
+    return f"""[FileInfo]
+FileName={file}
 FileVersion=1
 FileRevision=0
 EDSVersion=4.0
-Description=migration fixture
+Description={description}
 CreatedBy=odgen tests
 
 [DeviceInfo]
 VendorName=odgen tests
-ProductName=migration
+ProductName={product}
 BaudRate_125=1
 SimpleBootUpSlave=1
 Granularity=8
-NrOfRXPDO=0
+NrOfRXPDO={rpdos}
 NrOfTXPDO=0
 LSS_Supported=0
 
@@ -52,7 +56,10 @@ SupportedObjects=3
 1=0x1000
 2=0x1001
 3=0x1018
+"""
 
+
+HEADER = eds_head("od.eds", "migration fixture", "migration") + """
 [1000]
 ParameterName=Device type
 ObjectType=0x7

@@ -23,33 +23,10 @@ from odgen.assets import runtime_dir
 from odgen.cli import main
 
 from .cprog import build, compiler
-from .test_migration_runtime import LOADED, Param, eds, firmware, run
+from .test_migration_runtime import LOADED, Param, eds, eds_head, firmware, run
 from .test_target_cores import _check, _core
 
-HEAD = """[FileInfo]
-FileName=shared.eds
-FileVersion=1
-FileRevision=0
-EDSVersion=4.0
-Description=shared runs
-CreatedBy=odgen tests
-
-[DeviceInfo]
-VendorName=odgen tests
-ProductName=shared
-BaudRate_125=1
-SimpleBootUpSlave=1
-Granularity=8
-NrOfRXPDO=4
-NrOfTXPDO=0
-LSS_Supported=0
-
-[MandatoryObjects]
-SupportedObjects=3
-1=0x1000
-2=0x1001
-3=0x1018
-"""
+HEAD = eds_head("shared.eds", "shared runs", "shared", rpdos=4)
 U8, U16, U32, U64, I24, R64, BOOL = 0x05, 0x06, 0x07, 0x1B, 0x10, 0x11, 0x01
 
 
